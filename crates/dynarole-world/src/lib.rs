@@ -1,0 +1,1 @@
+//! Kinematic models of modular robots (ATRON, M-TRAN) and their configurations.
