@@ -1,1 +1,34 @@
-//! placeholder
+//! The dynarole language core: from `.dr` source text to checked, reversible sequences.
+//!
+//! Pipeline: `source → lexer::lex → tokens → parser::parse → ast::SourceFile →
+//! check::analyze → check::Program → (reverse) → expand::Plan`.
+//!
+//! **Architecture invariant**: this crate does no IO. Sources, plugin texts and configurations
+//! come in as strings; results and diagnostics go out as data.
+
+pub mod ast;
+pub mod check;
+pub mod diagnostic;
+pub mod expand;
+pub mod format;
+pub mod lexer;
+pub mod parser;
+pub mod reverse;
+pub mod robot;
+pub mod span;
+mod suggest;
+
+pub use check::{analyze, Program};
+pub use diagnostic::{Diagnostic, DiagnosticKind, Severity};
+pub use parser::{parse, Parsed};
+pub use robot::{RobotApi, RobotRegistry};
+pub use span::Span;
+
+/// Parses and checks `source`: the syntax and checking diagnostics together, in source order.
+pub fn check_source(source: &str, registry: &RobotRegistry) -> Vec<Diagnostic> {
+    let parsed = parse(source);
+    let (_, mut diagnostics) = analyze(&parsed.file, registry);
+    diagnostics.extend(parsed.diagnostics);
+    diagnostics.sort_by_key(|d| d.span);
+    diagnostics
+}

@@ -1,0 +1,71 @@
+//! Reading inputs: source files and robot plugins, with errors that name the file.
+
+use dynarole_core::RobotRegistry;
+use dynarole_core::robot::RobotApi;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+/// A command that could not run; printed as `error: ...` by `main`.
+#[derive(Debug)]
+pub enum Failure {
+    /// Bad input (exit 1).
+    Input(String),
+    /// Bad usage (exit 2).
+    Usage(String),
+}
+
+impl Failure {
+    pub fn exit_code(&self) -> ExitCode {
+        match self {
+            Failure::Input(_) => ExitCode::from(1),
+            Failure::Usage(_) => ExitCode::from(2),
+        }
+    }
+
+    pub fn message(&self) -> &str {
+        match self {
+            Failure::Input(m) | Failure::Usage(m) => m,
+        }
+    }
+}
+
+#[derive(clap::Args, Clone, Debug, Default)]
+pub struct PluginArgs {
+    /// Load a robot API plugin (TOML); may be repeated. A file `NAME.robot.toml` beside the
+    /// source is loaded automatically when the source says `robot NAME;`.
+    #[arg(long = "plugin", value_name = "FILE")]
+    pub plugins: Vec<PathBuf>,
+}
+
+pub fn read_source(path: &Path) -> Result<String, Failure> {
+    std::fs::read_to_string(path).map_err(|e| Failure::Input(format!("cannot read {}: {e}", path.display())))
+}
+
+/// Built-in robots, then `--plugin` files, then a `NAME.robot.toml` beside `source_path`
+/// for a `robot NAME;` that is still unknown.
+pub fn registry(args: &PluginArgs, source_path: &Path, robot_name: Option<&str>) -> Result<RobotRegistry, Failure> {
+    let mut registry = RobotRegistry::builtin();
+    for path in &args.plugins {
+        registry.add(load_plugin(path)?);
+    }
+    if let Some(name) = robot_name {
+        let beside = source_path.with_file_name(format!("{name}.robot.toml"));
+        if registry.get(name).is_none() && beside.is_file() {
+            registry.add(load_plugin(&beside)?);
+        }
+    }
+    Ok(registry)
+}
+
+fn load_plugin(path: &Path) -> Result<RobotApi, Failure> {
+    let text = read_source(path)?;
+    RobotApi::from_toml(&text).map_err(|e| Failure::Input(format!("{}: {e}", path.display())))
+}
+
+/// The name in the file's first `robot NAME;`, if any.
+pub fn robot_name(file: &dynarole_core::ast::SourceFile) -> Option<&str> {
+    file.items.iter().find_map(|item| match item {
+        dynarole_core::ast::Item::Robot(decl) => Some(decl.name.name.as_str()),
+        _ => None,
+    })
+}

@@ -1,0 +1,226 @@
+//! The syntax tree of a `.dr` file, as written (before names are resolved).
+
+use crate::lexer::Comment;
+use crate::span::Span;
+
+/// A whole source file: its items in order, and its comments (for the formatter).
+#[derive(Clone, Debug, PartialEq, Eq, Default)]
+pub struct SourceFile {
+    pub items: Vec<Item>,
+    pub comments: Vec<Comment>,
+}
+
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Item {
+    /// `robot atron;`
+    Robot(RobotDecl),
+    /// `role Wheel requires connected($CONNECTOR_0) && id != 3;`
+    Role(RoleDecl),
+    /// `sequence eight2car { ... }` or `sequence car2eight = reverse eight2car;`
+    Sequence(SequenceDecl),
+}
+
+impl Item {
+    pub fn span(&self) -> Span {
+        match self {
+            Item::Robot(decl) => decl.span,
+            Item::Role(decl) => decl.span,
+            Item::Sequence(decl) => decl.span,
+        }
+    }
+}
+
+/// A name as written, with where it was written.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Ident {
+    pub name: String,
+    pub span: Span,
+}
+
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct RobotDecl {
+    pub name: Ident,
+    pub span: Span,
+}
+
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct RoleDecl {
+    pub name: Ident,
+    pub predicate: Expr,
+    pub span: Span,
+}
+
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SequenceDecl {
+    pub name: Ident,
+    pub definition: SequenceDef,
+    pub span: Span,
+}
+
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum SequenceDef {
+    /// `{ statement sep statement sep ... }`
+    Body(Body),
+    /// `= reverse other;`
+    Reverse(Ident),
+}
+
+/// The inside of a sequence or of a block: elements, each closed by a separator.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Body {
+    pub elements: Vec<Element>,
+    /// From the `{` to the `}`.
+    pub span: Span,
+}
+
+/// One element of a body and the separator that follows it.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Element {
+    pub kind: ElementKind,
+    pub separator: Separator,
+    /// The element without its separator.
+    pub span: Span,
+}
+
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum ElementKind {
+    /// `M3.Joint.rotateFromToBy(0, 324, false, 150)`
+    Statement(Statement),
+    /// `{ A; B }`: a nested body, run as one element of the enclosing group.
+    Block(Body),
+    /// `eight2snake` or `reverse eight2snake`: another sequence, run in place.
+    Call(Call),
+}
+
+/// `;` (the next element depends on this one) or `&` (it does not).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SeparatorKind {
+    Sequential,
+    Parallel,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Separator {
+    pub kind: SeparatorKind,
+    /// Empty when the separator is missing (already reported by the parser).
+    pub span: Span,
+}
+
+/// `LABEL.Part[INDEX].method(ARGS)` or `LABEL.Part.method(ARGS)`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Statement {
+    pub label: Ident,
+    pub part: Ident,
+    pub index: Option<Arg>,
+    pub method: Ident,
+    pub args: Vec<Arg>,
+    /// From `(` to `)`, used to point at a wrong number of arguments.
+    pub args_span: Span,
+}
+
+/// A use of another sequence inside a body.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Call {
+    /// The `reverse` keyword, when the call runs the other sequence backwards.
+    pub reverse: Option<Span>,
+    pub name: Ident,
+}
+
+/// An argument of an operation, or the index of a part.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Arg {
+    pub kind: ArgKind,
+    pub span: Span,
+}
+
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum ArgKind {
+    Int(i64),
+    Bool(bool),
+    /// `$NAME`, defined by the robot plugin.
+    Constant(String),
+}
+
+/// A role predicate, over the module's local state and its immediate neighbours.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Expr {
+    pub kind: ExprKind,
+    pub span: Span,
+}
+
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum ExprKind {
+    Int(i64),
+    Bool(bool),
+    Constant(String),
+    /// A query with no arguments, such as `id` or `neighbours`.
+    Name(Ident),
+    /// A query with arguments, such as `connected($CONNECTOR_0)`.
+    Call { function: Ident, args: Vec<Expr> },
+    Unary { op: UnaryOp, operand: Box<Expr> },
+    Binary { op: BinaryOp, lhs: Box<Expr>, rhs: Box<Expr> },
+    /// Kept so that the formatter can print the parentheses the author wrote.
+    Paren(Box<Expr>),
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum UnaryOp {
+    Not,
+    Negate,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BinaryOp {
+    Or,
+    And,
+    Eq,
+    NotEq,
+    Lt,
+    Le,
+    Gt,
+    Ge,
+}
+
+impl BinaryOp {
+    pub fn symbol(self) -> &'static str {
+        match self {
+            BinaryOp::Or => "||",
+            BinaryOp::And => "&&",
+            BinaryOp::Eq => "==",
+            BinaryOp::NotEq => "!=",
+            BinaryOp::Lt => "<",
+            BinaryOp::Le => "<=",
+            BinaryOp::Gt => ">",
+            BinaryOp::Ge => ">=",
+        }
+    }
+
+    /// Binding strength: `||` < `&&` < comparisons.
+    pub fn precedence(self) -> u8 {
+        match self {
+            BinaryOp::Or => 1,
+            BinaryOp::And => 2,
+            _ => 3,
+        }
+    }
+}
+
+impl SourceFile {
+    pub fn sequences(&self) -> impl Iterator<Item = &SequenceDecl> {
+        self.items.iter().filter_map(|item| match item {
+            Item::Sequence(decl) => Some(decl),
+            _ => None,
+        })
+    }
+
+    pub fn roles(&self) -> impl Iterator<Item = &RoleDecl> {
+        self.items.iter().filter_map(|item| match item {
+            Item::Role(decl) => Some(decl),
+            _ => None,
+        })
+    }
+
+    pub fn sequence(&self, name: &str) -> Option<&SequenceDecl> {
+        self.sequences().find(|decl| decl.name.name == name)
+    }
+}

@@ -1,0 +1,342 @@
+//! Every message the language core can give, as plain data, and the one table that words them.
+//!
+//! A [`Diagnostic`] is a kind plus where it happened. [`Diagnostic::describe`] is the single
+//! exhaustive `match` that turns a kind into a title, a label, a hint and extra labels, so a new
+//! kind does not compile until it has a message. Rendering (colours, snippets) is the CLI's job.
+
+use crate::span::Span;
+use strum::{EnumDiscriminants, EnumIter, IntoStaticStr};
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Severity {
+    Warning,
+    Error,
+}
+
+/// One problem found in a source file.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Diagnostic {
+    pub kind: DiagnosticKind,
+    /// Where the problem is; the caret of the rendered snippet.
+    pub span: Span,
+}
+
+/// A diagnostic in words, ready for a renderer.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Description {
+    /// Stable kebab-case name of the kind, such as `unknown-label`.
+    pub code: &'static str,
+    pub severity: Severity,
+    pub title: String,
+    /// Text under the caret at the primary span.
+    pub label: String,
+    /// Other places that explain the problem.
+    pub secondary: Vec<(Span, String)>,
+    pub hint: Option<String>,
+}
+
+/// What went wrong. Payloads hold only what the message needs.
+#[derive(Clone, Debug, PartialEq, Eq, EnumDiscriminants)]
+#[strum_discriminants(name(DiagnosticCode))]
+#[strum_discriminants(derive(EnumIter, IntoStaticStr))]
+#[strum_discriminants(strum(serialize_all = "kebab-case"))]
+pub enum DiagnosticKind {
+    // ---- syntax ----
+    UnknownCharacter { found: char },
+    UnterminatedComment,
+    UnexpectedToken { expected: String, found: String },
+    /// `&` inside a role predicate.
+    SingleAmpersand,
+    /// `|` inside a role predicate.
+    SinglePipe,
+    /// `=` where a comparison was expected.
+    AssignmentInPredicate,
+    IntegerTooLarge,
+    /// `$CONNECTOR 4`: a constant split by a space (an OCR slip in the paper).
+    SpaceInConstant { joined: String },
+    MissingSeparator,
+    UnclosedParallelGroup,
+    NestingTooDeep { limit: usize },
+    EmptySequence { name: String },
+    // ---- names ----
+    MissingRobot,
+    DuplicateRobot { first: Span },
+    UnknownRobot { name: String, known: Vec<String> },
+    DuplicateDefinition { name: String, what: &'static str, first: Span },
+    UnknownLabel { name: String, suggestion: Option<String> },
+    RoleShadowsModuleLabel { name: String },
+    UnknownSequence { name: String, suggestion: Option<String> },
+    UnknownPart { part: String, robot: String, known: Vec<String>, suggestion: Option<String> },
+    UnknownMethod { part: String, method: String, known: Vec<String>, suggestion: Option<String> },
+    UnknownConstant { name: String, suggestion: Option<String> },
+    UnknownQuery { name: String, known: Vec<String>, suggestion: Option<String> },
+    CompositionCycle { path: Vec<String>, uses: Vec<Span> },
+    // ---- types and values ----
+    MissingIndex { part: String, example: String },
+    UnexpectedIndex { part: String },
+    WrongArity { method: String, signature: String, expected: usize, found: usize },
+    WrongArgumentType { param: String, expected: String, found: String },
+    IndexOutOfRange { part: String, index: i64, count: u32 },
+    ArgumentOutOfRange { param: String, value: i64, allowed: String },
+    FemaleConnector { part: String, method: String, index: i64, males: String },
+    NotInvertible { method: String, sequence: String, reversed_at: Span },
+    TypeMismatch { context: String, expected: String, found: String },
+    PredicateNotBoolean { role: String, found: String },
+    QueryArity { name: String, expected: usize, found: usize },
+    // ---- protocol limits ----
+    NotSupportedByPaperProtocol { reason: String },
+}
+
+impl Diagnostic {
+    pub fn new(kind: DiagnosticKind, span: Span) -> Diagnostic {
+        Diagnostic { kind, span }
+    }
+
+    pub fn severity(&self) -> Severity {
+        self.describe().severity
+    }
+
+    pub fn code(&self) -> DiagnosticCode {
+        DiagnosticCode::from(&self.kind)
+    }
+
+    /// The one table of messages.
+    pub fn describe(&self) -> Description {
+        use DiagnosticKind as K;
+        let d = Description::error(self.code());
+        match &self.kind {
+            K::UnknownCharacter { found } => d
+                .title(format!("unexpected character `{}`", found.escape_debug()))
+                .label("not part of the language"),
+            K::UnterminatedComment => d
+                .title("unterminated block comment")
+                .label("this `/*` is never closed")
+                .hint("close the comment with `*/`"),
+            K::UnexpectedToken { expected, found } => d
+                .title(format!("expected {expected}, found {found}"))
+                .label(format!("expected {expected} here")),
+            K::SingleAmpersand => d
+                .title("`&` in a role predicate")
+                .label("`&` separates parallel statements")
+                .hint("write `&&` for \"and\""),
+            K::SinglePipe => d
+                .title("`|` in a role predicate")
+                .label("not an operator")
+                .hint("write `||` for \"or\""),
+            K::AssignmentInPredicate => d
+                .title("`=` in a role predicate")
+                .label("predicates compare, they do not assign")
+                .hint("write `==` to compare"),
+            K::IntegerTooLarge => d
+                .title("number too large")
+                .label("does not fit in 64 bits"),
+            K::SpaceInConstant { joined } => d
+                .title("space inside a constant name")
+                .label("constant names contain no spaces")
+                .hint(format!("write `${joined}`")),
+            K::MissingSeparator => d
+                .title("missing `;` or `&` after this statement")
+                .label("every statement ends with `;` (sequential) or `&` (parallel)")
+                .hint("add `;` if the next statement depends on this one, `&` if it does not"),
+            K::UnclosedParallelGroup => d
+                .title("parallel group is never closed")
+                .label("the last element of a body ends with `&`")
+                .hint("end the last statement with `;`: a parallel group is closed by a sequential statement"),
+            K::NestingTooDeep { limit } => d
+                .title(format!("nesting deeper than {limit} levels"))
+                .label("too deep")
+                .hint("flatten the blocks or the expression"),
+            K::EmptySequence { name } => d
+                .warning()
+                .title(format!("sequence `{name}` has no statements"))
+                .label("empty body"),
+            K::MissingRobot => d
+                .title("the file does not say which robot it is for")
+                .label("expected a `robot` declaration")
+                .hint("start the file with `robot atron;` or `robot mtran;`"),
+            K::DuplicateRobot { first } => d
+                .title("more than one `robot` declaration")
+                .label("second declaration")
+                .secondary(*first, "first declared here"),
+            K::UnknownRobot { name, known } => d
+                .title(format!("unknown robot `{name}`"))
+                .label("no API plugin has this name")
+                .hint(format!(
+                    "built-in robots: {}; describe another robot in `{name}.robot.toml` beside the file, or pass it with `--plugin FILE`",
+                    known.join(", ")
+                )),
+            K::DuplicateDefinition { name, what, first } => d
+                .title(format!("{what} `{name}` is defined twice"))
+                .label("defined again here")
+                .secondary(*first, "first defined here")
+                .hint("rename one of them"),
+            K::UnknownLabel { name, suggestion } => d
+                .title(format!("unknown label `{name}`"))
+                .label("not a role and not a module label of the form M<id>")
+                .hint(suggestion.as_ref().map_or_else(
+                    || format!("declare it with `role {name} requires ...;`, or use `M<id>` for the module with that ID"),
+                    |s| format!("did you mean `{s}`?"),
+                )),
+            K::RoleShadowsModuleLabel { name } => d
+                .warning()
+                .title(format!("role `{name}` hides the module label `{name}`"))
+                .label("statements labelled with this name use the role, not the module ID")
+                .hint("rename the role unless this is intended"),
+            K::UnknownSequence { name, suggestion } => d
+                .title(format!("unknown sequence `{name}`"))
+                .label("no sequence has this name")
+                .hint_opt(suggestion.as_ref().map(|s| format!("did you mean `{s}`?"))),
+            K::UnknownPart { part, robot, known, suggestion } => d
+                .title(format!("robot `{robot}` has no part `{part}`"))
+                .label("unknown part")
+                .hint(did_you_mean(suggestion, "parts", known)),
+            K::UnknownMethod { part, method, known, suggestion } => d
+                .title(format!("`{part}` has no operation `{method}`"))
+                .label("unknown operation")
+                .hint(did_you_mean(suggestion, "operations", known)),
+            K::UnknownConstant { name, suggestion } => d
+                .title(format!("unknown constant `${name}`"))
+                .label("the robot plugin defines no such constant")
+                .hint_opt(suggestion.as_ref().map(|s| format!("did you mean `${s}`?"))),
+            K::UnknownQuery { name, known, suggestion } => d
+                .title(format!("unknown query `{name}` in role predicate"))
+                .label("not something a module knows about itself")
+                .hint(did_you_mean(suggestion, "queries", known)),
+            K::CompositionCycle { path, uses } => {
+                let mut d = d
+                    .title(format!("sequences use each other in a cycle: {}", path.join(" -> ")))
+                    .label("this use closes the cycle")
+                    .hint("a sequence cannot run itself, directly or through others");
+                for span in uses {
+                    d = d.secondary(*span, "part of the cycle");
+                }
+                d
+            }
+            K::MissingIndex { part, example } => d
+                .title(format!("`{part}` needs an index"))
+                .label("which one?")
+                .hint(format!("write `{example}`")),
+            K::UnexpectedIndex { part } => d
+                .title(format!("`{part}` takes no index"))
+                .label("remove this index")
+                .hint(format!("write `.{part}.` without brackets")),
+            K::WrongArity { method, signature, expected, found } => d
+                .title(format!(
+                    "`{method}` takes {expected} argument{}, found {found}",
+                    plural(*expected)
+                ))
+                .label(format!("expected {expected}"))
+                .hint(format!("the operation is `{signature}`")),
+            K::WrongArgumentType { param, expected, found } => d
+                .title(format!("wrong type for `{param}`: expected {expected}, found {found}"))
+                .label(format!("expected {expected}")),
+            K::IndexOutOfRange { part, index, count } => d
+                .title(format!("{part} index {index} is out of range"))
+                .label(format!("this module has {count} ({part} 0 to {})", count.saturating_sub(1)))
+                .hint(format!("use an index from 0 to {}", count.saturating_sub(1))),
+            K::ArgumentOutOfRange { param, value, allowed } => d
+                .title(format!("`{param}` = {value} is out of range"))
+                .label(format!("allowed: {allowed}")),
+            K::FemaleConnector { part, method, index, males } => d
+                .title(format!("`{method}` on female {part} {index}"))
+                .label("only male connectors can extend or retract")
+                .hint(format!("the male connectors are {males}; the module on the other side must act")),
+            K::NotInvertible { method, sequence, reversed_at } => d
+                .title(format!("`{method}` has no inverse, so `{sequence}` cannot be reversed"))
+                .label("this operation cannot be undone by the robot API")
+                .secondary(*reversed_at, "reversed here")
+                .hint("use an operation that states enough to be undone, e.g. `rotateFromToBy` instead of `rotateToBy`"),
+            K::TypeMismatch { context, expected, found } => d
+                .title(format!("{context} expects {expected}, found {found}"))
+                .label(format!("this is {found}")),
+            K::PredicateNotBoolean { role, found } => d
+                .title(format!("the predicate of role `{role}` is {found}, not a boolean"))
+                .label("expected a condition")
+                .hint("compare it, e.g. `id == 3`"),
+            K::QueryArity { name, expected, found } => d
+                .title(format!(
+                    "`{name}` takes {expected} argument{}, found {found}",
+                    plural(*expected)
+                ))
+                .label(format!("expected {expected}")),
+            K::NotSupportedByPaperProtocol { reason } => d
+                .title("not supported by the paper protocol")
+                .label(reason.clone())
+                .hint("use the `lattice` protocol, which runs nested blocks"),
+        }
+    }
+}
+
+fn plural(n: usize) -> &'static str {
+    if n == 1 {
+        ""
+    } else {
+        "s"
+    }
+}
+
+fn did_you_mean(suggestion: &Option<String>, what: &str, known: &[String]) -> String {
+    match suggestion {
+        Some(s) => format!("did you mean `{s}`?"),
+        None => format!("known {what}: {}", known.join(", ")),
+    }
+}
+
+impl Description {
+    fn error(code: DiagnosticCode) -> Description {
+        Description {
+            code: code.into(),
+            severity: Severity::Error,
+            title: String::new(),
+            label: String::new(),
+            secondary: Vec::new(),
+            hint: None,
+        }
+    }
+
+    fn warning(mut self) -> Self {
+        self.severity = Severity::Warning;
+        self
+    }
+
+    fn title(mut self, title: impl Into<String>) -> Self {
+        self.title = title.into();
+        self
+    }
+
+    fn label(mut self, label: impl Into<String>) -> Self {
+        self.label = label.into();
+        self
+    }
+
+    fn hint(mut self, hint: impl Into<String>) -> Self {
+        self.hint = Some(hint.into());
+        self
+    }
+
+    fn hint_opt(mut self, hint: Option<String>) -> Self {
+        self.hint = hint;
+        self
+    }
+
+    fn secondary(mut self, span: Span, text: impl Into<String>) -> Self {
+        self.secondary.push((span, text.into()));
+        self
+    }
+}
+
+impl DiagnosticCode {
+    pub fn name(self) -> &'static str {
+        self.into()
+    }
+}
+
+/// True when any diagnostic is an error (warnings do not fail a check).
+pub fn has_errors(diagnostics: &[Diagnostic]) -> bool {
+    diagnostics.iter().any(|d| d.severity() == Severity::Error)
+}
+
+/// Every diagnostic code, for tests that check each one is exercised.
+pub fn all_codes() -> impl Iterator<Item = DiagnosticCode> {
+    <DiagnosticCode as strum::IntoEnumIterator>::iter()
+}

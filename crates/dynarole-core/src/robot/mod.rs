@@ -1,0 +1,246 @@
+//! Robot API plugins: which parts a robot has, their operations, and how each one reverses.
+//!
+//! A plugin is data: a TOML text (see `atron.robot.toml`) loaded by [`RobotApi::from_toml`].
+//! The built-in ATRON and M-TRAN plugins are such texts compiled into the binary, so users'
+//! plugins go through exactly the same loader and checks.
+
+mod plugin;
+
+pub use plugin::PluginError;
+
+/// The API of one kind of robot.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct RobotApi {
+    pub name: String,
+    pub description: String,
+    pub parts: Vec<Part>,
+    /// `$NAME` constants, from the parts' index names.
+    pub constants: Vec<Constant>,
+    /// The part whose index the role queries `connected(c)` and `neighbour_id(c)` take.
+    pub connector_part: Option<usize>,
+    /// The part the role query `joint` (or `joint(j)`) reads.
+    pub joint_part: Option<usize>,
+}
+
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Part {
+    pub name: String,
+    /// Number of instances (`Connector[0..count]`); `None` for a part that takes no index.
+    pub count: Option<u32>,
+    /// Indices of male instances; only these may run operations that require a male one.
+    pub male: Vec<u32>,
+    pub operations: Vec<Operation>,
+}
+
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Operation {
+    pub name: String,
+    pub doc: String,
+    pub params: Vec<Param>,
+    pub requires_male: bool,
+    pub inverse: Option<Inverse>,
+}
+
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Param {
+    pub name: String,
+    pub ty: ParamType,
+}
+
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum ParamType {
+    Bool,
+    /// An integer in `min..=max`, further restricted to `values` when given.
+    Int {
+        min: i64,
+        max: i64,
+        values: Option<Vec<i64>>,
+    },
+}
+
+/// How to undo an operation: another operation of the same part (same index) and its
+/// arguments as functions of the original arguments.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Inverse {
+    pub operation: usize,
+    pub args: Vec<Template>,
+}
+
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Template {
+    /// The original argument at this position.
+    Param(usize),
+    Not(Box<Template>),
+    Negate(Box<Template>),
+    Int(i64),
+    Bool(bool),
+}
+
+/// A named value such as `$CONNECTOR_4`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Constant {
+    pub name: String,
+    pub value: i64,
+    /// The part this constant indexes, if it is an index name.
+    pub part: Option<usize>,
+}
+
+/// A value of an argument, after constants are resolved.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Value {
+    Int(i64),
+    Bool(bool),
+}
+
+impl Value {
+    pub fn type_name(self) -> &'static str {
+        match self {
+            Value::Int(_) => "a number",
+            Value::Bool(_) => "a boolean",
+        }
+    }
+}
+
+impl std::fmt::Display for Value {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Value::Int(n) => write!(f, "{n}"),
+            Value::Bool(b) => write!(f, "{b}"),
+        }
+    }
+}
+
+impl ParamType {
+    pub fn describe(&self) -> String {
+        match self {
+            ParamType::Bool => "a boolean".into(),
+            ParamType::Int { .. } => "a number".into(),
+        }
+    }
+
+    /// Whether `value` is in range; types are checked separately.
+    pub fn allows(&self, value: i64) -> bool {
+        match self {
+            ParamType::Bool => false,
+            ParamType::Int { min, max, values } => {
+                (*min..=*max).contains(&value) && values.as_ref().is_none_or(|v| v.contains(&value))
+            }
+        }
+    }
+
+    /// The allowed values in words, for messages.
+    pub fn allowed(&self) -> String {
+        match self {
+            ParamType::Bool => "true or false".into(),
+            ParamType::Int {
+                values: Some(values),
+                ..
+            } => {
+                let list: Vec<String> = values.iter().map(i64::to_string).collect();
+                format!("one of {}", list.join(", "))
+            }
+            ParamType::Int { min, max, .. } => format!("{min} to {max}"),
+        }
+    }
+}
+
+impl Part {
+    pub fn is_male(&self, index: i64) -> bool {
+        u32::try_from(index).is_ok_and(|i| self.male.contains(&i))
+    }
+
+    pub fn operation(&self, name: &str) -> Option<(usize, &Operation)> {
+        self.operations
+            .iter()
+            .enumerate()
+            .find(|(_, op)| op.name == name)
+    }
+}
+
+impl Operation {
+    /// `rotateFromToBy(from, to, increasing, speed)`, for messages.
+    pub fn signature(&self) -> String {
+        let params: Vec<&str> = self.params.iter().map(|p| p.name.as_str()).collect();
+        format!("{}({})", self.name, params.join(", "))
+    }
+}
+
+impl Template {
+    /// The argument this template yields from the original arguments `args`.
+    pub fn apply(&self, args: &[Value]) -> Option<Value> {
+        match self {
+            Template::Param(i) => args.get(*i).copied(),
+            Template::Not(inner) => match inner.apply(args)? {
+                Value::Bool(b) => Some(Value::Bool(!b)),
+                Value::Int(_) => None,
+            },
+            Template::Negate(inner) => match inner.apply(args)? {
+                Value::Int(n) => n.checked_neg().map(Value::Int),
+                Value::Bool(_) => None,
+            },
+            Template::Int(n) => Some(Value::Int(*n)),
+            Template::Bool(b) => Some(Value::Bool(*b)),
+        }
+    }
+}
+
+impl RobotApi {
+    pub fn part(&self, name: &str) -> Option<(usize, &Part)> {
+        self.parts.iter().enumerate().find(|(_, p)| p.name == name)
+    }
+
+    pub fn constant(&self, name: &str) -> Option<&Constant> {
+        self.constants.iter().find(|c| c.name == name)
+    }
+
+    /// The inverse of operation `op` of part `part` applied to `args`, if it has one.
+    pub fn invert(&self, part: usize, op: usize, args: &[Value]) -> Option<(usize, Vec<Value>)> {
+        let inverse = self.parts.get(part)?.operations.get(op)?.inverse.as_ref()?;
+        let args = inverse
+            .args
+            .iter()
+            .map(|t| t.apply(args))
+            .collect::<Option<Vec<Value>>>()?;
+        Some((inverse.operation, args))
+    }
+}
+
+/// The robots a file may name in its `robot` declaration.
+#[derive(Clone, Debug, Default)]
+pub struct RobotRegistry {
+    robots: Vec<RobotApi>,
+}
+
+/// The built-in plugins' texts, by file name.
+pub const BUILTIN_PLUGINS: [(&str, &str); 2] = [
+    ("atron.robot.toml", include_str!("atron.robot.toml")),
+    ("mtran.robot.toml", include_str!("mtran.robot.toml")),
+];
+
+impl RobotRegistry {
+    /// ATRON and M-TRAN.
+    pub fn builtin() -> RobotRegistry {
+        let mut registry = RobotRegistry::default();
+        for (_, text) in BUILTIN_PLUGINS {
+            // The built-in texts are tested to load; a failure here is a build defect.
+            if let Ok(api) = RobotApi::from_toml(text) {
+                registry.add(api);
+            }
+        }
+        registry
+    }
+
+    /// Adds a robot, replacing one of the same name.
+    pub fn add(&mut self, api: RobotApi) {
+        self.robots.retain(|r| r.name != api.name);
+        self.robots.push(api);
+    }
+
+    pub fn get(&self, name: &str) -> Option<&RobotApi> {
+        self.robots.iter().find(|r| r.name == name)
+    }
+
+    pub fn names(&self) -> Vec<String> {
+        self.robots.iter().map(|r| r.name.clone()).collect()
+    }
+}

@@ -1,0 +1,404 @@
+//! Loads and validates a robot plugin from its TOML text; errors name the offending field.
+
+use super::*;
+use crate::lexer::{lex, Token};
+use serde::Deserialize;
+
+/// A plugin that cannot be used, with the field that is wrong.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct PluginError {
+    /// Dotted path of the field, such as `part[1].operation[0].inverse`; empty for syntax errors.
+    pub field: String,
+    pub message: String,
+}
+
+impl std::fmt::Display for PluginError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if self.field.is_empty() {
+            write!(f, "{}", self.message)
+        } else {
+            write!(f, "field `{}`: {}", self.field, self.message)
+        }
+    }
+}
+
+impl std::error::Error for PluginError {}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawPlugin {
+    name: String,
+    #[serde(default)]
+    description: String,
+    connectors: Option<String>,
+    joints: Option<String>,
+    #[serde(default)]
+    part: Vec<RawPart>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawPart {
+    name: String,
+    count: Option<u32>,
+    constant_prefix: Option<String>,
+    constants: Option<Vec<String>>,
+    #[serde(default)]
+    male: Vec<u32>,
+    #[serde(default)]
+    operation: Vec<RawOperation>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawOperation {
+    name: String,
+    #[serde(default)]
+    doc: String,
+    #[serde(default)]
+    params: Vec<RawParam>,
+    #[serde(default)]
+    requires_male: bool,
+    inverse: Option<String>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawParam {
+    name: String,
+    #[serde(rename = "type")]
+    ty: String,
+    min: Option<i64>,
+    max: Option<i64>,
+    values: Option<Vec<i64>>,
+}
+
+fn error(field: impl Into<String>, message: impl Into<String>) -> PluginError {
+    PluginError {
+        field: field.into(),
+        message: message.into(),
+    }
+}
+
+/// Longest `inverse` text; it is parsed recursively, so its length bounds the depth.
+const MAX_INVERSE_LEN: usize = 500;
+
+/// Largest index count; indices travel in one byte on the modules.
+const MAX_COUNT: u32 = 255;
+
+impl RobotApi {
+    pub fn from_toml(text: &str) -> Result<RobotApi, PluginError> {
+        let raw: RawPlugin = toml::from_str(text).map_err(|e| error("", e.to_string()))?;
+        check_name("name", &raw.name)?;
+        let mut parts = Vec::new();
+        let mut constants = Vec::new();
+        for (i, raw_part) in raw.part.iter().enumerate() {
+            let field = format!("part[{i}]");
+            if parts.iter().any(|p: &Part| p.name == raw_part.name) {
+                return Err(error(format!("{field}.name"), format!("part `{}` is defined twice", raw_part.name)));
+            }
+            constants.extend(part_constants(raw_part, i, &field)?);
+            parts.push(convert_part(raw_part, &field)?);
+        }
+        for (i, raw_part) in raw.part.iter().enumerate() {
+            resolve_inverses(&mut parts, i, raw_part)?;
+        }
+        check_unique_constants(&constants)?;
+        let find = |field: &str, name: &Option<String>| -> Result<Option<usize>, PluginError> {
+            let Some(name) = name else { return Ok(None) };
+            match parts.iter().position(|p| &p.name == name) {
+                Some(i) => Ok(Some(i)),
+                None => Err(error(field, format!("no part is named `{name}`"))),
+            }
+        };
+        let connector_part = find("connectors", &raw.connectors)?;
+        let joint_part = find("joints", &raw.joints)?;
+        if let Some(i) = connector_part {
+            if parts[i].count.is_none() {
+                return Err(error("connectors", "the connector part must have a `count`"));
+            }
+        }
+        Ok(RobotApi {
+            name: raw.name,
+            description: raw.description,
+            parts,
+            constants,
+            connector_part,
+            joint_part,
+        })
+    }
+}
+
+fn check_name(field: &str, name: &str) -> Result<(), PluginError> {
+    let mut chars = name.chars();
+    let first_ok = chars.next().is_some_and(|c| c.is_ascii_alphabetic() || c == '_');
+    if first_ok && chars.all(|c| c.is_ascii_alphanumeric() || c == '_') {
+        Ok(())
+    } else {
+        Err(error(field, format!("`{name}` is not a valid name (letters, digits and `_`, not starting with a digit)")))
+    }
+}
+
+fn part_constants(raw: &RawPart, part: usize, field: &str) -> Result<Vec<Constant>, PluginError> {
+    let count = raw.count.unwrap_or(0);
+    let names: Vec<String> = match (&raw.constant_prefix, &raw.constants) {
+        (Some(_), Some(_)) => {
+            return Err(error(format!("{field}.constants"), "give `constant_prefix` or `constants`, not both"))
+        }
+        (Some(prefix), None) => (0..count).map(|i| format!("{prefix}{i}")).collect(),
+        (None, Some(names)) => {
+            if names.len() != count as usize {
+                return Err(error(format!("{field}.constants"), format!("expected {count} names (one per index), found {}", names.len())));
+            }
+            names.clone()
+        }
+        (None, None) => Vec::new(),
+    };
+    names
+        .into_iter()
+        .enumerate()
+        .map(|(value, name)| {
+            check_name(&format!("{field}.constants"), &name)?;
+            Ok(Constant { name, value: value as i64, part: Some(part) })
+        })
+        .collect()
+}
+
+fn check_unique_constants(constants: &[Constant]) -> Result<(), PluginError> {
+    for (i, c) in constants.iter().enumerate() {
+        if constants[..i].iter().any(|d| d.name == c.name) {
+            return Err(error("part", format!("constant `${}` is defined twice", c.name)));
+        }
+    }
+    Ok(())
+}
+
+fn convert_part(raw: &RawPart, field: &str) -> Result<Part, PluginError> {
+    check_name(&format!("{field}.name"), &raw.name)?;
+    if let Some(count) = raw.count {
+        if count == 0 || count > MAX_COUNT {
+            return Err(error(format!("{field}.count"), format!("expected 1 to {MAX_COUNT}, found {count}")));
+        }
+    }
+    let count = raw.count.unwrap_or(0);
+    if let Some(bad) = raw.male.iter().find(|&&m| m >= count) {
+        return Err(error(format!("{field}.male"), format!("index {bad} is out of range (the part has {count})")));
+    }
+    let mut operations = Vec::new();
+    for (j, raw_op) in raw.operation.iter().enumerate() {
+        let op_field = format!("{field}.operation[{j}]");
+        if operations.iter().any(|o: &Operation| o.name == raw_op.name) {
+            return Err(error(format!("{op_field}.name"), format!("operation `{}` is defined twice", raw_op.name)));
+        }
+        if raw_op.requires_male && raw.male.is_empty() {
+            return Err(error(format!("{op_field}.requires_male"), "the part lists no `male` indices"));
+        }
+        operations.push(convert_operation(raw_op, &op_field)?);
+    }
+    Ok(Part { name: raw.name.clone(), count: raw.count, male: raw.male.clone(), operations })
+}
+
+fn convert_operation(raw: &RawOperation, field: &str) -> Result<Operation, PluginError> {
+    check_name(&format!("{field}.name"), &raw.name)?;
+    let mut params: Vec<Param> = Vec::new();
+    for (k, p) in raw.params.iter().enumerate() {
+        let p_field = format!("{field}.params[{k}]");
+        check_name(&format!("{p_field}.name"), &p.name)?;
+        if params.iter().any(|q| q.name == p.name) {
+            return Err(error(format!("{p_field}.name"), format!("parameter `{}` is defined twice", p.name)));
+        }
+        params.push(Param { name: p.name.clone(), ty: convert_type(p, &p_field)? });
+    }
+    Ok(Operation {
+        name: raw.name.clone(),
+        doc: raw.doc.clone(),
+        params,
+        requires_male: raw.requires_male,
+        inverse: None,
+    })
+}
+
+fn convert_type(raw: &RawParam, field: &str) -> Result<ParamType, PluginError> {
+    match raw.ty.as_str() {
+        "bool" if raw.min.is_none() && raw.max.is_none() && raw.values.is_none() => Ok(ParamType::Bool),
+        "bool" => Err(error(field, "a `bool` parameter takes no `min`, `max` or `values`")),
+        "int" => {
+            let min = raw.min.unwrap_or(i64::from(i32::MIN));
+            let max = raw.max.unwrap_or(i64::from(i32::MAX));
+            if min > max {
+                return Err(error(format!("{field}.min"), format!("min {min} is greater than max {max}")));
+            }
+            if let Some(values) = &raw.values {
+                if values.is_empty() {
+                    return Err(error(format!("{field}.values"), "the list is empty"));
+                }
+                if let Some(bad) = values.iter().find(|v| !(min..=max).contains(*v)) {
+                    return Err(error(format!("{field}.values"), format!("{bad} is outside {min} to {max}")));
+                }
+            }
+            Ok(ParamType::Int { min, max, values: raw.values.clone() })
+        }
+        other => Err(error(format!("{field}.type"), format!("unknown type `{other}`; expected `int` or `bool`"))),
+    }
+}
+
+/// Parses every `inverse` of part `i` and checks that undoing twice gives the original back.
+fn resolve_inverses(parts: &mut [Part], i: usize, raw: &RawPart) -> Result<(), PluginError> {
+    for (j, raw_op) in raw.operation.iter().enumerate() {
+        let Some(text) = &raw_op.inverse else { continue };
+        let field = format!("part[{i}].operation[{j}].inverse");
+        let inverse = parse_inverse(text, &parts[i], j, &field)?;
+        parts[i].operations[j].inverse = Some(inverse);
+    }
+    for (j, op) in parts[i].operations.iter().enumerate() {
+        let Some(inverse) = &op.inverse else { continue };
+        let field = format!("part[{i}].operation[{j}].inverse");
+        check_round_trip(&parts[i], j, inverse, &field)?;
+    }
+    Ok(())
+}
+
+/// `name(arg, ...)` where each arg is a parameter name, `!param`, `-param` or a literal.
+fn parse_inverse(text: &str, part: &Part, op: usize, field: &str) -> Result<Inverse, PluginError> {
+    if text.len() > MAX_INVERSE_LEN {
+        return Err(error(field, format!("longer than {MAX_INVERSE_LEN} characters")));
+    }
+    let tokens: Vec<Token> = lex(text).tokens.into_iter().map(|(t, _)| t).collect();
+    let bad = |what: &str| error(field, format!("cannot read `{text}`: {what}; expected `operation(arg, ...)`"));
+    let [Token::Ident(name), Token::LParen, rest @ ..] = tokens.as_slice() else {
+        return Err(bad("no operation name and `(`"));
+    };
+    let (target, target_op) = part
+        .operation(name)
+        .ok_or_else(|| error(field, format!("part `{}` has no operation `{name}`", part.name)))?;
+    let params = &part.operations[op].params;
+    let mut args = Vec::new();
+    let mut rest = rest;
+    while let Some((template, tail)) = parse_template(rest, params) {
+        args.push(template.map_err(|e| error(field, e.message))?);
+        rest = match tail {
+            [Token::Comma, tail @ ..] => tail,
+            _ => tail,
+        };
+    }
+    if rest != [Token::RParen, Token::Eof] {
+        return Err(bad("unexpected text"));
+    }
+    if args.len() != target_op.params.len() {
+        return Err(error(field, format!("`{name}` takes {} arguments, the inverse gives {}", target_op.params.len(), args.len())));
+    }
+    if part.operations[op].requires_male != target_op.requires_male {
+        return Err(error(field, "an operation and its inverse must agree on `requires_male`"));
+    }
+    for (k, (template, param)) in args.iter().zip(&target_op.params).enumerate() {
+        check_template_type(template, params, &param.ty)
+            .map_err(|m| error(field, format!("argument {} of `{name}`: {m}", k + 1)))?;
+    }
+    Ok(Inverse { operation: target, args })
+}
+
+type TemplateParse<'a> = Option<(Result<Template, PluginError>, &'a [Token])>;
+
+fn parse_template<'a>(tokens: &'a [Token], params: &[Param]) -> TemplateParse<'a> {
+    let (first, rest) = tokens.split_first()?;
+    let template = match first {
+        Token::Bang | Token::Minus => {
+            let (inner, rest) = parse_template(rest, params)?;
+            let wrap = if *first == Token::Bang { Template::Not } else { Template::Negate };
+            return Some((inner.map(|t| wrap(Box::new(t))), rest));
+        }
+        Token::Ident(name) => match params.iter().position(|p| &p.name == name) {
+            Some(k) => Ok(Template::Param(k)),
+            None => Err(error("", format!("`{name}` is not a parameter"))),
+        },
+        Token::Int(Some(n)) => Ok(Template::Int(*n)),
+        Token::True => Ok(Template::Bool(true)),
+        Token::False => Ok(Template::Bool(false)),
+        _ => return None,
+    };
+    Some((template, rest))
+}
+
+fn check_template_type(template: &Template, params: &[Param], target: &ParamType) -> Result<(), String> {
+    let want_bool = *target == ParamType::Bool;
+    match template {
+        Template::Param(k) => {
+            let source = &params[*k].ty;
+            match (source, target) {
+                (ParamType::Bool, ParamType::Bool) => Ok(()),
+                (ParamType::Int { .. }, ParamType::Int { .. }) => int_fits(source, target, false),
+                _ => Err(format!("`{}` is {}, expected {}", params[*k].name, source.describe(), target.describe())),
+            }
+        }
+        Template::Not(inner) if want_bool => check_template_type(inner, params, target),
+        Template::Negate(inner) => match (inner.as_ref(), target) {
+            (Template::Param(k), ParamType::Int { .. }) => int_fits(&params[*k].ty, target, true),
+            _ => Err("`-` applies to a number parameter only".into()),
+        },
+        Template::Int(n) if target.allows(*n) => Ok(()),
+        Template::Bool(_) if want_bool => Ok(()),
+        _ => Err(format!("expected {}", target.describe())),
+    }
+}
+
+/// Every value `source` allows (negated if asked) must be allowed by `target`.
+fn int_fits(source: &ParamType, target: &ParamType, negate: bool) -> Result<(), String> {
+    let ParamType::Int { min, max, values } = source else {
+        return Err("expected a number parameter".into());
+    };
+    let sign = if negate { -1 } else { 1 };
+    let fits = match values {
+        Some(values) => values.iter().all(|v| target.allows(sign * v)),
+        None => target.allows(sign * min) && target.allows(sign * max) && target_is_interval(target),
+    };
+    if fits {
+        Ok(())
+    } else {
+        Err(format!("its values do not all fit the target's range ({})", target.allowed()))
+    }
+}
+
+fn target_is_interval(target: &ParamType) -> bool {
+    matches!(target, ParamType::Int { values: None, .. })
+}
+
+/// Undoing the undo must give the original operation and arguments back, for any arguments.
+fn check_round_trip(part: &Part, op: usize, inverse: &Inverse, field: &str) -> Result<(), PluginError> {
+    let target = &part.operations[inverse.operation];
+    let Some(back) = &target.inverse else {
+        return Err(error(field, format!("`{}` has no inverse, so `{}` cannot be undone twice", target.name, part.operations[op].name)));
+    };
+    if back.operation != op {
+        return Err(error(field, format!("the inverse of `{}` is not `{}`", target.name, part.operations[op].name)));
+    }
+    for (k, outer) in back.args.iter().enumerate() {
+        let composed = substitute(outer, &inverse.args);
+        if simplify(composed) != Template::Param(k) {
+            return Err(error(field, format!("undoing twice does not give argument `{}` back", part.operations[op].params[k].name)));
+        }
+    }
+    Ok(())
+}
+
+fn substitute(template: &Template, args: &[Template]) -> Template {
+    match template {
+        Template::Param(k) => args.get(*k).cloned().unwrap_or(Template::Int(0)),
+        Template::Not(inner) => Template::Not(Box::new(substitute(inner, args))),
+        Template::Negate(inner) => Template::Negate(Box::new(substitute(inner, args))),
+        other => other.clone(),
+    }
+}
+
+fn simplify(template: Template) -> Template {
+    match template {
+        Template::Not(inner) => match simplify(*inner) {
+            Template::Not(x) => *x,
+            other => Template::Not(Box::new(other)),
+        },
+        Template::Negate(inner) => match simplify(*inner) {
+            Template::Negate(x) => *x,
+            other => Template::Negate(Box::new(other)),
+        },
+        other => other,
+    }
+}

@@ -1,0 +1,514 @@
+//! Configurations of both robots: shared types (ports, latches, metadata, errors) and the
+//! validated ATRON configuration with its queries.
+
+use crate::atron::{
+    is_joint_position, is_male, LatticePhase, Orientation, CONNECTOR_COUNT,
+};
+use crate::geometry::{add, sub, within_bounds, Rotation, Vec3, MAX_COORDINATE};
+use crate::mtran::MtranConfiguration;
+use std::collections::{BTreeMap, BTreeSet};
+use std::fmt;
+
+/// A configuration that failed to load or validate. `path` names the offending field the way a
+/// reader finds it in the JSON (`modules[3].orientation`, `connections[2][1]`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ConfigError {
+    /// Field path, `document` when the problem is not in one field.
+    pub path: String,
+    /// What is wrong and, where possible, what was expected.
+    pub message: String,
+}
+
+impl ConfigError {
+    /// An error at `path`.
+    pub fn new(path: impl Into<String>, message: impl Into<String>) -> ConfigError {
+        ConfigError {
+            path: path.into(),
+            message: message.into(),
+        }
+    }
+}
+
+impl fmt::Display for ConfigError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: {}", self.path, self.message)
+    }
+}
+
+impl std::error::Error for ConfigError {}
+
+/// Descriptive fields of a configuration file that the model carries along but does not use.
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct Metadata {
+    /// The configuration's name (`eight`, `car`, ...).
+    pub name: String,
+    /// Where the data comes from.
+    pub source: Option<String>,
+    /// Simulator world position (metres) of lattice point [0, 0, 0].
+    pub origin_m: Option<[f64; 3]>,
+    /// How the shape was obtained.
+    pub derivation: Option<String>,
+    /// Free remark.
+    pub note: Option<String>,
+}
+
+/// One connector of one module: `module` is the index into the configuration's module list.
+#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Debug)]
+pub struct Port {
+    /// Index of the module in [`AtronConfiguration::modules`] (or the M-TRAN equivalent).
+    pub module: usize,
+    /// Connector number on that module.
+    pub connector: u8,
+}
+
+/// A physical latch: always one male and one female connector facing each other.
+#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Debug)]
+pub struct Latch {
+    /// The male side (the one that can release).
+    pub male: Port,
+    /// The female side.
+    pub female: Port,
+}
+
+impl Latch {
+    /// The port at the other end of the latch from `port`, if `port` is one of its ends.
+    pub fn other_end(&self, port: Port) -> Option<Port> {
+        if self.male == port {
+            Some(self.female)
+        } else if self.female == port {
+            Some(self.male)
+        } else {
+            None
+        }
+    }
+}
+
+/// A connection as written in a file: module name, connector, module name, connector (either
+/// order of genders).
+pub type NamedConnection = (String, u8, String, u8);
+
+/// Which robot a configuration is for.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum Robot {
+    /// ATRON (lattice, one joint per module).
+    Atron,
+    /// M-TRAN (two blocks and a link, two joints).
+    Mtran,
+}
+
+impl Robot {
+    /// The name used in the `robot` field.
+    pub fn name(self) -> &'static str {
+        match self {
+            Robot::Atron => "ATRON",
+            Robot::Mtran => "MTRAN",
+        }
+    }
+}
+
+/// A validated configuration of either robot.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Configuration {
+    /// An ATRON configuration.
+    Atron(AtronConfiguration),
+    /// An M-TRAN configuration.
+    Mtran(MtranConfiguration),
+}
+
+impl Configuration {
+    /// Parses and validates a configuration in the data-file format (see the crate README).
+    pub fn from_json_str(text: &str) -> Result<Configuration, ConfigError> {
+        crate::json::parse_configuration(text)
+    }
+
+    /// Writes the configuration in the same format, including the redundant fields.
+    pub fn to_json_string(&self) -> String {
+        crate::json::write_configuration(self)
+    }
+
+    /// Which robot this is.
+    pub fn robot(&self) -> Robot {
+        match self {
+            Configuration::Atron(_) => Robot::Atron,
+            Configuration::Mtran(_) => Robot::Mtran,
+        }
+    }
+
+    /// The descriptive fields.
+    pub fn metadata(&self) -> &Metadata {
+        match self {
+            Configuration::Atron(c) => c.metadata(),
+            Configuration::Mtran(c) => c.metadata(),
+        }
+    }
+
+    /// The ATRON configuration, if this is one.
+    pub fn as_atron(&self) -> Option<&AtronConfiguration> {
+        match self {
+            Configuration::Atron(c) => Some(c),
+            Configuration::Mtran(_) => None,
+        }
+    }
+
+    /// The M-TRAN configuration, if this is one.
+    pub fn as_mtran(&self) -> Option<&MtranConfiguration> {
+        match self {
+            Configuration::Atron(_) => None,
+            Configuration::Mtran(c) => Some(c),
+        }
+    }
+
+    /// The whole configuration turned by `rotation` and shifted by `translation` (in the file's
+    /// position unit). Fails when the result leaves the robot's lattice.
+    pub fn transformed(
+        &self,
+        rotation: Rotation,
+        translation: Vec3,
+    ) -> Result<Configuration, ConfigError> {
+        Ok(match self {
+            Configuration::Atron(c) => Configuration::Atron(c.transformed(rotation, translation)?),
+            Configuration::Mtran(c) => Configuration::Mtran(c.transformed(rotation, translation)?),
+        })
+    }
+}
+
+/// One ATRON module. A plain record: [`AtronConfiguration::new`] checks it.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct AtronModule {
+    /// Label used in sequences (`M0`).
+    pub name: String,
+    /// Numeric ID the roles test, if given.
+    pub id: Option<u32>,
+    /// The module's name in USSR, if given.
+    pub ussr_name: Option<String>,
+    /// Centre in lattice units (y up).
+    pub position: Vec3,
+    /// Frame of the south hemisphere.
+    pub orientation: Orientation,
+    /// Joint angle in 1/432 turn: 0, 108, 216 or 324.
+    pub joint_units: u16,
+}
+
+impl AtronModule {
+    /// World offset of the site connector `connector` faces in the current pose.
+    pub fn connector_offset(&self, connector: u8) -> Option<Vec3> {
+        self.orientation.connector_offset(self.joint_units, connector)
+    }
+}
+
+/// A validated ATRON configuration: unique names and ids, legal sites in one lattice phase, at
+/// most one module per site, legal joint angles, and latches that join a male and a female
+/// connector facing each other, no connector used twice.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AtronConfiguration {
+    pub(crate) metadata: Metadata,
+    pub(crate) modules: Vec<AtronModule>,
+    pub(crate) latches: BTreeSet<Latch>,
+    pub(crate) phase: Option<LatticePhase>,
+}
+
+impl AtronConfiguration {
+    /// Validates modules and connections (paths in errors are `modules[i]...` and
+    /// `connections[k]...`, as in the JSON format).
+    pub fn new(
+        metadata: Metadata,
+        modules: Vec<AtronModule>,
+        connections: &[NamedConnection],
+    ) -> Result<AtronConfiguration, ConfigError> {
+        check_names_and_ids(modules.iter().map(|m| (m.name.as_str(), m.id)))?;
+        let phase = check_sites(&modules)?;
+        let latches = check_connections(&modules, connections)?;
+        Ok(AtronConfiguration {
+            metadata,
+            modules,
+            latches,
+            phase,
+        })
+    }
+
+    /// The descriptive fields.
+    pub fn metadata(&self) -> &Metadata {
+        &self.metadata
+    }
+
+    /// Modules in file order (the order never changes).
+    pub fn modules(&self) -> &[AtronModule] {
+        &self.modules
+    }
+
+    /// The module at `index`.
+    pub fn module(&self, index: usize) -> Option<&AtronModule> {
+        self.modules.get(index)
+    }
+
+    /// Index of the module called `name`.
+    pub fn module_index(&self, name: &str) -> Option<usize> {
+        self.modules.iter().position(|m| m.name == name)
+    }
+
+    /// Index of the module with numeric ID `id`.
+    pub fn module_index_by_id(&self, id: u32) -> Option<usize> {
+        self.modules.iter().position(|m| m.id == Some(id))
+    }
+
+    /// Index of the module at lattice site `site`.
+    pub fn module_at(&self, site: Vec3) -> Option<usize> {
+        self.modules.iter().position(|m| m.position == site)
+    }
+
+    /// The latches, ordered by male port.
+    pub fn latches(&self) -> &BTreeSet<Latch> {
+        &self.latches
+    }
+
+    /// The structure's lattice phase (`None` only for an empty configuration).
+    pub fn phase(&self) -> Option<LatticePhase> {
+        self.phase
+    }
+
+    /// `M3.C4` for a port.
+    pub fn port_name(&self, port: Port) -> String {
+        let name = self.modules.get(port.module).map_or("?", |m| m.name.as_str());
+        format!("{name}.C{}", port.connector)
+    }
+
+    /// The connector of another module that `port` faces (any gender), if a module sits on the
+    /// site it points at.
+    pub fn facing(&self, port: Port) -> Option<Port> {
+        let module = self.modules.get(port.module)?;
+        let site = add(module.position, module.connector_offset(port.connector)?);
+        let other_index = self.module_at(site)?;
+        let other = self.modules.get(other_index)?;
+        let back = sub(module.position, other.position);
+        (0..CONNECTOR_COUNT)
+            .find(|c| other.connector_offset(*c) == Some(back))
+            .map(|connector| Port {
+                module: other_index,
+                connector,
+            })
+    }
+
+    /// The port latched to `port`, if any.
+    pub fn latched_to(&self, port: Port) -> Option<Port> {
+        self.latches.iter().find_map(|l| l.other_end(port))
+    }
+
+    /// True when `port` is latched.
+    pub fn is_latched(&self, port: Port) -> bool {
+        self.latched_to(port).is_some()
+    }
+
+    /// The latches as names, male first, in latch order.
+    pub fn named_connections(&self) -> Vec<NamedConnection> {
+        let name = |p: Port| self.modules.get(p.module).map_or(String::new(), |m| m.name.clone());
+        self.latches
+            .iter()
+            .map(|l| (name(l.male), l.male.connector, name(l.female), l.female.connector))
+            .collect()
+    }
+
+    /// The configuration turned by `rotation` about the origin, then shifted by `translation`
+    /// lattice units; an error when the result is not a legal lattice configuration (a
+    /// translation must keep the sites on the lattice of some phase).
+    pub fn transformed(
+        &self,
+        rotation: Rotation,
+        translation: Vec3,
+    ) -> Result<AtronConfiguration, ConfigError> {
+        if !within_bounds(translation) {
+            return Err(ConfigError::new(
+                "translation",
+                format!("coordinates must be within +-{MAX_COORDINATE}"),
+            ));
+        }
+        let modules = self
+            .modules
+            .iter()
+            .map(|m| AtronModule {
+                position: add(rotation.apply(m.position), translation),
+                orientation: m.orientation.rotated(&rotation),
+                ..m.clone()
+            })
+            .collect();
+        AtronConfiguration::new(self.metadata.clone(), modules, &self.named_connections())
+    }
+}
+
+/// Checks that names are non-empty and unique and that given ids are unique.
+pub(crate) fn check_names_and_ids<'a>(
+    modules: impl Iterator<Item = (&'a str, Option<u32>)>,
+) -> Result<(), ConfigError> {
+    let mut names: BTreeMap<&str, usize> = BTreeMap::new();
+    let mut ids: BTreeMap<u32, usize> = BTreeMap::new();
+    for (i, (name, id)) in modules.enumerate() {
+        if name.is_empty() {
+            return Err(ConfigError::new(format!("modules[{i}].name"), "empty name"));
+        }
+        if let Some(j) = names.insert(name, i) {
+            return Err(ConfigError::new(
+                format!("modules[{i}].name"),
+                format!("duplicate module name \"{name}\" (also modules[{j}])"),
+            ));
+        }
+        if let Some(id) = id {
+            if let Some(j) = ids.insert(id, i) {
+                return Err(ConfigError::new(
+                    format!("modules[{i}].id"),
+                    format!("duplicate module id {id} (also modules[{j}])"),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Checks joints, coordinates, the single lattice phase and one module per site.
+fn check_sites(modules: &[AtronModule]) -> Result<Option<LatticePhase>, ConfigError> {
+    let mut phase: Option<LatticePhase> = None;
+    let mut sites: BTreeMap<Vec3, usize> = BTreeMap::new();
+    for (i, m) in modules.iter().enumerate() {
+        if !is_joint_position(m.joint_units) {
+            return Err(ConfigError::new(
+                format!("modules[{i}].joint"),
+                format!("joint {} is not one of 0, 108, 216, 324", m.joint_units),
+            ));
+        }
+        if !within_bounds(m.position) {
+            return Err(ConfigError::new(
+                format!("modules[{i}].position"),
+                format!("coordinates must be within +-{MAX_COORDINATE}"),
+            ));
+        }
+        let axis = m.orientation.axis();
+        let fixed = match phase {
+            Some(p) => p,
+            None => LatticePhase::for_module(m.position, axis).ok_or_else(|| {
+                ConfigError::new(
+                    format!("modules[{i}].position"),
+                    format!(
+                        "site {:?} with axis {:?} is not a legal ATRON site in any lattice phase \
+                         (p + c must have exactly one odd coordinate, the axis coordinate)",
+                        m.position, axis
+                    ),
+                )
+            })?,
+        };
+        if !fixed.allows(m.position, axis) {
+            return Err(ConfigError::new(
+                format!("modules[{i}].position"),
+                format!(
+                    "site {:?} with axis {:?} is not legal in the lattice phase c = {:?} fixed \
+                     by modules[0] (p + c must have exactly one odd coordinate, the axis one)",
+                    m.position,
+                    axis,
+                    fixed.vector()
+                ),
+            ));
+        }
+        phase = Some(fixed);
+        if let Some(j) = sites.insert(m.position, i) {
+            return Err(ConfigError::new(
+                format!("modules[{i}].position"),
+                format!("site {:?} is already occupied by modules[{j}]", m.position),
+            ));
+        }
+    }
+    Ok(phase)
+}
+
+/// Resolves and checks every connection: known modules, connectors in range, one male and one
+/// female end, the two connectors facing each other, no connector used twice.
+fn check_connections(
+    modules: &[AtronModule],
+    connections: &[NamedConnection],
+) -> Result<BTreeSet<Latch>, ConfigError> {
+    let mut used: BTreeMap<Port, usize> = BTreeMap::new();
+    let mut latches = BTreeSet::new();
+    for (k, (name_a, conn_a, name_b, conn_b)) in connections.iter().enumerate() {
+        let a = resolve_port(modules, k, 0, name_a, *conn_a)?;
+        let b = resolve_port(modules, k, 2, name_b, *conn_b)?;
+        let path = format!("connections[{k}]");
+        let label = |p: Port, name: &str| format!("{name}.C{}", p.connector);
+        let (la, lb) = (label(a, name_a), label(b, name_b));
+        if a.module == b.module {
+            return Err(ConfigError::new(path, "a module cannot latch onto itself"));
+        }
+        let latch = match (is_male(a.connector), is_male(b.connector)) {
+            (true, false) => Latch { male: a, female: b },
+            (false, true) => Latch { male: b, female: a },
+            (both_male, _) => {
+                let kind = if both_male { "male" } else { "female" };
+                return Err(ConfigError::new(
+                    path,
+                    format!(
+                        "{la} and {lb} are both {kind}; a latch joins a male (even) and a \
+                         female (odd) connector"
+                    ),
+                ));
+            }
+        };
+        check_facing(modules, &path, (a, &la), (b, &lb))?;
+        for (port, index) in [(a, 1), (b, 3)] {
+            if let Some(j) = used.insert(port, k) {
+                return Err(ConfigError::new(
+                    format!("connections[{k}][{index}]"),
+                    format!("connector {} is already used by connections[{j}]", label(port, if index == 1 { name_a } else { name_b })),
+                ));
+            }
+        }
+        latches.insert(latch);
+    }
+    Ok(latches)
+}
+
+/// Finds the module of a connection end; `field` is 0 or 2 (module name position in the array).
+fn resolve_port(
+    modules: &[AtronModule],
+    k: usize,
+    field: usize,
+    name: &str,
+    connector: u8,
+) -> Result<Port, ConfigError> {
+    let module = modules.iter().position(|m| m.name == name).ok_or_else(|| {
+        ConfigError::new(
+            format!("connections[{k}][{field}]"),
+            format!("unknown module \"{name}\""),
+        )
+    })?;
+    if connector >= CONNECTOR_COUNT {
+        return Err(ConfigError::new(
+            format!("connections[{k}][{}]", field + 1),
+            format!("connector {connector} does not exist; ATRON connectors are 0-7"),
+        ));
+    }
+    Ok(Port { module, connector })
+}
+
+/// Checks that each connector points at the other module's site.
+fn check_facing(
+    modules: &[AtronModule],
+    path: &str,
+    (a, la): (Port, &str),
+    (b, lb): (Port, &str),
+) -> Result<(), ConfigError> {
+    for ((from, lfrom), (to, _)) in [((a, la), (b, lb)), ((b, lb), (a, la))] {
+        let (Some(m_from), Some(m_to)) = (modules.get(from.module), modules.get(to.module)) else {
+            return Err(ConfigError::new(path, "connection refers to a missing module"));
+        };
+        let offset = m_from.connector_offset(from.connector);
+        let target = offset.map(|o| add(m_from.position, o));
+        if target != Some(m_to.position) {
+            return Err(ConfigError::new(
+                path,
+                format!(
+                    "{la} and {lb} do not face each other: {lfrom} points at site {:?} but {} is \
+                     at {:?}",
+                    target.unwrap_or(m_from.position),
+                    m_to.name,
+                    m_to.position
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
