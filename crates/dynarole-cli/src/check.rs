@@ -33,7 +33,7 @@ pub fn run(files: &[PathBuf], plugins: &PluginArgs, protocol: Protocol) -> Resul
     Ok(ExitCode::from(u8::from(failed)))
 }
 
-fn check_one(path: &std::path::Path, source: &str, plugins: &PluginArgs, protocol: Protocol) -> Result<Vec<Diagnostic>, Failure> {
+pub fn check_one(path: &std::path::Path, source: &str, plugins: &PluginArgs, protocol: Protocol) -> Result<Vec<Diagnostic>, Failure> {
     let parsed = parse(source);
     let registry = load::registry(plugins, path, load::robot_name(&parsed.file))?;
     let (program, mut diagnostics) = analyze(&parsed.file, &registry);

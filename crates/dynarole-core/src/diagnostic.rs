@@ -38,7 +38,7 @@ pub struct Description {
 /// What went wrong. Payloads hold only what the message needs.
 #[derive(Clone, Debug, PartialEq, Eq, EnumDiscriminants)]
 #[strum_discriminants(name(DiagnosticCode))]
-#[strum_discriminants(derive(EnumIter, IntoStaticStr))]
+#[strum_discriminants(derive(EnumIter, IntoStaticStr, PartialOrd, Ord, Hash))]
 #[strum_discriminants(strum(serialize_all = "kebab-case"))]
 pub enum DiagnosticKind {
     // ---- syntax ----

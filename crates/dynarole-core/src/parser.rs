@@ -226,9 +226,11 @@ impl Parser {
         if !self.at(&Token::LBrace) {
             return Err(self.unexpected("`{` or `= reverse`"));
         }
+        let errors_before = self.diagnostics.len();
         let body = self.body()?;
         let span = start.to(body.span);
-        if body.elements.is_empty() {
+        // An empty body that only looks empty because its statements were broken is not news.
+        if body.elements.is_empty() && self.diagnostics.len() == errors_before {
             self.report(
                 DiagnosticKind::EmptySequence {
                     name: name.name.clone(),

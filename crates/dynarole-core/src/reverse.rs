@@ -42,9 +42,12 @@ impl Program<'_> {
         }))
     }
 
-    /// The name a reversed sequence gets: the file's own `X = reverse name` if there is one,
-    /// else `b2a` for `a2b`, else `name_reversed`.
+    /// The name a reversed sequence gets: `Y` if `name` is declared `= reverse Y`; the file's
+    /// own `X = reverse name` if there is one; else `b2a` for `a2b`; else `name_reversed`.
     pub fn reverse_name(&self, name: &str) -> String {
+        if let Some(SequenceDef::Reverse(target)) = self.file.sequence(name).map(|d| &d.definition) {
+            return target.name.clone();
+        }
         if let Some(alias) = self.reverse_alias(name) {
             return alias;
         }
