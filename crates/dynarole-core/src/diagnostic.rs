@@ -57,6 +57,7 @@ pub enum DiagnosticKind {
     MissingSeparator,
     UnclosedParallelGroup,
     NestingTooDeep { limit: usize },
+    PredicateTooLong { limit: usize },
     EmptySequence { name: String },
     // ---- names ----
     MissingRobot,
@@ -146,6 +147,10 @@ impl Diagnostic {
                 .title(format!("nesting deeper than {limit} levels"))
                 .label("too deep")
                 .hint("flatten the blocks or the expression"),
+            K::PredicateTooLong { limit } => d
+                .title(format!("role predicate with more than {limit} operators"))
+                .label("the limit is reached here")
+                .hint("split the condition, or give the modules a property the predicate can test directly"),
             K::EmptySequence { name } => d
                 .warning()
                 .title(format!("sequence `{name}` has no statements"))

@@ -12,6 +12,10 @@ use crate::span::Span;
 /// Deepest nesting of blocks or of predicate sub-expressions the parser accepts.
 pub const MAX_NESTING: usize = 64;
 
+/// Most binary operators in one role predicate. A chain `a || b || ...` is a tree as deep as it
+/// is long, and later passes walk trees recursively.
+pub const MAX_OPERATORS: usize = 1000;
+
 /// The tree (with the well-formed parts of a broken file) and the syntax diagnostics.
 #[derive(Debug)]
 pub struct Parsed {
@@ -26,6 +30,7 @@ pub fn parse(source: &str) -> Parsed {
         pos: 0,
         diagnostics: lexed.errors,
         depth: 0,
+        operators: 0,
     };
     let items = parser.items();
     let mut diagnostics = parser.diagnostics;
@@ -44,6 +49,8 @@ struct Parser {
     pos: usize,
     diagnostics: Vec<Diagnostic>,
     depth: usize,
+    /// Binary operators read so far in the current role predicate.
+    operators: usize,
 }
 
 /// Marker for "this construct is broken and already reported".
@@ -449,18 +456,28 @@ impl Parser {
 
     // ---------- role predicates ----------
 
+    /// A whole role predicate.
     fn expr(&mut self) -> Parse<Expr> {
+        self.operators = 0;
         self.binary(1)
     }
 
     /// Precedence climbing over `||` (1), `&&` (2) and comparisons (3).
     fn binary(&mut self, min_precedence: u8) -> Parse<Expr> {
         let mut lhs = self.unary()?;
-        while let Some(op) = self.binary_op() {
+        while let Some((op, slip)) = self.binary_op() {
             if op.precedence() < min_precedence {
                 break;
             }
-            self.bump();
+            let (_, span) = self.bump();
+            if let Some(kind) = slip {
+                self.report(kind, span);
+            }
+            self.operators += 1;
+            if self.operators > MAX_OPERATORS {
+                self.report(DiagnosticKind::PredicateTooLong { limit: MAX_OPERATORS }, span);
+                return Err(Broken);
+            }
             let rhs = self.binary(op.precedence() + 1)?;
             let span = lhs.span.to(rhs.span);
             lhs = Expr {
@@ -475,8 +492,9 @@ impl Parser {
         Ok(lhs)
     }
 
-    /// The operator at the cursor; near-misses (`&`, `|`, `=`) are reported and read as meant.
-    fn binary_op(&mut self) -> Option<BinaryOp> {
+    /// The operator at the cursor; near-misses (`&`, `|`, `=`) come with the diagnostic to
+    /// report if the operator is taken, and are read as meant.
+    fn binary_op(&self) -> Option<(BinaryOp, Option<DiagnosticKind>)> {
         let (op, slip) = match self.peek() {
             Token::OrOr => (BinaryOp::Or, None),
             Token::AndAnd => (BinaryOp::And, None),
@@ -491,11 +509,7 @@ impl Parser {
             Token::Eq => (BinaryOp::Eq, Some(DiagnosticKind::AssignmentInPredicate)),
             _ => return None,
         };
-        if let Some(kind) = slip {
-            let span = self.span();
-            self.report(kind, span);
-        }
-        Some(op)
+        Some((op, slip))
     }
 
     fn unary(&mut self) -> Parse<Expr> {
@@ -551,7 +565,7 @@ impl Parser {
             Token::Ident(_) => self.query()?,
             Token::LParen => {
                 self.bump();
-                let inner = self.nested(Self::expr)?;
+                let inner = self.nested(|p| p.binary(1))?;
                 self.expect(&Token::RParen, "`)`")?;
                 ExprKind::Paren(Box::new(inner))
             }
@@ -571,7 +585,7 @@ impl Parser {
         let mut args = Vec::new();
         if !self.at(&Token::RParen) {
             loop {
-                args.push(self.nested(Self::expr)?);
+                args.push(self.nested(|p| p.binary(1))?);
                 if self.eat(&Token::Comma).is_none() {
                     break;
                 }

@@ -402,3 +402,61 @@ fn simplify(template: Template) -> Template {
         other => other,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const GRIPPER: &str = "name = \"g\"\n[[part]]\nname = \"Grip\"\ncount = 2\nmale = [0]\n";
+
+    fn with_ops(ops: &str) -> Result<RobotApi, PluginError> {
+        RobotApi::from_toml(&format!("{GRIPPER}{ops}"))
+    }
+
+    #[test]
+    fn builtin_plugins_load() {
+        for (file, text) in BUILTIN_PLUGINS {
+            assert!(RobotApi::from_toml(text).is_ok(), "{file}: {:?}", RobotApi::from_toml(text));
+        }
+        assert_eq!(RobotRegistry::builtin().names(), vec!["atron", "mtran"]);
+    }
+
+    #[test]
+    fn atron_rotation_inverse_swaps_angles_and_direction() {
+        let atron = RobotRegistry::builtin().get("atron").cloned().expect("atron");
+        let (part, _) = atron.part("Joint").expect("joint");
+        let args = [Value::Int(0), Value::Int(324), Value::Bool(false), Value::Int(150)];
+        let inverted = atron.invert(part, 0, &args).expect("invertible");
+        assert_eq!(inverted, (0, vec![Value::Int(324), Value::Int(0), Value::Bool(true), Value::Int(150)]));
+        assert_eq!(atron.invert(part, 1, &args[1..]), None, "rotateToBy has no inverse");
+    }
+
+    #[test]
+    fn an_inverse_that_does_not_undo_itself_is_refused() {
+        let ops = "[[part.operation]]\nname = \"a\"\nparams = [{ name = \"x\", type = \"int\", min = 0, max = 9 }]\ninverse = \"b(x)\"\n\
+                   [[part.operation]]\nname = \"b\"\nparams = [{ name = \"y\", type = \"int\", min = 0, max = 9 }]\ninverse = \"a(0)\"\n";
+        let err = with_ops(ops).expect_err("b(a(x)) is not x");
+        assert_eq!(err.field, "part[0].operation[0].inverse");
+        assert!(err.message.contains("undoing twice"), "{err}");
+    }
+
+    #[test]
+    fn inverse_errors_name_the_field() {
+        let unknown = with_ops("[[part.operation]]\nname = \"a\"\ninverse = \"zap()\"\n").expect_err("unknown op");
+        assert_eq!(unknown.to_string(), "field `part[0].operation[0].inverse`: part `Grip` has no operation `zap`");
+        let one_way = with_ops("[[part.operation]]\nname = \"a\"\ninverse = \"b()\"\n[[part.operation]]\nname = \"b\"\n").expect_err("no way back");
+        assert!(one_way.message.contains("has no inverse"), "{one_way}");
+        let bad_type = with_ops("[[part.operation]]\nname = \"a\"\nparams = [{ name = \"on\", type = \"bool\" }]\ninverse = \"a(-on)\"\n").expect_err("type");
+        assert!(bad_type.message.contains("number parameter"), "{bad_type}");
+    }
+
+    #[test]
+    fn unknown_fields_and_bad_values_are_named() {
+        let typo = RobotApi::from_toml("name = \"g\"\nconectors = \"x\"\n").expect_err("typo");
+        assert!(typo.message.contains("unknown field `conectors`"), "{typo}");
+        let male = with_ops("").and_then(|_| RobotApi::from_toml("name = \"g\"\n[[part]]\nname = \"P\"\ncount = 2\nmale = [5]\n"));
+        assert_eq!(male.expect_err("range").field, "part[0].male");
+        let ty = RobotApi::from_toml("name = \"g\"\n[[part]]\nname = \"P\"\n[[part.operation]]\nname = \"a\"\nparams = [{ name = \"x\", type = \"float\" }]\n");
+        assert_eq!(ty.expect_err("type").field, "part[0].operation[0].params[0].type");
+    }
+}
