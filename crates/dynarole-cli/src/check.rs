@@ -15,9 +15,15 @@ pub enum Protocol {
     Lattice,
 }
 
-pub fn run(files: &[PathBuf], plugins: &PluginArgs, protocol: Protocol) -> Result<ExitCode, Failure> {
+pub fn run(
+    files: &[PathBuf],
+    plugins: &PluginArgs,
+    protocol: Protocol,
+) -> Result<ExitCode, Failure> {
     if files.is_empty() {
-        return Err(Failure::Usage("no files given: `dynarole check FILE...`".into()));
+        return Err(Failure::Usage(
+            "no files given: `dynarole check FILE...`".into(),
+        ));
     }
     let mut failed = false;
     for path in files {
@@ -33,7 +39,12 @@ pub fn run(files: &[PathBuf], plugins: &PluginArgs, protocol: Protocol) -> Resul
     Ok(ExitCode::from(u8::from(failed)))
 }
 
-pub fn check_one(path: &std::path::Path, source: &str, plugins: &PluginArgs, protocol: Protocol) -> Result<Vec<Diagnostic>, Failure> {
+pub fn check_one(
+    path: &std::path::Path,
+    source: &str,
+    plugins: &PluginArgs,
+    protocol: Protocol,
+) -> Result<Vec<Diagnostic>, Failure> {
     let parsed = parse(source);
     let registry = load::registry(plugins, path, load::robot_name(&parsed.file))?;
     let (program, mut diagnostics) = analyze(&parsed.file, &registry);

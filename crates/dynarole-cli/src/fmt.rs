@@ -10,7 +10,9 @@ use std::process::ExitCode;
 
 pub fn run(files: &[PathBuf], check_only: bool) -> Result<ExitCode, Failure> {
     if files.is_empty() {
-        return Err(Failure::Usage("no files given: `dynarole fmt [--check] FILE...`".into()));
+        return Err(Failure::Usage(
+            "no files given: `dynarole fmt [--check] FILE...`".into(),
+        ));
     }
     let mut failed = false;
     for path in files {
@@ -30,7 +32,8 @@ pub fn run(files: &[PathBuf], check_only: bool) -> Result<ExitCode, Failure> {
             println!("not formatted: {}", path.display());
             failed = true;
         } else {
-            std::fs::write(path, formatted).map_err(|e| Failure::Input(format!("cannot write {}: {e}", path.display())))?;
+            std::fs::write(path, formatted)
+                .map_err(|e| Failure::Input(format!("cannot write {}: {e}", path.display())))?;
             println!("formatted: {}", path.display());
         }
     }

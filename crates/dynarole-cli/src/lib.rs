@@ -55,9 +55,18 @@ enum Command {
 pub fn main() -> ExitCode {
     let cli = Cli::parse();
     let outcome = match cli.command {
-        Command::Check { files, plugins, protocol } => check::run(&files, &plugins, protocol),
+        Command::Check {
+            files,
+            plugins,
+            protocol,
+        } => check::run(&files, &plugins, protocol),
         Command::Fmt { files, check } => fmt::run(&files, check),
-        Command::Reverse { file, sequence, name, plugins } => reverse::run(&file, &sequence, name.as_deref(), &plugins),
+        Command::Reverse {
+            file,
+            sequence,
+            name,
+            plugins,
+        } => reverse::run(&file, &sequence, name.as_deref(), &plugins),
     };
     match outcome {
         Ok(code) => code,

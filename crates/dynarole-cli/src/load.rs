@@ -1,7 +1,7 @@
 //! Reading inputs: source files and robot plugins, with errors that name the file.
 
-use dynarole_core::RobotRegistry;
 use dynarole_core::robot::RobotApi;
+use dynarole_core::RobotRegistry;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -38,12 +38,17 @@ pub struct PluginArgs {
 }
 
 pub fn read_source(path: &Path) -> Result<String, Failure> {
-    std::fs::read_to_string(path).map_err(|e| Failure::Input(format!("cannot read {}: {e}", path.display())))
+    std::fs::read_to_string(path)
+        .map_err(|e| Failure::Input(format!("cannot read {}: {e}", path.display())))
 }
 
 /// Built-in robots, then `--plugin` files, then a `NAME.robot.toml` beside `source_path`
 /// for a `robot NAME;` that is still unknown.
-pub fn registry(args: &PluginArgs, source_path: &Path, robot_name: Option<&str>) -> Result<RobotRegistry, Failure> {
+pub fn registry(
+    args: &PluginArgs,
+    source_path: &Path,
+    robot_name: Option<&str>,
+) -> Result<RobotRegistry, Failure> {
     let mut registry = RobotRegistry::builtin();
     for path in &args.plugins {
         registry.add(load_plugin(path)?);

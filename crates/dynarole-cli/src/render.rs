@@ -3,7 +3,10 @@
 use crate::load::Failure;
 use codespan_reporting::diagnostic::{Diagnostic as Report, Label, Severity as ReportSeverity};
 use codespan_reporting::files::SimpleFile;
-use codespan_reporting::term::{self, termcolor::{ColorChoice, StandardStream, WriteColor}};
+use codespan_reporting::term::{
+    self,
+    termcolor::{ColorChoice, StandardStream, WriteColor},
+};
 use dynarole_core::{Diagnostic, Severity};
 use std::io::IsTerminal;
 
@@ -23,7 +26,12 @@ pub fn diagnostics(path: &str, source: &str, diagnostics: &[Diagnostic]) {
 }
 
 /// Writes `diagnostics` to any writer (tests use a plain buffer).
-pub fn write_diagnostics(out: &mut dyn WriteColor, path: &str, source: &str, diagnostics: &[Diagnostic]) {
+pub fn write_diagnostics(
+    out: &mut dyn WriteColor,
+    path: &str,
+    source: &str,
+    diagnostics: &[Diagnostic],
+) {
     let file = SimpleFile::new(path, source);
     let config = term::Config::default();
     for diagnostic in diagnostics {
@@ -43,8 +51,15 @@ fn to_report(diagnostic: &Diagnostic) -> Report<()> {
     for (span, text) in d.secondary {
         labels.push(Label::secondary((), span.range()).with_message(text));
     }
-    let notes = d.hint.map(|h| vec![format!("hint: {h}")]).unwrap_or_default();
-    Report::new(severity).with_code(d.code).with_message(d.title).with_labels(labels).with_notes(notes)
+    let notes = d
+        .hint
+        .map(|h| vec![format!("hint: {h}")])
+        .unwrap_or_default();
+    Report::new(severity)
+        .with_code(d.code)
+        .with_message(d.title)
+        .with_labels(labels)
+        .with_notes(notes)
 }
 
 pub fn failure(failure: &Failure) {

@@ -9,7 +9,12 @@ use dynarole_core::{analyze, parse};
 use std::path::Path;
 use std::process::ExitCode;
 
-pub fn run(path: &Path, sequence: &str, name: Option<&str>, plugins: &PluginArgs) -> Result<ExitCode, Failure> {
+pub fn run(
+    path: &Path,
+    sequence: &str,
+    name: Option<&str>,
+    plugins: &PluginArgs,
+) -> Result<ExitCode, Failure> {
     let source = load::read_source(path)?;
     let display = path.display().to_string();
     let parsed = parse(&source);
@@ -23,7 +28,11 @@ pub fn run(path: &Path, sequence: &str, name: Option<&str>, plugins: &PluginArgs
     };
     let new_name = name.map_or_else(|| program.reverse_name(sequence), str::to_string);
     let reversed = match program.reverse_sequence(sequence, &new_name) {
-        None => return Err(Failure::Input(format!("{display}: no sequence named `{sequence}`"))),
+        None => {
+            return Err(Failure::Input(format!(
+                "{display}: no sequence named `{sequence}`"
+            )))
+        }
         Some(Err(errors)) => {
             render::diagnostics(&display, &source, &errors);
             return Ok(ExitCode::from(1));
@@ -31,7 +40,10 @@ pub fn run(path: &Path, sequence: &str, name: Option<&str>, plugins: &PluginArgs
         Some(Ok(decl)) => decl,
     };
     let mut items = context_items(&parsed.file, &reversed.definition);
-    if items.iter().any(|i| matches!(i, Item::Sequence(d) if d.name.name == new_name)) {
+    if items
+        .iter()
+        .any(|i| matches!(i, Item::Sequence(d) if d.name.name == new_name))
+    {
         return Err(Failure::Usage(format!("`{new_name}` is already used by a sequence the reverse needs; choose another with --name")));
     }
     items.push(Item::Sequence(reversed));

@@ -36,7 +36,10 @@ fn check_accepts_the_examples() {
 
 #[test]
 fn check_reports_file_line_and_column_and_exits_1() {
-    let path = scratch("bad.dr", "robot atron;\nsequence s {\n    MO.Connector[$CONNECTOR_0].retract();\n}\n");
+    let path = scratch(
+        "bad.dr",
+        "robot atron;\nsequence s {\n    MO.Connector[$CONNECTOR_0].retract();\n}\n",
+    );
     let out = dynarole(&["check", path.to_str().expect("utf-8 path")]);
     assert_eq!(out.status.code(), Some(1));
     let stderr = text(&out.stderr);
@@ -49,7 +52,12 @@ fn check_reports_file_line_and_column_and_exits_1() {
 fn usage_errors_exit_2() {
     assert_eq!(dynarole(&["check"]).status.code(), Some(2));
     assert_eq!(dynarole(&["frobnicate"]).status.code(), Some(2));
-    assert_eq!(dynarole(&["check", "--protocol", "token", "x.dr"]).status.code(), Some(2));
+    assert_eq!(
+        dynarole(&["check", "--protocol", "token", "x.dr"])
+            .status
+            .code(),
+        Some(2)
+    );
 }
 
 #[test]
@@ -64,7 +72,9 @@ fn reverse_prints_a_file_that_checks_and_reverses_back() {
     let out = dynarole(&["reverse", "examples/atron/eight2car.dr", "eight2car"]);
     assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
     let reversed = text(&out.stdout);
-    assert!(reversed.starts_with("robot atron;\n\nsequence car2eight {\n    M1.Joint.rotateFromToBy(216, 108, false, 150);"));
+    assert!(reversed.starts_with(
+        "robot atron;\n\nsequence car2eight {\n    M1.Joint.rotateFromToBy(216, 108, false, 150);"
+    ));
     let path = scratch("car2eight.dr", &reversed);
     let path = path.to_str().expect("utf-8 path");
     assert_eq!(dynarole(&["check", path]).status.code(), Some(0));
@@ -82,7 +92,10 @@ fn reverse_of_an_unknown_sequence_is_bad_input() {
 
 #[test]
 fn fmt_check_then_fmt_then_check_again() {
-    let path = scratch("messy.dr", "robot atron;sequence s{M0.Connector[0].retract()&M3.Connector[4].retract();}\n");
+    let path = scratch(
+        "messy.dr",
+        "robot atron;sequence s{M0.Connector[0].retract()&M3.Connector[4].retract();}\n",
+    );
     let path = path.to_str().expect("utf-8 path");
     let before = dynarole(&["fmt", "--check", path]);
     assert_eq!(before.status.code(), Some(1));
@@ -101,12 +114,26 @@ fn examples_are_formatted() {
 
 #[test]
 fn a_broken_plugin_names_the_field() {
-    let plugin = scratch("broken.robot.toml", "name = \"broken\"\n[[part]]\nname = \"Arm\"\ncount = 300\n");
-    let source = scratch("uses_broken.dr", "robot broken;\nsequence s { M0.Arm[0].wave(); }\n");
-    let out = dynarole(&["check", "--plugin", plugin.to_str().expect("path"), source.to_str().expect("path")]);
+    let plugin = scratch(
+        "broken.robot.toml",
+        "name = \"broken\"\n[[part]]\nname = \"Arm\"\ncount = 300\n",
+    );
+    let source = scratch(
+        "uses_broken.dr",
+        "robot broken;\nsequence s { M0.Arm[0].wave(); }\n",
+    );
+    let out = dynarole(&[
+        "check",
+        "--plugin",
+        plugin.to_str().expect("path"),
+        source.to_str().expect("path"),
+    ]);
     assert_eq!(out.status.code(), Some(1));
     let stderr = text(&out.stderr);
-    assert!(stderr.contains("broken.robot.toml: field `part[0].count`: expected 1 to 255, found 300"), "{stderr}");
+    assert!(
+        stderr.contains("broken.robot.toml: field `part[0].count`: expected 1 to 255, found 300"),
+        "{stderr}"
+    );
 }
 
 #[test]

@@ -19,7 +19,11 @@ fn render(name: &str, source: &str, diagnostics: &[Diagnostic]) -> String {
 
 /// Check output for both protocols, then (for correct files) `fmt` and every reverse.
 fn golden_output(path: &Path, source: &str, codes: &mut BTreeSet<DiagnosticCode>) -> String {
-    let name = format!("golden/{}", path.file_name().map_or_else(String::new, |n| n.to_string_lossy().into_owned()));
+    let name = format!(
+        "golden/{}",
+        path.file_name()
+            .map_or_else(String::new, |n| n.to_string_lossy().into_owned())
+    );
     let plugins = PluginArgs::default();
     let mut out = String::new();
     let lattice = check_one(path, source, &plugins, Protocol::Lattice).unwrap_or_default();
@@ -27,14 +31,21 @@ fn golden_output(path: &Path, source: &str, codes: &mut BTreeSet<DiagnosticCode>
     codes.extend(lattice.iter().chain(&paper).map(Diagnostic::code));
     out.push_str(&section("check", &render(&name, source, &lattice)));
     if paper != lattice {
-        out.push_str(&section("check --protocol paper", &render(&name, source, &paper)));
+        out.push_str(&section(
+            "check --protocol paper",
+            &render(&name, source, &paper),
+        ));
     }
     if has_errors(&lattice) {
         return out;
     }
     let parsed = parse(source);
     let formatted = format_file(&parsed.file, source);
-    let fmt_text = if formatted == source { "(already formatted)\n".to_string() } else { formatted };
+    let fmt_text = if formatted == source {
+        "(already formatted)\n".to_string()
+    } else {
+        formatted
+    };
     out.push_str(&section("fmt", &fmt_text));
     out.push_str(&reverses(path, &parsed.file));
     out
@@ -44,7 +55,9 @@ fn reverses(path: &Path, file: &dynarole_core::ast::SourceFile) -> String {
     let Ok(registry) = load::registry(&PluginArgs::default(), path, load::robot_name(file)) else {
         return section("reverse", "(plugin failed to load)\n");
     };
-    let (Some(program), _) = analyze(file, &registry) else { return String::new() };
+    let (Some(program), _) = analyze(file, &registry) else {
+        return String::new();
+    };
     let mut out = String::new();
     for decl in file.sequences() {
         let name = &decl.name.name;
@@ -72,6 +85,12 @@ fn golden_cases() {
         let output = golden_output(path, &source, &mut codes);
         insta::assert_snapshot!(format!("{source}\n{output}"));
     });
-    let missing: Vec<&str> = all_codes().filter(|c| !codes.contains(c)).map(DiagnosticCode::name).collect();
-    assert!(missing.is_empty(), "diagnostic kinds with no golden case: {missing:?}");
+    let missing: Vec<&str> = all_codes()
+        .filter(|c| !codes.contains(c))
+        .map(DiagnosticCode::name)
+        .collect();
+    assert!(
+        missing.is_empty(),
+        "diagnostic kinds with no golden case: {missing:?}"
+    );
 }

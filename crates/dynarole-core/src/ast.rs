@@ -156,9 +156,19 @@ pub enum ExprKind {
     /// A query with no arguments, such as `id` or `neighbours`.
     Name(Ident),
     /// A query with arguments, such as `connected($CONNECTOR_0)`.
-    Call { function: Ident, args: Vec<Expr> },
-    Unary { op: UnaryOp, operand: Box<Expr> },
-    Binary { op: BinaryOp, lhs: Box<Expr>, rhs: Box<Expr> },
+    Call {
+        function: Ident,
+        args: Vec<Expr>,
+    },
+    Unary {
+        op: UnaryOp,
+        operand: Box<Expr>,
+    },
+    Binary {
+        op: BinaryOp,
+        lhs: Box<Expr>,
+        rhs: Box<Expr>,
+    },
     /// Kept so that the formatter can print the parentheses the author wrote.
     Paren(Box<Expr>),
 }

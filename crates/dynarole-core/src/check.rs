@@ -5,7 +5,7 @@
 
 use crate::ast::*;
 use crate::diagnostic::{has_errors, Diagnostic, DiagnosticKind as K};
-use crate::robot::{Part, ParamType, RobotApi, RobotRegistry, Value};
+use crate::robot::{ParamType, Part, RobotApi, RobotRegistry, Value};
 use crate::span::Span;
 use crate::suggest::{closest, module_label_lookalike};
 use std::collections::BTreeMap;
@@ -39,8 +39,14 @@ pub struct ResolvedStatement {
 }
 
 /// Checks `file`; the program is returned only when no error was found.
-pub fn analyze<'f>(file: &'f SourceFile, registry: &RobotRegistry) -> (Option<Program<'f>>, Vec<Diagnostic>) {
-    let mut checker = Checker { file, diagnostics: Vec::new() };
+pub fn analyze<'f>(
+    file: &'f SourceFile,
+    registry: &RobotRegistry,
+) -> (Option<Program<'f>>, Vec<Diagnostic>) {
+    let mut checker = Checker {
+        file,
+        diagnostics: Vec::new(),
+    };
     let robot = checker.robot(registry);
     checker.duplicates();
     checker.roles(robot);
@@ -56,7 +62,10 @@ pub fn analyze<'f>(file: &'f SourceFile, registry: &RobotRegistry) -> (Option<Pr
     let mut diagnostics = checker.diagnostics;
     diagnostics.sort_by_key(|d| d.span);
     let program = match robot {
-        Some(robot) if !has_errors(&diagnostics) => Some(Program { file, robot: robot.clone() }),
+        Some(robot) if !has_errors(&diagnostics) => Some(Program {
+            file,
+            robot: robot.clone(),
+        }),
         _ => None,
     };
     (program, diagnostics)
@@ -71,9 +80,18 @@ struct Checker<'f> {
 const QUERIES: [(&str, &str); 5] = [
     ("id", "the module's own ID"),
     ("neighbours", "number of connected neighbours"),
-    ("joint", "joint angle (`joint(j)` for robots with several joints)"),
-    ("connected", "`connected(c)`: whether connector c is connected"),
-    ("neighbour_id", "`neighbour_id(c)`: ID of the module on connector c, -1 if none"),
+    (
+        "joint",
+        "joint angle (`joint(j)` for robots with several joints)",
+    ),
+    (
+        "connected",
+        "`connected(c)`: whether connector c is connected",
+    ),
+    (
+        "neighbour_id",
+        "`neighbour_id(c)`: ID of the module on connector c, -1 if none",
+    ),
 ];
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -118,7 +136,10 @@ impl<'f> Checker<'f> {
         }
         let found = registry.get(&first.name.name);
         if found.is_none() {
-            let kind = K::UnknownRobot { name: first.name.name.clone(), known: registry.names() };
+            let kind = K::UnknownRobot {
+                name: first.name.name.clone(),
+                known: registry.names(),
+            };
             self.report(kind, first.name.span);
         }
         found
@@ -135,7 +156,11 @@ impl<'f> Checker<'f> {
             };
             match seen.get(name.name.as_str()) {
                 Some(first) => {
-                    let kind = K::DuplicateDefinition { name: name.name.clone(), what, first: *first };
+                    let kind = K::DuplicateDefinition {
+                        name: name.name.clone(),
+                        what,
+                        first: *first,
+                    };
                     reports.push((kind, name.span));
                 }
                 None => {
@@ -153,12 +178,20 @@ impl<'f> Checker<'f> {
     fn roles(&mut self, robot: Option<&RobotApi>) {
         for role in self.file.roles() {
             if parse_module_label(&role.name.name).is_some() {
-                self.report(K::RoleShadowsModuleLabel { name: role.name.name.clone() }, role.name.span);
+                self.report(
+                    K::RoleShadowsModuleLabel {
+                        name: role.name.name.clone(),
+                    },
+                    role.name.span,
+                );
             }
             let Some(robot) = robot else { continue };
             let ty = self.expr(&role.predicate, robot);
             if ty == Type::Int {
-                let kind = K::PredicateNotBoolean { role: role.name.name.clone(), found: ty.describe().into() };
+                let kind = K::PredicateNotBoolean {
+                    role: role.name.name.clone(),
+                    found: ty.describe().into(),
+                };
                 self.report(kind, role.predicate.span);
             }
         }
@@ -234,13 +267,27 @@ impl<'f> Checker<'f> {
             _ => {
                 let known: Vec<String> = QUERIES.iter().map(|(q, _)| q.to_string()).collect();
                 let suggestion = closest(&name.name, QUERIES.iter().map(|(q, _)| *q));
-                self.report(K::UnknownQuery { name: name.name.clone(), known, suggestion }, name.span);
+                self.report(
+                    K::UnknownQuery {
+                        name: name.name.clone(),
+                        known,
+                        suggestion,
+                    },
+                    name.span,
+                );
                 return Type::Unknown;
             }
         };
         let expected = usize::from(matches!(name.name.as_str(), "connected" | "neighbour_id"));
         if args.len() != expected {
-            self.report(K::QueryArity { name: name.name.clone(), expected, found: args.len() }, span);
+            self.report(
+                K::QueryArity {
+                    name: name.name.clone(),
+                    expected,
+                    found: args.len(),
+                },
+                span,
+            );
             return result;
         }
         if let (Some(arg), Some(part)) = (args.first(), index_part) {
@@ -251,13 +298,24 @@ impl<'f> Checker<'f> {
 
     fn joint_query(&mut self, args: &[Expr], span: Span, robot: &RobotApi) -> Type {
         let Some(part) = robot.joint_part else {
-            let kind = K::UnknownQuery { name: "joint".into(), known: vec![], suggestion: None };
+            let kind = K::UnknownQuery {
+                name: "joint".into(),
+                known: vec![],
+                suggestion: None,
+            };
             self.report(kind, span);
             return Type::Unknown;
         };
         let expected = usize::from(robot.parts[part].count.is_some());
         if args.len() != expected {
-            self.report(K::QueryArity { name: "joint".into(), expected, found: args.len() }, span);
+            self.report(
+                K::QueryArity {
+                    name: "joint".into(),
+                    expected,
+                    found: args.len(),
+                },
+                span,
+            );
         } else if let Some(arg) = args.first() {
             self.query_index(arg, &robot.parts[part], part, robot);
         }
@@ -273,7 +331,10 @@ impl<'f> Checker<'f> {
         };
         match arg_value {
             Some(kind) => {
-                let as_arg = Arg { kind, span: arg.span };
+                let as_arg = Arg {
+                    kind,
+                    span: arg.span,
+                };
                 self.index(&as_arg, part, part_idx, robot);
             }
             None => self.expect_type(arg, robot, Type::Int, &format!("the {} index", part.name)),
@@ -291,8 +352,17 @@ impl<'f> Checker<'f> {
 
     fn sequence_name(&mut self, name: &Ident) {
         if self.file.sequence(&name.name).is_none() {
-            let suggestion = closest(&name.name, self.file.sequences().map(|s| s.name.name.as_str()));
-            self.report(K::UnknownSequence { name: name.name.clone(), suggestion }, name.span);
+            let suggestion = closest(
+                &name.name,
+                self.file.sequences().map(|s| s.name.name.as_str()),
+            );
+            self.report(
+                K::UnknownSequence {
+                    name: name.name.clone(),
+                    suggestion,
+                },
+                name.span,
+            );
         }
     }
 
@@ -312,16 +382,26 @@ impl<'f> Checker<'f> {
     }
 
     fn label(&mut self, label: &Ident) {
-        if self.file.roles().any(|r| r.name.name == label.name) || parse_module_label(&label.name).is_some() {
+        if self.file.roles().any(|r| r.name.name == label.name)
+            || parse_module_label(&label.name).is_some()
+        {
             return;
         }
         let suggestion = module_label_lookalike(&label.name)
             .or_else(|| closest(&label.name, self.file.roles().map(|r| r.name.name.as_str())));
-        self.report(K::UnknownLabel { name: label.name.clone(), suggestion }, label.span);
+        self.report(
+            K::UnknownLabel {
+                name: label.name.clone(),
+                suggestion,
+            },
+            label.span,
+        );
     }
 
     fn statement(&mut self, statement: &Statement, robot: &RobotApi) {
-        let diagnostics = resolve_statement(self.file, statement, robot).err().unwrap_or_default();
+        let diagnostics = resolve_statement(self.file, statement, robot)
+            .err()
+            .unwrap_or_default();
         self.diagnostics.extend(diagnostics);
     }
 
@@ -343,12 +423,26 @@ impl<'f> Checker<'f> {
         let mut state: BTreeMap<&str, Visit> = BTreeMap::new();
         let mut found = Vec::new();
         for decl in self.file.sequences() {
-            find_cycles(&graph, &decl.name.name, &mut state, &mut Vec::new(), &mut found);
+            find_cycles(
+                &graph,
+                &decl.name.name,
+                &mut state,
+                &mut Vec::new(),
+                &mut found,
+            );
         }
         let acyclic = found.is_empty();
         for (path, uses) in found {
-            let Some((&last, rest)) = uses.split_last() else { continue };
-            self.report(K::CompositionCycle { path, uses: rest.to_vec() }, last);
+            let Some((&last, rest)) = uses.split_last() else {
+                continue;
+            };
+            self.report(
+                K::CompositionCycle {
+                    path,
+                    uses: rest.to_vec(),
+                },
+                last,
+            );
         }
         acyclic
     }
@@ -366,7 +460,11 @@ impl<'f> Checker<'f> {
         }
         for (target, site) in reports {
             for (statement, method) in non_invertible(self.file, robot, target) {
-                let kind = K::NotInvertible { method, sequence: target.to_string(), reversed_at: site };
+                let kind = K::NotInvertible {
+                    method,
+                    sequence: target.to_string(),
+                    reversed_at: site,
+                };
                 self.report(kind, statement);
             }
         }
@@ -376,7 +474,10 @@ impl<'f> Checker<'f> {
 fn collect_reverse_calls<'a>(body: &'a Body, out: &mut Vec<(&'a str, Span)>) {
     for element in &body.elements {
         match &element.kind {
-            ElementKind::Call(Call { reverse: Some(keyword), name }) => {
+            ElementKind::Call(Call {
+                reverse: Some(keyword),
+                name,
+            }) => {
                 out.push((name.name.as_str(), keyword.to(name.span)));
             }
             ElementKind::Block(inner) => collect_reverse_calls(inner, out),
@@ -394,12 +495,20 @@ pub fn non_invertible(file: &SourceFile, robot: &RobotApi, name: &str) -> Vec<(S
     out
 }
 
-fn non_invertible_in<'f>(file: &'f SourceFile, robot: &RobotApi, name: &'f str, visited: &mut Vec<&'f str>, out: &mut Vec<(Span, String)>) {
+fn non_invertible_in<'f>(
+    file: &'f SourceFile,
+    robot: &RobotApi,
+    name: &'f str,
+    visited: &mut Vec<&'f str>,
+    out: &mut Vec<(Span, String)>,
+) {
     if visited.contains(&name) {
         return;
     }
     visited.push(name);
-    let Some(decl) = file.sequence(name) else { return };
+    let Some(decl) = file.sequence(name) else {
+        return;
+    };
     match &decl.definition {
         SequenceDef::Reverse(target) => non_invertible_in(file, robot, &target.name, visited, out),
         SequenceDef::Body(body) => {
@@ -409,13 +518,18 @@ fn non_invertible_in<'f>(file: &'f SourceFile, robot: &RobotApi, name: &'f str, 
                     match &element.kind {
                         ElementKind::Statement(s) => {
                             if let Ok(r) = resolve_statement(file, s, robot) {
-                                if robot.parts[r.part].operations[r.operation].inverse.is_none() {
+                                if robot.parts[r.part].operations[r.operation]
+                                    .inverse
+                                    .is_none()
+                                {
                                     out.push((s.method.span, s.method.name.clone()));
                                 }
                             }
                         }
                         ElementKind::Block(inner) => stack.push(inner),
-                        ElementKind::Call(call) => non_invertible_in(file, robot, &call.name.name, visited, out),
+                        ElementKind::Call(call) => {
+                            non_invertible_in(file, robot, &call.name.name, visited, out)
+                        }
                     }
                 }
             }
@@ -470,8 +584,12 @@ fn find_cycles<'f>(
     for &(next, span) in graph.get(node).map(Vec::as_slice).unwrap_or(&[]) {
         match state.get(next) {
             Some(Visit::Active) => {
-                let start = stack.iter().position(|(n, _)| *n == next).unwrap_or(stack.len());
-                let mut path: Vec<String> = stack[start..].iter().map(|(n, _)| n.to_string()).collect();
+                let start = stack
+                    .iter()
+                    .position(|(n, _)| *n == next)
+                    .unwrap_or(stack.len());
+                let mut path: Vec<String> =
+                    stack[start..].iter().map(|(n, _)| n.to_string()).collect();
                 path.push(node.to_string());
                 path.push(next.to_string());
                 let mut uses: Vec<Span> = stack[start..].iter().skip(1).map(|(_, s)| *s).collect();
@@ -510,27 +628,55 @@ pub fn resolve_label(file: &SourceFile, label: &str) -> Option<Label> {
 
 /// Resolves part, index, operation and arguments of a statement. An unknown label is reported
 /// by the checker, not here (it resolves to a role of that name).
-pub fn resolve_statement(file: &SourceFile, statement: &Statement, robot: &RobotApi) -> Result<ResolvedStatement, Vec<Diagnostic>> {
+pub fn resolve_statement(
+    file: &SourceFile,
+    statement: &Statement,
+    robot: &RobotApi,
+) -> Result<ResolvedStatement, Vec<Diagnostic>> {
     let mut errors = Vec::new();
     let Some((part_idx, part)) = robot.part(&statement.part.name) else {
         let known: Vec<String> = robot.parts.iter().map(|p| p.name.clone()).collect();
-        let suggestion = closest(&statement.part.name, robot.parts.iter().map(|p| p.name.as_str()));
-        let kind = K::UnknownPart { part: statement.part.name.clone(), robot: robot.name.clone(), known, suggestion };
+        let suggestion = closest(
+            &statement.part.name,
+            robot.parts.iter().map(|p| p.name.as_str()),
+        );
+        let kind = K::UnknownPart {
+            part: statement.part.name.clone(),
+            robot: robot.name.clone(),
+            known,
+            suggestion,
+        };
         return Err(vec![Diagnostic::new(kind, statement.part.span)]);
     };
     let index = statement_index(statement, part, part_idx, robot, &mut errors);
     let Some((op_idx, op)) = part.operation(&statement.method.name) else {
         let known: Vec<String> = part.operations.iter().map(|o| o.name.clone()).collect();
-        let suggestion = closest(&statement.method.name, part.operations.iter().map(|o| o.name.as_str()));
-        let kind = K::UnknownMethod { part: part.name.clone(), method: statement.method.name.clone(), known, suggestion };
+        let suggestion = closest(
+            &statement.method.name,
+            part.operations.iter().map(|o| o.name.as_str()),
+        );
+        let kind = K::UnknownMethod {
+            part: part.name.clone(),
+            method: statement.method.name.clone(),
+            known,
+            suggestion,
+        };
         errors.push(Diagnostic::new(kind, statement.method.span));
         return Err(errors);
     };
     if let (true, Some(i)) = (op.requires_male, index) {
         if !part.is_male(i) {
             let males: Vec<String> = part.male.iter().map(u32::to_string).collect();
-            let kind = K::FemaleConnector { part: part.name.clone(), method: op.name.clone(), index: i, males: males.join(", ") };
-            let span = statement.index.as_ref().map_or(statement.method.span, |a| a.span);
+            let kind = K::FemaleConnector {
+                part: part.name.clone(),
+                method: op.name.clone(),
+                index: i,
+                males: males.join(", "),
+            };
+            let span = statement
+                .index
+                .as_ref()
+                .map_or(statement.method.span, |a| a.span);
             errors.push(Diagnostic::new(kind, span));
         }
     }
@@ -538,7 +684,8 @@ pub fn resolve_statement(file: &SourceFile, statement: &Statement, robot: &Robot
     if !errors.is_empty() {
         return Err(errors);
     }
-    let label = resolve_label(file, &statement.label.name).unwrap_or(Label::Role(statement.label.name.clone()));
+    let label = resolve_label(file, &statement.label.name)
+        .unwrap_or(Label::Role(statement.label.name.clone()));
     Ok(ResolvedStatement {
         label,
         part: part_idx,
@@ -549,7 +696,13 @@ pub fn resolve_statement(file: &SourceFile, statement: &Statement, robot: &Robot
     })
 }
 
-fn statement_index(statement: &Statement, part: &Part, part_idx: usize, robot: &RobotApi, errors: &mut Vec<Diagnostic>) -> Option<i64> {
+fn statement_index(
+    statement: &Statement,
+    part: &Part,
+    part_idx: usize,
+    robot: &RobotApi,
+    errors: &mut Vec<Diagnostic>,
+) -> Option<i64> {
     match (&statement.index, part.count) {
         (Some(arg), Some(_)) => match resolve_index(arg, part, part_idx, robot) {
             Ok(i) => Some(i),
@@ -560,20 +713,35 @@ fn statement_index(statement: &Statement, part: &Part, part_idx: usize, robot: &
         },
         (None, Some(_)) => {
             let first = robot.constants.iter().find(|c| c.part == Some(part_idx));
-            let example = first.map_or(format!("{}[0]", part.name), |c| format!("{}[${}]", part.name, c.name));
-            let kind = K::MissingIndex { part: part.name.clone(), example };
+            let example = first.map_or(format!("{}[0]", part.name), |c| {
+                format!("{}[${}]", part.name, c.name)
+            });
+            let kind = K::MissingIndex {
+                part: part.name.clone(),
+                example,
+            };
             errors.push(Diagnostic::new(kind, statement.part.span));
             None
         }
         (Some(arg), None) => {
-            errors.push(Diagnostic::new(K::UnexpectedIndex { part: part.name.clone() }, arg.span));
+            errors.push(Diagnostic::new(
+                K::UnexpectedIndex {
+                    part: part.name.clone(),
+                },
+                arg.span,
+            ));
             None
         }
         (None, None) => None,
     }
 }
 
-fn resolve_index(arg: &Arg, part: &Part, part_idx: usize, robot: &RobotApi) -> Result<i64, Diagnostic> {
+fn resolve_index(
+    arg: &Arg,
+    part: &Part,
+    part_idx: usize,
+    robot: &RobotApi,
+) -> Result<i64, Diagnostic> {
     let count = part.count.unwrap_or(0);
     let index = match &arg.kind {
         ArgKind::Int(n) => *n,
@@ -588,7 +756,10 @@ fn resolve_index(arg: &Arg, part: &Part, part_idx: usize, robot: &RobotApi) -> R
         ArgKind::Constant(name) => match robot.constant(name) {
             None => return Err(unknown_constant(name, arg.span, robot)),
             Some(c) if c.part.is_some() && c.part != Some(part_idx) => {
-                let other = c.part.and_then(|p| robot.parts.get(p)).map_or("other", |p| p.name.as_str());
+                let other = c
+                    .part
+                    .and_then(|p| robot.parts.get(p))
+                    .map_or("other", |p| p.name.as_str());
                 let kind = K::WrongArgumentType {
                     param: format!("{} index", part.name),
                     expected: format!("a {} index", part.name),
@@ -600,12 +771,25 @@ fn resolve_index(arg: &Arg, part: &Part, part_idx: usize, robot: &RobotApi) -> R
         },
     };
     if index < 0 || index >= i64::from(count) {
-        return Err(Diagnostic::new(K::IndexOutOfRange { part: part.name.clone(), index, count }, arg.span));
+        return Err(Diagnostic::new(
+            K::IndexOutOfRange {
+                part: part.name.clone(),
+                index,
+                count,
+            },
+            arg.span,
+        ));
     }
     Ok(index)
 }
 
-fn statement_args(statement: &Statement, params: &[crate::robot::Param], robot: &RobotApi, errors: &mut Vec<Diagnostic>, signature: &str) -> Vec<Value> {
+fn statement_args(
+    statement: &Statement,
+    params: &[crate::robot::Param],
+    robot: &RobotApi,
+    errors: &mut Vec<Diagnostic>,
+    signature: &str,
+) -> Vec<Value> {
     if statement.args.len() != params.len() {
         let kind = K::WrongArity {
             method: statement.method.name.clone(),
@@ -626,7 +810,11 @@ fn statement_args(statement: &Statement, params: &[crate::robot::Param], robot: 
     values
 }
 
-fn resolve_arg(arg: &Arg, param: &crate::robot::Param, robot: &RobotApi) -> Result<Value, Diagnostic> {
+fn resolve_arg(
+    arg: &Arg,
+    param: &crate::robot::Param,
+    robot: &RobotApi,
+) -> Result<Value, Diagnostic> {
     let value = match &arg.kind {
         ArgKind::Int(n) => Value::Int(*n),
         ArgKind::Bool(b) => Value::Bool(*b),
@@ -643,7 +831,10 @@ fn resolve_arg(arg: &Arg, param: &crate::robot::Param, robot: &RobotApi) -> Resu
             Some(c) => Value::Int(c.value),
         },
     };
-    let ok_type = matches!((&param.ty, value), (ParamType::Bool, Value::Bool(_)) | (ParamType::Int { .. }, Value::Int(_)));
+    let ok_type = matches!(
+        (&param.ty, value),
+        (ParamType::Bool, Value::Bool(_)) | (ParamType::Int { .. }, Value::Int(_))
+    );
     if !ok_type {
         let kind = K::WrongArgumentType {
             param: param.name.clone(),
@@ -654,7 +845,11 @@ fn resolve_arg(arg: &Arg, param: &crate::robot::Param, robot: &RobotApi) -> Resu
     }
     if let Value::Int(n) = value {
         if !param.ty.allows(n) {
-            let kind = K::ArgumentOutOfRange { param: param.name.clone(), value: n, allowed: param.ty.allowed() };
+            let kind = K::ArgumentOutOfRange {
+                param: param.name.clone(),
+                value: n,
+                allowed: param.ty.allowed(),
+            };
             return Err(Diagnostic::new(kind, arg.span));
         }
     }
@@ -663,5 +858,11 @@ fn resolve_arg(arg: &Arg, param: &crate::robot::Param, robot: &RobotApi) -> Resu
 
 fn unknown_constant(name: &str, span: Span, robot: &RobotApi) -> Diagnostic {
     let suggestion = closest(name, robot.constants.iter().map(|c| c.name.as_str()));
-    Diagnostic::new(K::UnknownConstant { name: name.to_string(), suggestion }, span)
+    Diagnostic::new(
+        K::UnknownConstant {
+            name: name.to_string(),
+            suggestion,
+        },
+        span,
+    )
 }

@@ -42,9 +42,14 @@ pub struct Description {
 #[strum_discriminants(strum(serialize_all = "kebab-case"))]
 pub enum DiagnosticKind {
     // ---- syntax ----
-    UnknownCharacter { found: char },
+    UnknownCharacter {
+        found: char,
+    },
     UnterminatedComment,
-    UnexpectedToken { expected: String, found: String },
+    UnexpectedToken {
+        expected: String,
+        found: String,
+    },
     /// `&` inside a role predicate.
     SingleAmpersand,
     /// `|` inside a role predicate.
@@ -53,39 +58,128 @@ pub enum DiagnosticKind {
     AssignmentInPredicate,
     IntegerTooLarge,
     /// `$CONNECTOR 4`: a constant split by a space (an OCR slip in the paper).
-    SpaceInConstant { joined: String },
+    SpaceInConstant {
+        joined: String,
+    },
     MissingSeparator,
     UnclosedParallelGroup,
-    NestingTooDeep { limit: usize },
-    PredicateTooLong { limit: usize },
-    EmptySequence { name: String },
+    NestingTooDeep {
+        limit: usize,
+    },
+    PredicateTooLong {
+        limit: usize,
+    },
+    EmptySequence {
+        name: String,
+    },
     // ---- names ----
     MissingRobot,
-    DuplicateRobot { first: Span },
-    UnknownRobot { name: String, known: Vec<String> },
-    DuplicateDefinition { name: String, what: &'static str, first: Span },
-    UnknownLabel { name: String, suggestion: Option<String> },
-    RoleShadowsModuleLabel { name: String },
-    UnknownSequence { name: String, suggestion: Option<String> },
-    UnknownPart { part: String, robot: String, known: Vec<String>, suggestion: Option<String> },
-    UnknownMethod { part: String, method: String, known: Vec<String>, suggestion: Option<String> },
-    UnknownConstant { name: String, suggestion: Option<String> },
-    UnknownQuery { name: String, known: Vec<String>, suggestion: Option<String> },
-    CompositionCycle { path: Vec<String>, uses: Vec<Span> },
+    DuplicateRobot {
+        first: Span,
+    },
+    UnknownRobot {
+        name: String,
+        known: Vec<String>,
+    },
+    DuplicateDefinition {
+        name: String,
+        what: &'static str,
+        first: Span,
+    },
+    UnknownLabel {
+        name: String,
+        suggestion: Option<String>,
+    },
+    RoleShadowsModuleLabel {
+        name: String,
+    },
+    UnknownSequence {
+        name: String,
+        suggestion: Option<String>,
+    },
+    UnknownPart {
+        part: String,
+        robot: String,
+        known: Vec<String>,
+        suggestion: Option<String>,
+    },
+    UnknownMethod {
+        part: String,
+        method: String,
+        known: Vec<String>,
+        suggestion: Option<String>,
+    },
+    UnknownConstant {
+        name: String,
+        suggestion: Option<String>,
+    },
+    UnknownQuery {
+        name: String,
+        known: Vec<String>,
+        suggestion: Option<String>,
+    },
+    CompositionCycle {
+        path: Vec<String>,
+        uses: Vec<Span>,
+    },
     // ---- types and values ----
-    MissingIndex { part: String, example: String },
-    UnexpectedIndex { part: String },
-    WrongArity { method: String, signature: String, expected: usize, found: usize },
-    WrongArgumentType { param: String, expected: String, found: String },
-    IndexOutOfRange { part: String, index: i64, count: u32 },
-    ArgumentOutOfRange { param: String, value: i64, allowed: String },
-    FemaleConnector { part: String, method: String, index: i64, males: String },
-    NotInvertible { method: String, sequence: String, reversed_at: Span },
-    TypeMismatch { context: String, expected: String, found: String },
-    PredicateNotBoolean { role: String, found: String },
-    QueryArity { name: String, expected: usize, found: usize },
+    MissingIndex {
+        part: String,
+        example: String,
+    },
+    UnexpectedIndex {
+        part: String,
+    },
+    WrongArity {
+        method: String,
+        signature: String,
+        expected: usize,
+        found: usize,
+    },
+    WrongArgumentType {
+        param: String,
+        expected: String,
+        found: String,
+    },
+    IndexOutOfRange {
+        part: String,
+        index: i64,
+        count: u32,
+    },
+    ArgumentOutOfRange {
+        param: String,
+        value: i64,
+        allowed: String,
+    },
+    FemaleConnector {
+        part: String,
+        method: String,
+        index: i64,
+        males: String,
+    },
+    NotInvertible {
+        method: String,
+        sequence: String,
+        reversed_at: Span,
+    },
+    TypeMismatch {
+        context: String,
+        expected: String,
+        found: String,
+    },
+    PredicateNotBoolean {
+        role: String,
+        found: String,
+    },
+    QueryArity {
+        name: String,
+        expected: usize,
+        found: usize,
+    },
     // ---- protocol limits ----
-    NotSupportedByPaperProtocol { reason: String },
+    NotSupportedByPaperProtocol {
+        reason: String,
+    },
 }
 
 impl Diagnostic {

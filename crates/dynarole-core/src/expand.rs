@@ -52,12 +52,20 @@ impl Program<'_> {
             .iter()
             .filter_map(|element| {
                 let kind = match &element.kind {
-                    ElementKind::Statement(s) => PlanKind::Op(resolve_statement(self.file, s, &self.robot).ok()?),
+                    ElementKind::Statement(s) => {
+                        PlanKind::Op(resolve_statement(self.file, s, &self.robot).ok()?)
+                    }
                     ElementKind::Block(inner) => PlanKind::Block(self.expand_body(inner)),
-                    ElementKind::Call(call) if call.reverse.is_some() => PlanKind::Block(self.expand_reversed(&call.name.name)),
+                    ElementKind::Call(call) if call.reverse.is_some() => {
+                        PlanKind::Block(self.expand_reversed(&call.name.name))
+                    }
                     ElementKind::Call(call) => PlanKind::Block(self.expand(&call.name.name)?),
                 };
-                Some(PlanElement { kind, separator: element.separator.kind, span: element.span })
+                Some(PlanElement {
+                    kind,
+                    separator: element.separator.kind,
+                    span: element.span,
+                })
             })
             .collect();
         Plan { elements }
@@ -89,27 +97,45 @@ impl Plan {
         let mut out: Vec<(ResolvedStatement, SeparatorKind)> = Vec::new();
         let mut group_len = 0usize;
         for (i, element) in self.elements.iter().enumerate() {
-            let group_size = group_len + self.elements[i..].iter().position(|e| e.separator == SeparatorKind::Sequential).map_or(0, |p| p + 1);
+            let group_size = group_len
+                + self.elements[i..]
+                    .iter()
+                    .position(|e| e.separator == SeparatorKind::Sequential)
+                    .map_or(0, |p| p + 1);
             match &element.kind {
                 PlanKind::Op(s) => out.push((s.clone(), element.separator)),
                 PlanKind::Block(inner) => {
                     let flat = inner.flatten_for_paper()?;
-                    let inner_groups = flat.iter().filter(|(_, sep)| *sep == SeparatorKind::Sequential).count();
+                    let inner_groups = flat
+                        .iter()
+                        .filter(|(_, sep)| *sep == SeparatorKind::Sequential)
+                        .count();
                     if group_size > 1 && inner_groups > 1 {
                         let reason = "this block has sequential steps and runs in parallel with other statements".to_string();
-                        return Err(Diagnostic::new(DiagnosticKind::NotSupportedByPaperProtocol { reason }, element.span));
+                        return Err(Diagnostic::new(
+                            DiagnosticKind::NotSupportedByPaperProtocol { reason },
+                            element.span,
+                        ));
                     }
                     splice(&mut out, flat, element.separator);
                 }
             }
-            group_len = if element.separator == SeparatorKind::Sequential { 0 } else { group_len + 1 };
+            group_len = if element.separator == SeparatorKind::Sequential {
+                0
+            } else {
+                group_len + 1
+            };
         }
         Ok(out)
     }
 }
 
 /// Appends a flattened block; its last statement takes the block's own separator.
-fn splice(out: &mut Vec<(ResolvedStatement, SeparatorKind)>, mut flat: Vec<(ResolvedStatement, SeparatorKind)>, separator: SeparatorKind) {
+fn splice(
+    out: &mut Vec<(ResolvedStatement, SeparatorKind)>,
+    mut flat: Vec<(ResolvedStatement, SeparatorKind)>,
+    separator: SeparatorKind,
+) {
     match flat.last_mut() {
         Some(last) => last.1 = separator,
         // An empty block still closes the group it ends.

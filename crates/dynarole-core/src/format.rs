@@ -14,11 +14,18 @@ const INDENT: &str = "    ";
 
 /// Formats a whole file; `source` is the text it was parsed from (for comments and blank lines).
 pub fn format_file(file: &SourceFile, source: &str) -> String {
-    let mut printer = Printer { source, comments: &file.comments, next_comment: 0, out: String::new() };
+    let mut printer = Printer {
+        source,
+        comments: &file.comments,
+        next_comment: 0,
+        out: String::new(),
+    };
     let mut previous: Option<&Item> = None;
     for item in &file.items {
         if let Some(prev) = previous {
-            let together = is_one_line(prev) && is_one_line(item) && !printer.blank_between(prev.span().end, item.span().start);
+            let together = is_one_line(prev)
+                && is_one_line(item)
+                && !printer.blank_between(prev.span().end, item.span().start);
             printer.out.push_str(if together { "\n" } else { "\n\n" });
         }
         printer.leading_comments(item.span().start, 0);
@@ -41,11 +48,23 @@ pub fn format_file(file: &SourceFile, source: &str) -> String {
 
 /// Formats items that have no source text (such as a generated reverse), without comments.
 pub fn format_items(items: Vec<Item>) -> String {
-    format_file(&SourceFile { items, comments: Vec::new() }, "")
+    format_file(
+        &SourceFile {
+            items,
+            comments: Vec::new(),
+        },
+        "",
+    )
 }
 
 fn is_one_line(item: &Item) -> bool {
-    !matches!(item, Item::Sequence(SequenceDecl { definition: SequenceDef::Body(_), .. }))
+    !matches!(
+        item,
+        Item::Sequence(SequenceDecl {
+            definition: SequenceDef::Body(_),
+            ..
+        })
+    )
 }
 
 struct Printer<'a> {
@@ -76,8 +95,12 @@ impl Printer<'_> {
 
     /// Appends the comment that follows `offset` on the same source line, if any.
     fn trailing_comment(&mut self, offset: u32) {
-        let Some(comment) = self.comments.get(self.next_comment) else { return };
-        let gap = self.source.get(offset as usize..comment.span.start as usize);
+        let Some(comment) = self.comments.get(self.next_comment) else {
+            return;
+        };
+        let gap = self
+            .source
+            .get(offset as usize..comment.span.start as usize);
         let same_line = gap.is_some_and(|g| !g.contains('\n') && g.trim().is_empty());
         if comment.span.start >= offset && same_line && !comment.text.contains('\n') {
             self.out.push(' ');
@@ -98,11 +121,20 @@ impl Printer<'_> {
                 let _ = write!(self.out, "robot {};", decl.name.name);
             }
             Item::Role(decl) => {
-                let _ = write!(self.out, "role {} requires {};", decl.name.name, expr(&decl.predicate));
+                let _ = write!(
+                    self.out,
+                    "role {} requires {};",
+                    decl.name.name,
+                    expr(&decl.predicate)
+                );
             }
             Item::Sequence(decl) => match &decl.definition {
                 SequenceDef::Reverse(target) => {
-                    let _ = write!(self.out, "sequence {} = reverse {};", decl.name.name, target.name);
+                    let _ = write!(
+                        self.out,
+                        "sequence {} = reverse {};",
+                        decl.name.name, target.name
+                    );
                 }
                 SequenceDef::Body(body) => {
                     let _ = write!(self.out, "sequence {} ", decl.name.name);
@@ -154,9 +186,19 @@ impl Printer<'_> {
 
 /// `M3.Joint.rotateFromToBy(0, 324, false, 150)`
 pub fn statement(s: &Statement) -> String {
-    let index = s.index.as_ref().map_or(String::new(), |i| format!("[{}]", arg(i)));
+    let index = s
+        .index
+        .as_ref()
+        .map_or(String::new(), |i| format!("[{}]", arg(i)));
     let args: Vec<String> = s.args.iter().map(arg).collect();
-    format!("{}.{}{}.{}({})", s.label.name, s.part.name, index, s.method.name, args.join(", "))
+    format!(
+        "{}.{}{}.{}({})",
+        s.label.name,
+        s.part.name,
+        index,
+        s.method.name,
+        args.join(", ")
+    )
 }
 
 fn arg(a: &Arg) -> String {
@@ -177,8 +219,14 @@ pub fn expr(e: &Expr) -> String {
             let args: Vec<String> = args.iter().map(expr).collect();
             format!("{}({})", function.name, args.join(", "))
         }
-        ExprKind::Unary { op: UnaryOp::Not, operand } => format!("!{}", expr(operand)),
-        ExprKind::Unary { op: UnaryOp::Negate, operand } => format!("-{}", expr(operand)),
+        ExprKind::Unary {
+            op: UnaryOp::Not,
+            operand,
+        } => format!("!{}", expr(operand)),
+        ExprKind::Unary {
+            op: UnaryOp::Negate,
+            operand,
+        } => format!("-{}", expr(operand)),
         ExprKind::Binary { op, lhs, rhs } => format!("{} {} {}", expr(lhs), op.symbol(), expr(rhs)),
         ExprKind::Paren(inner) => format!("({})", expr(inner)),
     }

@@ -132,8 +132,10 @@ pub fn lex(source: &str) -> Lexed {
             }
             Err(()) => {
                 let found = lexer.slice().chars().next().unwrap_or(' ');
-                out.errors
-                    .push(Diagnostic::new(DiagnosticKind::UnknownCharacter { found }, span));
+                out.errors.push(Diagnostic::new(
+                    DiagnosticKind::UnknownCharacter { found },
+                    span,
+                ));
             }
         }
     }

@@ -6,6 +6,8 @@
 //! **Architecture invariant**: this crate does no IO. Sources, plugin texts and configurations
 //! come in as strings; results and diagnostics go out as data.
 
+#![deny(clippy::print_stdout, clippy::print_stderr)]
+
 pub mod ast;
 pub mod check;
 pub mod diagnostic;

@@ -66,7 +66,9 @@ impl Parser {
     }
 
     fn peek_at(&self, ahead: usize) -> &Token {
-        self.tokens.get(self.pos + ahead).map_or(&Token::Eof, |(t, _)| t)
+        self.tokens
+            .get(self.pos + ahead)
+            .map_or(&Token::Eof, |(t, _)| t)
     }
 
     fn span(&self) -> Span {
@@ -439,7 +441,8 @@ impl Parser {
 
     /// `$CONNECTOR 4` is read as `$CONNECTOR_4` after saying so, so checking can go on.
     fn joined_constant(&mut self, name: String, start: Span) -> String {
-        let (Token::Int(Some(n)), true) = (self.peek().clone(), name.ends_with(char::is_alphabetic))
+        let (Token::Int(Some(n)), true) =
+            (self.peek().clone(), name.ends_with(char::is_alphabetic))
         else {
             return name;
         };
@@ -475,7 +478,12 @@ impl Parser {
             }
             self.operators += 1;
             if self.operators > MAX_OPERATORS {
-                self.report(DiagnosticKind::PredicateTooLong { limit: MAX_OPERATORS }, span);
+                self.report(
+                    DiagnosticKind::PredicateTooLong {
+                        limit: MAX_OPERATORS,
+                    },
+                    span,
+                );
                 return Err(Broken);
             }
             let rhs = self.binary(op.precedence() + 1)?;

@@ -11,14 +11,22 @@ impl Program<'_> {
     ///
     /// Fails, pointing at each operation without an inverse, when the sequence (or one it
     /// uses) cannot be reversed; `None` in the error list means `name` is not a sequence.
-    pub fn reverse_sequence(&self, name: &str, new_name: &str) -> Option<Result<SequenceDecl, Vec<Diagnostic>>> {
+    pub fn reverse_sequence(
+        &self,
+        name: &str,
+        new_name: &str,
+    ) -> Option<Result<SequenceDecl, Vec<Diagnostic>>> {
         let decl = self.file.sequence(name)?;
         let blockers = non_invertible(self.file, &self.robot, name);
         if !blockers.is_empty() {
             let errors = blockers
                 .into_iter()
                 .map(|(span, method)| {
-                    let kind = DiagnosticKind::NotInvertible { method, sequence: name.to_string(), reversed_at: decl.name.span };
+                    let kind = DiagnosticKind::NotInvertible {
+                        method,
+                        sequence: name.to_string(),
+                        reversed_at: decl.name.span,
+                    };
                     Diagnostic::new(kind, span)
                 })
                 .collect();
@@ -27,16 +35,21 @@ impl Program<'_> {
         let body = match &decl.definition {
             SequenceDef::Body(body) => self.reverse_body(body),
             // Reversing `X = reverse Y` gives Y back.
-            SequenceDef::Reverse(target) => match self.file.sequence(&target.name).map(|d| &d.definition) {
-                Some(SequenceDef::Body(body)) => body.clone(),
-                Some(SequenceDef::Reverse(_)) | None => Body {
-                    elements: vec![call_element(&target.name, false, target.span)],
-                    span: decl.span,
-                },
-            },
+            SequenceDef::Reverse(target) => {
+                match self.file.sequence(&target.name).map(|d| &d.definition) {
+                    Some(SequenceDef::Body(body)) => body.clone(),
+                    Some(SequenceDef::Reverse(_)) | None => Body {
+                        elements: vec![call_element(&target.name, false, target.span)],
+                        span: decl.span,
+                    },
+                }
+            }
         };
         Some(Ok(SequenceDecl {
-            name: Ident { name: new_name.to_string(), span: decl.name.span },
+            name: Ident {
+                name: new_name.to_string(),
+                span: decl.name.span,
+            },
             definition: SequenceDef::Body(body),
             span: decl.span,
         }))
@@ -45,14 +58,17 @@ impl Program<'_> {
     /// The name a reversed sequence gets: `Y` if `name` is declared `= reverse Y`; the file's
     /// own `X = reverse name` if there is one; else `b2a` for `a2b`; else `name_reversed`.
     pub fn reverse_name(&self, name: &str) -> String {
-        if let Some(SequenceDef::Reverse(target)) = self.file.sequence(name).map(|d| &d.definition) {
+        if let Some(SequenceDef::Reverse(target)) = self.file.sequence(name).map(|d| &d.definition)
+        {
             return target.name.clone();
         }
         if let Some(alias) = self.reverse_alias(name) {
             return alias;
         }
         match name.split_once('2') {
-            Some((from, to)) if !from.is_empty() && !to.is_empty() && !to.contains('2') => format!("{to}2{from}"),
+            Some((from, to)) if !from.is_empty() && !to.is_empty() && !to.contains('2') => {
+                format!("{to}2{from}")
+            }
             _ => format!("{name}_reversed"),
         }
     }
@@ -71,11 +87,22 @@ impl Program<'_> {
             .map(|j| {
                 let element = &body.elements[n - 1 - j];
                 // The separator between a pair stays between that pair; the last one stays last.
-                let separator = if j + 1 < n { body.elements[n - 2 - j].separator } else { body.elements[n - 1].separator };
-                Element { kind: self.reverse_kind(&element.kind), separator, span: element.span }
+                let separator = if j + 1 < n {
+                    body.elements[n - 2 - j].separator
+                } else {
+                    body.elements[n - 1].separator
+                };
+                Element {
+                    kind: self.reverse_kind(&element.kind),
+                    separator,
+                    span: element.span,
+                }
             })
             .collect();
-        Body { elements, span: body.span }
+        Body {
+            elements,
+            span: body.span,
+        }
     }
 
     fn reverse_kind(&self, kind: &ElementKind) -> ElementKind {
@@ -92,10 +119,13 @@ impl Program<'_> {
         if call.reverse.is_some() {
             return call_element(&call.name.name, false, span).kind;
         }
-        let declared_reverse = self.file.sequence(&call.name.name).and_then(|d| match &d.definition {
-            SequenceDef::Reverse(target) => Some(target.name.clone()),
-            SequenceDef::Body(_) => None,
-        });
+        let declared_reverse =
+            self.file
+                .sequence(&call.name.name)
+                .and_then(|d| match &d.definition {
+                    SequenceDef::Reverse(target) => Some(target.name.clone()),
+                    SequenceDef::Body(_) => None,
+                });
         if let Some(target) = declared_reverse {
             return call_element(&target, false, span).kind;
         }
@@ -126,12 +156,18 @@ impl Program<'_> {
                         Value::Int(n) => ArgKind::Int(n),
                         Value::Bool(b) => ArgKind::Bool(b),
                     };
-                    Arg { kind, span: statement.args_span }
+                    Arg {
+                        kind,
+                        span: statement.args_span,
+                    }
                 }
             })
             .collect();
         Statement {
-            method: Ident { name: inverse_name, span: statement.method.span },
+            method: Ident {
+                name: inverse_name,
+                span: statement.method.span,
+            },
             args,
             ..statement.clone()
         }
@@ -142,9 +178,15 @@ fn call_element(name: &str, reverse: bool, span: crate::span::Span) -> Element {
     Element {
         kind: ElementKind::Call(Call {
             reverse: reverse.then_some(span),
-            name: Ident { name: name.to_string(), span },
+            name: Ident {
+                name: name.to_string(),
+                span,
+            },
         }),
-        separator: Separator { kind: SeparatorKind::Sequential, span },
+        separator: Separator {
+            kind: SeparatorKind::Sequential,
+            span,
+        },
         span,
     }
 }

@@ -44,7 +44,10 @@ mod tests {
 
     #[test]
     fn closest_name() {
-        assert_eq!(closest("retrakt", ["extend", "retract"]), Some("retract".into()));
+        assert_eq!(
+            closest("retrakt", ["extend", "retract"]),
+            Some("retract".into())
+        );
         assert_eq!(closest("zzz", ["extend", "retract"]), None);
     }
 }

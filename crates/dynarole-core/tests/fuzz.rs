@@ -6,12 +6,65 @@ use dynarole_core::{analyze, parse, RobotApi, RobotRegistry};
 use proptest::prelude::*;
 
 const VOCABULARY: &[&str] = &[
-    "robot", "atron", "mtran", "role", "requires", "sequence", "reverse", "{", "}", ";", "&", "&&",
-    "|", "||", "!", "=", "==", "!=", "<", ">=", "(", ")", "[", "]", ",", ".", "-", "M0", "M3", "MO",
-    "Connector", "Joint", "extend", "retract", "rotateFromToBy", "rotateToBy", "$CONNECTOR_0",
-    "$CONNECTOR", "$JOINT_NORTH", "0", "4", "108", "324", "99999999999999999999", "true", "false",
-    "id", "connected", "joint", "neighbours", "neighbour_id", "s", "t", "/* c */", "// c\n", "/*",
-    "$", "#", "\u{e9}",
+    "robot",
+    "atron",
+    "mtran",
+    "role",
+    "requires",
+    "sequence",
+    "reverse",
+    "{",
+    "}",
+    ";",
+    "&",
+    "&&",
+    "|",
+    "||",
+    "!",
+    "=",
+    "==",
+    "!=",
+    "<",
+    ">=",
+    "(",
+    ")",
+    "[",
+    "]",
+    ",",
+    ".",
+    "-",
+    "M0",
+    "M3",
+    "MO",
+    "Connector",
+    "Joint",
+    "extend",
+    "retract",
+    "rotateFromToBy",
+    "rotateToBy",
+    "$CONNECTOR_0",
+    "$CONNECTOR",
+    "$JOINT_NORTH",
+    "0",
+    "4",
+    "108",
+    "324",
+    "99999999999999999999",
+    "true",
+    "false",
+    "id",
+    "connected",
+    "joint",
+    "neighbours",
+    "neighbour_id",
+    "s",
+    "t",
+    "/* c */",
+    "// c\n",
+    "/*",
+    "$",
+    "#",
+    "\u{e9}",
 ];
 
 fn run_front_end(text: &str) {
@@ -30,7 +83,10 @@ fn run_front_end(text: &str) {
     if parsed.diagnostics.is_empty() {
         let formatted = format_file(&parsed.file, text);
         let reparsed = parse(&formatted);
-        assert!(reparsed.diagnostics.is_empty(), "formatting made a valid file invalid:\n{text}\n---\n{formatted}");
+        assert!(
+            reparsed.diagnostics.is_empty(),
+            "formatting made a valid file invalid:\n{text}\n---\n{formatted}"
+        );
     }
 }
 
@@ -55,11 +111,22 @@ proptest! {
 
 #[test]
 fn deep_nesting_is_refused_not_overflowed() {
-    let text = format!("robot atron; sequence s {}{}", "{".repeat(100_000), "}".repeat(100_000));
+    let text = format!(
+        "robot atron; sequence s {}{}",
+        "{".repeat(100_000),
+        "}".repeat(100_000)
+    );
     run_front_end(&text);
-    let role = format!("robot atron; role r requires {}id{};", "(".repeat(100_000), ")".repeat(100_000));
+    let role = format!(
+        "robot atron; role r requires {}id{};",
+        "(".repeat(100_000),
+        ")".repeat(100_000)
+    );
     run_front_end(&role);
-    let chain = format!("robot atron; role r requires id == 0{};", " || id == 1".repeat(100_000));
+    let chain = format!(
+        "robot atron; role r requires id == 0{};",
+        " || id == 1".repeat(100_000)
+    );
     run_front_end(&chain);
     let negations = format!("robot atron; role r requires {}true;", "!".repeat(100_000));
     run_front_end(&negations);

@@ -30,7 +30,13 @@ fn diagnostics_text(source: &str, diagnostics: &[Diagnostic]) -> String {
     for d in diagnostics {
         let (line, col) = line_col(source, d.span.start);
         let desc = d.describe();
-        out.push_str(&format!("{line}:{col} {}[{}] {} ({})\n", severity(d), desc.code, desc.title, desc.label));
+        out.push_str(&format!(
+            "{line}:{col} {}[{}] {} ({})\n",
+            severity(d),
+            desc.code,
+            desc.title,
+            desc.label
+        ));
         if let Some(hint) = desc.hint {
             out.push_str(&format!("    hint: {hint}\n"));
         }
@@ -49,8 +55,17 @@ fn severity(d: &Diagnostic) -> &'static str {
 fn lexer_pass() {
     let source = "M0.Connector[$CONNECTOR_0].retract() & /* c */ x; // end\n$ 12 &&||!=";
     let lexed = lex(source);
-    let mut out: Vec<String> = lexed.tokens.iter().map(|(t, s)| format!("{}..{} {:?}", s.start, s.end, t)).collect();
-    out.extend(lexed.comments.iter().map(|c| format!("comment {}..{} {:?}", c.span.start, c.span.end, c.text)));
+    let mut out: Vec<String> = lexed
+        .tokens
+        .iter()
+        .map(|(t, s)| format!("{}..{} {:?}", s.start, s.end, t))
+        .collect();
+    out.extend(
+        lexed
+            .comments
+            .iter()
+            .map(|c| format!("comment {}..{} {:?}", c.span.start, c.span.end, c.text)),
+    );
     out.push(diagnostics_text(source, &lexed.errors));
     insta::assert_snapshot!(snapshot(source, "tokens", &out.join("\n")));
 }
@@ -61,9 +76,15 @@ fn tree(file: &SourceFile) -> String {
     for item in &file.items {
         match item {
             Item::Robot(d) => out.push_str(&format!("robot {}\n", d.name.name)),
-            Item::Role(d) => out.push_str(&format!("role {}\n  {}\n", d.name.name, expr_tree(&d.predicate))),
+            Item::Role(d) => out.push_str(&format!(
+                "role {}\n  {}\n",
+                d.name.name,
+                expr_tree(&d.predicate)
+            )),
             Item::Sequence(d) => match &d.definition {
-                SequenceDef::Reverse(t) => out.push_str(&format!("sequence {} = reverse {}\n", d.name.name, t.name)),
+                SequenceDef::Reverse(t) => {
+                    out.push_str(&format!("sequence {} = reverse {}\n", d.name.name, t.name))
+                }
                 SequenceDef::Body(body) => {
                     out.push_str(&format!("sequence {}\n", d.name.name));
                     body_tree(body, 1, &mut out);
@@ -90,7 +111,11 @@ fn body_tree(body: &Body, depth: usize, out: &mut String) {
                 s.method.name,
                 s.args.iter().map(|a| &a.kind).collect::<Vec<_>>()
             )),
-            ElementKind::Call(c) => out.push_str(&format!("{pad}call {}{} {sep}\n", if c.reverse.is_some() { "reverse " } else { "" }, c.name.name)),
+            ElementKind::Call(c) => out.push_str(&format!(
+                "{pad}call {}{} {sep}\n",
+                if c.reverse.is_some() { "reverse " } else { "" },
+                c.name.name
+            )),
             ElementKind::Block(inner) => {
                 out.push_str(&format!("{pad}block {sep}\n"));
                 body_tree(inner, depth + 1, out);
@@ -101,10 +126,16 @@ fn body_tree(body: &Body, depth: usize, out: &mut String) {
 
 fn expr_tree(e: &Expr) -> String {
     match &e.kind {
-        ExprKind::Binary { op, lhs, rhs } => format!("({} {} {})", op.symbol(), expr_tree(lhs), expr_tree(rhs)),
+        ExprKind::Binary { op, lhs, rhs } => {
+            format!("({} {} {})", op.symbol(), expr_tree(lhs), expr_tree(rhs))
+        }
         ExprKind::Unary { op, operand } => format!("({op:?} {})", expr_tree(operand)),
         ExprKind::Paren(inner) => expr_tree(inner),
-        ExprKind::Call { function, args } => format!("{}({})", function.name, args.iter().map(expr_tree).collect::<Vec<_>>().join(", ")),
+        ExprKind::Call { function, args } => format!(
+            "{}({})",
+            function.name,
+            args.iter().map(expr_tree).collect::<Vec<_>>().join(", ")
+        ),
         ExprKind::Name(n) => n.name.clone(),
         ExprKind::Int(n) => n.to_string(),
         ExprKind::Bool(b) => b.to_string(),
@@ -115,7 +146,11 @@ fn expr_tree(e: &Expr) -> String {
 #[test]
 fn parser_pass() {
     let parsed = parse(SMALL);
-    let out = format!("{}{}", tree(&parsed.file), diagnostics_text(SMALL, &parsed.diagnostics));
+    let out = format!(
+        "{}{}",
+        tree(&parsed.file),
+        diagnostics_text(SMALL, &parsed.diagnostics)
+    );
     insta::assert_snapshot!(snapshot(SMALL, "tree", &out));
 }
 
@@ -123,7 +158,11 @@ fn parser_pass() {
 fn parser_recovers_and_reports_every_error() {
     let source = "robot atron;\nsequence s {\n  M0.Connector[.retract();\n  M1.Joint.rotateFromToBy(0, 108, true 150);\n  M3.Connector[$CONNECTOR_4].retract();\n}\nrole r requires id = 3 & x;\n}\nsequence t { M2.Connector[$CONNECTOR_4].extend() }\n";
     let parsed = parse(source);
-    let out = format!("{}{}", tree(&parsed.file), diagnostics_text(source, &parsed.diagnostics));
+    let out = format!(
+        "{}{}",
+        tree(&parsed.file),
+        diagnostics_text(source, &parsed.diagnostics)
+    );
     insta::assert_snapshot!(snapshot(source, "tree and diagnostics", &out));
 }
 
@@ -133,7 +172,11 @@ fn check_pass() {
     let parsed = parse(source);
     let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
     assert!(program.is_none());
-    insta::assert_snapshot!(snapshot(source, "diagnostics", &diagnostics_text(source, &diagnostics)));
+    insta::assert_snapshot!(snapshot(
+        source,
+        "diagnostics",
+        &diagnostics_text(source, &diagnostics)
+    ));
 }
 
 #[test]
@@ -155,8 +198,15 @@ fn reverse_pass_fig5() {
     let program = program.expect("Fig. 5 checks");
     let name = program.reverse_name("eight2car");
     assert_eq!(name, "car2eight");
-    let reversed = program.reverse_sequence("eight2car", &name).expect("exists").expect("invertible");
-    insta::assert_snapshot!(snapshot(FIG5, "reverse eight2car", &format_items(vec![Item::Sequence(reversed)])));
+    let reversed = program
+        .reverse_sequence("eight2car", &name)
+        .expect("exists")
+        .expect("invertible");
+    insta::assert_snapshot!(snapshot(
+        FIG5,
+        "reverse eight2car",
+        &format_items(vec![Item::Sequence(reversed)])
+    ));
 }
 
 /// The expected text of the reversed Fig. 5, written out by hand from Sec. IV-C's rules.
@@ -166,9 +216,15 @@ fn reverse_of_fig5_equals_expected_text() {
     let parsed = parse(FIG5);
     let (program, _) = analyze(&parsed.file, &RobotRegistry::builtin());
     let program = program.expect("Fig. 5 checks");
-    let reversed = program.reverse_sequence("eight2car", "car2eight").expect("exists").expect("invertible");
+    let reversed = program
+        .reverse_sequence("eight2car", "car2eight")
+        .expect("exists")
+        .expect("invertible");
     let robot = parsed.file.items[0].clone();
-    assert_eq!(format_items(vec![robot, Item::Sequence(reversed)]), expected);
+    assert_eq!(
+        format_items(vec![robot, Item::Sequence(reversed)]),
+        expected
+    );
 }
 
 fn plan_tree(plan: &Plan, robot: &dynarole_core::RobotApi, depth: usize, out: &mut String) {
@@ -186,7 +242,13 @@ fn plan_tree(plan: &Plan, robot: &dynarole_core::RobotApi, depth: usize, out: &m
                     Label::Role(r) => format!("role {r}"),
                 };
                 let args: Vec<String> = s.args.iter().map(ToString::to_string).collect();
-                out.push_str(&format!("{pad}{who}: {}{:?}.{}({}) {sep}\n", part.name, s.index, part.operations[s.operation].name, args.join(", ")));
+                out.push_str(&format!(
+                    "{pad}{who}: {}{:?}.{}({}) {sep}\n",
+                    part.name,
+                    s.index,
+                    part.operations[s.operation].name,
+                    args.join(", ")
+                ));
             }
             PlanKind::Block(inner) => {
                 out.push_str(&format!("{pad}block {sep}\n"));
@@ -207,7 +269,10 @@ fn expand_pass() {
         out.push_str(&format!("plan {name}\n"));
         let plan = program.expand(name).expect("exists");
         plan_tree(&plan, &program.robot, 1, &mut out);
-        let paper = plan.flatten_for_paper().map(|flat| flat.len()).map_err(|d| d.describe().label);
+        let paper = plan
+            .flatten_for_paper()
+            .map(|flat| flat.len())
+            .map_err(|d| d.describe().label);
         out.push_str(&format!("  paper protocol: {paper:?}\n"));
     }
     insta::assert_snapshot!(snapshot(SMALL, "expand", &out));

@@ -1,7 +1,7 @@
 //! Property tests: reversal is an involution that keeps separators between pairs and inverts
 //! every operation; formatting is idempotent and keeps the meaning of what it formats.
 
-use dynarole_core::ast::{ElementKind, Item, SequenceDef, SeparatorKind};
+use dynarole_core::ast::{ElementKind, Item, SeparatorKind, SequenceDef};
 use dynarole_core::format::{format_file, format_items};
 use dynarole_core::{analyze, parse, RobotRegistry};
 use proptest::prelude::*;
@@ -17,7 +17,8 @@ fn statement() -> impl Strategy<Value = String> {
     let angle = prop::sample::select(vec![0, 108, 216, 324]);
     let connector = (0u8..8).prop_map(|c| c / 2 * 2);
     prop_oneof![
-        (0u32..10, connector.clone()).prop_map(|(m, c)| format!("M{m}.Connector[$CONNECTOR_{c}].extend()")),
+        (0u32..10, connector.clone())
+            .prop_map(|(m, c)| format!("M{m}.Connector[$CONNECTOR_{c}].extend()")),
         (0u32..10, connector).prop_map(|(m, c)| format!("M{m}.Connector[{c}].retract()")),
         (0u32..10, angle.clone(), angle, any::<bool>(), 1u32..256)
             .prop_map(|(m, f, t, d, s)| format!("M{m}.Joint.rotateFromToBy({f}, {t}, {d}, {s})")),
@@ -122,7 +123,10 @@ proptest! {
 
 fn body_format(body: &dynarole_core::ast::Body) -> String {
     let decl = dynarole_core::ast::SequenceDecl {
-        name: dynarole_core::ast::Ident { name: "s".into(), span: body.span },
+        name: dynarole_core::ast::Ident {
+            name: "s".into(),
+            span: body.span,
+        },
         definition: SequenceDef::Body(body.clone()),
         span: body.span,
     };
@@ -142,7 +146,11 @@ fn shape(items: &[Item]) -> String {
                     out.push('}');
                 }
             }
-            out.push_str(if e.separator.kind == SeparatorKind::Parallel { "&" } else { ";" });
+            out.push_str(if e.separator.kind == SeparatorKind::Parallel {
+                "&"
+            } else {
+                ";"
+            });
         }
     }
     let mut out = String::new();

@@ -95,7 +95,10 @@ impl RobotApi {
         for (i, raw_part) in raw.part.iter().enumerate() {
             let field = format!("part[{i}]");
             if parts.iter().any(|p: &Part| p.name == raw_part.name) {
-                return Err(error(format!("{field}.name"), format!("part `{}` is defined twice", raw_part.name)));
+                return Err(error(
+                    format!("{field}.name"),
+                    format!("part `{}` is defined twice", raw_part.name),
+                ));
             }
             constants.extend(part_constants(raw_part, i, &field)?);
             parts.push(convert_part(raw_part, &field)?);
@@ -115,7 +118,10 @@ impl RobotApi {
         let joint_part = find("joints", &raw.joints)?;
         if let Some(i) = connector_part {
             if parts[i].count.is_none() {
-                return Err(error("connectors", "the connector part must have a `count`"));
+                return Err(error(
+                    "connectors",
+                    "the connector part must have a `count`",
+                ));
             }
         }
         Ok(RobotApi {
@@ -131,11 +137,18 @@ impl RobotApi {
 
 fn check_name(field: &str, name: &str) -> Result<(), PluginError> {
     let mut chars = name.chars();
-    let first_ok = chars.next().is_some_and(|c| c.is_ascii_alphabetic() || c == '_');
+    let first_ok = chars
+        .next()
+        .is_some_and(|c| c.is_ascii_alphabetic() || c == '_');
     if first_ok && chars.all(|c| c.is_ascii_alphanumeric() || c == '_') {
         Ok(())
     } else {
-        Err(error(field, format!("`{name}` is not a valid name (letters, digits and `_`, not starting with a digit)")))
+        Err(error(
+            field,
+            format!(
+                "`{name}` is not a valid name (letters, digits and `_`, not starting with a digit)"
+            ),
+        ))
     }
 }
 
@@ -143,12 +156,21 @@ fn part_constants(raw: &RawPart, part: usize, field: &str) -> Result<Vec<Constan
     let count = raw.count.unwrap_or(0);
     let names: Vec<String> = match (&raw.constant_prefix, &raw.constants) {
         (Some(_), Some(_)) => {
-            return Err(error(format!("{field}.constants"), "give `constant_prefix` or `constants`, not both"))
+            return Err(error(
+                format!("{field}.constants"),
+                "give `constant_prefix` or `constants`, not both",
+            ))
         }
         (Some(prefix), None) => (0..count).map(|i| format!("{prefix}{i}")).collect(),
         (None, Some(names)) => {
             if names.len() != count as usize {
-                return Err(error(format!("{field}.constants"), format!("expected {count} names (one per index), found {}", names.len())));
+                return Err(error(
+                    format!("{field}.constants"),
+                    format!(
+                        "expected {count} names (one per index), found {}",
+                        names.len()
+                    ),
+                ));
             }
             names.clone()
         }
@@ -159,7 +181,11 @@ fn part_constants(raw: &RawPart, part: usize, field: &str) -> Result<Vec<Constan
         .enumerate()
         .map(|(value, name)| {
             check_name(&format!("{field}.constants"), &name)?;
-            Ok(Constant { name, value: value as i64, part: Some(part) })
+            Ok(Constant {
+                name,
+                value: value as i64,
+                part: Some(part),
+            })
         })
         .collect()
 }
@@ -167,7 +193,10 @@ fn part_constants(raw: &RawPart, part: usize, field: &str) -> Result<Vec<Constan
 fn check_unique_constants(constants: &[Constant]) -> Result<(), PluginError> {
     for (i, c) in constants.iter().enumerate() {
         if constants[..i].iter().any(|d| d.name == c.name) {
-            return Err(error("part", format!("constant `${}` is defined twice", c.name)));
+            return Err(error(
+                "part",
+                format!("constant `${}` is defined twice", c.name),
+            ));
         }
     }
     Ok(())
@@ -177,25 +206,42 @@ fn convert_part(raw: &RawPart, field: &str) -> Result<Part, PluginError> {
     check_name(&format!("{field}.name"), &raw.name)?;
     if let Some(count) = raw.count {
         if count == 0 || count > MAX_COUNT {
-            return Err(error(format!("{field}.count"), format!("expected 1 to {MAX_COUNT}, found {count}")));
+            return Err(error(
+                format!("{field}.count"),
+                format!("expected 1 to {MAX_COUNT}, found {count}"),
+            ));
         }
     }
     let count = raw.count.unwrap_or(0);
     if let Some(bad) = raw.male.iter().find(|&&m| m >= count) {
-        return Err(error(format!("{field}.male"), format!("index {bad} is out of range (the part has {count})")));
+        return Err(error(
+            format!("{field}.male"),
+            format!("index {bad} is out of range (the part has {count})"),
+        ));
     }
     let mut operations = Vec::new();
     for (j, raw_op) in raw.operation.iter().enumerate() {
         let op_field = format!("{field}.operation[{j}]");
         if operations.iter().any(|o: &Operation| o.name == raw_op.name) {
-            return Err(error(format!("{op_field}.name"), format!("operation `{}` is defined twice", raw_op.name)));
+            return Err(error(
+                format!("{op_field}.name"),
+                format!("operation `{}` is defined twice", raw_op.name),
+            ));
         }
         if raw_op.requires_male && raw.male.is_empty() {
-            return Err(error(format!("{op_field}.requires_male"), "the part lists no `male` indices"));
+            return Err(error(
+                format!("{op_field}.requires_male"),
+                "the part lists no `male` indices",
+            ));
         }
         operations.push(convert_operation(raw_op, &op_field)?);
     }
-    Ok(Part { name: raw.name.clone(), count: raw.count, male: raw.male.clone(), operations })
+    Ok(Part {
+        name: raw.name.clone(),
+        count: raw.count,
+        male: raw.male.clone(),
+        operations,
+    })
 }
 
 fn convert_operation(raw: &RawOperation, field: &str) -> Result<Operation, PluginError> {
@@ -205,9 +251,15 @@ fn convert_operation(raw: &RawOperation, field: &str) -> Result<Operation, Plugi
         let p_field = format!("{field}.params[{k}]");
         check_name(&format!("{p_field}.name"), &p.name)?;
         if params.iter().any(|q| q.name == p.name) {
-            return Err(error(format!("{p_field}.name"), format!("parameter `{}` is defined twice", p.name)));
+            return Err(error(
+                format!("{p_field}.name"),
+                format!("parameter `{}` is defined twice", p.name),
+            ));
         }
-        params.push(Param { name: p.name.clone(), ty: convert_type(p, &p_field)? });
+        params.push(Param {
+            name: p.name.clone(),
+            ty: convert_type(p, &p_field)?,
+        });
     }
     Ok(Operation {
         name: raw.name.clone(),
@@ -220,32 +272,52 @@ fn convert_operation(raw: &RawOperation, field: &str) -> Result<Operation, Plugi
 
 fn convert_type(raw: &RawParam, field: &str) -> Result<ParamType, PluginError> {
     match raw.ty.as_str() {
-        "bool" if raw.min.is_none() && raw.max.is_none() && raw.values.is_none() => Ok(ParamType::Bool),
-        "bool" => Err(error(field, "a `bool` parameter takes no `min`, `max` or `values`")),
+        "bool" if raw.min.is_none() && raw.max.is_none() && raw.values.is_none() => {
+            Ok(ParamType::Bool)
+        }
+        "bool" => Err(error(
+            field,
+            "a `bool` parameter takes no `min`, `max` or `values`",
+        )),
         "int" => {
             let min = raw.min.unwrap_or(i64::from(i32::MIN));
             let max = raw.max.unwrap_or(i64::from(i32::MAX));
             if min > max {
-                return Err(error(format!("{field}.min"), format!("min {min} is greater than max {max}")));
+                return Err(error(
+                    format!("{field}.min"),
+                    format!("min {min} is greater than max {max}"),
+                ));
             }
             if let Some(values) = &raw.values {
                 if values.is_empty() {
                     return Err(error(format!("{field}.values"), "the list is empty"));
                 }
                 if let Some(bad) = values.iter().find(|v| !(min..=max).contains(*v)) {
-                    return Err(error(format!("{field}.values"), format!("{bad} is outside {min} to {max}")));
+                    return Err(error(
+                        format!("{field}.values"),
+                        format!("{bad} is outside {min} to {max}"),
+                    ));
                 }
             }
-            Ok(ParamType::Int { min, max, values: raw.values.clone() })
+            Ok(ParamType::Int {
+                min,
+                max,
+                values: raw.values.clone(),
+            })
         }
-        other => Err(error(format!("{field}.type"), format!("unknown type `{other}`; expected `int` or `bool`"))),
+        other => Err(error(
+            format!("{field}.type"),
+            format!("unknown type `{other}`; expected `int` or `bool`"),
+        )),
     }
 }
 
 /// Parses every `inverse` of part `i` and checks that undoing twice gives the original back.
 fn resolve_inverses(parts: &mut [Part], i: usize, raw: &RawPart) -> Result<(), PluginError> {
     for (j, raw_op) in raw.operation.iter().enumerate() {
-        let Some(text) = &raw_op.inverse else { continue };
+        let Some(text) = &raw_op.inverse else {
+            continue;
+        };
         let field = format!("part[{i}].operation[{j}].inverse");
         let inverse = parse_inverse(text, &parts[i], j, &field)?;
         parts[i].operations[j].inverse = Some(inverse);
@@ -261,16 +333,27 @@ fn resolve_inverses(parts: &mut [Part], i: usize, raw: &RawPart) -> Result<(), P
 /// `name(arg, ...)` where each arg is a parameter name, `!param`, `-param` or a literal.
 fn parse_inverse(text: &str, part: &Part, op: usize, field: &str) -> Result<Inverse, PluginError> {
     if text.len() > MAX_INVERSE_LEN {
-        return Err(error(field, format!("longer than {MAX_INVERSE_LEN} characters")));
+        return Err(error(
+            field,
+            format!("longer than {MAX_INVERSE_LEN} characters"),
+        ));
     }
     let tokens: Vec<Token> = lex(text).tokens.into_iter().map(|(t, _)| t).collect();
-    let bad = |what: &str| error(field, format!("cannot read `{text}`: {what}; expected `operation(arg, ...)`"));
+    let bad = |what: &str| {
+        error(
+            field,
+            format!("cannot read `{text}`: {what}; expected `operation(arg, ...)`"),
+        )
+    };
     let [Token::Ident(name), Token::LParen, rest @ ..] = tokens.as_slice() else {
         return Err(bad("no operation name and `(`"));
     };
-    let (target, target_op) = part
-        .operation(name)
-        .ok_or_else(|| error(field, format!("part `{}` has no operation `{name}`", part.name)))?;
+    let (target, target_op) = part.operation(name).ok_or_else(|| {
+        error(
+            field,
+            format!("part `{}` has no operation `{name}`", part.name),
+        )
+    })?;
     let params = &part.operations[op].params;
     let mut args = Vec::new();
     let mut rest = rest;
@@ -285,16 +368,29 @@ fn parse_inverse(text: &str, part: &Part, op: usize, field: &str) -> Result<Inve
         return Err(bad("unexpected text"));
     }
     if args.len() != target_op.params.len() {
-        return Err(error(field, format!("`{name}` takes {} arguments, the inverse gives {}", target_op.params.len(), args.len())));
+        return Err(error(
+            field,
+            format!(
+                "`{name}` takes {} arguments, the inverse gives {}",
+                target_op.params.len(),
+                args.len()
+            ),
+        ));
     }
     if part.operations[op].requires_male != target_op.requires_male {
-        return Err(error(field, "an operation and its inverse must agree on `requires_male`"));
+        return Err(error(
+            field,
+            "an operation and its inverse must agree on `requires_male`",
+        ));
     }
     for (k, (template, param)) in args.iter().zip(&target_op.params).enumerate() {
         check_template_type(template, params, &param.ty)
             .map_err(|m| error(field, format!("argument {} of `{name}`: {m}", k + 1)))?;
     }
-    Ok(Inverse { operation: target, args })
+    Ok(Inverse {
+        operation: target,
+        args,
+    })
 }
 
 type TemplateParse<'a> = Option<(Result<Template, PluginError>, &'a [Token])>;
@@ -304,7 +400,11 @@ fn parse_template<'a>(tokens: &'a [Token], params: &[Param]) -> TemplateParse<'a
     let template = match first {
         Token::Bang | Token::Minus => {
             let (inner, rest) = parse_template(rest, params)?;
-            let wrap = if *first == Token::Bang { Template::Not } else { Template::Negate };
+            let wrap = if *first == Token::Bang {
+                Template::Not
+            } else {
+                Template::Negate
+            };
             return Some((inner.map(|t| wrap(Box::new(t))), rest));
         }
         Token::Ident(name) => match params.iter().position(|p| &p.name == name) {
@@ -319,7 +419,11 @@ fn parse_template<'a>(tokens: &'a [Token], params: &[Param]) -> TemplateParse<'a
     Some((template, rest))
 }
 
-fn check_template_type(template: &Template, params: &[Param], target: &ParamType) -> Result<(), String> {
+fn check_template_type(
+    template: &Template,
+    params: &[Param],
+    target: &ParamType,
+) -> Result<(), String> {
     let want_bool = *target == ParamType::Bool;
     match template {
         Template::Param(k) => {
@@ -327,7 +431,12 @@ fn check_template_type(template: &Template, params: &[Param], target: &ParamType
             match (source, target) {
                 (ParamType::Bool, ParamType::Bool) => Ok(()),
                 (ParamType::Int { .. }, ParamType::Int { .. }) => int_fits(source, target, false),
-                _ => Err(format!("`{}` is {}, expected {}", params[*k].name, source.describe(), target.describe())),
+                _ => Err(format!(
+                    "`{}` is {}, expected {}",
+                    params[*k].name,
+                    source.describe(),
+                    target.describe()
+                )),
             }
         }
         Template::Not(inner) if want_bool => check_template_type(inner, params, target),
@@ -349,12 +458,17 @@ fn int_fits(source: &ParamType, target: &ParamType, negate: bool) -> Result<(), 
     let sign = if negate { -1 } else { 1 };
     let fits = match values {
         Some(values) => values.iter().all(|v| target.allows(sign * v)),
-        None => target.allows(sign * min) && target.allows(sign * max) && target_is_interval(target),
+        None => {
+            target.allows(sign * min) && target.allows(sign * max) && target_is_interval(target)
+        }
     };
     if fits {
         Ok(())
     } else {
-        Err(format!("its values do not all fit the target's range ({})", target.allowed()))
+        Err(format!(
+            "its values do not all fit the target's range ({})",
+            target.allowed()
+        ))
     }
 }
 
@@ -363,18 +477,41 @@ fn target_is_interval(target: &ParamType) -> bool {
 }
 
 /// Undoing the undo must give the original operation and arguments back, for any arguments.
-fn check_round_trip(part: &Part, op: usize, inverse: &Inverse, field: &str) -> Result<(), PluginError> {
+fn check_round_trip(
+    part: &Part,
+    op: usize,
+    inverse: &Inverse,
+    field: &str,
+) -> Result<(), PluginError> {
     let target = &part.operations[inverse.operation];
     let Some(back) = &target.inverse else {
-        return Err(error(field, format!("`{}` has no inverse, so `{}` cannot be undone twice", target.name, part.operations[op].name)));
+        return Err(error(
+            field,
+            format!(
+                "`{}` has no inverse, so `{}` cannot be undone twice",
+                target.name, part.operations[op].name
+            ),
+        ));
     };
     if back.operation != op {
-        return Err(error(field, format!("the inverse of `{}` is not `{}`", target.name, part.operations[op].name)));
+        return Err(error(
+            field,
+            format!(
+                "the inverse of `{}` is not `{}`",
+                target.name, part.operations[op].name
+            ),
+        ));
     }
     for (k, outer) in back.args.iter().enumerate() {
         let composed = substitute(outer, &inverse.args);
         if simplify(composed) != Template::Param(k) {
-            return Err(error(field, format!("undoing twice does not give argument `{}` back", part.operations[op].params[k].name)));
+            return Err(error(
+                field,
+                format!(
+                    "undoing twice does not give argument `{}` back",
+                    part.operations[op].params[k].name
+                ),
+            ));
         }
     }
     Ok(())
@@ -416,19 +553,46 @@ mod tests {
     #[test]
     fn builtin_plugins_load() {
         for (file, text) in BUILTIN_PLUGINS {
-            assert!(RobotApi::from_toml(text).is_ok(), "{file}: {:?}", RobotApi::from_toml(text));
+            assert!(
+                RobotApi::from_toml(text).is_ok(),
+                "{file}: {:?}",
+                RobotApi::from_toml(text)
+            );
         }
         assert_eq!(RobotRegistry::builtin().names(), vec!["atron", "mtran"]);
     }
 
     #[test]
     fn atron_rotation_inverse_swaps_angles_and_direction() {
-        let atron = RobotRegistry::builtin().get("atron").cloned().expect("atron");
+        let atron = RobotRegistry::builtin()
+            .get("atron")
+            .cloned()
+            .expect("atron");
         let (part, _) = atron.part("Joint").expect("joint");
-        let args = [Value::Int(0), Value::Int(324), Value::Bool(false), Value::Int(150)];
+        let args = [
+            Value::Int(0),
+            Value::Int(324),
+            Value::Bool(false),
+            Value::Int(150),
+        ];
         let inverted = atron.invert(part, 0, &args).expect("invertible");
-        assert_eq!(inverted, (0, vec![Value::Int(324), Value::Int(0), Value::Bool(true), Value::Int(150)]));
-        assert_eq!(atron.invert(part, 1, &args[1..]), None, "rotateToBy has no inverse");
+        assert_eq!(
+            inverted,
+            (
+                0,
+                vec![
+                    Value::Int(324),
+                    Value::Int(0),
+                    Value::Bool(true),
+                    Value::Int(150)
+                ]
+            )
+        );
+        assert_eq!(
+            atron.invert(part, 1, &args[1..]),
+            None,
+            "rotateToBy has no inverse"
+        );
     }
 
     #[test]
@@ -442,8 +606,12 @@ mod tests {
 
     #[test]
     fn inverse_errors_name_the_field() {
-        let unknown = with_ops("[[part.operation]]\nname = \"a\"\ninverse = \"zap()\"\n").expect_err("unknown op");
-        assert_eq!(unknown.to_string(), "field `part[0].operation[0].inverse`: part `Grip` has no operation `zap`");
+        let unknown = with_ops("[[part.operation]]\nname = \"a\"\ninverse = \"zap()\"\n")
+            .expect_err("unknown op");
+        assert_eq!(
+            unknown.to_string(),
+            "field `part[0].operation[0].inverse`: part `Grip` has no operation `zap`"
+        );
         let one_way = with_ops("[[part.operation]]\nname = \"a\"\ninverse = \"b()\"\n[[part.operation]]\nname = \"b\"\n").expect_err("no way back");
         assert!(one_way.message.contains("has no inverse"), "{one_way}");
         let bad_type = with_ops("[[part.operation]]\nname = \"a\"\nparams = [{ name = \"on\", type = \"bool\" }]\ninverse = \"a(-on)\"\n").expect_err("type");
@@ -454,9 +622,14 @@ mod tests {
     fn unknown_fields_and_bad_values_are_named() {
         let typo = RobotApi::from_toml("name = \"g\"\nconectors = \"x\"\n").expect_err("typo");
         assert!(typo.message.contains("unknown field `conectors`"), "{typo}");
-        let male = with_ops("").and_then(|_| RobotApi::from_toml("name = \"g\"\n[[part]]\nname = \"P\"\ncount = 2\nmale = [5]\n"));
+        let male = with_ops("").and_then(|_| {
+            RobotApi::from_toml("name = \"g\"\n[[part]]\nname = \"P\"\ncount = 2\nmale = [5]\n")
+        });
         assert_eq!(male.expect_err("range").field, "part[0].male");
         let ty = RobotApi::from_toml("name = \"g\"\n[[part]]\nname = \"P\"\n[[part.operation]]\nname = \"a\"\nparams = [{ name = \"x\", type = \"float\" }]\n");
-        assert_eq!(ty.expect_err("type").field, "part[0].operation[0].params[0].type");
+        assert_eq!(
+            ty.expect_err("type").field,
+            "part[0].operation[0].params[0].type"
+        );
     }
 }
