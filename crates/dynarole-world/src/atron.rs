@@ -1,4 +1,4 @@
-//! The ATRON module model of `shared/domain/atron.md`: orientation constants, connector offsets
+//! The ATRON module model of the ATRON domain notes: orientation constants, connector offsets
 //! as a function of orientation and joint angle, connector gender and the lattice phase.
 
 use crate::geometry::{add, Rotation, Vec3};
@@ -408,13 +408,25 @@ mod tests {
             out
         }
         fn rx(t: f64) -> M {
-            [[1.0, 0.0, 0.0], [0.0, t.cos(), -t.sin()], [0.0, t.sin(), t.cos()]]
+            [
+                [1.0, 0.0, 0.0],
+                [0.0, t.cos(), -t.sin()],
+                [0.0, t.sin(), t.cos()],
+            ]
         }
         fn ry(t: f64) -> M {
-            [[t.cos(), 0.0, t.sin()], [0.0, 1.0, 0.0], [-t.sin(), 0.0, t.cos()]]
+            [
+                [t.cos(), 0.0, t.sin()],
+                [0.0, 1.0, 0.0],
+                [-t.sin(), 0.0, t.cos()],
+            ]
         }
         fn rz(t: f64) -> M {
-            [[t.cos(), -t.sin(), 0.0], [t.sin(), t.cos(), 0.0], [0.0, 0.0, 1.0]]
+            [
+                [t.cos(), -t.sin(), 0.0],
+                [t.sin(), t.cos(), 0.0],
+                [0.0, 0.0, 1.0],
+            ]
         }
         fn euler(ax: f64, ay: f64, az: f64) -> M {
             mul(ry(ay), mul(rz(az), rx(ax)))

@@ -1,9 +1,7 @@
 //! Configurations of both robots: shared types (ports, latches, metadata, errors) and the
 //! validated ATRON configuration with its queries.
 
-use crate::atron::{
-    is_joint_position, is_male, LatticePhase, Orientation, CONNECTOR_COUNT,
-};
+use crate::atron::{is_joint_position, is_male, LatticePhase, Orientation, CONNECTOR_COUNT};
 use crate::geometry::{add, sub, within_bounds, Rotation, Vec3, MAX_COORDINATE};
 use crate::mtran::MtranConfiguration;
 use std::collections::{BTreeMap, BTreeSet};
@@ -192,7 +190,8 @@ pub struct AtronModule {
 impl AtronModule {
     /// World offset of the site connector `connector` faces in the current pose.
     pub fn connector_offset(&self, connector: u8) -> Option<Vec3> {
-        self.orientation.connector_offset(self.joint_units, connector)
+        self.orientation
+            .connector_offset(self.joint_units, connector)
     }
 }
 
@@ -268,7 +267,10 @@ impl AtronConfiguration {
 
     /// `M3.C4` for a port.
     pub fn port_name(&self, port: Port) -> String {
-        let name = self.modules.get(port.module).map_or("?", |m| m.name.as_str());
+        let name = self
+            .modules
+            .get(port.module)
+            .map_or("?", |m| m.name.as_str());
         format!("{name}.C{}", port.connector)
     }
 
@@ -300,10 +302,21 @@ impl AtronConfiguration {
 
     /// The latches as names, male first, in latch order.
     pub fn named_connections(&self) -> Vec<NamedConnection> {
-        let name = |p: Port| self.modules.get(p.module).map_or(String::new(), |m| m.name.clone());
+        let name = |p: Port| {
+            self.modules
+                .get(p.module)
+                .map_or(String::new(), |m| m.name.clone())
+        };
         self.latches
             .iter()
-            .map(|l| (name(l.male), l.male.connector, name(l.female), l.female.connector))
+            .map(|l| {
+                (
+                    name(l.male),
+                    l.male.connector,
+                    name(l.female),
+                    l.female.connector,
+                )
+            })
             .collect()
     }
 
@@ -448,11 +461,11 @@ fn check_connections(
             }
         };
         check_facing(modules, &path, (a, &la), (b, &lb))?;
-        for (port, index) in [(a, 1), (b, 3)] {
+        for (port, index, port_label) in [(a, 1, &la), (b, 3, &lb)] {
             if let Some(j) = used.insert(port, k) {
                 return Err(ConfigError::new(
                     format!("connections[{k}][{index}]"),
-                    format!("connector {} is already used by connections[{j}]", label(port, if index == 1 { name_a } else { name_b })),
+                    format!("connector {port_label} is already used by connections[{j}]"),
                 ));
             }
         }
@@ -493,7 +506,10 @@ fn check_facing(
 ) -> Result<(), ConfigError> {
     for ((from, lfrom), (to, _)) in [((a, la), (b, lb)), ((b, lb), (a, la))] {
         let (Some(m_from), Some(m_to)) = (modules.get(from.module), modules.get(to.module)) else {
-            return Err(ConfigError::new(path, "connection refers to a missing module"));
+            return Err(ConfigError::new(
+                path,
+                "connection refers to a missing module",
+            ));
         };
         let offset = m_from.connector_offset(from.connector);
         let target = offset.map(|o| add(m_from.position, o));

@@ -338,7 +338,7 @@ mod tests {
             let found = sweep_closest_approach(pivot, [0, 0, 1], angle, &moving, &still);
             let mut sampled = f64::INFINITY;
             for step in 0..=20_000 {
-                let t = (angle as f64 * step as f64 / 20_000.0).to_radians();
+                let t = (angle * f64::from(step) / 20_000.0).to_radians();
                 for m in moving {
                     let r = fsub(m, pivot);
                     let turned = [
@@ -353,7 +353,10 @@ mod tests {
                 }
             }
             let found = found.map(|f| f.distance).unwrap_or(f64::NAN);
-            assert!((found - sampled).abs() < 1e-6, "{angle}: {found} vs {sampled}");
+            assert!(
+                (found - sampled).abs() < 1e-6,
+                "{angle}: {found} vs {sampled}"
+            );
         }
     }
 }

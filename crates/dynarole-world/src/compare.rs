@@ -1,0 +1,322 @@
+//! Equality of two configurations up to a rigid motion of the lattice (one of the 24 rotations
+//! plus a translation), with a readable account of the differences under the best-matching
+//! motion.
+
+use crate::atron::Orientation;
+use crate::config::{Configuration, NamedConnection};
+use crate::geometry::{add, sub, Rotation, Vec3};
+use crate::mtran::MtranOrientation;
+use std::collections::{BTreeMap, BTreeSet};
+use std::fmt;
+
+/// A module whose pose differs under the chosen rigid motion.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Misplaced {
+    /// The module.
+    pub module: String,
+    /// Where the first configuration puts it, mapped by the rigid motion (`[x, y, z] ORIENT`).
+    pub expected: String,
+    /// Where the second configuration has it.
+    pub found: String,
+}
+
+/// A joint that differs (joint angles do not depend on the rigid motion).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct JointDifference {
+    /// The module.
+    pub module: String,
+    /// Joint value(s) in the first configuration (ATRON: 1/432 turn; M-TRAN: degrees).
+    pub first: Vec<i32>,
+    /// Joint value(s) in the second configuration.
+    pub second: Vec<i32>,
+}
+
+/// Why two configurations are not equal up to rigid motion.
+#[derive(Clone, Debug, PartialEq, Eq, Default)]
+pub struct Difference {
+    /// Set when the two are for different robots (nothing else is compared).
+    pub robots: Option<(String, String)>,
+    /// Module names only in the first configuration.
+    pub only_in_first: Vec<String>,
+    /// Module names only in the second configuration.
+    pub only_in_second: Vec<String>,
+    /// Modules whose numeric ids differ: (name, first, second).
+    pub ids: Vec<(String, Option<u32>, Option<u32>)>,
+    /// The rigid motion that matches the most modules (applied to the first configuration).
+    pub rotation: Option<Rotation>,
+    /// Its translation, in the configuration's internal position unit (ATRON: lattice units,
+    /// M-TRAN: quarter pitches).
+    pub translation: Vec3,
+    /// How many common modules that motion puts in place.
+    pub matched: usize,
+    /// Modules out of place under that motion.
+    pub misplaced: Vec<Misplaced>,
+    /// Joints that differ.
+    pub joints: Vec<JointDifference>,
+    /// Connections of the first configuration missing from the second (`M0.C0-M2.C1`).
+    pub missing_connections: Vec<String>,
+    /// Connections of the second configuration that the first lacks.
+    pub extra_connections: Vec<String>,
+}
+
+impl Difference {
+    fn is_empty(&self) -> bool {
+        self.robots.is_none()
+            && self.only_in_first.is_empty()
+            && self.only_in_second.is_empty()
+            && self.ids.is_empty()
+            && self.misplaced.is_empty()
+            && self.joints.is_empty()
+            && self.missing_connections.is_empty()
+            && self.extra_connections.is_empty()
+    }
+
+    /// True when `module` appears anywhere in the difference.
+    pub fn mentions(&self, module: &str) -> bool {
+        let in_connection = |c: &String| c.split(['-', '.']).any(|part| part == module);
+        self.only_in_first.iter().any(|m| m == module)
+            || self.only_in_second.iter().any(|m| m == module)
+            || self.ids.iter().any(|(m, _, _)| m == module)
+            || self.misplaced.iter().any(|m| m.module == module)
+            || self.joints.iter().any(|j| j.module == module)
+            || self.missing_connections.iter().any(in_connection)
+            || self.extra_connections.iter().any(in_connection)
+    }
+}
+
+impl fmt::Display for Difference {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if let Some((a, b)) = &self.robots {
+            return write!(f, "different robots: {a} and {b}");
+        }
+        match &self.rotation {
+            Some(r) => writeln!(
+                f,
+                "configurations differ; best rigid motion ({r}, then shift {:?}) puts {} \
+                 module(s) in place:",
+                self.translation, self.matched
+            )?,
+            None => writeln!(f, "configurations differ:")?,
+        }
+        for m in &self.only_in_first {
+            writeln!(f, "  module {m} only in the first")?;
+        }
+        for m in &self.only_in_second {
+            writeln!(f, "  module {m} only in the second")?;
+        }
+        for (m, a, b) in &self.ids {
+            writeln!(f, "  module {m}: id {a:?} vs {b:?}")?;
+        }
+        for m in &self.misplaced {
+            writeln!(
+                f,
+                "  module {} misplaced: expected {}, found {}",
+                m.module, m.expected, m.found
+            )?;
+        }
+        for j in &self.joints {
+            writeln!(
+                f,
+                "  joint of {}: {:?} vs {:?}",
+                j.module, j.first, j.second
+            )?;
+        }
+        for c in &self.missing_connections {
+            writeln!(f, "  connection {c} missing from the second")?;
+        }
+        for c in &self.extra_connections {
+            writeln!(f, "  connection {c} only in the second")?;
+        }
+        Ok(())
+    }
+}
+
+impl std::error::Error for Difference {}
+
+/// A module reduced to what a rigid motion acts on.
+struct Body {
+    id: Option<u32>,
+    position: Vec3,
+    frame: Rotation,
+    joints: Vec<i32>,
+}
+
+/// Either robot's configuration reduced to bodies and connections.
+struct Shape {
+    bodies: BTreeMap<String, Body>,
+    connections: BTreeSet<String>,
+    name_frame: fn(Rotation) -> String,
+    /// Internal position units per file unit (1 for ATRON, 2 for M-TRAN quarter pitches).
+    position_scale: i32,
+}
+
+fn atron_frame_name(r: Rotation) -> String {
+    Orientation::from_frame(r).name()
+}
+
+fn mtran_frame_name(r: Rotation) -> String {
+    MtranOrientation::from_frame(r).name()
+}
+
+fn connection_names(connections: Vec<NamedConnection>) -> BTreeSet<String> {
+    connections
+        .into_iter()
+        .map(|(a, ca, b, cb)| format!("{a}.C{ca}-{b}.C{cb}"))
+        .collect()
+}
+
+fn shape(config: &Configuration) -> Shape {
+    match config {
+        Configuration::Atron(c) => Shape {
+            bodies: c
+                .modules()
+                .iter()
+                .map(|m| {
+                    let body = Body {
+                        id: m.id,
+                        position: m.position,
+                        frame: m.orientation.frame(),
+                        joints: vec![i32::from(m.joint_units)],
+                    };
+                    (m.name.clone(), body)
+                })
+                .collect(),
+            connections: connection_names(c.named_connections()),
+            name_frame: atron_frame_name,
+            position_scale: 1,
+        },
+        Configuration::Mtran(c) => Shape {
+            bodies: c
+                .modules()
+                .iter()
+                .map(|m| {
+                    let body = Body {
+                        id: m.id,
+                        position: m.centre_quarter_pitch,
+                        frame: m.orientation.frame(),
+                        joints: m.joints_deg.iter().map(|j| i32::from(*j)).collect(),
+                    };
+                    (m.name.clone(), body)
+                })
+                .collect(),
+            connections: connection_names(c.named_connections()),
+            name_frame: mtran_frame_name,
+            position_scale: 2,
+        },
+    }
+}
+
+/// `Ok(())` when `b` is `a` moved by one of the 24 lattice rotations and a translation: same
+/// module names and ids, every module's position and orientation mapped by that one motion,
+/// same joint angles and same connections. Otherwise the differences under the rigid motion
+/// that puts the most modules in place.
+// The difference is this function's whole answer, built once per call: its size is no cost.
+#[allow(clippy::result_large_err)]
+pub fn compare(a: &Configuration, b: &Configuration) -> Result<(), Difference> {
+    if a.robot() != b.robot() {
+        return Err(Difference {
+            robots: Some((a.robot().name().to_string(), b.robot().name().to_string())),
+            ..Difference::default()
+        });
+    }
+    let (sa, sb) = (shape(a), shape(b));
+    let mut diff = Difference {
+        only_in_first: names_missing(&sa, &sb),
+        only_in_second: names_missing(&sb, &sa),
+        ..Difference::default()
+    };
+    let common: Vec<(&String, &Body, &Body)> = sa
+        .bodies
+        .iter()
+        .filter_map(|(name, body)| sb.bodies.get(name).map(|other| (name, body, other)))
+        .collect();
+    let (rotation, translation, matched) = best_motion(&common);
+    diff.rotation = Some(rotation);
+    diff.translation = translation;
+    diff.matched = matched;
+    for (name, x, y) in &common {
+        if x.id != y.id {
+            diff.ids.push(((*name).clone(), x.id, y.id));
+        }
+        let mapped = add(rotation.apply(x.position), translation);
+        let mapped_frame = rotation.compose(&x.frame);
+        if mapped != y.position || mapped_frame != y.frame {
+            diff.misplaced.push(Misplaced {
+                module: (*name).clone(),
+                expected: describe(&sa, mapped, mapped_frame),
+                found: describe(&sb, y.position, y.frame),
+            });
+        }
+        if x.joints != y.joints {
+            diff.joints.push(JointDifference {
+                module: (*name).clone(),
+                first: x.joints.clone(),
+                second: y.joints.clone(),
+            });
+        }
+    }
+    diff.missing_connections = sa
+        .connections
+        .difference(&sb.connections)
+        .cloned()
+        .collect();
+    diff.extra_connections = sb
+        .connections
+        .difference(&sa.connections)
+        .cloned()
+        .collect();
+    if diff.is_empty() {
+        Ok(())
+    } else {
+        Err(diff)
+    }
+}
+
+fn names_missing(from: &Shape, other: &Shape) -> Vec<String> {
+    from.bodies
+        .keys()
+        .filter(|n| !other.bodies.contains_key(*n))
+        .cloned()
+        .collect()
+}
+
+/// `[x, y, z] ORIENTATION` in the file's unit.
+fn describe(shape: &Shape, position: Vec3, frame: Rotation) -> String {
+    let coordinates: Vec<String> = position
+        .iter()
+        .map(|c| {
+            if c % shape.position_scale == 0 {
+                (c / shape.position_scale).to_string()
+            } else {
+                format!("{}", f64::from(*c) / f64::from(shape.position_scale))
+            }
+        })
+        .collect();
+    format!("[{}] {}", coordinates.join(", "), (shape.name_frame)(frame))
+}
+
+/// The rotation and translation that map the most modules of the first configuration onto the
+/// second in both position and orientation (first found wins a tie, so the result is
+/// deterministic).
+fn best_motion(common: &[(&String, &Body, &Body)]) -> (Rotation, Vec3, usize) {
+    let mut best = (Rotation::IDENTITY, [0; 3], 0);
+    if let Some((_, x, y)) = common.first() {
+        best.1 = sub(y.position, x.position);
+    }
+    for rotation in Rotation::all() {
+        let mut votes: BTreeMap<Vec3, usize> = BTreeMap::new();
+        for (_, x, y) in common {
+            if rotation.compose(&x.frame) == y.frame {
+                *votes
+                    .entry(sub(y.position, rotation.apply(x.position)))
+                    .or_default() += 1;
+            }
+        }
+        for (translation, count) in votes {
+            if count > best.2 {
+                best = (rotation, translation, count);
+            }
+        }
+    }
+    best
+}

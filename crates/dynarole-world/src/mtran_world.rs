@@ -1,0 +1,347 @@
+//! The M-TRAN world: an M-TRAN configuration mutated by connect, disconnect and joint turns,
+//! with the same acceptance rules as the ATRON world (see `MTRAN.md`).
+
+use crate::config::{Latch, Port};
+use crate::geometry::{add, sub, sweep_closest_approach, Rotation, Vec3};
+use crate::graph::{split_at_joint, split_parts};
+use crate::mtran::{
+    is_mtran_male, MtranConfiguration, MtranJoint, MtranOrientation, MTRAN_CONNECTOR_COUNT,
+    MTRAN_JOINT_LIMIT_DEG, MTRAN_MIN_SWEEP_DISTANCE_BLOCKS,
+};
+use crate::ops::{OpError, Outcome, Warning};
+use std::collections::BTreeSet;
+
+/// An M-TRAN configuration being reconfigured; operations succeed (maybe with warnings) or
+/// fail and change nothing.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MtranWorld {
+    config: MtranConfiguration,
+}
+
+/// A block taking part in a sweep: its centre (quarter pitches) and its module.
+struct SweptBlock {
+    centre: Vec3,
+    module: usize,
+}
+
+impl MtranWorld {
+    /// Starts from a validated configuration.
+    pub fn new(config: MtranConfiguration) -> MtranWorld {
+        MtranWorld { config }
+    }
+
+    /// The current configuration.
+    pub fn configuration(&self) -> &MtranConfiguration {
+        &self.config
+    }
+
+    /// Gives the configuration back.
+    pub fn into_configuration(self) -> MtranConfiguration {
+        self.config
+    }
+
+    /// Connects male connector `connector` (0-2) to the female connector whose face touches it.
+    pub fn connect(&mut self, module: &str, connector: u8) -> Result<Outcome, OpError> {
+        let port = self.male_port(module, connector, "connect")?;
+        if let Some(partner) = self.config.latched_to(port) {
+            return Ok(warn(Warning::AlreadyLatched {
+                port: self.config.port_name(port),
+                partner: self.config.port_name(partner),
+            }));
+        }
+        let female = self.facing_female(port)?;
+        self.config.latches.insert(Latch { male: port, female });
+        Ok(Outcome::default())
+    }
+
+    /// Disconnects male connector `connector`; reports a connector with nothing connected and
+    /// a release that splits the robot.
+    pub fn disconnect(&mut self, module: &str, connector: u8) -> Result<Outcome, OpError> {
+        let port = self.male_port(module, connector, "disconnect")?;
+        let Some(female) = self.config.latched_to(port) else {
+            return Ok(warn(Warning::NothingLatched {
+                port: self.config.port_name(port),
+            }));
+        };
+        self.config.latches.remove(&Latch { male: port, female });
+        Ok(
+            match split_parts(&self.config.latches, port.module, female.module) {
+                None => Outcome::default(),
+                Some((first, second)) => warn(Warning::Split {
+                    first: self.names(&first),
+                    second: self.names(&second),
+                }),
+            },
+        )
+    }
+
+    /// Turns `joint` from `from_deg` to `to_deg` (multiples of 90 within -90..90), in the
+    /// positive direction when `positive` (which must agree with the sign of `to - from`, the
+    /// range being limited). The side with more modules stays still (tie: the north side
+    /// moves); rejected on a wrong start angle, a loop through the module, or a block sweeping
+    /// within [`MTRAN_MIN_SWEEP_DISTANCE_BLOCKS`] of a still one.
+    pub fn rotate(
+        &mut self,
+        module: &str,
+        joint: MtranJoint,
+        from_deg: i16,
+        to_deg: i16,
+        positive: bool,
+    ) -> Result<Outcome, OpError> {
+        let index = self.index(module)?;
+        self.check_angles(index, joint, from_deg, to_deg, positive)?;
+        if from_deg == to_deg {
+            return Ok(warn(Warning::NoMotion {
+                module: module.to_string(),
+            }));
+        }
+        let delta_quarters = i32::from(to_deg - from_deg) / 90;
+        let sides = split_at_joint(&self.config.latches, index, is_mtran_male, |c| {
+            !is_mtran_male(c)
+        })
+        .map_err(|loop_side| OpError::JointLocked {
+            module: module.to_string(),
+            loop_modules: self.names(&loop_side),
+        })?;
+        let north_moves = sides.first.len() <= sides.second.len();
+        let (moving, turn_quarters) = if north_moves {
+            (sides.first, -delta_quarters)
+        } else {
+            (sides.second, delta_quarters)
+        };
+        let (pivot, axis) = self.joint_pivot(index, joint);
+        let closest =
+            self.check_sweep(index, north_moves, &moving, (pivot, axis), turn_quarters)?;
+        let rotation = Rotation::about_axis(axis, turn_quarters).unwrap_or(Rotation::IDENTITY);
+        let mut moved = moving;
+        if north_moves {
+            moved.insert(index);
+        }
+        for i in &moved {
+            if let Some(m) = self.config.modules.get_mut(*i) {
+                m.centre_quarter_pitch =
+                    add(pivot, rotation.apply(sub(m.centre_quarter_pitch, pivot)));
+                m.orientation =
+                    MtranOrientation::from_frame(rotation.compose(&m.orientation.frame()));
+            }
+        }
+        if let Some(m) = self.config.modules.get_mut(index) {
+            m.joints_deg[joint.index()] = to_deg;
+        }
+        Ok(Outcome {
+            warnings: Vec::new(),
+            moved: self.names(&moved),
+            closest_approach: closest,
+        })
+    }
+
+    /// Range, step, direction and start-angle checks.
+    fn check_angles(
+        &self,
+        index: usize,
+        joint: MtranJoint,
+        from: i16,
+        to: i16,
+        positive: bool,
+    ) -> Result<(), OpError> {
+        let name = self.name(index);
+        for angle in [from, to] {
+            if angle.abs() > MTRAN_JOINT_LIMIT_DEG || angle % 90 != 0 {
+                return Err(OpError::InvalidAngle {
+                    module: name,
+                    angle: i32::from(angle),
+                    reason: "M-TRAN joints take -90, 0 or 90 (range -90..90, lattice steps of 90)"
+                        .to_string(),
+                });
+            }
+        }
+        let actual = self
+            .config
+            .modules
+            .get(index)
+            .map_or(0, |m| m.joints_deg[joint.index()]);
+        if actual != from {
+            return Err(OpError::WrongStartAngle {
+                module: name,
+                from: i32::from(from),
+                actual: i32::from(actual),
+            });
+        }
+        if from != to && (to > from) != positive {
+            return Err(OpError::InvalidAngle {
+                module: name,
+                angle: i32::from(to),
+                reason: format!(
+                    "turning {} from {from} cannot reach {to} within the range -90..90",
+                    if positive { "positively" } else { "negatively" }
+                ),
+            });
+        }
+        Ok(())
+    }
+
+    /// Centre of the joint's block (the turn's pivot) and the joint axis.
+    fn joint_pivot(&self, index: usize, joint: MtranJoint) -> (Vec3, Vec3) {
+        match self.config.modules.get(index) {
+            Some(m) => {
+                let block = match joint {
+                    MtranJoint::North => m.north_block(),
+                    MtranJoint::South => m.south_block(),
+                };
+                (block.centre_quarter_pitch, m.joint_axis())
+            }
+            None => ([0; 3], [0, 1, 0]),
+        }
+    }
+
+    /// Closest approach (block pitches) between moving and still blocks, or the collision.
+    fn check_sweep(
+        &self,
+        index: usize,
+        north_moves: bool,
+        moving: &BTreeSet<usize>,
+        (pivot, axis): (Vec3, Vec3),
+        turn_quarters: i32,
+    ) -> Result<Option<f64>, OpError> {
+        let (moving_blocks, still_blocks) = self.partition_blocks(index, north_moves, moving);
+        // Quarter pitches to block pitches.
+        let points = |blocks: &[SweptBlock]| -> Vec<[f64; 3]> {
+            blocks
+                .iter()
+                .map(|b| b.centre.map(|c| f64::from(c) / 2.0))
+                .collect()
+        };
+        let approach = sweep_closest_approach(
+            pivot.map(|c| f64::from(c) / 2.0),
+            axis,
+            90.0 * f64::from(turn_quarters),
+            &points(&moving_blocks),
+            &points(&still_blocks),
+        );
+        let Some(approach) = approach else {
+            return Ok(None);
+        };
+        if approach.distance < MTRAN_MIN_SWEEP_DISTANCE_BLOCKS {
+            let pick = |blocks: &[SweptBlock], i: usize| {
+                blocks
+                    .get(i)
+                    .map(|b| self.name(b.module))
+                    .unwrap_or_default()
+            };
+            return Err(OpError::SweepCollision {
+                module: self.name(index),
+                moving: pick(&moving_blocks, approach.moving),
+                still: pick(&still_blocks, approach.still),
+                distance: approach.distance,
+                limit: MTRAN_MIN_SWEEP_DISTANCE_BLOCKS,
+                angle_deg: approach.angle_deg,
+            });
+        }
+        Ok(Some(approach.distance))
+    }
+
+    /// Splits all blocks into those that turn and those that stay. Both joints separate the
+    /// turning module's north block from its south block, so its north block turns with the
+    /// north side and its south block with the south side (the pivot block spins in place).
+    fn partition_blocks(
+        &self,
+        index: usize,
+        north_moves: bool,
+        moving: &BTreeSet<usize>,
+    ) -> (Vec<SweptBlock>, Vec<SweptBlock>) {
+        let mut moving_blocks = Vec::new();
+        let mut still_blocks = Vec::new();
+        for (i, m) in self.config.modules.iter().enumerate() {
+            for (b, centre) in m.block_centres().into_iter().enumerate() {
+                let block = SweptBlock { centre, module: i };
+                let turns = if i == index {
+                    (b == 0) == north_moves
+                } else {
+                    moving.contains(&i)
+                };
+                if turns {
+                    moving_blocks.push(block);
+                } else {
+                    still_blocks.push(block);
+                }
+            }
+        }
+        (moving_blocks, still_blocks)
+    }
+
+    fn male_port(
+        &self,
+        module: &str,
+        connector: u8,
+        action: &'static str,
+    ) -> Result<Port, OpError> {
+        let index = self.index(module)?;
+        if connector >= MTRAN_CONNECTOR_COUNT {
+            return Err(OpError::NoSuchConnector {
+                module: module.to_string(),
+                connector,
+                count: MTRAN_CONNECTOR_COUNT,
+            });
+        }
+        let port = Port {
+            module: index,
+            connector,
+        };
+        if !is_mtran_male(connector) {
+            return Err(OpError::FemaleConnector {
+                port: self.config.port_name(port),
+                action,
+            });
+        }
+        Ok(port)
+    }
+
+    fn facing_female(&self, port: Port) -> Result<Port, OpError> {
+        let nothing = |reason: String| OpError::NothingToLatchOnto {
+            port: self.config.port_name(port),
+            reason,
+        };
+        let Some(other) = self.config.facing(port) else {
+            return Err(nothing("no connector face touches it".to_string()));
+        };
+        let other_name = self.config.port_name(other);
+        if is_mtran_male(other.connector) {
+            return Err(nothing(format!(
+                "{other_name} faces it but is male; a latch needs a female connector (3-5)"
+            )));
+        }
+        if let Some(holder) = self.config.latched_to(other) {
+            return Err(nothing(format!(
+                "{other_name} is already latched to {}",
+                self.config.port_name(holder)
+            )));
+        }
+        Ok(other)
+    }
+
+    fn index(&self, module: &str) -> Result<usize, OpError> {
+        self.config
+            .module_index(module)
+            .ok_or_else(|| OpError::UnknownModule {
+                module: module.to_string(),
+            })
+    }
+
+    fn name(&self, index: usize) -> String {
+        self.config
+            .modules
+            .get(index)
+            .map_or_else(String::new, |m| m.name.clone())
+    }
+
+    fn names(&self, indices: &BTreeSet<usize>) -> Vec<String> {
+        indices.iter().map(|i| self.name(*i)).collect()
+    }
+}
+
+fn warn(warning: Warning) -> Outcome {
+    Outcome {
+        warnings: vec![warning],
+        ..Outcome::default()
+    }
+}

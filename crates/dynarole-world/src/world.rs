@@ -1,0 +1,316 @@
+//! The ATRON world: a configuration mutated by the DynaRole ATRON API (extend, retract,
+//! rotateFromToBy), rejecting what the hardware or the simulator could not do.
+
+use crate::atron::{
+    is_joint_position, is_male, is_north, CONNECTOR_COUNT, JOINT_UNITS_PER_TURN,
+    MIN_SWEEP_DISTANCE_LATTICE, QUARTER_TURN_UNITS,
+};
+use crate::config::{AtronConfiguration, Latch, Port};
+use crate::geometry::{add, sub, sweep_closest_approach, to_f64, Rotation};
+use crate::graph::{split_at_joint, split_parts};
+use crate::ops::{OpError, Outcome, Warning};
+use std::collections::BTreeSet;
+
+/// An ATRON configuration being reconfigured. Every operation either succeeds (possibly with
+/// warnings) and leaves a valid configuration, or fails and changes nothing.
+#[derive(Clone, Debug, PartialEq)]
+pub struct World {
+    config: AtronConfiguration,
+}
+
+impl World {
+    /// Starts from a validated configuration.
+    pub fn new(config: AtronConfiguration) -> World {
+        World { config }
+    }
+
+    /// The current configuration (all queries live there).
+    pub fn configuration(&self) -> &AtronConfiguration {
+        &self.config
+    }
+
+    /// Gives the current configuration back.
+    pub fn into_configuration(self) -> AtronConfiguration {
+        self.config
+    }
+
+    /// `module.Connector[connector].extend()`: latches a male connector onto the female
+    /// connector facing it. Rejected for a female connector or when no female connector faces
+    /// it; a connector already latched is reported and left as is.
+    pub fn extend(&mut self, module: &str, connector: u8) -> Result<Outcome, OpError> {
+        let port = self.male_port(module, connector, "extend")?;
+        if let Some(partner) = self.config.latched_to(port) {
+            return Ok(warn(Warning::AlreadyLatched {
+                port: self.config.port_name(port),
+                partner: self.config.port_name(partner),
+            }));
+        }
+        let female = self.facing_female(port)?;
+        self.config.latches.insert(Latch { male: port, female });
+        Ok(Outcome::default())
+    }
+
+    /// `module.Connector[connector].retract()`: releases the latch of a male connector. A
+    /// female connector is rejected (only the male side can release); a connector with no latch
+    /// is reported; a release that splits the robot in two is reported.
+    pub fn retract(&mut self, module: &str, connector: u8) -> Result<Outcome, OpError> {
+        let port = self.male_port(module, connector, "retract")?;
+        let Some(female) = self.config.latched_to(port) else {
+            return Ok(warn(Warning::NothingLatched {
+                port: self.config.port_name(port),
+            }));
+        };
+        self.config.latches.remove(&Latch { male: port, female });
+        let split = split_parts(&self.config.latches, port.module, female.module);
+        Ok(match split {
+            None => Outcome::default(),
+            Some((first, second)) => warn(Warning::Split {
+                first: self.names(&first),
+                second: self.names(&second),
+            }),
+        })
+    }
+
+    /// `module.Joint.rotateFromToBy(from, to, increasing, _)`: turns the joint in quarter turns
+    /// (angles in 1/432 turn; `increasing` = the DynaRole `true` direction, wrapping mod 432).
+    ///
+    /// The side with more modules stays still (tie: the side on the north hemisphere moves);
+    /// everything latched to the moving hemisphere turns with it. Rejected when the joint is
+    /// not at `from`, when a loop of latches joins the two hemispheres, or when a moving module
+    /// would pass within [`MIN_SWEEP_DISTANCE_LATTICE`] of a still one at any point of the
+    /// continuous turn.
+    pub fn rotate(
+        &mut self,
+        module: &str,
+        from_units: u16,
+        to_units: u16,
+        increasing: bool,
+    ) -> Result<Outcome, OpError> {
+        let index = self.index(module)?;
+        self.check_rotation_angles(index, from_units, to_units)?;
+        let quarters = quarter_turns(from_units, to_units, increasing);
+        if quarters == 0 {
+            return Ok(warn(Warning::NoMotion {
+                module: module.to_string(),
+            }));
+        }
+        let sides = split_at_joint(&self.config.latches, index, is_north, |c| !is_north(c))
+            .map_err(|loop_side| OpError::JointLocked {
+                module: module.to_string(),
+                loop_modules: self.names(&loop_side),
+            })?;
+        // Keep the larger side still; on a tie the north side moves (atron.md a.4).
+        let north_moves = sides.first.len() <= sides.second.len();
+        let (moving, turn_quarters) = if north_moves {
+            (sides.first, -quarters)
+        } else {
+            (sides.second, quarters)
+        };
+        let closest = self.check_sweep(index, &moving, turn_quarters)?;
+        self.apply_turn(index, &moving, turn_quarters, !north_moves, quarters);
+        let mut moved: BTreeSet<usize> = moving;
+        if !north_moves {
+            moved.insert(index);
+        }
+        Ok(Outcome {
+            warnings: Vec::new(),
+            moved: self.names(&moved),
+            closest_approach: closest,
+        })
+    }
+
+    /// Checks the angles and that the joint is at `from`.
+    fn check_rotation_angles(&self, index: usize, from: u16, to: u16) -> Result<(), OpError> {
+        let name = self.name(index);
+        for angle in [from, to] {
+            if !is_joint_position(angle) {
+                return Err(OpError::InvalidAngle {
+                    module: name,
+                    angle: i32::from(angle),
+                    reason: "ATRON joint positions are 0, 108, 216 and 324".to_string(),
+                });
+            }
+        }
+        let actual = self.config.modules.get(index).map_or(0, |m| m.joint_units);
+        if actual != from {
+            return Err(OpError::WrongStartAngle {
+                module: name,
+                from: i32::from(from),
+                actual: i32::from(actual),
+            });
+        }
+        Ok(())
+    }
+
+    /// The closest approach of the turn, or the collision that forbids it.
+    fn check_sweep(
+        &self,
+        index: usize,
+        moving: &BTreeSet<usize>,
+        turn_quarters: i32,
+    ) -> Result<Option<f64>, OpError> {
+        let Some(pivot_module) = self.config.modules.get(index) else {
+            return Ok(None);
+        };
+        let centre = |i: &usize| self.config.modules.get(*i).map(|m| to_f64(m.position));
+        let moving_list: Vec<usize> = moving.iter().copied().collect();
+        let still_list: Vec<usize> = (0..self.config.modules.len())
+            .filter(|i| !moving.contains(i))
+            .collect();
+        let moving_points: Vec<[f64; 3]> = moving_list.iter().filter_map(centre).collect();
+        let still_points: Vec<[f64; 3]> = still_list.iter().filter_map(centre).collect();
+        let approach = sweep_closest_approach(
+            to_f64(pivot_module.position),
+            pivot_module.orientation.axis(),
+            90.0 * f64::from(turn_quarters),
+            &moving_points,
+            &still_points,
+        );
+        let Some(approach) = approach else {
+            return Ok(None);
+        };
+        if approach.distance < MIN_SWEEP_DISTANCE_LATTICE {
+            let pick = |list: &[usize], i: usize| list.get(i).map(|m| self.name(*m));
+            return Err(OpError::SweepCollision {
+                module: self.name(index),
+                moving: pick(&moving_list, approach.moving).unwrap_or_default(),
+                still: pick(&still_list, approach.still).unwrap_or_default(),
+                distance: approach.distance,
+                limit: MIN_SWEEP_DISTANCE_LATTICE,
+                angle_deg: approach.angle_deg,
+            });
+        }
+        Ok(Some(approach.distance))
+    }
+
+    /// Turns the moving modules about the joint axis and updates the joint (and the module's
+    /// own south frame when the south side moves).
+    fn apply_turn(
+        &mut self,
+        index: usize,
+        moving: &BTreeSet<usize>,
+        turn_quarters: i32,
+        south_moves: bool,
+        joint_quarters: i32,
+    ) {
+        let Some(pivot_module) = self.config.modules.get(index) else {
+            return;
+        };
+        let pivot = pivot_module.position;
+        let Some(rotation) = Rotation::about_axis(pivot_module.orientation.axis(), turn_quarters)
+        else {
+            return;
+        };
+        for i in moving {
+            if let Some(m) = self.config.modules.get_mut(*i) {
+                m.position = add(pivot, rotation.apply(sub(m.position, pivot)));
+                m.orientation = m.orientation.rotated(&rotation);
+            }
+        }
+        if let Some(m) = self.config.modules.get_mut(index) {
+            if south_moves {
+                m.orientation = m.orientation.rotated(&rotation);
+            }
+            let turn = i32::from(QUARTER_TURN_UNITS) * joint_quarters;
+            let joint =
+                (i32::from(m.joint_units) + turn).rem_euclid(i32::from(JOINT_UNITS_PER_TURN));
+            m.joint_units = u16::try_from(joint).unwrap_or(m.joint_units);
+        }
+    }
+
+    /// The port of a male connector, or why it cannot be commanded.
+    fn male_port(
+        &self,
+        module: &str,
+        connector: u8,
+        action: &'static str,
+    ) -> Result<Port, OpError> {
+        let index = self.index(module)?;
+        if connector >= CONNECTOR_COUNT {
+            return Err(OpError::NoSuchConnector {
+                module: module.to_string(),
+                connector,
+                count: CONNECTOR_COUNT,
+            });
+        }
+        let port = Port {
+            module: index,
+            connector,
+        };
+        if !is_male(connector) {
+            return Err(OpError::FemaleConnector {
+                port: self.config.port_name(port),
+                action,
+            });
+        }
+        Ok(port)
+    }
+
+    /// The free female connector facing `port`, or why there is none.
+    fn facing_female(&self, port: Port) -> Result<Port, OpError> {
+        let nothing = |reason: String| OpError::NothingToLatchOnto {
+            port: self.config.port_name(port),
+            reason,
+        };
+        let Some(other) = self.config.facing(port) else {
+            let site = self.config.modules.get(port.module).and_then(|m| {
+                m.connector_offset(port.connector)
+                    .map(|o| add(m.position, o))
+            });
+            return Err(nothing(format!(
+                "no module faces it (site {:?} is empty)",
+                site.unwrap_or_default()
+            )));
+        };
+        let other_name = self.config.port_name(other);
+        if is_male(other.connector) {
+            return Err(nothing(format!(
+                "{other_name} faces it but is male; a latch needs a female connector"
+            )));
+        }
+        if let Some(holder) = self.config.latched_to(other) {
+            return Err(nothing(format!(
+                "{other_name} is already latched to {}",
+                self.config.port_name(holder)
+            )));
+        }
+        Ok(other)
+    }
+
+    fn index(&self, module: &str) -> Result<usize, OpError> {
+        self.config
+            .module_index(module)
+            .ok_or_else(|| OpError::UnknownModule {
+                module: module.to_string(),
+            })
+    }
+
+    fn name(&self, index: usize) -> String {
+        self.config
+            .modules
+            .get(index)
+            .map_or_else(String::new, |m| m.name.clone())
+    }
+
+    fn names(&self, indices: &BTreeSet<usize>) -> Vec<String> {
+        indices.iter().map(|i| self.name(*i)).collect()
+    }
+}
+
+/// Signed number of quarter turns from `from` to `to` in the given direction (0..=3 steps).
+fn quarter_turns(from: u16, to: u16, increasing: bool) -> i32 {
+    let turn = i32::from(JOINT_UNITS_PER_TURN);
+    let delta = if increasing {
+        (i32::from(to) - i32::from(from)).rem_euclid(turn)
+    } else {
+        -(i32::from(from) - i32::from(to)).rem_euclid(turn)
+    };
+    delta / i32::from(QUARTER_TURN_UNITS)
+}
+
+fn warn(warning: Warning) -> Outcome {
+    Outcome {
+        warnings: vec![warning],
+        ..Outcome::default()
+    }
+}
