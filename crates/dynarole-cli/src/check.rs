@@ -4,7 +4,7 @@ use crate::load::{self, Failure, PluginArgs};
 use crate::render;
 use dynarole_core::diagnostic::has_errors;
 use dynarole_core::{analyze, parse, Diagnostic};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
@@ -15,10 +15,17 @@ pub enum Protocol {
     Lattice,
 }
 
+/// `--from CONFIG [--sequence NAME...]`: run the sequences on a configuration too.
+pub struct OnConfiguration<'a> {
+    pub path: &'a Path,
+    pub sequences: &'a [String],
+}
+
 pub fn run(
     files: &[PathBuf],
     plugins: &PluginArgs,
     protocol: Protocol,
+    on: Option<&OnConfiguration>,
 ) -> Result<ExitCode, Failure> {
     if files.is_empty() {
         return Err(Failure::Usage(
@@ -28,7 +35,7 @@ pub fn run(
     let mut failed = false;
     for path in files {
         let source = load::read_source(path)?;
-        let diagnostics = check_one(path, &source, plugins, protocol)?;
+        let diagnostics = check_one(path, &source, plugins, protocol, on)?;
         render::diagnostics(&path.display().to_string(), &source, &diagnostics);
         if has_errors(&diagnostics) {
             failed = true;
@@ -39,16 +46,22 @@ pub fn run(
     Ok(ExitCode::from(u8::from(failed)))
 }
 
+/// Every diagnostic of one file: syntax, checking, protocol limits and, with a configuration,
+/// the replay's refused steps and the independence warnings.
 pub fn check_one(
-    path: &std::path::Path,
+    path: &Path,
     source: &str,
     plugins: &PluginArgs,
     protocol: Protocol,
+    on: Option<&OnConfiguration>,
 ) -> Result<Vec<Diagnostic>, Failure> {
     let parsed = parse(source);
     let registry = load::registry(plugins, path, load::robot_name(&parsed.file))?;
     let (program, mut diagnostics) = analyze(&parsed.file, &registry);
     diagnostics.extend(parsed.diagnostics);
+    if let (Some(program), Some(on)) = (&program, on) {
+        diagnostics.extend(on_configuration(program, on)?);
+    }
     if let (Some(program), Protocol::Paper) = (program, protocol) {
         for decl in parsed.file.sequences() {
             let plan = program.expand(&decl.name.name).unwrap_or_default();
@@ -59,5 +72,30 @@ pub fn check_one(
     }
     diagnostics.sort_by_key(|d| d.span);
     diagnostics.dedup();
+    Ok(diagnostics)
+}
+
+fn on_configuration(
+    program: &dynarole_core::Program,
+    on: &OnConfiguration,
+) -> Result<Vec<Diagnostic>, Failure> {
+    let config = crate::world::read_configuration(on.path)?;
+    let prepared = match crate::world::prepare(program, on.sequences, config)? {
+        Ok(prepared) => prepared,
+        Err(errors) => return Ok(errors),
+    };
+    let replay = dynarole_replay::replay(
+        program,
+        &prepared.plans,
+        prepared.world.clone(),
+        &prepared.assignment,
+    );
+    let mut diagnostics = replay.diagnostics;
+    diagnostics.extend(dynarole_replay::check_independence(
+        program,
+        &prepared.plans,
+        prepared.world,
+        &prepared.assignment,
+    ));
     Ok(diagnostics)
 }

@@ -6,7 +6,9 @@ pub mod check;
 pub mod fmt;
 pub mod load;
 pub mod render;
+pub mod replay;
 pub mod reverse;
+pub mod world;
 
 use clap::{Parser, Subcommand};
 use std::path::PathBuf;
@@ -30,6 +32,31 @@ enum Command {
         /// Also report what the given protocol cannot run.
         #[arg(long, value_enum, default_value_t = check::Protocol::Lattice)]
         protocol: check::Protocol,
+        /// Also run the sequences on this configuration: report refused and suspicious steps,
+        /// and `&`-joined statements that are not independent.
+        #[arg(long, value_name = "CONFIG")]
+        from: Option<PathBuf>,
+        /// With --from: the sequences to run, in turn (default: the first in the file).
+        #[arg(long = "sequence", value_name = "NAME", requires = "from")]
+        sequences: Vec<String>,
+    },
+    /// Run sequences on the kinematic model of the robot (no network) and report the result.
+    Replay {
+        file: PathBuf,
+        /// Sequence to run; repeat to run several in turn.
+        #[arg(long = "sequence", value_name = "NAME", required = true)]
+        sequences: Vec<String>,
+        /// The configuration to start from (JSON).
+        #[arg(long, value_name = "CONFIG")]
+        from: PathBuf,
+        /// The configuration to expect at the end; exit 1 with the difference if it is not.
+        #[arg(long, value_name = "CONFIG")]
+        expect: Option<PathBuf>,
+        /// Write the final configuration (JSON) here.
+        #[arg(long, value_name = "CONFIG")]
+        out: Option<PathBuf>,
+        #[command(flatten)]
+        plugins: load::PluginArgs,
     },
     /// Rewrite `.dr` files in the canonical layout (comments kept).
     Fmt {
@@ -59,7 +86,30 @@ pub fn main() -> ExitCode {
             files,
             plugins,
             protocol,
-        } => check::run(&files, &plugins, protocol),
+            from,
+            sequences,
+        } => {
+            let on = from.as_deref().map(|path| check::OnConfiguration {
+                path,
+                sequences: &sequences,
+            });
+            check::run(&files, &plugins, protocol, on.as_ref())
+        }
+        Command::Replay {
+            file,
+            sequences,
+            from,
+            expect,
+            out,
+            plugins,
+        } => replay::run(&replay::ReplayArgs {
+            file: &file,
+            sequences: &sequences,
+            from: &from,
+            expect: expect.as_ref(),
+            out: out.as_ref(),
+            plugins: &plugins,
+        }),
         Command::Fmt { files, check } => fmt::run(&files, check),
         Command::Reverse {
             file,

@@ -145,3 +145,177 @@ fn paper_protocol_reports_nested_blocks() {
     assert_eq!(paper.status.code(), Some(1));
     assert!(text(&paper.stderr).contains("not supported by the paper protocol"));
 }
+
+#[test]
+fn replay_of_fig5_gives_exactly_the_car_and_its_reverse_the_eight() {
+    let forward = dynarole(&[
+        "replay",
+        "examples/atron/eight2car.dr",
+        "--sequence",
+        "eight2car",
+        "--from",
+        "examples/atron/eight.json",
+        "--expect",
+        "examples/atron/car.json",
+    ]);
+    assert_eq!(
+        forward.status.code(),
+        Some(0),
+        "{}{}",
+        text(&forward.stdout),
+        text(&forward.stderr)
+    );
+    assert!(text(&forward.stdout).contains("25 statements, 0 rejected, 0 warnings"));
+    let back = dynarole(&[
+        "replay",
+        "examples/atron/eight2car.dr",
+        "--sequence",
+        "car2eight",
+        "--from",
+        "examples/atron/car.json",
+        "--expect",
+        "examples/atron/eight.json",
+    ]);
+    assert_eq!(back.status.code(), Some(0), "{}", text(&back.stdout));
+    let both = dynarole(&[
+        "replay",
+        "examples/atron/eight2car.dr",
+        "--sequence",
+        "eight2car",
+        "--sequence",
+        "car2eight",
+        "--from",
+        "examples/atron/eight.json",
+        "--expect",
+        "examples/atron/eight.json",
+    ]);
+    assert_eq!(both.status.code(), Some(0), "{}", text(&both.stdout));
+}
+
+#[test]
+fn replay_of_the_tour_and_the_snake() {
+    let snake = dynarole(&[
+        "replay",
+        "examples/atron/eight2car.dr",
+        "--sequence",
+        "eight2snake",
+        "--from",
+        "examples/atron/eight.json",
+        "--expect",
+        "examples/atron/snake.json",
+    ]);
+    assert_eq!(snake.status.code(), Some(0), "{}", text(&snake.stdout));
+    let tour = dynarole(&[
+        "replay",
+        "examples/atron/eight2car.dr",
+        "--sequence",
+        "tour",
+        "--from",
+        "examples/atron/car.json",
+        "--expect",
+        "examples/atron/car.json",
+    ]);
+    assert_eq!(tour.status.code(), Some(0), "{}", text(&tour.stdout));
+    assert!(text(&tour.stdout).contains("62 statements, 0 rejected"));
+}
+
+#[test]
+fn replay_of_the_mtran_experiment_and_its_derived_reverse() {
+    let out = scratch("moved.json", "");
+    let out = out.to_str().expect("utf-8 path");
+    let forward = dynarole(&[
+        "replay",
+        "examples/mtran/move_module.dr",
+        "--sequence",
+        "left2right",
+        "--from",
+        "examples/mtran/mtran-snake4.json",
+        "--expect",
+        "examples/mtran/mtran-snake4-moved.json",
+        "--out",
+        out,
+    ]);
+    assert_eq!(forward.status.code(), Some(0), "{}", text(&forward.stdout));
+    let back = dynarole(&[
+        "replay",
+        "examples/mtran/move_module.dr",
+        "--sequence",
+        "right2left",
+        "--from",
+        out,
+        "--expect",
+        "examples/mtran/mtran-snake4.json",
+    ]);
+    assert_eq!(back.status.code(), Some(0), "{}", text(&back.stdout));
+}
+
+#[test]
+fn replay_reports_a_mismatch_with_the_difference_and_exit_1() {
+    let out = dynarole(&[
+        "replay",
+        "examples/atron/eight2car.dr",
+        "--sequence",
+        "eight2car",
+        "--from",
+        "examples/atron/eight.json",
+        "--expect",
+        "examples/atron/eight.json",
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    let stdout = text(&out.stdout);
+    assert!(
+        stdout.contains("does NOT match examples/atron/eight.json"),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("misplaced") || stdout.contains("connection"),
+        "{stdout}"
+    );
+}
+
+#[test]
+fn replay_rejects_a_configuration_of_another_robot_or_a_bad_field() {
+    let other = dynarole(&[
+        "replay",
+        "examples/atron/eight2car.dr",
+        "--sequence",
+        "eight2car",
+        "--from",
+        "examples/mtran/mtran-snake4.json",
+    ]);
+    assert_eq!(other.status.code(), Some(1));
+    assert!(
+        text(&other.stderr).contains("robot `atron` but the configuration is an MTRAN robot"),
+        "{}",
+        text(&other.stderr)
+    );
+    let bad = scratch("bad.json", "{\"name\": \"x\", \"robot\": \"ATRON\", \"modules\": [{\"name\": \"M0\", \"id\": 0, \"position\": [0, 0, 0], \"orientation\": \"NX\", \"joint\": 0}], \"connections\": []}");
+    let bad_out = dynarole(&[
+        "replay",
+        "examples/atron/eight2car.dr",
+        "--sequence",
+        "eight2car",
+        "--from",
+        bad.to_str().expect("path"),
+    ]);
+    assert_eq!(bad_out.status.code(), Some(1));
+    assert!(
+        text(&bad_out.stderr).contains("modules[0].orientation"),
+        "{}",
+        text(&bad_out.stderr)
+    );
+}
+
+#[test]
+fn check_from_reports_the_order_dependent_group_of_fig5() {
+    let out = dynarole(&[
+        "check",
+        "examples/atron/eight2car.dr",
+        "--from",
+        "examples/atron/eight.json",
+    ]);
+    assert_eq!(out.status.code(), Some(0), "warnings do not fail a check");
+    let stderr = text(&out.stderr);
+    assert!(stderr.contains("warning[not-independent]"), "{stderr}");
+    assert!(stderr.contains("eight2car.dr:19:5"), "{stderr}");
+}

@@ -2,7 +2,7 @@
 //! when it has no errors also formatted and reversed; all output goes into one snapshot.
 
 use codespan_reporting::term::termcolor::NoColor;
-use dynarole_cli::check::{check_one, Protocol};
+use dynarole_cli::check::{check_one, OnConfiguration, Protocol};
 use dynarole_cli::load::{self, PluginArgs};
 use dynarole_cli::render::write_diagnostics;
 use dynarole_core::diagnostic::{all_codes, has_errors, DiagnosticCode};
@@ -26,8 +26,15 @@ fn golden_output(path: &Path, source: &str, codes: &mut BTreeSet<DiagnosticCode>
     );
     let plugins = PluginArgs::default();
     let mut out = String::new();
-    let lattice = check_one(path, source, &plugins, Protocol::Lattice).unwrap_or_default();
-    let paper = check_one(path, source, &plugins, Protocol::Paper).unwrap_or_default();
+    // A configuration beside the case (same name, `.json`) is used as `--from`.
+    let config = path.with_extension("json");
+    let on = config.is_file().then(|| OnConfiguration {
+        path: &config,
+        sequences: &[],
+    });
+    let lattice =
+        check_one(path, source, &plugins, Protocol::Lattice, on.as_ref()).unwrap_or_default();
+    let paper = check_one(path, source, &plugins, Protocol::Paper, on.as_ref()).unwrap_or_default();
     codes.extend(lattice.iter().chain(&paper).map(Diagnostic::code));
     out.push_str(&section("check", &render(&name, source, &lattice)));
     if paper != lattice {

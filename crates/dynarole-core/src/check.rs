@@ -38,6 +38,26 @@ pub struct ResolvedStatement {
     pub span: Span,
 }
 
+impl ResolvedStatement {
+    /// `M3.Joint.rotateFromToBy(0, 324, false, 150)`, as executed (after any reversal).
+    pub fn describe(&self, robot: &RobotApi) -> String {
+        let label = match &self.label {
+            Label::Module(id) => format!("M{id}"),
+            Label::Role(role) => role.clone(),
+        };
+        let Some(part) = robot.parts.get(self.part) else {
+            return label;
+        };
+        let index = self.index.map_or(String::new(), |i| format!("[{i}]"));
+        let op = part
+            .operations
+            .get(self.operation)
+            .map_or("?", |o| o.name.as_str());
+        let args: Vec<String> = self.args.iter().map(ToString::to_string).collect();
+        format!("{label}.{}{index}.{op}({})", part.name, args.join(", "))
+    }
+}
+
 /// Checks `file`; the program is returned only when no error was found.
 pub fn analyze<'f>(
     file: &'f SourceFile,

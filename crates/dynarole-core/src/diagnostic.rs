@@ -176,6 +176,33 @@ pub enum DiagnosticKind {
         expected: usize,
         found: usize,
     },
+    // ---- on a configuration (replay and `check --from`) ----
+    /// A step the robot cannot do from the configuration it is in.
+    StepRejected {
+        step: String,
+        reason: String,
+    },
+    /// A step that can be done but probably does not do what was meant.
+    StepSuspicious {
+        step: String,
+        reason: String,
+    },
+    /// Two statements joined by `&` that are not independent.
+    NotIndependent {
+        step: String,
+        other_step: String,
+        reason: String,
+        other: Span,
+    },
+    /// A role that does not pick exactly one module of the configuration.
+    RoleNotUnique {
+        role: String,
+        modules: Vec<String>,
+    },
+    /// `M<k>` with no module whose ID is k.
+    NoModuleWithId {
+        id: u32,
+    },
     // ---- protocol limits ----
     NotSupportedByPaperProtocol {
         reason: String,
@@ -358,6 +385,30 @@ impl Diagnostic {
                     plural(*expected)
                 ))
                 .label(format!("expected {expected}")),
+            K::StepRejected { step, reason } => d
+                .title(format!("`{step}` cannot be done: {reason}"))
+                .label("rejected by the robot model; the configuration is left as it was"),
+            K::StepSuspicious { step, reason } => d
+                .warning()
+                .title(format!("`{step}`: {reason}"))
+                .label("done, but probably not what was meant"),
+            K::NotIndependent { step, other_step, reason, other } => d
+                .warning()
+                .title(format!("`{step}` and `{other_step}` are joined by `&` but are not independent: {reason}"))
+                .label("this statement")
+                .secondary(*other, "and this one")
+                .hint("separate them with `;` so that one waits for the other"),
+            K::RoleNotUnique { role, modules } if modules.is_empty() => d
+                .title(format!("no module of the configuration is a `{role}`"))
+                .label("its predicate holds for no module")
+                .hint("check the predicate against the configuration given with --from"),
+            K::RoleNotUnique { role, modules } => d
+                .title(format!("several modules are a `{role}`: {}", modules.join(", ")))
+                .label("a statement label must pick exactly one module")
+                .hint("make the predicate more specific"),
+            K::NoModuleWithId { id } => d
+                .title(format!("no module of the configuration has ID {id}"))
+                .label(format!("`M{id}` means the module whose ID is {id}")),
             K::NotSupportedByPaperProtocol { reason } => d
                 .title("not supported by the paper protocol")
                 .label(reason.clone())

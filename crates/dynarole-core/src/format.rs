@@ -75,9 +75,15 @@ struct Printer<'a> {
 }
 
 impl Printer<'_> {
+    /// Whether the source has an empty line between `from` and `to` (the first and last
+    /// pieces of the gap are the ends of the lines the two nodes sit on, not lines of their own).
     fn blank_between(&self, from: u32, to: u32) -> bool {
         let gap = self.source.get(from as usize..to as usize).unwrap_or("");
-        gap.matches('\n').count() >= 2 && gap.lines().skip(1).any(|l| l.trim().is_empty())
+        let lines: Vec<&str> = gap.split('\n').collect();
+        lines.len() >= 3
+            && lines[1..lines.len() - 1]
+                .iter()
+                .any(|l| l.trim().is_empty())
     }
 
     /// Prints, each on its own line, the comments that start before `offset`.

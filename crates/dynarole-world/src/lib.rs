@@ -30,4 +30,4 @@ pub use geometry::{Rotation, Vec3};
 pub use mtran::{MtranConfiguration, MtranJoint, MtranModule, MtranOrientation};
 pub use mtran_world::MtranWorld;
 pub use ops::{OpError, Outcome, Warning};
-pub use world::World;
+pub use world::{TurnMotion, World};

@@ -11,6 +11,41 @@ use crate::graph::{split_at_joint, split_parts};
 use crate::ops::{OpError, Outcome, Warning};
 use std::collections::BTreeSet;
 
+/// The motion of one joint turn: the moving side turns by `angle_deg` (right-handed, signed)
+/// about `axis` through `pivot`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TurnMotion {
+    pub pivot: [f64; 3],
+    pub axis: crate::geometry::Vec3,
+    pub angle_deg: f64,
+    /// Name and start position (lattice units) of each module on the moving side.
+    pub moving: Vec<(String, [f64; 3])>,
+}
+
+impl TurnMotion {
+    /// Where a point of the moving side is after `fraction` (0 to 1) of the turn.
+    pub fn position_at(&self, point: [f64; 3], fraction: f64) -> [f64; 3] {
+        let a = self.axis.map(f64::from);
+        let t = (self.angle_deg * fraction).to_radians();
+        let r = [
+            point[0] - self.pivot[0],
+            point[1] - self.pivot[1],
+            point[2] - self.pivot[2],
+        ];
+        let dot = a[0] * r[0] + a[1] * r[1] + a[2] * r[2];
+        let cross = [
+            a[1] * r[2] - a[2] * r[1],
+            a[2] * r[0] - a[0] * r[2],
+            a[0] * r[1] - a[1] * r[0],
+        ];
+        // Rodrigues' rotation formula for a unit axis.
+        let (sin, cos) = t.sin_cos();
+        std::array::from_fn(|k| {
+            self.pivot[k] + r[k] * cos + cross[k] * sin + a[k] * dot * (1.0 - cos)
+        })
+    }
+}
+
 /// An ATRON configuration being reconfigured. Every operation either succeeds (possibly with
 /// warnings) and leaves a valid configuration, or fails and changes nothing.
 #[derive(Clone, Debug, PartialEq)]
@@ -116,6 +151,48 @@ impl World {
             warnings: Vec::new(),
             moved: self.names(&moved),
             closest_approach: closest,
+        })
+    }
+
+    /// How a turn would move the robot, without doing it or checking its sweep: the pivot,
+    /// the axis, the signed angle of the moving side and the modules on it. Fails like
+    /// [`World::rotate`] for a wrong angle or a locked joint. Used to check that two turns
+    /// done at the same time do not collide with each other.
+    pub fn turn_motion(
+        &self,
+        module: &str,
+        from_units: u16,
+        to_units: u16,
+        increasing: bool,
+    ) -> Result<TurnMotion, OpError> {
+        let index = self.index(module)?;
+        self.check_rotation_angles(index, from_units, to_units)?;
+        let quarters = quarter_turns(from_units, to_units, increasing);
+        let sides = split_at_joint(&self.config.latches, index, is_north, |c| !is_north(c))
+            .map_err(|loop_side| OpError::JointLocked {
+                module: module.to_string(),
+                loop_modules: self.names(&loop_side),
+            })?;
+        let north_moves = sides.first.len() <= sides.second.len();
+        let (moving, turn_quarters) = if north_moves {
+            (sides.first, -quarters)
+        } else {
+            (sides.second, quarters)
+        };
+        let pivot_module = self.config.modules.get(index);
+        Ok(TurnMotion {
+            pivot: pivot_module.map_or([0.0; 3], |m| to_f64(m.position)),
+            axis: pivot_module.map_or([0, 0, 1], |m| m.orientation.axis()),
+            angle_deg: 90.0 * f64::from(turn_quarters),
+            moving: moving
+                .iter()
+                .filter_map(|i| {
+                    self.config
+                        .modules
+                        .get(*i)
+                        .map(|m| (m.name.clone(), to_f64(m.position)))
+                })
+                .collect(),
         })
     }
 

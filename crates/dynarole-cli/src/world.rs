@@ -1,0 +1,59 @@
+//! Shared by the commands that run sequences on a configuration (`replay`, `check --from`):
+//! load the configuration, expand the sequences, and find the module behind every label.
+
+use crate::load::{self, Failure};
+use dynarole_core::expand::Plan;
+use dynarole_core::{Diagnostic, Program};
+use dynarole_replay::{assign_modules, Assignment, RobotWorld};
+use dynarole_world::Configuration;
+use std::path::Path;
+
+/// Everything needed to run `plans` on the model.
+pub struct Prepared {
+    pub plans: Vec<Plan>,
+    pub assignment: Assignment,
+    pub world: RobotWorld,
+}
+
+/// Reads a configuration in the data-file JSON format; errors name the file and the field.
+pub fn read_configuration(path: &Path) -> Result<Configuration, Failure> {
+    let text = load::read_source(path)?;
+    Configuration::from_json_str(&text)
+        .map_err(|e| Failure::Input(format!("{}: {e}", path.display())))
+}
+
+/// The plans of `sequences` (the first declared sequence when none is named), the modules of
+/// their labels on `config`, and the world to run them in. Label problems come back as
+/// diagnostics of the source file.
+pub fn prepare(
+    program: &Program,
+    sequences: &[String],
+    config: Configuration,
+) -> Result<Result<Prepared, Vec<Diagnostic>>, Failure> {
+    let names: Vec<String> = if sequences.is_empty() {
+        program
+            .file
+            .sequences()
+            .next()
+            .map(|d| d.name.name.clone())
+            .into_iter()
+            .collect()
+    } else {
+        sequences.to_vec()
+    };
+    let mut plans = Vec::new();
+    for name in &names {
+        let plan = program
+            .expand(name)
+            .ok_or_else(|| Failure::Input(format!("no sequence named `{name}`")))?;
+        plans.push(plan);
+    }
+    let world = RobotWorld::new(config.clone(), &program.robot).map_err(Failure::Input)?;
+    Ok(
+        assign_modules(program, &plans, &config).map(|assignment| Prepared {
+            plans,
+            assignment,
+            world,
+        }),
+    )
+}

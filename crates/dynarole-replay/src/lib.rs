@@ -1,0 +1,15 @@
+//! Runs checked sequences on the kinematic robot models (no network): replay, the role
+//! assignment on a configuration, and the independence check of parallel groups.
+//!
+//! Everything a step does or refuses becomes a language [`Diagnostic`] at the statement's
+//! source location, so the CLI renders it like any other message.
+
+mod independence;
+mod robot_world;
+mod roles;
+mod run;
+
+pub use independence::check_independence;
+pub use robot_world::{RobotWorld, StepOutcome};
+pub use roles::{assign_modules, Assignment};
+pub use run::{replay, Replay};

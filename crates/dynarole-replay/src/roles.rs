@@ -1,0 +1,220 @@
+//! Which module runs each label: `M<k>` is the module whose ID is k, a role is the one module
+//! of the configuration whose state satisfies the role's predicate.
+
+use dynarole_core::ast::{BinaryOp, Expr, ExprKind, UnaryOp};
+use dynarole_core::check::Label;
+use dynarole_core::diagnostic::{Diagnostic, DiagnosticKind};
+use dynarole_core::expand::Plan;
+use dynarole_core::{Program, RobotApi};
+use dynarole_world::{Configuration, Port};
+use std::collections::BTreeMap;
+
+/// Module name for every label a plan uses.
+pub type Assignment = BTreeMap<Label, String>;
+
+/// Resolves every label used by `plans` on `config`; errors point at the first use.
+pub fn assign_modules(
+    program: &Program,
+    plans: &[Plan],
+    config: &Configuration,
+) -> Result<Assignment, Vec<Diagnostic>> {
+    let mut assignment = Assignment::new();
+    let mut errors = Vec::new();
+    for statement in plans.iter().flat_map(Plan::statements) {
+        if assignment.contains_key(&statement.label) {
+            continue;
+        }
+        match resolve(program, &statement.label, config) {
+            Ok(name) => {
+                assignment.insert(statement.label.clone(), name);
+            }
+            Err(kind) => {
+                if !errors.iter().any(|d: &Diagnostic| d.kind == kind) {
+                    errors.push(Diagnostic::new(kind, statement.span));
+                }
+            }
+        }
+    }
+    if errors.is_empty() {
+        Ok(assignment)
+    } else {
+        Err(errors)
+    }
+}
+
+fn resolve(
+    program: &Program,
+    label: &Label,
+    config: &Configuration,
+) -> Result<String, DiagnosticKind> {
+    let view = View { config };
+    match label {
+        Label::Module(id) => view
+            .index_by_id(*id)
+            .map(|i| view.name(i))
+            .ok_or(DiagnosticKind::NoModuleWithId { id: *id }),
+        Label::Role(role) => {
+            let predicate = program
+                .file
+                .roles()
+                .find(|r| &r.name.name == role)
+                .map(|r| &r.predicate);
+            let matching: Vec<String> = (0..view.len())
+                .filter(|&i| {
+                    predicate.is_some_and(|p| {
+                        eval(p, &view, i, &program.robot) == Some(Value::Bool(true))
+                    })
+                })
+                .map(|i| view.name(i))
+                .collect();
+            match matching.as_slice() {
+                [one] => Ok(one.clone()),
+                _ => Err(DiagnosticKind::RoleNotUnique {
+                    role: role.clone(),
+                    modules: matching,
+                }),
+            }
+        }
+    }
+}
+
+/// What a role predicate may ask of a module, over either robot's configuration.
+struct View<'c> {
+    config: &'c Configuration,
+}
+
+impl View<'_> {
+    fn len(&self) -> usize {
+        match self.config {
+            Configuration::Atron(c) => c.modules().len(),
+            Configuration::Mtran(c) => c.modules().len(),
+        }
+    }
+
+    fn name(&self, i: usize) -> String {
+        match self.config {
+            Configuration::Atron(c) => c.module(i).map(|m| m.name.clone()),
+            Configuration::Mtran(c) => c.modules().get(i).map(|m| m.name.clone()),
+        }
+        .unwrap_or_default()
+    }
+
+    fn id(&self, i: usize) -> Option<u32> {
+        match self.config {
+            Configuration::Atron(c) => c.module(i).and_then(|m| m.id),
+            Configuration::Mtran(c) => c.modules().get(i).and_then(|m| m.id),
+        }
+    }
+
+    fn index_by_id(&self, id: u32) -> Option<usize> {
+        match self.config {
+            Configuration::Atron(c) => c.module_index_by_id(id),
+            Configuration::Mtran(c) => c.module_index_by_id(id),
+        }
+    }
+
+    fn latched_to(&self, port: Port) -> Option<Port> {
+        match self.config {
+            Configuration::Atron(c) => c.latched_to(port),
+            Configuration::Mtran(c) => c.latched_to(port),
+        }
+    }
+
+    fn joint(&self, i: usize, joint: usize) -> Option<i64> {
+        match self.config {
+            Configuration::Atron(c) => c.module(i).map(|m| i64::from(m.joint_units)),
+            Configuration::Mtran(c) => c
+                .modules()
+                .get(i)
+                .and_then(|m| m.joints_deg.get(joint))
+                .map(|d| i64::from(*d)),
+        }
+    }
+
+    fn connectors(&self) -> u8 {
+        match self.config {
+            Configuration::Atron(_) => 8,
+            Configuration::Mtran(_) => 6,
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Value {
+    Int(i64),
+    Bool(bool),
+}
+
+/// Evaluates a checked predicate for module `i`; `None` only for an ill-typed tree, which the
+/// checker has already refused.
+fn eval(expr: &Expr, view: &View, i: usize, robot: &RobotApi) -> Option<Value> {
+    Some(match &expr.kind {
+        ExprKind::Int(n) => Value::Int(*n),
+        ExprKind::Bool(b) => Value::Bool(*b),
+        ExprKind::Constant(name) => Value::Int(robot.constant(name)?.value),
+        ExprKind::Paren(inner) => eval(inner, view, i, robot)?,
+        ExprKind::Name(name) => query(&name.name, None, view, i)?,
+        ExprKind::Call { function, args } => {
+            let arg = match args.first() {
+                Some(a) => match eval(a, view, i, robot)? {
+                    Value::Int(n) => Some(n),
+                    Value::Bool(_) => return None,
+                },
+                None => None,
+            };
+            query(&function.name, arg, view, i)?
+        }
+        ExprKind::Unary { op, operand } => match (op, eval(operand, view, i, robot)?) {
+            (UnaryOp::Not, Value::Bool(b)) => Value::Bool(!b),
+            (UnaryOp::Negate, Value::Int(n)) => Value::Int(n.checked_neg()?),
+            _ => return None,
+        },
+        ExprKind::Binary { op, lhs, rhs } => {
+            binary(*op, eval(lhs, view, i, robot)?, eval(rhs, view, i, robot)?)?
+        }
+    })
+}
+
+fn binary(op: BinaryOp, lhs: Value, rhs: Value) -> Option<Value> {
+    let b = match (op, lhs, rhs) {
+        (BinaryOp::And, Value::Bool(a), Value::Bool(b)) => a && b,
+        (BinaryOp::Or, Value::Bool(a), Value::Bool(b)) => a || b,
+        (BinaryOp::Eq, a, b) => a == b,
+        (BinaryOp::NotEq, a, b) => a != b,
+        (BinaryOp::Lt, Value::Int(a), Value::Int(b)) => a < b,
+        (BinaryOp::Le, Value::Int(a), Value::Int(b)) => a <= b,
+        (BinaryOp::Gt, Value::Int(a), Value::Int(b)) => a > b,
+        (BinaryOp::Ge, Value::Int(a), Value::Int(b)) => a >= b,
+        _ => return None,
+    };
+    Some(Value::Bool(b))
+}
+
+fn query(name: &str, arg: Option<i64>, view: &View, i: usize) -> Option<Value> {
+    let port = |c: i64| {
+        u8::try_from(c).ok().map(|connector| Port {
+            module: i,
+            connector,
+        })
+    };
+    Some(match name {
+        "id" => Value::Int(view.id(i).map_or(-1, i64::from)),
+        "joint" => Value::Int(view.joint(i, usize::try_from(arg.unwrap_or(0)).ok()?)?),
+        "neighbours" => {
+            let latched = (0..view.connectors()).filter(|&c| {
+                view.latched_to(Port {
+                    module: i,
+                    connector: c,
+                })
+                .is_some()
+            });
+            Value::Int(latched.count() as i64)
+        }
+        "connected" => Value::Bool(view.latched_to(port(arg?)?).is_some()),
+        "neighbour_id" => {
+            let other = view.latched_to(port(arg?)?);
+            Value::Int(other.and_then(|p| view.id(p.module)).map_or(-1, i64::from))
+        }
+        _ => return None,
+    })
+}

@@ -1,0 +1,81 @@
+//! Replay: the statements of one or more plans executed one group at a time on the model.
+
+use crate::robot_world::RobotWorld;
+use crate::roles::Assignment;
+use dynarole_core::diagnostic::{Diagnostic, DiagnosticKind};
+use dynarole_core::expand::{Plan, PlanKind};
+use dynarole_core::Program;
+use dynarole_world::Configuration;
+
+/// The end of a replay: the final configuration and every refused or suspicious step.
+#[derive(Clone, Debug)]
+pub struct Replay {
+    pub final_configuration: Configuration,
+    pub diagnostics: Vec<Diagnostic>,
+    pub n_statements: usize,
+    pub n_rejected: usize,
+}
+
+/// Runs `plans` one after the other from the world's configuration. Groups run in order and
+/// the elements of a group in source order (the model has no time; the independence check
+/// says whether the order matters). A refused step changes nothing and the replay goes on, so
+/// that every problem is reported at once.
+pub fn replay(
+    program: &Program,
+    plans: &[Plan],
+    mut world: RobotWorld,
+    assignment: &Assignment,
+) -> Replay {
+    let mut report = Replay {
+        final_configuration: world.configuration(),
+        diagnostics: Vec::new(),
+        n_statements: 0,
+        n_rejected: 0,
+    };
+    for plan in plans {
+        run_plan(program, plan, &mut world, assignment, &mut report);
+    }
+    report.final_configuration = world.configuration();
+    report
+}
+
+fn run_plan(
+    program: &Program,
+    plan: &Plan,
+    world: &mut RobotWorld,
+    assignment: &Assignment,
+    report: &mut Replay,
+) {
+    for element in &plan.elements {
+        match &element.kind {
+            PlanKind::Block(inner) => run_plan(program, inner, world, assignment, report),
+            PlanKind::Op(statement) => {
+                report.n_statements += 1;
+                let Some(module) = assignment.get(&statement.label) else {
+                    continue;
+                };
+                let step = statement.describe(&program.robot);
+                match world.apply(&program.robot, statement, module) {
+                    Ok(outcome) => {
+                        for warning in outcome.warnings {
+                            let kind = DiagnosticKind::StepSuspicious {
+                                step: step.clone(),
+                                reason: warning.to_string(),
+                            };
+                            report
+                                .diagnostics
+                                .push(Diagnostic::new(kind, statement.span));
+                        }
+                    }
+                    Err(reason) => {
+                        report.n_rejected += 1;
+                        report.diagnostics.push(Diagnostic::new(
+                            DiagnosticKind::StepRejected { step, reason },
+                            statement.span,
+                        ));
+                    }
+                }
+            }
+        }
+    }
+}
