@@ -8,6 +8,7 @@ pub mod load;
 pub mod render;
 pub mod replay;
 pub mod reverse;
+pub mod show;
 pub mod world;
 
 use clap::{Parser, Subcommand};
@@ -39,6 +40,13 @@ enum Command {
         /// With --from: the sequences to run, in turn (default: the first in the file).
         #[arg(long = "sequence", value_name = "NAME", requires = "from")]
         sequences: Vec<String>,
+    },
+    /// Draw a configuration (JSON) as an SVG or PNG picture.
+    Show {
+        config: PathBuf,
+        /// The picture to write: FILE.svg or FILE.png.
+        #[arg(short = 'o', long = "output", value_name = "FILE")]
+        output: PathBuf,
     },
     /// Run sequences on the kinematic model of the robot (no network) and report the result.
     Replay {
@@ -111,6 +119,7 @@ pub fn main() -> ExitCode {
             plugins: &plugins,
         }),
         Command::Fmt { files, check } => fmt::run(&files, check),
+        Command::Show { config, output } => show::run(&config, &output),
         Command::Reverse {
             file,
             sequence,

@@ -319,3 +319,56 @@ fn check_from_reports_the_order_dependent_group_of_fig5() {
     assert!(stderr.contains("warning[not-independent]"), "{stderr}");
     assert!(stderr.contains("eight2car.dr:19:5"), "{stderr}");
 }
+
+#[test]
+fn show_draws_every_module_and_latch_of_the_eight() {
+    let text_json =
+        std::fs::read_to_string(repo_root().join("examples/atron/eight.json")).expect("eight.json");
+    let config = dynarole_world::Configuration::from_json_str(&text_json).expect("valid");
+    let svg = dynarole_cli::show::render_svg(&config).expect("drawn");
+    // Two circles per module (disc and outline), one dot per latch; one name per module.
+    assert_eq!(svg.matches("<circle").count(), 7 * 2 + 8);
+    assert_eq!(
+        svg.matches("<polygon").count(),
+        7,
+        "one south half per module"
+    );
+    for name in ["M0", "M1", "M2", "M3", "M4", "M5", "M6"] {
+        assert!(
+            svg.contains(&format!("\n{name}\n</text>")),
+            "{name} is labelled"
+        );
+    }
+    insta::assert_snapshot!("eight_svg", svg);
+}
+
+#[test]
+fn show_writes_png_and_svg_and_refuses_other_formats() {
+    let png = scratch("car.png", "");
+    let out = dynarole(&[
+        "show",
+        "examples/atron/car.json",
+        "-o",
+        png.to_str().expect("path"),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let bytes = std::fs::read(&png).expect("png written");
+    assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n");
+    let svg = scratch("snake.svg", "");
+    let out = dynarole(&[
+        "show",
+        "examples/mtran/mtran-snake4.json",
+        "-o",
+        svg.to_str().expect("path"),
+    ]);
+    assert_eq!(out.status.code(), Some(0));
+    assert!(std::fs::read_to_string(&svg)
+        .expect("svg")
+        .contains("\nT12\n</text>"));
+    assert_eq!(
+        dynarole(&["show", "examples/atron/car.json", "-o", "car.gif"])
+            .status
+            .code(),
+        Some(2)
+    );
+}

@@ -1,1 +1,103 @@
-fn main() {}
+//! Benchmark: replay of the paper's eight2car, and of a 1,000-statement sequence on a generated
+//! 10,000-module ATRON chain.
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use dynarole_core::{analyze, parse, RobotRegistry};
+use dynarole_replay::{assign_modules, replay, RobotWorld};
+use dynarole_world::Configuration;
+
+const FIG5: &str = include_str!("../../../examples/atron/eight2car.dr");
+const EIGHT: &str = include_str!("../../../examples/atron/eight.json");
+
+/// The zig-zag chain of the rotation experiments, `n` modules long (data-file JSON).
+fn chain(n: usize) -> String {
+    let modules: Vec<String> = (0..n)
+        .map(|k| {
+            let orientation = if k % 2 == 0 { "EW" } else { "NS" };
+            format!(r#"{{"name": "M{k}", "id": {k}, "position": [{k}, 0, {}], "orientation": "{orientation}", "joint": 0}}"#, k % 2)
+        })
+        .collect();
+    let connections: Vec<String> = (0..n - 1)
+        .map(|k| {
+            if k % 2 == 0 {
+                format!(r#"["M{k}", 5, "M{}", 0]"#, k + 1)
+            } else {
+                format!(r#"["M{k}", 2, "M{}", 1]"#, k + 1)
+            }
+        })
+        .collect();
+    format!(
+        r#"{{"name": "chain", "robot": "ATRON", "modules": [{}], "connections": [{}]}}"#,
+        modules.join(",\n"),
+        connections.join(",\n")
+    )
+}
+
+/// 1,000 statements: latches in the middle released and re-made, and the last joints turned
+/// back and forth (each turn moves the short end, checked against all 10,000 modules).
+fn chain_sequence(n: usize) -> String {
+    let mut body = String::new();
+    for i in 0..250 {
+        let k = n / 2 + 1 + 2 * (i % 100);
+        body.push_str(&format!("    M{k}.Connector[$CONNECTOR_0].retract();\n    M{k}.Connector[$CONNECTOR_0].extend();\n"));
+        let m = n - 2;
+        body.push_str(&format!(
+            "    M{m}.Joint.rotateFromToBy(0, 108, true, 150);\n    M{m}.Joint.rotateFromToBy(108, 0, false, 150);\n"
+        ));
+    }
+    format!("robot atron;\nsequence big {{\n{body}}}\n")
+}
+
+fn bench_replay(c: &mut Criterion, name: &str, source: &str, config: &str, sequence: &str) {
+    let registry = RobotRegistry::builtin();
+    let parsed = parse(source);
+    let (program, diagnostics) = analyze(&parsed.file, &registry);
+    let program = program.unwrap_or_else(|| panic!("{name}: {diagnostics:?}"));
+    let config = Configuration::from_json_str(config).unwrap_or_else(|e| panic!("{name}: {e}"));
+    let plans = vec![program
+        .expand(sequence)
+        .unwrap_or_else(|| panic!("{name}: no {sequence}"))];
+    let assignment =
+        assign_modules(&program, &plans, &config).unwrap_or_else(|e| panic!("{name}: {e:?}"));
+    let world = RobotWorld::new(config, &program.robot).unwrap_or_else(|e| panic!("{name}: {e}"));
+    let check = replay(&program, &plans, world.clone(), &assignment);
+    assert_eq!(
+        check.n_rejected,
+        0,
+        "{name}: {:?}",
+        check.diagnostics.first()
+    );
+    c.bench_function(name, |b| {
+        b.iter(|| replay(&program, &plans, world.clone(), &assignment))
+    });
+}
+
+fn benches(c: &mut Criterion) {
+    bench_replay(
+        c,
+        "replay eight2car (25 statements, 7 modules)",
+        FIG5,
+        EIGHT,
+        "eight2car",
+    );
+    let n = 10_000;
+    let config = chain(n);
+    let started = std::time::Instant::now();
+    let loaded = Configuration::from_json_str(&config);
+    assert!(loaded.is_ok());
+    println!("load a {n}-module configuration: {:?}", started.elapsed());
+    bench_replay(
+        c,
+        "replay 1,000 statements on a 10,000-module chain",
+        &chain_sequence(n),
+        &config,
+        "big",
+    );
+}
+
+criterion_group! {
+    name = replay_benches;
+    config = Criterion::default().sample_size(10);
+    targets = benches
+}
+criterion_main!(replay_benches);

@@ -2,7 +2,7 @@
 //! locked by a loop, and whether releasing a latch splits the robot.
 
 use crate::config::Latch;
-use std::collections::{BTreeSet, VecDeque};
+use std::collections::{BTreeMap, BTreeSet, VecDeque};
 
 /// Modules reachable from `starts` through latches without entering `barrier`.
 pub(crate) fn reachable(
@@ -15,17 +15,17 @@ pub(crate) fn reachable(
         .copied()
         .filter(|m| Some(*m) != barrier)
         .collect();
+    // Adjacency first, so the search is linear in the size of the robot rather than
+    // (modules x latches).
+    let mut adjacent: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
+    for latch in latches {
+        let (a, b) = (latch.male.module, latch.female.module);
+        adjacent.entry(a).or_default().push(b);
+        adjacent.entry(b).or_default().push(a);
+    }
     let mut queue: VecDeque<usize> = seen.iter().copied().collect();
     while let Some(current) = queue.pop_front() {
-        for latch in latches {
-            let (a, b) = (latch.male.module, latch.female.module);
-            let next = if a == current {
-                b
-            } else if b == current {
-                a
-            } else {
-                continue;
-            };
+        for &next in adjacent.get(&current).map(Vec::as_slice).unwrap_or(&[]) {
             if Some(next) != barrier && seen.insert(next) {
                 queue.push_back(next);
             }
