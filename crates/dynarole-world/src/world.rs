@@ -46,6 +46,15 @@ impl TurnMotion {
     }
 }
 
+/// A turn before it is done: the modules on the moving side and the signed quarter turns
+/// they make about the axis (`joint_quarters` is the change of the joint angle).
+struct PlannedTurn {
+    moving: BTreeSet<usize>,
+    turn_quarters: i32,
+    north_moves: bool,
+    joint_quarters: i32,
+}
+
 /// An ATRON configuration being reconfigured. Every operation either succeeds (possibly with
 /// warnings) and leaves a valid configuration, or fails and changes nothing.
 #[derive(Clone, Debug, PartialEq)]
@@ -122,25 +131,18 @@ impl World {
         increasing: bool,
     ) -> Result<Outcome, OpError> {
         let index = self.index(module)?;
-        self.check_rotation_angles(index, from_units, to_units)?;
-        let quarters = quarter_turns(from_units, to_units, increasing);
-        if quarters == 0 {
+        let turn = self.plan_turn(index, from_units, to_units, increasing)?;
+        if turn.joint_quarters == 0 {
             return Ok(warn(Warning::NoMotion {
                 module: module.to_string(),
             }));
         }
-        let sides = split_at_joint(&self.config.latches, index, is_north, |c| !is_north(c))
-            .map_err(|loop_side| OpError::JointLocked {
-                module: module.to_string(),
-                loop_modules: self.names(&loop_side),
-            })?;
-        // Keep the larger side still; on a tie the north side moves (atron.md a.4).
-        let north_moves = sides.first.len() <= sides.second.len();
-        let (moving, turn_quarters) = if north_moves {
-            (sides.first, -quarters)
-        } else {
-            (sides.second, quarters)
-        };
+        let (moving, turn_quarters, north_moves, quarters) = (
+            turn.moving,
+            turn.turn_quarters,
+            turn.north_moves,
+            turn.joint_quarters,
+        );
         let closest = self.check_sweep(index, &moving, turn_quarters)?;
         self.apply_turn(index, &moving, turn_quarters, !north_moves, quarters);
         let mut moved: BTreeSet<usize> = moving;
@@ -166,19 +168,11 @@ impl World {
         increasing: bool,
     ) -> Result<TurnMotion, OpError> {
         let index = self.index(module)?;
-        self.check_rotation_angles(index, from_units, to_units)?;
-        let quarters = quarter_turns(from_units, to_units, increasing);
-        let sides = split_at_joint(&self.config.latches, index, is_north, |c| !is_north(c))
-            .map_err(|loop_side| OpError::JointLocked {
-                module: module.to_string(),
-                loop_modules: self.names(&loop_side),
-            })?;
-        let north_moves = sides.first.len() <= sides.second.len();
-        let (moving, turn_quarters) = if north_moves {
-            (sides.first, -quarters)
-        } else {
-            (sides.second, quarters)
-        };
+        let PlannedTurn {
+            moving,
+            turn_quarters,
+            ..
+        } = self.plan_turn(index, from_units, to_units, increasing)?;
         let pivot_module = self.config.modules.get(index);
         Ok(TurnMotion {
             pivot: pivot_module.map_or([0.0; 3], |m| to_f64(m.position)),
@@ -193,6 +187,47 @@ impl World {
                         .map(|m| (m.name.clone(), to_f64(m.position)))
                 })
                 .collect(),
+        })
+    }
+
+    /// Which side of a turn moves and by how much, after checking the angles and that no
+    /// loop locks the joint. The side with more modules stays still; on a tie the north side
+    /// moves (atron.md a.4).
+    fn plan_turn(
+        &self,
+        index: usize,
+        from: u16,
+        to: u16,
+        increasing: bool,
+    ) -> Result<PlannedTurn, OpError> {
+        self.check_rotation_angles(index, from, to)?;
+        let joint_quarters = quarter_turns(from, to, increasing);
+        if joint_quarters == 0 {
+            // No motion: nothing to check, even on a locked joint.
+            let moving = BTreeSet::new();
+            return Ok(PlannedTurn {
+                moving,
+                turn_quarters: 0,
+                north_moves: false,
+                joint_quarters,
+            });
+        }
+        let sides = split_at_joint(&self.config.latches, index, is_north, |c| !is_north(c))
+            .map_err(|loop_side| OpError::JointLocked {
+                module: self.name(index),
+                loop_modules: self.names(&loop_side),
+            })?;
+        let north_moves = sides.first.len() <= sides.second.len();
+        let (moving, turn_quarters) = if north_moves {
+            (sides.first, -joint_quarters)
+        } else {
+            (sides.second, joint_quarters)
+        };
+        Ok(PlannedTurn {
+            moving,
+            turn_quarters,
+            north_moves,
+            joint_quarters,
         })
     }
 
