@@ -14,6 +14,7 @@ pub mod diagnostic;
 pub mod expand;
 pub mod format;
 pub mod lexer;
+pub mod lower;
 pub mod parser;
 pub mod reverse;
 pub mod robot;

@@ -277,3 +277,63 @@ fn expand_pass() {
     }
     insta::assert_snapshot!(snapshot(SMALL, "expand", &out));
 }
+
+fn ir_text(ir: &dynarole_core::lower::Ir) -> String {
+    let mut out = format!(
+        "robot {} window {} max_args {}\n",
+        ir.robot, ir.window, ir.max_args
+    );
+    for a in &ir.addresses {
+        out.push_str(&format!("address {} = {:?}\n", a.number, a.label));
+    }
+    for (i, (part, op)) in ir.operations.iter().enumerate() {
+        out.push_str(&format!("op {i} = {part}.{op}\n"));
+    }
+    for (i, s) in ir.statements.iter().enumerate() {
+        let sep = if s.separator == SeparatorKind::Parallel {
+            "&"
+        } else {
+            ";"
+        };
+        out.push_str(&format!(
+            "s{i:<3} @{} op{} [{}] {:?} deps {:?} {sep}  {}\n",
+            s.address, s.op, s.index, s.args, s.deps, s.text
+        ));
+    }
+    out
+}
+
+#[test]
+fn lower_pass_fig5() {
+    let parsed = parse(FIG5);
+    let (program, _) = analyze(&parsed.file, &RobotRegistry::builtin());
+    let program = program.expect("checks");
+    let plan = program.expand("eight2car").expect("exists");
+    let ir = program.lower(&[plan]).expect("fits");
+    let mut out = ir_text(&ir);
+    out.push_str("paper protocol states:\n");
+    for unit in ir.paper_layout().expect("fits") {
+        out.push_str(&format!(
+            "  {:>3} {:?} @{} {:?}\n",
+            unit.first_state, unit.kind, unit.address, unit.statements
+        ));
+    }
+    insta::assert_snapshot!(snapshot(
+        "(examples/atron/eight2car.dr, sequence eight2car)",
+        "lower",
+        &out
+    ));
+}
+
+#[test]
+fn lower_pass_nested_blocks() {
+    let source = "robot atron;\nsequence s {\n    { M0.Connector[0].retract(); M0.Joint.rotateFromToBy(0, 108, true, 150); } &\n    { M3.Connector[4].retract(); M1.Joint.rotateFromToBy(0, 324, false, 150); };\n    M0.Connector[0].extend();\n}\n";
+    let parsed = parse(source);
+    let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
+    assert!(diagnostics.is_empty(), "{diagnostics:?}");
+    let program = program.expect("checks");
+    let ir = program
+        .lower(&[program.expand("s").expect("s")])
+        .expect("fits");
+    insta::assert_snapshot!(snapshot(source, "lower", &ir_text(&ir)));
+}

@@ -1,0 +1,370 @@
+//! Lowering of expanded plans to the state-machine IR that every back-end (C, nesC, the model
+//! checker) is generated from: statements with module addresses, operation codes and their
+//! dependencies, and, for the paper's protocol, the original compiler's state numbers.
+
+use crate::ast::{Expr, SeparatorKind};
+use crate::check::{Label, Program, ResolvedStatement};
+use crate::expand::{Plan, PlanKind};
+use crate::robot::Value;
+use crate::span::Span;
+use std::collections::BTreeSet;
+
+/// Highest address a module can have: 254 and 255 are reserved (end, "all" and "none").
+pub const MAX_ADDRESS: u32 = 253;
+/// Largest window of the lattice protocol the compiler will generate.
+pub const MAX_WINDOW: usize = 128;
+/// States of the paper protocol are one byte, and 254, 255 are reserved.
+pub const MAX_PAPER_STATE: u32 = 253;
+
+/// The compiled form of one or more sequences run in turn.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Ir {
+    pub robot: String,
+    /// Who can run statements: index = address number is in `Address::number`.
+    pub addresses: Vec<Address>,
+    /// The operations used, in code order: `(part, operation)` names.
+    pub operations: Vec<(String, String)>,
+    pub statements: Vec<IrStatement>,
+    /// Statements the lattice protocol must track above its low-water mark (a multiple of 8).
+    pub window: usize,
+    /// The longest argument list.
+    pub max_args: usize,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Address {
+    pub number: u8,
+    pub label: Label,
+    /// For a role: its predicate (evaluated on the module at start-up).
+    pub predicate: Option<Expr>,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct IrStatement {
+    pub address: u8,
+    /// Index into `Ir::operations`.
+    pub op: u8,
+    pub index: u8,
+    pub args: Vec<i16>,
+    /// Statements that must be complete before this one starts: the previous parallel group
+    /// (within its block) and the previous statement of the same module.
+    pub deps: Vec<u16>,
+    /// `;` or `&` after it in the flattened source (the paper protocol's view).
+    pub separator: SeparatorKind,
+    /// The statement as executed, e.g. `M3.Joint.rotateFromToBy(0, 324, false, 150)`.
+    pub text: String,
+    pub span: Span,
+}
+
+/// A limit of the target that the sequence exceeds.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct LimitError {
+    pub message: String,
+    pub span: Span,
+}
+
+impl Program<'_> {
+    /// Lowers `plans` (run in turn) to the IR; fails, naming the limit, where a sequence does
+    /// not fit what the runtime encodes.
+    pub fn lower(&self, plans: &[Plan]) -> Result<Ir, LimitError> {
+        let mut flat = Vec::new();
+        let mut entry: Vec<u16> = Vec::new();
+        for plan in plans {
+            entry = flatten(plan, &entry, &mut flat);
+        }
+        check_count(&flat)?;
+        let addresses = self.addresses(&flat)?;
+        let mut operations: Vec<(String, String)> = Vec::new();
+        let mut statements = Vec::new();
+        for (statement, deps, separator) in &flat {
+            statements.push(self.lower_statement(
+                statement,
+                deps,
+                *separator,
+                &addresses,
+                &mut operations,
+                &statements,
+            )?);
+        }
+        let window = window_needed(&statements);
+        if window > MAX_WINDOW {
+            let message = format!("the lattice protocol would need a window of {window} statements (limit {MAX_WINDOW}): too many statements can be in progress at once");
+            return Err(LimitError {
+                message,
+                span: flat.first().map_or(Span::default(), |f| f.0.span),
+            });
+        }
+        let max_args = statements.iter().map(|s| s.args.len()).max().unwrap_or(0);
+        Ok(Ir {
+            robot: self.robot.name.clone(),
+            addresses,
+            operations,
+            statements,
+            window,
+            max_args,
+        })
+    }
+
+    fn lower_statement(
+        &self,
+        statement: &ResolvedStatement,
+        deps: &[u16],
+        separator: SeparatorKind,
+        addresses: &[Address],
+        operations: &mut Vec<(String, String)>,
+        earlier: &[IrStatement],
+    ) -> Result<IrStatement, LimitError> {
+        let limit = |message: String| LimitError {
+            message,
+            span: statement.span,
+        };
+        let address = addresses
+            .iter()
+            .find(|a| a.label == statement.label)
+            .map_or(0, |a| a.number);
+        let part = &self.robot.parts[statement.part];
+        let key = (
+            part.name.clone(),
+            part.operations[statement.operation].name.clone(),
+        );
+        let op = match operations.iter().position(|o| *o == key) {
+            Some(i) => i,
+            None => {
+                operations.push(key);
+                operations.len() - 1
+            }
+        };
+        let index = u8::try_from(statement.index.unwrap_or(0))
+            .map_err(|_| limit("part index above 255".into()))?;
+        let args = statement
+            .args
+            .iter()
+            .map(|v| match v {
+                Value::Int(n) => i16::try_from(*n)
+                    .map_err(|_| limit(format!("argument {n} does not fit in 16 bits"))),
+                Value::Bool(b) => Ok(i16::from(*b)),
+            })
+            .collect::<Result<Vec<i16>, LimitError>>()?;
+        let mut all_deps: BTreeSet<u16> = deps.iter().copied().collect();
+        // One operation at a time per module, in source order.
+        if let Some(previous) = earlier.iter().rposition(|s| s.address == address) {
+            all_deps.insert(previous as u16);
+        }
+        Ok(IrStatement {
+            address,
+            op: u8::try_from(op).map_err(|_| limit("more than 256 kinds of operation".into()))?,
+            index,
+            args,
+            deps: all_deps.into_iter().collect(),
+            separator,
+            text: statement.describe(&self.robot),
+            span: statement.span,
+        })
+    }
+
+    /// `M<k>` is address k; roles get the next free numbers, in declaration order.
+    fn addresses(
+        &self,
+        flat: &[(ResolvedStatement, Vec<u16>, SeparatorKind)],
+    ) -> Result<Vec<Address>, LimitError> {
+        let mut addresses: Vec<Address> = Vec::new();
+        for (statement, _, _) in flat {
+            let Label::Module(id) = statement.label else {
+                continue;
+            };
+            if id > MAX_ADDRESS {
+                let message = format!("module ID {id} is above {MAX_ADDRESS}, the largest address a one-byte packet field can carry");
+                return Err(LimitError {
+                    message,
+                    span: statement.span,
+                });
+            }
+            if !addresses.iter().any(|a| a.label == statement.label) {
+                addresses.push(Address {
+                    number: id as u8,
+                    label: statement.label.clone(),
+                    predicate: None,
+                });
+            }
+        }
+        let mut next = addresses
+            .iter()
+            .map(|a| u32::from(a.number) + 1)
+            .max()
+            .unwrap_or(0);
+        for role in self.file.roles() {
+            let label = Label::Role(role.name.name.clone());
+            if !flat.iter().any(|(s, _, _)| s.label == label) {
+                continue;
+            }
+            if next > MAX_ADDRESS {
+                return Err(LimitError {
+                    message: format!("more roles and modules than the {MAX_ADDRESS} addresses"),
+                    span: role.span,
+                });
+            }
+            addresses.push(Address {
+                number: next as u8,
+                label,
+                predicate: Some(role.predicate.clone()),
+            });
+            next += 1;
+        }
+        addresses.sort_by_key(|a| a.number);
+        Ok(addresses)
+    }
+}
+
+fn check_count(flat: &[(ResolvedStatement, Vec<u16>, SeparatorKind)]) -> Result<(), LimitError> {
+    if flat.len() > usize::from(u16::MAX) - 1 {
+        let span = flat.last().map_or(Span::default(), |f| f.0.span);
+        return Err(LimitError {
+            message: format!("{} statements; the limit is {}", flat.len(), u16::MAX - 1),
+            span,
+        });
+    }
+    Ok(())
+}
+
+/// Appends the statements of `plan` to `out` with their dependencies; `entry` is what must be
+/// complete before the plan starts. Returns the statements whose completion ends the plan.
+fn flatten(
+    plan: &Plan,
+    entry: &[u16],
+    out: &mut Vec<(ResolvedStatement, Vec<u16>, SeparatorKind)>,
+) -> Vec<u16> {
+    let mut group_entry: Vec<u16> = entry.to_vec();
+    let mut group_exit: Vec<u16> = Vec::new();
+    for element in &plan.elements {
+        let exit = match &element.kind {
+            PlanKind::Op(statement) => {
+                out.push((statement.clone(), group_entry.clone(), element.separator));
+                vec![(out.len() - 1) as u16]
+            }
+            PlanKind::Block(inner) => {
+                let exit = flatten(inner, &group_entry, out);
+                // The block's last statement carries the block's own separator.
+                if let Some(last) = out.last_mut() {
+                    last.2 = element.separator;
+                }
+                exit
+            }
+        };
+        group_exit.extend(exit);
+        if element.separator == SeparatorKind::Sequential {
+            group_entry = std::mem::take(&mut group_exit);
+        }
+    }
+    // A body ends with `;`, so group_exit is empty here; an unclosed group would end the
+    // plan together with the last closed one.
+    group_entry.extend(group_exit);
+    group_entry
+}
+
+/// The smallest window (multiple of 8, at least 8) covering, for every statement s, every
+/// earlier statement that is not a (transitive) dependency of s: those can still be incomplete
+/// when s is complete, so both must fit above the low-water mark.
+fn window_needed(statements: &[IrStatement]) -> usize {
+    let n = statements.len();
+    let mut ancestors: Vec<BTreeSet<usize>> = Vec::with_capacity(n);
+    let mut needed = 1usize;
+    for (s, statement) in statements.iter().enumerate() {
+        let mut mine = BTreeSet::new();
+        for &d in &statement.deps {
+            let d = usize::from(d);
+            mine.insert(d);
+            if let Some(theirs) = ancestors.get(d) {
+                mine.extend(theirs.iter().copied());
+            }
+        }
+        if let Some(lowest) = (0..s).find(|t| !mine.contains(t)) {
+            needed = needed.max(s - lowest + 1);
+        }
+        ancestors.push(mine);
+    }
+    needed.div_ceil(8).max(1) * 8
+}
+
+/// How the paper's compiler turned a statement (or a block) into states (e.9 of the protocol
+/// notes): a parallel statement takes 3 states, a sequential one or a block of one module's
+/// operations 2.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum PaperUnitKind {
+    /// `S`: add pending and start; `S+1`: transfer; `S+2`: wait, remove pending.
+    Parallel,
+    /// `S`: start; `S+1`: wait for the operation and an empty pending set, then go on.
+    Sequential,
+    /// A group `A & B & ... & Z;` all on one module: `S` starts all, `S+1` waits for all
+    /// (without looking at the pending set, as the original did).
+    Block,
+}
+
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct PaperUnit {
+    pub kind: PaperUnitKind,
+    pub first_state: u8,
+    /// Indices into `Ir::statements`.
+    pub statements: Vec<usize>,
+    pub address: u8,
+}
+
+impl Ir {
+    /// The state layout of the paper's compiler. The plan must already be flat (see
+    /// `Plan::flatten_for_paper`).
+    pub fn paper_layout(&self) -> Result<Vec<PaperUnit>, LimitError> {
+        let mut units = Vec::new();
+        let mut state = 1u32;
+        let mut start = 0usize;
+        while start < self.statements.len() {
+            let end = (start..self.statements.len())
+                .find(|&i| self.statements[i].separator == SeparatorKind::Sequential)
+                .map_or(self.statements.len(), |i| i + 1);
+            let group: Vec<usize> = (start..end).collect();
+            let address = self.statements[start].address;
+            if group.len() > 1 && group.iter().all(|&i| self.statements[i].address == address) {
+                units.push(self.paper_unit(PaperUnitKind::Block, &mut state, group, address)?);
+            } else {
+                for i in group {
+                    let kind = match self.statements[i].separator {
+                        SeparatorKind::Parallel => PaperUnitKind::Parallel,
+                        SeparatorKind::Sequential => PaperUnitKind::Sequential,
+                    };
+                    let address = self.statements[i].address;
+                    units.push(self.paper_unit(kind, &mut state, vec![i], address)?);
+                }
+            }
+            start = end;
+        }
+        Ok(units)
+    }
+
+    fn paper_unit(
+        &self,
+        kind: PaperUnitKind,
+        state: &mut u32,
+        statements: Vec<usize>,
+        address: u8,
+    ) -> Result<PaperUnit, LimitError> {
+        let size = if kind == PaperUnitKind::Parallel {
+            3
+        } else {
+            2
+        };
+        if *state + size - 1 > MAX_PAPER_STATE {
+            let span = statements
+                .first()
+                .and_then(|&i| self.statements.get(i))
+                .map_or(Span::default(), |s| s.span);
+            let message = format!("the paper protocol numbers states in one byte (1 to {MAX_PAPER_STATE}); this statement would need state {}", *state + size - 1);
+            return Err(LimitError { message, span });
+        }
+        let unit = PaperUnit {
+            kind,
+            first_state: *state as u8,
+            statements,
+            address,
+        };
+        *state += size;
+        Ok(unit)
+    }
+}

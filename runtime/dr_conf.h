@@ -1,0 +1,51 @@
+/* dr_conf.h - every tunable of the dynarole runtime, in one place.
+ *
+ * Each value can be overridden with -D on the compiler command line or by the generated
+ * dr_program_conf.h (included first), which sets the sizes a given sequence needs. */
+#ifndef DR_CONF_H
+#define DR_CONF_H
+
+#include "dr_program_conf.h"
+
+/* Most statements a compiled program may have (the compiler checks and sets it). */
+#ifndef DR_CONF_MAX_STATEMENTS
+#define DR_CONF_MAX_STATEMENTS 255
+#endif
+
+/* Lattice protocol: statements tracked above the low-water mark, a multiple of 8. The
+ * compiler computes the window the sequence needs and sets it; packets carry 2 * window / 8
+ * bytes of sets. */
+#ifndef DR_CONF_WINDOW
+#define DR_CONF_WINDOW 16
+#endif
+
+/* Most arguments of one operation. */
+#ifndef DR_CONF_MAX_ARGS
+#define DR_CONF_MAX_ARGS 4
+#endif
+
+/* Paper protocol: slots of the pending set (the original used 5). */
+#ifndef DR_CONF_MAX_PENDING
+#define DR_CONF_MAX_PENDING 5
+#endif
+
+/* Period of the continuous broadcast, and the random jitter added to each period (ms). The
+ * original simulator used 100 ms and no jitter; the nesC version 200 ms plus 0-127 ms. */
+#ifndef DR_CONF_BROADCAST_MS
+#define DR_CONF_BROADCAST_MS 100
+#endif
+#ifndef DR_CONF_BROADCAST_JITTER_MS
+#define DR_CONF_BROADCAST_JITTER_MS 0
+#endif
+
+/* Largest packet, in bytes (receive buffers are this big). */
+#ifndef DR_CONF_MAX_PACKET
+#define DR_CONF_MAX_PACKET 48
+#endif
+
+/* Connectors (infrared channels) per module. */
+#ifndef DR_CONF_CHANNELS
+#define DR_CONF_CHANNELS 8
+#endif
+
+#endif /* DR_CONF_H */

@@ -1,0 +1,53 @@
+/* dr_hal.h - the hardware a module's runtime needs, as functions the platform provides.
+ *
+ * Every function takes the module context, so the simulator can run many modules of the same
+ * code in one process while an MCU has one static instance. The platform implements these;
+ * the runtime never touches hardware otherwise. */
+#ifndef DR_HAL_H
+#define DR_HAL_H
+
+#include <stdint.h>
+
+struct dr_module; /* defined in dr_module.h */
+
+/* Status of the operations started with dr_hal_op_start: DR_OP_DONE once every operation
+ * started so far has taken effect (a module runs one operation at a time, except the paper
+ * protocol's blocks, which start several on one module and wait for all of them). */
+enum dr_op_status {
+    DR_OP_RUNNING = 0,
+    DR_OP_DONE = 1,
+    DR_OP_FAILED = 2
+};
+
+/* Milliseconds since power-on (wraps after 49 days). */
+uint32_t dr_hal_now_ms(struct dr_module *m);
+/* A pseudo-random 16-bit number (for broadcast jitter). */
+uint16_t dr_hal_random(struct dr_module *m);
+
+/* Sends `len` bytes on every channel the module can send on (continuous local broadcast). */
+void dr_hal_broadcast(struct dr_module *m, const uint8_t *bytes, uint8_t len);
+/* Incoming packets are handed to dr_module_receive() (dr_module.h) by the platform. */
+
+/* Starts a robot operation: `op` is the plugin's operation code (generated dr_program.h),
+ * `index` the part index (connector or joint; 0 if the part has none), `args` its arguments.
+ * Operations are idempotent: re-issuing one that already took effect completes at once. */
+void dr_hal_op_start(struct dr_module *m, uint8_t op, uint8_t index, const int16_t *args);
+/* Whether the started operations are still running, all done, or one failed. */
+enum dr_op_status dr_hal_op_status(struct dr_module *m);
+
+/* What role predicates may ask (see docs/language.md). */
+uint16_t dr_hal_id(struct dr_module *m);
+uint8_t dr_hal_connected(struct dr_module *m, uint8_t connector);
+/* ID of the module latched to `connector`, -1 when none. */
+int16_t dr_hal_neighbour_id(struct dr_module *m, uint8_t connector);
+int16_t dr_hal_joint(struct dr_module *m, uint8_t joint);
+
+/* Shows a small number on the module's LEDs (debugging aid; may do nothing). */
+void dr_hal_leds(struct dr_module *m, uint8_t value);
+
+/* Non-volatile storage (EEPROM on the ATmega128, a per-module store in the simulator):
+ * `len` bytes at byte address `addr`. Reads of never-written storage return 0xFF bytes. */
+void dr_hal_nv_read(struct dr_module *m, uint16_t addr, uint8_t *buf, uint8_t len);
+void dr_hal_nv_write(struct dr_module *m, uint16_t addr, const uint8_t *buf, uint8_t len);
+
+#endif /* DR_HAL_H */
