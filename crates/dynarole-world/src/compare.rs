@@ -6,6 +6,7 @@ use crate::atron::Orientation;
 use crate::config::{Configuration, NamedConnection};
 use crate::geometry::{add, sub, Rotation, Vec3};
 use crate::mtran::MtranOrientation;
+use crate::structure::{RobotModule, Structure};
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt;
 
@@ -150,14 +151,6 @@ struct Shape {
     position_scale: i32,
 }
 
-fn atron_frame_name(r: Rotation) -> String {
-    Orientation::from_frame(r).name()
-}
-
-fn mtran_frame_name(r: Rotation) -> String {
-    MtranOrientation::from_frame(r).name()
-}
-
 fn connection_names(connections: Vec<NamedConnection>) -> BTreeSet<String> {
     connections
         .into_iter()
@@ -167,42 +160,47 @@ fn connection_names(connections: Vec<NamedConnection>) -> BTreeSet<String> {
 
 fn shape(config: &Configuration) -> Shape {
     match config {
-        Configuration::Atron(c) => Shape {
-            bodies: c
-                .modules()
-                .iter()
-                .map(|m| {
-                    let body = Body {
-                        id: m.id,
-                        position: m.position,
-                        frame: m.orientation.frame(),
-                        joints: vec![i32::from(m.joint_units)],
-                    };
-                    (m.name.clone(), body)
-                })
-                .collect(),
-            connections: connection_names(c.named_connections()),
-            name_frame: atron_frame_name,
-            position_scale: 1,
-        },
-        Configuration::Mtran(c) => Shape {
-            bodies: c
-                .modules()
-                .iter()
-                .map(|m| {
-                    let body = Body {
-                        id: m.id,
-                        position: m.centre_quarter_pitch,
-                        frame: m.orientation.frame(),
-                        joints: m.joints_deg.iter().map(|j| i32::from(*j)).collect(),
-                    };
-                    (m.name.clone(), body)
-                })
-                .collect(),
-            connections: connection_names(c.named_connections()),
-            name_frame: mtran_frame_name,
-            position_scale: 2,
-        },
+        Configuration::Atron(c) => shape_of(
+            &c.structure,
+            |m| Body {
+                id: m.id,
+                position: m.position,
+                frame: m.orientation.frame(),
+                joints: vec![i32::from(m.joint_units)],
+            },
+            |r| Orientation::from_frame(r).name(),
+            1,
+        ),
+        Configuration::Mtran(c) => shape_of(
+            &c.structure,
+            |m| Body {
+                id: m.id,
+                position: m.centre_quarter_pitch,
+                frame: m.orientation.frame(),
+                joints: m.joints_deg.iter().map(|j| i32::from(*j)).collect(),
+            },
+            |r| MtranOrientation::from_frame(r).name(),
+            2,
+        ),
+    }
+}
+
+/// Either robot's modules reduced by `body`, keyed by name, and its connections.
+fn shape_of<M: RobotModule>(
+    structure: &Structure<M>,
+    body: fn(&M) -> Body,
+    name_frame: fn(Rotation) -> String,
+    position_scale: i32,
+) -> Shape {
+    Shape {
+        bodies: structure
+            .modules()
+            .iter()
+            .map(|m| (m.name().to_string(), body(m)))
+            .collect(),
+        connections: connection_names(structure.named_connections()),
+        name_frame,
+        position_scale,
     }
 }
 

@@ -4,6 +4,7 @@
 use crate::atron::{is_joint_position, is_male, LatticePhase, Orientation, CONNECTOR_COUNT};
 use crate::geometry::{add, sub, within_bounds, Rotation, Vec3, MAX_COORDINATE};
 use crate::mtran::MtranConfiguration;
+use crate::structure::{RobotModule, Structure};
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt;
 
@@ -198,11 +199,13 @@ impl AtronModule {
 /// A validated ATRON configuration: unique names and ids, legal sites in one lattice phase, at
 /// most one module per site, legal joint angles, and latches that join a male and a female
 /// connector facing each other, no connector used twice.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, PartialEq)]
 pub struct AtronConfiguration {
     pub(crate) metadata: Metadata,
-    pub(crate) modules: Vec<AtronModule>,
-    pub(crate) latches: BTreeSet<Latch>,
+    pub(crate) structure: Structure<AtronModule>,
+    /// Module index by site. Positions change only through [`AtronConfiguration::turn_modules`],
+    /// which keeps it in step.
+    sites: BTreeMap<Vec3, usize>,
     pub(crate) phase: Option<LatticePhase>,
 }
 
@@ -214,13 +217,13 @@ impl AtronConfiguration {
         modules: Vec<AtronModule>,
         connections: &[NamedConnection],
     ) -> Result<AtronConfiguration, ConfigError> {
-        check_names_and_ids(modules.iter().map(|m| (m.name.as_str(), m.id)))?;
-        let phase = check_sites(&modules)?;
-        let latches = check_connections(&modules, connections)?;
+        let mut structure = Structure::new(modules)?;
+        let (phase, sites) = check_sites(structure.modules())?;
+        structure.connect_all(connections)?;
         Ok(AtronConfiguration {
             metadata,
-            modules,
-            latches,
+            structure,
+            sites,
             phase,
         })
     }
@@ -232,32 +235,32 @@ impl AtronConfiguration {
 
     /// Modules in file order (the order never changes).
     pub fn modules(&self) -> &[AtronModule] {
-        &self.modules
+        self.structure.modules()
     }
 
     /// The module at `index`.
     pub fn module(&self, index: usize) -> Option<&AtronModule> {
-        self.modules.get(index)
+        self.structure.module(index)
     }
 
     /// Index of the module called `name`.
     pub fn module_index(&self, name: &str) -> Option<usize> {
-        self.modules.iter().position(|m| m.name == name)
+        self.structure.module_index(name)
     }
 
     /// Index of the module with numeric ID `id`.
     pub fn module_index_by_id(&self, id: u32) -> Option<usize> {
-        self.modules.iter().position(|m| m.id == Some(id))
+        self.structure.module_index_by_id(id)
     }
 
     /// Index of the module at lattice site `site`.
     pub fn module_at(&self, site: Vec3) -> Option<usize> {
-        self.modules.iter().position(|m| m.position == site)
+        self.sites.get(&site).copied()
     }
 
     /// The latches, ordered by male port.
     pub fn latches(&self) -> &BTreeSet<Latch> {
-        &self.latches
+        self.structure.latches()
     }
 
     /// The structure's lattice phase (`None` only for an empty configuration).
@@ -267,20 +270,16 @@ impl AtronConfiguration {
 
     /// `M3.C4` for a port.
     pub fn port_name(&self, port: Port) -> String {
-        let name = self
-            .modules
-            .get(port.module)
-            .map_or("?", |m| m.name.as_str());
-        format!("{name}.C{}", port.connector)
+        self.structure.port_name(port)
     }
 
     /// The connector of another module that `port` faces (any gender), if a module sits on the
     /// site it points at.
     pub fn facing(&self, port: Port) -> Option<Port> {
-        let module = self.modules.get(port.module)?;
+        let module = self.module(port.module)?;
         let site = add(module.position, module.connector_offset(port.connector)?);
         let other_index = self.module_at(site)?;
-        let other = self.modules.get(other_index)?;
+        let other = self.module(other_index)?;
         let back = sub(module.position, other.position);
         (0..CONNECTOR_COUNT)
             .find(|c| other.connector_offset(*c) == Some(back))
@@ -292,7 +291,7 @@ impl AtronConfiguration {
 
     /// The port latched to `port`, if any.
     pub fn latched_to(&self, port: Port) -> Option<Port> {
-        self.latches.iter().find_map(|l| l.other_end(port))
+        self.structure.latched_to(port)
     }
 
     /// True when `port` is latched.
@@ -302,22 +301,7 @@ impl AtronConfiguration {
 
     /// The latches as names, male first, in latch order.
     pub fn named_connections(&self) -> Vec<NamedConnection> {
-        let name = |p: Port| {
-            self.modules
-                .get(p.module)
-                .map_or(String::new(), |m| m.name.clone())
-        };
-        self.latches
-            .iter()
-            .map(|l| {
-                (
-                    name(l.male),
-                    l.male.connector,
-                    name(l.female),
-                    l.female.connector,
-                )
-            })
-            .collect()
+        self.structure.named_connections()
     }
 
     /// The configuration turned by `rotation` about the origin, then shifted by `translation`
@@ -328,14 +312,9 @@ impl AtronConfiguration {
         rotation: Rotation,
         translation: Vec3,
     ) -> Result<AtronConfiguration, ConfigError> {
-        if !within_bounds(translation) {
-            return Err(ConfigError::new(
-                "translation",
-                format!("coordinates must be within +-{MAX_COORDINATE}"),
-            ));
-        }
+        check_translation(translation)?;
         let modules = self
-            .modules
+            .modules()
             .iter()
             .map(|m| AtronModule {
                 position: add(rotation.apply(m.position), translation),
@@ -345,38 +324,119 @@ impl AtronConfiguration {
             .collect();
         AtronConfiguration::new(self.metadata.clone(), modules, &self.named_connections())
     }
-}
 
-/// Checks that names are non-empty and unique and that given ids are unique.
-pub(crate) fn check_names_and_ids<'a>(
-    modules: impl Iterator<Item = (&'a str, Option<u32>)>,
-) -> Result<(), ConfigError> {
-    let mut names: BTreeMap<&str, usize> = BTreeMap::new();
-    let mut ids: BTreeMap<u32, usize> = BTreeMap::new();
-    for (i, (name, id)) in modules.enumerate() {
-        if name.is_empty() {
-            return Err(ConfigError::new(format!("modules[{i}].name"), "empty name"));
+    /// Turns the modules `moving` by `rotation` about `pivot`, keeping the site index in step.
+    pub(crate) fn turn_modules(
+        &mut self,
+        moving: &BTreeSet<usize>,
+        pivot: Vec3,
+        rotation: &Rotation,
+    ) {
+        for i in moving {
+            if let Some(m) = self.structure.module_mut(*i) {
+                self.sites.remove(&m.position);
+                m.position = add(pivot, rotation.apply(sub(m.position, pivot)));
+                m.orientation = m.orientation.rotated(rotation);
+            }
         }
-        if let Some(j) = names.insert(name, i) {
-            return Err(ConfigError::new(
-                format!("modules[{i}].name"),
-                format!("duplicate module name \"{name}\" (also modules[{j}])"),
-            ));
-        }
-        if let Some(id) = id {
-            if let Some(j) = ids.insert(id, i) {
-                return Err(ConfigError::new(
-                    format!("modules[{i}].id"),
-                    format!("duplicate module id {id} (also modules[{j}])"),
-                ));
+        // Entered only once all have left: a module may move onto a site another one vacated.
+        for i in moving {
+            if let Some(m) = self.structure.module(*i) {
+                self.sites.insert(m.position, *i);
             }
         }
     }
-    Ok(())
 }
 
-/// Checks joints, coordinates, the single lattice phase and one module per site.
-fn check_sites(modules: &[AtronModule]) -> Result<Option<LatticePhase>, ConfigError> {
+// Written out so that the output stays what it was before the indices: they only repeat the
+// modules and latches.
+impl fmt::Debug for AtronConfiguration {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("AtronConfiguration")
+            .field("metadata", &self.metadata)
+            .field("modules", &self.modules())
+            .field("latches", self.latches())
+            .field("phase", &self.phase)
+            .finish()
+    }
+}
+
+/// Rejects a translation outside the coordinate bounds, before it can overflow the arithmetic
+/// of the positions it shifts.
+pub(crate) fn check_translation(translation: Vec3) -> Result<(), ConfigError> {
+    if within_bounds(translation) {
+        return Ok(());
+    }
+    Err(ConfigError::new(
+        "translation",
+        format!("coordinates must be within +-{MAX_COORDINATE}"),
+    ))
+}
+
+impl RobotModule for AtronModule {
+    const ROBOT: &'static str = "ATRON";
+    const CONNECTOR_COUNT: u8 = CONNECTOR_COUNT;
+    const FEMALE_CONNECTOR: &'static str = "a female connector";
+
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    fn id(&self) -> Option<u32> {
+        self.id
+    }
+
+    fn is_male(connector: u8) -> bool {
+        is_male(connector)
+    }
+
+    fn same_gender_message(label_a: &str, label_b: &str, both_male: bool) -> String {
+        let kind = if both_male { "male" } else { "female" };
+        format!(
+            "{label_a} and {label_b} are both {kind}; a latch joins a male (even) and a female \
+             (odd) connector"
+        )
+    }
+
+    /// Each connector must point at the other module's site.
+    fn check_facing(
+        modules: &[AtronModule],
+        path: &str,
+        (a, la): (Port, &str),
+        (b, lb): (Port, &str),
+    ) -> Result<(), ConfigError> {
+        for ((from, lfrom), (to, _)) in [((a, la), (b, lb)), ((b, lb), (a, la))] {
+            let (Some(m_from), Some(m_to)) = (modules.get(from.module), modules.get(to.module))
+            else {
+                return Err(ConfigError::new(
+                    path,
+                    "connection refers to a missing module",
+                ));
+            };
+            let offset = m_from.connector_offset(from.connector);
+            let target = offset.map(|o| add(m_from.position, o));
+            if target != Some(m_to.position) {
+                return Err(ConfigError::new(
+                    path,
+                    format!(
+                        "{la} and {lb} do not face each other: {lfrom} points at site {:?} but \
+                         {} is at {:?}",
+                        target.unwrap_or(m_from.position),
+                        m_to.name,
+                        m_to.position
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Checks joints, coordinates, the single lattice phase and one module per site; returns the
+/// phase and the module index by site.
+fn check_sites(
+    modules: &[AtronModule],
+) -> Result<(Option<LatticePhase>, BTreeMap<Vec3, usize>), ConfigError> {
     let mut phase: Option<LatticePhase> = None;
     let mut sites: BTreeMap<Vec3, usize> = BTreeMap::new();
     for (i, m) in modules.iter().enumerate() {
@@ -426,105 +486,5 @@ fn check_sites(modules: &[AtronModule]) -> Result<Option<LatticePhase>, ConfigEr
             ));
         }
     }
-    Ok(phase)
-}
-
-/// Resolves and checks every connection: known modules, connectors in range, one male and one
-/// female end, the two connectors facing each other, no connector used twice.
-fn check_connections(
-    modules: &[AtronModule],
-    connections: &[NamedConnection],
-) -> Result<BTreeSet<Latch>, ConfigError> {
-    let mut used: BTreeMap<Port, usize> = BTreeMap::new();
-    let mut latches = BTreeSet::new();
-    for (k, (name_a, conn_a, name_b, conn_b)) in connections.iter().enumerate() {
-        let a = resolve_port(modules, k, 0, name_a, *conn_a)?;
-        let b = resolve_port(modules, k, 2, name_b, *conn_b)?;
-        let path = format!("connections[{k}]");
-        let label = |p: Port, name: &str| format!("{name}.C{}", p.connector);
-        let (la, lb) = (label(a, name_a), label(b, name_b));
-        if a.module == b.module {
-            return Err(ConfigError::new(path, "a module cannot latch onto itself"));
-        }
-        let latch = match (is_male(a.connector), is_male(b.connector)) {
-            (true, false) => Latch { male: a, female: b },
-            (false, true) => Latch { male: b, female: a },
-            (both_male, _) => {
-                let kind = if both_male { "male" } else { "female" };
-                return Err(ConfigError::new(
-                    path,
-                    format!(
-                        "{la} and {lb} are both {kind}; a latch joins a male (even) and a \
-                         female (odd) connector"
-                    ),
-                ));
-            }
-        };
-        check_facing(modules, &path, (a, &la), (b, &lb))?;
-        for (port, index, port_label) in [(a, 1, &la), (b, 3, &lb)] {
-            if let Some(j) = used.insert(port, k) {
-                return Err(ConfigError::new(
-                    format!("connections[{k}][{index}]"),
-                    format!("connector {port_label} is already used by connections[{j}]"),
-                ));
-            }
-        }
-        latches.insert(latch);
-    }
-    Ok(latches)
-}
-
-/// Finds the module of a connection end; `field` is 0 or 2 (module name position in the array).
-fn resolve_port(
-    modules: &[AtronModule],
-    k: usize,
-    field: usize,
-    name: &str,
-    connector: u8,
-) -> Result<Port, ConfigError> {
-    let module = modules.iter().position(|m| m.name == name).ok_or_else(|| {
-        ConfigError::new(
-            format!("connections[{k}][{field}]"),
-            format!("unknown module \"{name}\""),
-        )
-    })?;
-    if connector >= CONNECTOR_COUNT {
-        return Err(ConfigError::new(
-            format!("connections[{k}][{}]", field + 1),
-            format!("connector {connector} does not exist; ATRON connectors are 0-7"),
-        ));
-    }
-    Ok(Port { module, connector })
-}
-
-/// Checks that each connector points at the other module's site.
-fn check_facing(
-    modules: &[AtronModule],
-    path: &str,
-    (a, la): (Port, &str),
-    (b, lb): (Port, &str),
-) -> Result<(), ConfigError> {
-    for ((from, lfrom), (to, _)) in [((a, la), (b, lb)), ((b, lb), (a, la))] {
-        let (Some(m_from), Some(m_to)) = (modules.get(from.module), modules.get(to.module)) else {
-            return Err(ConfigError::new(
-                path,
-                "connection refers to a missing module",
-            ));
-        };
-        let offset = m_from.connector_offset(from.connector);
-        let target = offset.map(|o| add(m_from.position, o));
-        if target != Some(m_to.position) {
-            return Err(ConfigError::new(
-                path,
-                format!(
-                    "{la} and {lb} do not face each other: {lfrom} points at site {:?} but {} is \
-                     at {:?}",
-                    target.unwrap_or(m_from.position),
-                    m_to.name,
-                    m_to.position
-                ),
-            ));
-        }
-    }
-    Ok(())
+    Ok((phase, sites))
 }

@@ -60,6 +60,20 @@ pub(crate) struct Sides {
     pub second: BTreeSet<usize>,
 }
 
+impl Sides {
+    /// The side that turns when the joint angle changes by `joint_quarters`, its signed quarter
+    /// turns about the joint axis, and whether it is the first side. The side with fewer
+    /// modules moves (tie: the first, north one); the joint angle measures the second side
+    /// against the first, so the first side turns the opposite way.
+    pub(crate) fn moving(self, joint_quarters: i32) -> (BTreeSet<usize>, i32, bool) {
+        if self.first.len() <= self.second.len() {
+            (self.first, -joint_quarters, true)
+        } else {
+            (self.second, joint_quarters, false)
+        }
+    }
+}
+
 /// Splits the structure at a joint of `module`. `Err(loop modules)` when the two halves are
 /// joined through other modules, in which case the joint cannot turn.
 pub(crate) fn split_at_joint(

@@ -18,7 +18,9 @@ mod json;
 pub mod mtran;
 mod mtran_world;
 mod ops;
+mod structure;
 mod world;
+mod world_common;
 
 pub use atron::{Orientation, OrientationBase, MIN_SWEEP_DISTANCE_LATTICE};
 pub use compare::{compare, Difference, JointDifference, Misplaced};

@@ -10,8 +10,9 @@
 //! right-handed about the joint axis, which is the module's local +y (world: `joint_axis`),
 //! relative to the side before it. Joint axes pass through the centre of their block.
 
-use crate::config::{check_names_and_ids, ConfigError, Latch, Metadata, NamedConnection, Port};
+use crate::config::{check_translation, ConfigError, Latch, Metadata, NamedConnection, Port};
 use crate::geometry::{add, axis_name, scale, sub, within_bounds, Rotation, Vec3, MAX_COORDINATE};
+use crate::structure::{RobotModule, Structure};
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt;
 
@@ -258,11 +259,10 @@ impl MtranModule {
 /// A validated M-TRAN configuration: unique names and ids, joints at -90, 0 or 90, every block
 /// on one cubic block lattice, no two blocks in one cell, and latches joining a male (0-2) and
 /// a female (3-5) connector whose faces touch with opposite normals, no connector used twice.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, PartialEq)]
 pub struct MtranConfiguration {
     pub(crate) metadata: Metadata,
-    pub(crate) modules: Vec<MtranModule>,
-    pub(crate) latches: BTreeSet<Latch>,
+    pub(crate) structure: Structure<MtranModule>,
 }
 
 impl MtranConfiguration {
@@ -272,13 +272,12 @@ impl MtranConfiguration {
         modules: Vec<MtranModule>,
         connections: &[NamedConnection],
     ) -> Result<MtranConfiguration, ConfigError> {
-        check_names_and_ids(modules.iter().map(|m| (m.name.as_str(), m.id)))?;
-        check_blocks(&modules)?;
-        let latches = check_connections(&modules, connections)?;
+        let mut structure = Structure::new(modules)?;
+        check_blocks(structure.modules())?;
+        structure.connect_all(connections)?;
         Ok(MtranConfiguration {
             metadata,
-            modules,
-            latches,
+            structure,
         })
     }
 
@@ -289,38 +288,37 @@ impl MtranConfiguration {
 
     /// Modules in file order.
     pub fn modules(&self) -> &[MtranModule] {
-        &self.modules
+        self.structure.modules()
     }
 
     /// Index of the module called `name`.
     pub fn module_index(&self, name: &str) -> Option<usize> {
-        self.modules.iter().position(|m| m.name == name)
+        self.structure.module_index(name)
     }
 
     /// Index of the module with numeric ID `id`.
     pub fn module_index_by_id(&self, id: u32) -> Option<usize> {
-        self.modules.iter().position(|m| m.id == Some(id))
+        self.structure.module_index_by_id(id)
     }
 
     /// The latches, ordered by male port.
     pub fn latches(&self) -> &BTreeSet<Latch> {
-        &self.latches
+        self.structure.latches()
     }
 
     /// `T10.C3` for a port.
     pub fn port_name(&self, port: Port) -> String {
-        let name = self
-            .modules
-            .get(port.module)
-            .map_or("?", |m| m.name.as_str());
-        format!("{name}.C{}", port.connector)
+        self.structure.port_name(port)
     }
 
     /// The connector of another module whose face touches `port`'s face with the opposite
     /// normal, if any.
     pub fn facing(&self, port: Port) -> Option<Port> {
-        let pose = self.modules.get(port.module)?.connector(port.connector)?;
-        self.modules.iter().enumerate().find_map(|(index, m)| {
+        let pose = self
+            .structure
+            .module(port.module)?
+            .connector(port.connector)?;
+        self.modules().iter().enumerate().find_map(|(index, m)| {
             if index == port.module {
                 return None;
             }
@@ -335,7 +333,7 @@ impl MtranConfiguration {
 
     /// The port latched to `port`, if any.
     pub fn latched_to(&self, port: Port) -> Option<Port> {
-        self.latches.iter().find_map(|l| l.other_end(port))
+        self.structure.latched_to(port)
     }
 
     /// True when `port` is latched.
@@ -345,22 +343,7 @@ impl MtranConfiguration {
 
     /// The latches as names, male first.
     pub fn named_connections(&self) -> Vec<NamedConnection> {
-        let name = |p: Port| {
-            self.modules
-                .get(p.module)
-                .map_or(String::new(), |m| m.name.clone())
-        };
-        self.latches
-            .iter()
-            .map(|l| {
-                (
-                    name(l.male),
-                    l.male.connector,
-                    name(l.female),
-                    l.female.connector,
-                )
-            })
-            .collect()
+        self.structure.named_connections()
     }
 
     /// The configuration turned by `rotation` about the origin and shifted by `translation`
@@ -370,14 +353,9 @@ impl MtranConfiguration {
         rotation: Rotation,
         translation: Vec3,
     ) -> Result<MtranConfiguration, ConfigError> {
-        if !within_bounds(translation) {
-            return Err(ConfigError::new(
-                "translation",
-                format!("coordinates must be within +-{MAX_COORDINATE}"),
-            ));
-        }
+        check_translation(translation)?;
         let modules = self
-            .modules
+            .modules()
             .iter()
             .map(|m| MtranModule {
                 centre_quarter_pitch: add(
@@ -389,6 +367,57 @@ impl MtranConfiguration {
             })
             .collect();
         MtranConfiguration::new(self.metadata.clone(), modules, &self.named_connections())
+    }
+}
+
+// Written out so that the output stays what it was before the indices: they only repeat the
+// modules and latches.
+impl fmt::Debug for MtranConfiguration {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("MtranConfiguration")
+            .field("metadata", &self.metadata)
+            .field("modules", &self.modules())
+            .field("latches", self.latches())
+            .finish()
+    }
+}
+
+impl RobotModule for MtranModule {
+    const ROBOT: &'static str = "M-TRAN";
+    const CONNECTOR_COUNT: u8 = MTRAN_CONNECTOR_COUNT;
+    const FEMALE_CONNECTOR: &'static str = "a female connector (3-5)";
+
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    fn id(&self) -> Option<u32> {
+        self.id
+    }
+
+    fn is_male(connector: u8) -> bool {
+        is_mtran_male(connector)
+    }
+
+    fn same_gender_message(label_a: &str, label_b: &str, _both_male: bool) -> String {
+        format!("{label_a} and {label_b}: a latch joins a male (0-2) and a female (3-5) connector")
+    }
+
+    /// The two faces must touch with opposite normals.
+    fn check_facing(
+        modules: &[MtranModule],
+        path: &str,
+        (a, la): (Port, &str),
+        (b, lb): (Port, &str),
+    ) -> Result<(), ConfigError> {
+        let pose = |p: Port| modules.get(p.module).and_then(|m| m.connector(p.connector));
+        match (pose(a), pose(b)) {
+            (Some(pa), Some(pb)) if faces(&pa, &pb) => Ok(()),
+            _ => Err(ConfigError::new(
+                path,
+                format!("{la} and {lb} do not face each other"),
+            )),
+        }
     }
 }
 
@@ -444,79 +473,6 @@ fn check_blocks(modules: &[MtranModule]) -> Result<(), ConfigError> {
         }
     }
     Ok(())
-}
-
-/// Known modules, connectors 0-5, male 0-2 with female 3-5, touching faces, single use.
-fn check_connections(
-    modules: &[MtranModule],
-    connections: &[NamedConnection],
-) -> Result<BTreeSet<Latch>, ConfigError> {
-    let mut used: BTreeMap<Port, usize> = BTreeMap::new();
-    let mut latches = BTreeSet::new();
-    for (k, (name_a, conn_a, name_b, conn_b)) in connections.iter().enumerate() {
-        let path = format!("connections[{k}]");
-        let a = resolve(modules, k, 0, name_a, *conn_a)?;
-        let b = resolve(modules, k, 2, name_b, *conn_b)?;
-        let (la, lb) = (format!("{name_a}.C{conn_a}"), format!("{name_b}.C{conn_b}"));
-        if a.module == b.module {
-            return Err(ConfigError::new(path, "a module cannot latch onto itself"));
-        }
-        let latch = match (is_mtran_male(a.connector), is_mtran_male(b.connector)) {
-            (true, false) => Latch { male: a, female: b },
-            (false, true) => Latch { male: b, female: a },
-            _ => {
-                return Err(ConfigError::new(
-                    path,
-                    format!(
-                        "{la} and {lb}: a latch joins a male (0-2) and a female (3-5) connector"
-                    ),
-                ))
-            }
-        };
-        let pose = |p: Port| modules.get(p.module).and_then(|m| m.connector(p.connector));
-        let touching = match (pose(a), pose(b)) {
-            (Some(pa), Some(pb)) => faces(&pa, &pb),
-            _ => false,
-        };
-        if !touching {
-            return Err(ConfigError::new(
-                path,
-                format!("{la} and {lb} do not face each other"),
-            ));
-        }
-        for (port, index, label) in [(a, 1, &la), (b, 3, &lb)] {
-            if let Some(j) = used.insert(port, k) {
-                return Err(ConfigError::new(
-                    format!("connections[{k}][{index}]"),
-                    format!("connector {label} is already used by connections[{j}]"),
-                ));
-            }
-        }
-        latches.insert(latch);
-    }
-    Ok(latches)
-}
-
-fn resolve(
-    modules: &[MtranModule],
-    k: usize,
-    field: usize,
-    name: &str,
-    connector: u8,
-) -> Result<Port, ConfigError> {
-    let module = modules.iter().position(|m| m.name == name).ok_or_else(|| {
-        ConfigError::new(
-            format!("connections[{k}][{field}]"),
-            format!("unknown module \"{name}\""),
-        )
-    })?;
-    if connector >= MTRAN_CONNECTOR_COUNT {
-        return Err(ConfigError::new(
-            format!("connections[{k}][{}]", field + 1),
-            format!("connector {connector} does not exist; M-TRAN connectors are 0-5"),
-        ));
-    }
-    Ok(Port { module, connector })
 }
 
 #[cfg(test)]

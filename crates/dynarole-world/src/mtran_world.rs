@@ -1,14 +1,16 @@
 //! The M-TRAN world: an M-TRAN configuration mutated by connect, disconnect and joint turns,
 //! with the same acceptance rules as the ATRON world (see `MTRAN.md`).
 
-use crate::config::{Latch, Port};
+use crate::config::Port;
 use crate::geometry::{add, sub, sweep_closest_approach, Rotation, Vec3};
-use crate::graph::{split_at_joint, split_parts};
+use crate::graph::split_at_joint;
 use crate::mtran::{
-    is_mtran_male, MtranConfiguration, MtranJoint, MtranOrientation, MTRAN_CONNECTOR_COUNT,
+    is_mtran_male, MtranConfiguration, MtranJoint, MtranModule, MtranOrientation,
     MTRAN_JOINT_LIMIT_DEG, MTRAN_MIN_SWEEP_DISTANCE_BLOCKS,
 };
 use crate::ops::{OpError, Outcome, Warning};
+use crate::structure::Structure;
+use crate::world_common::{known_module, latch, release, sweep_verdict, warn, Latching};
 use std::collections::BTreeSet;
 
 /// An M-TRAN configuration being reconfigured; operations succeed (maybe with warnings) or
@@ -42,37 +44,13 @@ impl MtranWorld {
 
     /// Connects male connector `connector` (0-2) to the female connector whose face touches it.
     pub fn connect(&mut self, module: &str, connector: u8) -> Result<Outcome, OpError> {
-        let port = self.male_port(module, connector, "connect")?;
-        if let Some(partner) = self.config.latched_to(port) {
-            return Ok(warn(Warning::AlreadyLatched {
-                port: self.config.port_name(port),
-                partner: self.config.port_name(partner),
-            }));
-        }
-        let female = self.facing_female(port)?;
-        self.config.latches.insert(Latch { male: port, female });
-        Ok(Outcome::default())
+        latch(&mut self.config, module, connector, "connect")
     }
 
     /// Disconnects male connector `connector`; reports a connector with nothing connected and
     /// a release that splits the robot.
     pub fn disconnect(&mut self, module: &str, connector: u8) -> Result<Outcome, OpError> {
-        let port = self.male_port(module, connector, "disconnect")?;
-        let Some(female) = self.config.latched_to(port) else {
-            return Ok(warn(Warning::NothingLatched {
-                port: self.config.port_name(port),
-            }));
-        };
-        self.config.latches.remove(&Latch { male: port, female });
-        Ok(
-            match split_parts(&self.config.latches, port.module, female.module) {
-                None => Outcome::default(),
-                Some((first, second)) => warn(Warning::Split {
-                    first: self.names(&first),
-                    second: self.names(&second),
-                }),
-            },
-        )
+        release(&mut self.config.structure, module, connector, "disconnect")
     }
 
     /// Turns `joint` from `from_deg` to `to_deg` (multiples of 90 within -90..90), in the
@@ -88,7 +66,7 @@ impl MtranWorld {
         to_deg: i16,
         positive: bool,
     ) -> Result<Outcome, OpError> {
-        let index = self.index(module)?;
+        let index = known_module(&self.config.structure, module)?;
         self.check_angles(index, joint, from_deg, to_deg, positive)?;
         if from_deg == to_deg {
             return Ok(warn(Warning::NoMotion {
@@ -96,19 +74,14 @@ impl MtranWorld {
             }));
         }
         let delta_quarters = i32::from(to_deg - from_deg) / 90;
-        let sides = split_at_joint(&self.config.latches, index, is_mtran_male, |c| {
+        let sides = split_at_joint(self.config.latches(), index, is_mtran_male, |c| {
             !is_mtran_male(c)
         })
         .map_err(|loop_side| OpError::JointLocked {
             module: module.to_string(),
             loop_modules: self.names(&loop_side),
         })?;
-        let north_moves = sides.first.len() <= sides.second.len();
-        let (moving, turn_quarters) = if north_moves {
-            (sides.first, -delta_quarters)
-        } else {
-            (sides.second, delta_quarters)
-        };
+        let (moving, turn_quarters, north_moves) = sides.moving(delta_quarters);
         let (pivot, axis) = self.joint_pivot(index, joint);
         let closest =
             self.check_sweep(index, north_moves, &moving, (pivot, axis), turn_quarters)?;
@@ -118,14 +91,14 @@ impl MtranWorld {
             moved.insert(index);
         }
         for i in &moved {
-            if let Some(m) = self.config.modules.get_mut(*i) {
+            if let Some(m) = self.config.structure.module_mut(*i) {
                 m.centre_quarter_pitch =
                     add(pivot, rotation.apply(sub(m.centre_quarter_pitch, pivot)));
                 m.orientation =
                     MtranOrientation::from_frame(rotation.compose(&m.orientation.frame()));
             }
         }
-        if let Some(m) = self.config.modules.get_mut(index) {
+        if let Some(m) = self.config.structure.module_mut(index) {
             m.joints_deg[joint.index()] = to_deg;
         }
         Ok(Outcome {
@@ -157,8 +130,8 @@ impl MtranWorld {
         }
         let actual = self
             .config
-            .modules
-            .get(index)
+            .structure
+            .module(index)
             .map_or(0, |m| m.joints_deg[joint.index()]);
         if actual != from {
             return Err(OpError::WrongStartAngle {
@@ -182,7 +155,7 @@ impl MtranWorld {
 
     /// Centre of the joint's block (the turn's pivot) and the joint axis.
     fn joint_pivot(&self, index: usize, joint: MtranJoint) -> (Vec3, Vec3) {
-        match self.config.modules.get(index) {
+        match self.config.structure.module(index) {
             Some(m) => {
                 let block = match joint {
                     MtranJoint::North => m.north_block(),
@@ -218,26 +191,19 @@ impl MtranWorld {
             &points(&moving_blocks),
             &points(&still_blocks),
         );
-        let Some(approach) = approach else {
-            return Ok(None);
-        };
-        if approach.distance < MTRAN_MIN_SWEEP_DISTANCE_BLOCKS {
+        sweep_verdict(approach, MTRAN_MIN_SWEEP_DISTANCE_BLOCKS, |a| {
             let pick = |blocks: &[SweptBlock], i: usize| {
                 blocks
                     .get(i)
                     .map(|b| self.name(b.module))
                     .unwrap_or_default()
             };
-            return Err(OpError::SweepCollision {
-                module: self.name(index),
-                moving: pick(&moving_blocks, approach.moving),
-                still: pick(&still_blocks, approach.still),
-                distance: approach.distance,
-                limit: MTRAN_MIN_SWEEP_DISTANCE_BLOCKS,
-                angle_deg: approach.angle_deg,
-            });
-        }
-        Ok(Some(approach.distance))
+            [
+                self.name(index),
+                pick(&moving_blocks, a.moving),
+                pick(&still_blocks, a.still),
+            ]
+        })
     }
 
     /// Splits all blocks into those that turn and those that stay. Both joints separate the
@@ -251,7 +217,7 @@ impl MtranWorld {
     ) -> (Vec<SweptBlock>, Vec<SweptBlock>) {
         let mut moving_blocks = Vec::new();
         let mut still_blocks = Vec::new();
-        for (i, m) in self.config.modules.iter().enumerate() {
+        for (i, m) in self.config.modules().iter().enumerate() {
             for (b, centre) in m.block_centres().into_iter().enumerate() {
                 let block = SweptBlock { centre, module: i };
                 let turns = if i == index {
@@ -269,79 +235,28 @@ impl MtranWorld {
         (moving_blocks, still_blocks)
     }
 
-    fn male_port(
-        &self,
-        module: &str,
-        connector: u8,
-        action: &'static str,
-    ) -> Result<Port, OpError> {
-        let index = self.index(module)?;
-        if connector >= MTRAN_CONNECTOR_COUNT {
-            return Err(OpError::NoSuchConnector {
-                module: module.to_string(),
-                connector,
-                count: MTRAN_CONNECTOR_COUNT,
-            });
-        }
-        let port = Port {
-            module: index,
-            connector,
-        };
-        if !is_mtran_male(connector) {
-            return Err(OpError::FemaleConnector {
-                port: self.config.port_name(port),
-                action,
-            });
-        }
-        Ok(port)
-    }
-
-    fn facing_female(&self, port: Port) -> Result<Port, OpError> {
-        let nothing = |reason: String| OpError::NothingToLatchOnto {
-            port: self.config.port_name(port),
-            reason,
-        };
-        let Some(other) = self.config.facing(port) else {
-            return Err(nothing("no connector face touches it".to_string()));
-        };
-        let other_name = self.config.port_name(other);
-        if is_mtran_male(other.connector) {
-            return Err(nothing(format!(
-                "{other_name} faces it but is male; a latch needs a female connector (3-5)"
-            )));
-        }
-        if let Some(holder) = self.config.latched_to(other) {
-            return Err(nothing(format!(
-                "{other_name} is already latched to {}",
-                self.config.port_name(holder)
-            )));
-        }
-        Ok(other)
-    }
-
-    fn index(&self, module: &str) -> Result<usize, OpError> {
-        self.config
-            .module_index(module)
-            .ok_or_else(|| OpError::UnknownModule {
-                module: module.to_string(),
-            })
-    }
-
     fn name(&self, index: usize) -> String {
-        self.config
-            .modules
-            .get(index)
-            .map_or_else(String::new, |m| m.name.clone())
+        self.config.structure.module_name(index)
     }
 
     fn names(&self, indices: &BTreeSet<usize>) -> Vec<String> {
-        indices.iter().map(|i| self.name(*i)).collect()
+        self.config.structure.module_names(indices)
     }
 }
 
-fn warn(warning: Warning) -> Outcome {
-    Outcome {
-        warnings: vec![warning],
-        ..Outcome::default()
+impl Latching for MtranConfiguration {
+    type Module = MtranModule;
+
+    fn structure(&self) -> &Structure<MtranModule> {
+        &self.structure
+    }
+
+    fn structure_mut(&mut self) -> &mut Structure<MtranModule> {
+        &mut self.structure
+    }
+
+    fn facing_or_why(&self, port: Port) -> Result<Port, String> {
+        self.facing(port)
+            .ok_or_else(|| "no connector face touches it".to_string())
     }
 }

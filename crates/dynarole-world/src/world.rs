@@ -2,13 +2,15 @@
 //! rotateFromToBy), rejecting what the hardware or the simulator could not do.
 
 use crate::atron::{
-    is_joint_position, is_male, is_north, CONNECTOR_COUNT, JOINT_UNITS_PER_TURN,
-    MIN_SWEEP_DISTANCE_LATTICE, QUARTER_TURN_UNITS,
+    is_joint_position, is_north, JOINT_UNITS_PER_TURN, MIN_SWEEP_DISTANCE_LATTICE,
+    QUARTER_TURN_UNITS,
 };
-use crate::config::{AtronConfiguration, Latch, Port};
-use crate::geometry::{add, sub, sweep_closest_approach, to_f64, Rotation};
-use crate::graph::{split_at_joint, split_parts};
+use crate::config::{AtronConfiguration, AtronModule, Port};
+use crate::geometry::{add, sweep_closest_approach, to_f64, Rotation};
+use crate::graph::split_at_joint;
 use crate::ops::{OpError, Outcome, Warning};
+use crate::structure::Structure;
+use crate::world_common::{known_module, latch, release, sweep_verdict, warn, Latching};
 use std::collections::BTreeSet;
 
 /// The motion of one joint turn: the moving side turns by `angle_deg` (right-handed, signed)
@@ -82,37 +84,14 @@ impl World {
     /// connector facing it. Rejected for a female connector or when no female connector faces
     /// it; a connector already latched is reported and left as is.
     pub fn extend(&mut self, module: &str, connector: u8) -> Result<Outcome, OpError> {
-        let port = self.male_port(module, connector, "extend")?;
-        if let Some(partner) = self.config.latched_to(port) {
-            return Ok(warn(Warning::AlreadyLatched {
-                port: self.config.port_name(port),
-                partner: self.config.port_name(partner),
-            }));
-        }
-        let female = self.facing_female(port)?;
-        self.config.latches.insert(Latch { male: port, female });
-        Ok(Outcome::default())
+        latch(&mut self.config, module, connector, "extend")
     }
 
     /// `module.Connector[connector].retract()`: releases the latch of a male connector. A
     /// female connector is rejected (only the male side can release); a connector with no latch
     /// is reported; a release that splits the robot in two is reported.
     pub fn retract(&mut self, module: &str, connector: u8) -> Result<Outcome, OpError> {
-        let port = self.male_port(module, connector, "retract")?;
-        let Some(female) = self.config.latched_to(port) else {
-            return Ok(warn(Warning::NothingLatched {
-                port: self.config.port_name(port),
-            }));
-        };
-        self.config.latches.remove(&Latch { male: port, female });
-        let split = split_parts(&self.config.latches, port.module, female.module);
-        Ok(match split {
-            None => Outcome::default(),
-            Some((first, second)) => warn(Warning::Split {
-                first: self.names(&first),
-                second: self.names(&second),
-            }),
-        })
+        release(&mut self.config.structure, module, connector, "retract")
     }
 
     /// `module.Joint.rotateFromToBy(from, to, increasing, _)`: turns the joint in quarter turns
@@ -130,7 +109,7 @@ impl World {
         to_units: u16,
         increasing: bool,
     ) -> Result<Outcome, OpError> {
-        let index = self.index(module)?;
+        let index = known_module(&self.config.structure, module)?;
         let turn = self.plan_turn(index, from_units, to_units, increasing)?;
         if turn.joint_quarters == 0 {
             return Ok(warn(Warning::NoMotion {
@@ -167,13 +146,13 @@ impl World {
         to_units: u16,
         increasing: bool,
     ) -> Result<TurnMotion, OpError> {
-        let index = self.index(module)?;
+        let index = known_module(&self.config.structure, module)?;
         let PlannedTurn {
             moving,
             turn_quarters,
             ..
         } = self.plan_turn(index, from_units, to_units, increasing)?;
-        let pivot_module = self.config.modules.get(index);
+        let pivot_module = self.config.module(index);
         Ok(TurnMotion {
             pivot: pivot_module.map_or([0.0; 3], |m| to_f64(m.position)),
             axis: pivot_module.map_or([0, 0, 1], |m| m.orientation.axis()),
@@ -182,8 +161,7 @@ impl World {
                 .iter()
                 .filter_map(|i| {
                     self.config
-                        .modules
-                        .get(*i)
+                        .module(*i)
                         .map(|m| (m.name.clone(), to_f64(m.position)))
                 })
                 .collect(),
@@ -212,17 +190,12 @@ impl World {
                 joint_quarters,
             });
         }
-        let sides = split_at_joint(&self.config.latches, index, is_north, |c| !is_north(c))
+        let sides = split_at_joint(self.config.latches(), index, is_north, |c| !is_north(c))
             .map_err(|loop_side| OpError::JointLocked {
                 module: self.name(index),
                 loop_modules: self.names(&loop_side),
             })?;
-        let north_moves = sides.first.len() <= sides.second.len();
-        let (moving, turn_quarters) = if north_moves {
-            (sides.first, -joint_quarters)
-        } else {
-            (sides.second, joint_quarters)
-        };
+        let (moving, turn_quarters, north_moves) = sides.moving(joint_quarters);
         Ok(PlannedTurn {
             moving,
             turn_quarters,
@@ -243,7 +216,7 @@ impl World {
                 });
             }
         }
-        let actual = self.config.modules.get(index).map_or(0, |m| m.joint_units);
+        let actual = self.config.module(index).map_or(0, |m| m.joint_units);
         if actual != from {
             return Err(OpError::WrongStartAngle {
                 module: name,
@@ -261,12 +234,12 @@ impl World {
         moving: &BTreeSet<usize>,
         turn_quarters: i32,
     ) -> Result<Option<f64>, OpError> {
-        let Some(pivot_module) = self.config.modules.get(index) else {
+        let Some(pivot_module) = self.config.module(index) else {
             return Ok(None);
         };
-        let centre = |i: &usize| self.config.modules.get(*i).map(|m| to_f64(m.position));
+        let centre = |i: &usize| self.config.module(*i).map(|m| to_f64(m.position));
         let moving_list: Vec<usize> = moving.iter().copied().collect();
-        let still_list: Vec<usize> = (0..self.config.modules.len())
+        let still_list: Vec<usize> = (0..self.config.modules().len())
             .filter(|i| !moving.contains(i))
             .collect();
         let moving_points: Vec<[f64; 3]> = moving_list.iter().filter_map(centre).collect();
@@ -278,21 +251,14 @@ impl World {
             &moving_points,
             &still_points,
         );
-        let Some(approach) = approach else {
-            return Ok(None);
-        };
-        if approach.distance < MIN_SWEEP_DISTANCE_LATTICE {
+        sweep_verdict(approach, MIN_SWEEP_DISTANCE_LATTICE, |a| {
             let pick = |list: &[usize], i: usize| list.get(i).map(|m| self.name(*m));
-            return Err(OpError::SweepCollision {
-                module: self.name(index),
-                moving: pick(&moving_list, approach.moving).unwrap_or_default(),
-                still: pick(&still_list, approach.still).unwrap_or_default(),
-                distance: approach.distance,
-                limit: MIN_SWEEP_DISTANCE_LATTICE,
-                angle_deg: approach.angle_deg,
-            });
-        }
-        Ok(Some(approach.distance))
+            [
+                self.name(index),
+                pick(&moving_list, a.moving).unwrap_or_default(),
+                pick(&still_list, a.still).unwrap_or_default(),
+            ]
+        })
     }
 
     /// Turns the moving modules about the joint axis and updates the joint (and the module's
@@ -305,7 +271,7 @@ impl World {
         south_moves: bool,
         joint_quarters: i32,
     ) {
-        let Some(pivot_module) = self.config.modules.get(index) else {
+        let Some(pivot_module) = self.config.module(index) else {
             return;
         };
         let pivot = pivot_module.position;
@@ -313,13 +279,8 @@ impl World {
         else {
             return;
         };
-        for i in moving {
-            if let Some(m) = self.config.modules.get_mut(*i) {
-                m.position = add(pivot, rotation.apply(sub(m.position, pivot)));
-                m.orientation = m.orientation.rotated(&rotation);
-            }
-        }
-        if let Some(m) = self.config.modules.get_mut(index) {
+        self.config.turn_modules(moving, pivot, &rotation);
+        if let Some(m) = self.config.structure.module_mut(index) {
             if south_moves {
                 m.orientation = m.orientation.rotated(&rotation);
             }
@@ -330,82 +291,38 @@ impl World {
         }
     }
 
-    /// The port of a male connector, or why it cannot be commanded.
-    fn male_port(
-        &self,
-        module: &str,
-        connector: u8,
-        action: &'static str,
-    ) -> Result<Port, OpError> {
-        let index = self.index(module)?;
-        if connector >= CONNECTOR_COUNT {
-            return Err(OpError::NoSuchConnector {
-                module: module.to_string(),
-                connector,
-                count: CONNECTOR_COUNT,
-            });
-        }
-        let port = Port {
-            module: index,
-            connector,
-        };
-        if !is_male(connector) {
-            return Err(OpError::FemaleConnector {
-                port: self.config.port_name(port),
-                action,
-            });
-        }
-        Ok(port)
-    }
-
-    /// The free female connector facing `port`, or why there is none.
-    fn facing_female(&self, port: Port) -> Result<Port, OpError> {
-        let nothing = |reason: String| OpError::NothingToLatchOnto {
-            port: self.config.port_name(port),
-            reason,
-        };
-        let Some(other) = self.config.facing(port) else {
-            let site = self.config.modules.get(port.module).and_then(|m| {
-                m.connector_offset(port.connector)
-                    .map(|o| add(m.position, o))
-            });
-            return Err(nothing(format!(
-                "no module faces it (site {:?} is empty)",
-                site.unwrap_or_default()
-            )));
-        };
-        let other_name = self.config.port_name(other);
-        if is_male(other.connector) {
-            return Err(nothing(format!(
-                "{other_name} faces it but is male; a latch needs a female connector"
-            )));
-        }
-        if let Some(holder) = self.config.latched_to(other) {
-            return Err(nothing(format!(
-                "{other_name} is already latched to {}",
-                self.config.port_name(holder)
-            )));
-        }
-        Ok(other)
-    }
-
-    fn index(&self, module: &str) -> Result<usize, OpError> {
-        self.config
-            .module_index(module)
-            .ok_or_else(|| OpError::UnknownModule {
-                module: module.to_string(),
-            })
-    }
-
     fn name(&self, index: usize) -> String {
-        self.config
-            .modules
-            .get(index)
-            .map_or_else(String::new, |m| m.name.clone())
+        self.config.structure.module_name(index)
     }
 
     fn names(&self, indices: &BTreeSet<usize>) -> Vec<String> {
-        indices.iter().map(|i| self.name(*i)).collect()
+        self.config.structure.module_names(indices)
+    }
+}
+
+impl Latching for AtronConfiguration {
+    type Module = AtronModule;
+
+    fn structure(&self) -> &Structure<AtronModule> {
+        &self.structure
+    }
+
+    fn structure_mut(&mut self) -> &mut Structure<AtronModule> {
+        &mut self.structure
+    }
+
+    /// Names the empty site when no module faces `port`.
+    fn facing_or_why(&self, port: Port) -> Result<Port, String> {
+        self.facing(port).ok_or_else(|| {
+            let site = self.module(port.module).and_then(|m| {
+                m.connector_offset(port.connector)
+                    .map(|o| add(m.position, o))
+            });
+            format!(
+                "no module faces it (site {:?} is empty)",
+                site.unwrap_or_default()
+            )
+        })
     }
 }
 
@@ -418,11 +335,4 @@ fn quarter_turns(from: u16, to: u16, increasing: bool) -> i32 {
         -(i32::from(from) - i32::from(to)).rem_euclid(turn)
     };
     delta / i32::from(QUARTER_TURN_UNITS)
-}
-
-fn warn(warning: Warning) -> Outcome {
-    Outcome {
-        warnings: vec![warning],
-        ..Outcome::default()
-    }
 }

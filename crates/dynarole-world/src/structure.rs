@@ -1,0 +1,243 @@
+//! What the ATRON and M-TRAN configurations share: modules in file order, the latches between
+//! them, their validation, and the indices that keep look-ups by name, id and port logarithmic.
+
+use crate::config::{ConfigError, Latch, NamedConnection, Port};
+use std::collections::{BTreeMap, BTreeSet};
+
+/// What the shared code needs to know about one robot's modules and connector rules.
+pub(crate) trait RobotModule: Sized {
+    /// The robot's name in messages (`ATRON`, `M-TRAN`).
+    const ROBOT: &'static str;
+    /// Connectors per module, numbered from 0.
+    const CONNECTOR_COUNT: u8;
+    /// What a latch needs at the other end, as said in messages.
+    const FEMALE_CONNECTOR: &'static str;
+
+    /// The module's label.
+    fn name(&self) -> &str;
+
+    /// The module's numeric ID, if given.
+    fn id(&self) -> Option<u32>;
+
+    /// True for the connectors that can be commanded to latch and release.
+    fn is_male(connector: u8) -> bool;
+
+    /// Why a connection between two male (`both_male`) or two female connectors is wrong.
+    fn same_gender_message(label_a: &str, label_b: &str, both_male: bool) -> String;
+
+    /// Checks that the two ends of a connection (ports and their labels) face each other.
+    fn check_facing(
+        modules: &[Self],
+        path: &str,
+        a: (Port, &str),
+        b: (Port, &str),
+    ) -> Result<(), ConfigError>;
+}
+
+/// Modules and latches, with indices by name, id and port. The indices only follow from the
+/// modules and latches, so comparing them too (derived `PartialEq`) changes no answer.
+#[derive(Clone, PartialEq)]
+pub(crate) struct Structure<M> {
+    modules: Vec<M>,
+    latches: BTreeSet<Latch>,
+    by_name: BTreeMap<String, usize>,
+    by_id: BTreeMap<u32, usize>,
+    /// Both ends of every latch, each mapped to the other.
+    partners: BTreeMap<Port, Port>,
+}
+
+impl<M: RobotModule> Structure<M> {
+    /// Modules without latches, after checking that names are non-empty and unique and that
+    /// given ids are unique.
+    pub(crate) fn new(modules: Vec<M>) -> Result<Structure<M>, ConfigError> {
+        let mut by_name = BTreeMap::new();
+        let mut by_id = BTreeMap::new();
+        for (i, m) in modules.iter().enumerate() {
+            let name = m.name();
+            if name.is_empty() {
+                return Err(ConfigError::new(format!("modules[{i}].name"), "empty name"));
+            }
+            if let Some(j) = by_name.insert(name.to_string(), i) {
+                return Err(ConfigError::new(
+                    format!("modules[{i}].name"),
+                    format!("duplicate module name \"{name}\" (also modules[{j}])"),
+                ));
+            }
+            if let Some(id) = m.id() {
+                if let Some(j) = by_id.insert(id, i) {
+                    return Err(ConfigError::new(
+                        format!("modules[{i}].id"),
+                        format!("duplicate module id {id} (also modules[{j}])"),
+                    ));
+                }
+            }
+        }
+        Ok(Structure {
+            modules,
+            latches: BTreeSet::new(),
+            by_name,
+            by_id,
+            partners: BTreeMap::new(),
+        })
+    }
+
+    /// Resolves, checks and latches every connection: known modules, connectors in range, one
+    /// male and one female end, the two connectors facing each other, no connector used twice.
+    pub(crate) fn connect_all(
+        &mut self,
+        connections: &[NamedConnection],
+    ) -> Result<(), ConfigError> {
+        let mut used: BTreeMap<Port, usize> = BTreeMap::new();
+        for (k, (name_a, conn_a, name_b, conn_b)) in connections.iter().enumerate() {
+            let path = format!("connections[{k}]");
+            let a = self.resolve(k, 0, name_a, *conn_a)?;
+            let b = self.resolve(k, 2, name_b, *conn_b)?;
+            let (la, lb) = (format!("{name_a}.C{conn_a}"), format!("{name_b}.C{conn_b}"));
+            let latch = male_and_female::<M>(&path, (a, &la), (b, &lb))?;
+            M::check_facing(&self.modules, &path, (a, &la), (b, &lb))?;
+            for (port, index, label) in [(a, 1, &la), (b, 3, &lb)] {
+                if let Some(j) = used.insert(port, k) {
+                    return Err(ConfigError::new(
+                        format!("connections[{k}][{index}]"),
+                        format!("connector {label} is already used by connections[{j}]"),
+                    ));
+                }
+            }
+            self.latch(latch);
+        }
+        Ok(())
+    }
+
+    /// Finds the module of a connection end; `field` is 0 or 2 (module name position in the
+    /// array).
+    fn resolve(
+        &self,
+        k: usize,
+        field: usize,
+        name: &str,
+        connector: u8,
+    ) -> Result<Port, ConfigError> {
+        let module = self.module_index(name).ok_or_else(|| {
+            ConfigError::new(
+                format!("connections[{k}][{field}]"),
+                format!("unknown module \"{name}\""),
+            )
+        })?;
+        if connector >= M::CONNECTOR_COUNT {
+            return Err(ConfigError::new(
+                format!("connections[{k}][{}]", field + 1),
+                format!(
+                    "connector {connector} does not exist; {} connectors are 0-{}",
+                    M::ROBOT,
+                    M::CONNECTOR_COUNT - 1
+                ),
+            ));
+        }
+        Ok(Port { module, connector })
+    }
+
+    /// Modules in file order.
+    pub(crate) fn modules(&self) -> &[M] {
+        &self.modules
+    }
+
+    /// The module at `index`.
+    pub(crate) fn module(&self, index: usize) -> Option<&M> {
+        self.modules.get(index)
+    }
+
+    /// The module at `index`, to change its pose or joints (never its name or id, which the
+    /// indices were built from).
+    pub(crate) fn module_mut(&mut self, index: usize) -> Option<&mut M> {
+        self.modules.get_mut(index)
+    }
+
+    /// Index of the module called `name`.
+    pub(crate) fn module_index(&self, name: &str) -> Option<usize> {
+        self.by_name.get(name).copied()
+    }
+
+    /// Index of the module with numeric ID `id`.
+    pub(crate) fn module_index_by_id(&self, id: u32) -> Option<usize> {
+        self.by_id.get(&id).copied()
+    }
+
+    /// The label of the module at `index` (empty when there is none).
+    pub(crate) fn module_name(&self, index: usize) -> String {
+        self.modules
+            .get(index)
+            .map_or_else(String::new, |m| m.name().to_string())
+    }
+
+    /// The labels of the modules at `indices`, in index order.
+    pub(crate) fn module_names(&self, indices: &BTreeSet<usize>) -> Vec<String> {
+        indices.iter().map(|i| self.module_name(*i)).collect()
+    }
+
+    /// The latches, ordered by male port.
+    pub(crate) fn latches(&self) -> &BTreeSet<Latch> {
+        &self.latches
+    }
+
+    /// The port latched to `port`, if any.
+    pub(crate) fn latched_to(&self, port: Port) -> Option<Port> {
+        self.partners.get(&port).copied()
+    }
+
+    /// Adds a latch (the caller has checked that both ends are free).
+    pub(crate) fn latch(&mut self, latch: Latch) {
+        self.latches.insert(latch);
+        self.partners.insert(latch.male, latch.female);
+        self.partners.insert(latch.female, latch.male);
+    }
+
+    /// Removes a latch, if present.
+    pub(crate) fn unlatch(&mut self, latch: Latch) {
+        if self.latches.remove(&latch) {
+            self.partners.remove(&latch.male);
+            self.partners.remove(&latch.female);
+        }
+    }
+
+    /// `M3.C4` for a port (`?` for an unknown module).
+    pub(crate) fn port_name(&self, port: Port) -> String {
+        let name = self.modules.get(port.module).map_or("?", |m| m.name());
+        format!("{name}.C{}", port.connector)
+    }
+
+    /// The latches as names, male first, in latch order.
+    pub(crate) fn named_connections(&self) -> Vec<NamedConnection> {
+        let name = |p: Port| self.module_name(p.module);
+        self.latches
+            .iter()
+            .map(|l| {
+                (
+                    name(l.male),
+                    l.male.connector,
+                    name(l.female),
+                    l.female.connector,
+                )
+            })
+            .collect()
+    }
+}
+
+/// The latch between two ends of a connection, which must be on two modules and of opposite
+/// genders.
+fn male_and_female<M: RobotModule>(
+    path: &str,
+    (a, la): (Port, &str),
+    (b, lb): (Port, &str),
+) -> Result<Latch, ConfigError> {
+    if a.module == b.module {
+        return Err(ConfigError::new(path, "a module cannot latch onto itself"));
+    }
+    match (M::is_male(a.connector), M::is_male(b.connector)) {
+        (true, false) => Ok(Latch { male: a, female: b }),
+        (false, true) => Ok(Latch { male: b, female: a }),
+        (both_male, _) => Err(ConfigError::new(
+            path,
+            M::same_gender_message(la, lb, both_male),
+        )),
+    }
+}
