@@ -62,13 +62,8 @@ pub fn check_one(
     if let (Some(program), Some(on)) = (&program, on) {
         diagnostics.extend(on_configuration(program, on)?);
     }
-    if let (Some(program), Protocol::Paper) = (program, protocol) {
-        for decl in parsed.file.sequences() {
-            let plan = program.expand(&decl.name.name).unwrap_or_default();
-            if let Err(d) = plan.flatten_for_paper() {
-                diagnostics.push(d);
-            }
-        }
+    if let Some(program) = program {
+        diagnostics.extend(target_limits(&program, protocol));
     }
     diagnostics.sort_by_key(|d| d.span);
     diagnostics.dedup();
@@ -98,4 +93,31 @@ fn on_configuration(
         &prepared.assignment,
     ));
     Ok(diagnostics)
+}
+
+/// What the generated code of each sequence could not encode, for the chosen protocol.
+fn target_limits(program: &dynarole_core::Program, protocol: Protocol) -> Vec<Diagnostic> {
+    let mut out = Vec::new();
+    for decl in program.file.sequences() {
+        let plan = program.expand(&decl.name.name).unwrap_or_default();
+        if let Protocol::Paper = protocol {
+            if let Err(d) = plan.flatten_for_paper() {
+                out.push(d);
+                continue;
+            }
+        }
+        let layout = program
+            .lower(std::slice::from_ref(&plan))
+            .and_then(|ir| match protocol {
+                Protocol::Paper => ir.paper_layout().map(|_| ()),
+                Protocol::Lattice => Ok(()),
+            });
+        if let Err(e) = layout {
+            out.push(Diagnostic::new(
+                dynarole_core::DiagnosticKind::TargetLimit { message: e.message },
+                e.span,
+            ));
+        }
+    }
+    out
 }

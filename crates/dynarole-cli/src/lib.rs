@@ -3,6 +3,7 @@
 //! **Architecture invariant**: only this crate knows about files, exit codes and colours.
 
 pub mod check;
+pub mod compile;
 pub mod fmt;
 pub mod load;
 pub mod render;
@@ -40,6 +41,34 @@ enum Command {
         /// With --from: the sequences to run, in turn (default: the first in the file).
         #[arg(long = "sequence", value_name = "NAME", requires = "from")]
         sequences: Vec<String>,
+    },
+    /// Compile sequences to a self-contained directory of C: runtime, state machine, Makefile.
+    Compile {
+        file: PathBuf,
+        /// Sequence to compile; repeat to run several in turn (default: the first in the file).
+        #[arg(long = "sequence", value_name = "NAME")]
+        sequences: Vec<String>,
+        #[arg(long, value_enum, default_value_t = compile::Target::C)]
+        target: compile::Target,
+        #[arg(long, value_enum, default_value_t = compile::ProtocolArg::Lattice)]
+        protocol: compile::ProtocolArg,
+        /// Paper protocol: which of the three historical merge functions to use.
+        #[arg(long, value_enum, default_value_t = compile::MergeArg::CPort)]
+        merge: compile::MergeArg,
+        /// Paper protocol: add the pending state and transfer control in one step.
+        #[arg(long)]
+        single_step_handover: bool,
+        /// Paper protocol: restart an interrupted pending operation after a reset (Sec. III-C).
+        #[arg(long)]
+        restart_pending: bool,
+        /// Lattice protocol: how many times the whole sequence runs (0: forever).
+        #[arg(long, default_value_t = 1)]
+        epochs: u16,
+        /// The directory to write.
+        #[arg(short = 'o', long = "output", value_name = "DIR")]
+        out_dir: PathBuf,
+        #[command(flatten)]
+        plugins: load::PluginArgs,
     },
     /// Draw a configuration (JSON) as an SVG or PNG picture.
     Show {
@@ -119,6 +148,29 @@ pub fn main() -> ExitCode {
             plugins: &plugins,
         }),
         Command::Fmt { files, check } => fmt::run(&files, check),
+        Command::Compile {
+            file,
+            sequences,
+            target,
+            protocol,
+            merge,
+            single_step_handover,
+            restart_pending,
+            epochs,
+            out_dir,
+            plugins,
+        } => compile::run(&compile::CompileArgs {
+            file: &file,
+            sequences: &sequences,
+            target,
+            protocol,
+            merge,
+            single_step_handover,
+            restart_pending,
+            epochs,
+            out_dir: &out_dir,
+            plugins: &plugins,
+        }),
         Command::Show { config, output } => show::run(&config, &output),
         Command::Reverse {
             file,

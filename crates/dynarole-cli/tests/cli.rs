@@ -372,3 +372,70 @@ fn show_writes_png_and_svg_and_refuses_other_formats() {
         Some(2)
     );
 }
+
+#[test]
+fn compile_writes_a_self_contained_directory_for_each_protocol() {
+    for protocol in ["lattice", "paper"] {
+        let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
+            .join("cli-compile")
+            .join(protocol);
+        let _ = std::fs::remove_dir_all(&dir);
+        let out = dynarole(&[
+            "compile",
+            "examples/atron/eight2car.dr",
+            "--sequence",
+            "eight2car",
+            "--protocol",
+            protocol,
+            "-o",
+            dir.to_str().expect("path"),
+        ]);
+        assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+        let stdout = text(&out.stdout);
+        assert!(
+            stdout.contains("25 statements") && stdout.contains("packet"),
+            "{stdout}"
+        );
+        for file in [
+            "Makefile",
+            "dr_program.c",
+            "dr_program.h",
+            "dr_program_conf.h",
+            "dr_hal.h",
+            "dr_packet.c",
+        ] {
+            assert!(dir.join(file).is_file(), "{protocol}: {file} missing");
+        }
+        let make = Command::new("make")
+            .arg("-s")
+            .current_dir(&dir)
+            .output()
+            .expect("make runs");
+        assert!(make.status.success(), "{}", text(&make.stderr));
+    }
+}
+
+#[test]
+fn compile_refuses_what_the_paper_protocol_cannot_run() {
+    let path = scratch("nested_compile.dr", "robot atron;\nsequence s {\n    { M0.Connector[0].retract(); M0.Connector[0].extend(); } & M3.Connector[4].retract();\n}\n");
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli-compile-refused");
+    let _ = std::fs::remove_dir_all(&dir);
+    let out = dynarole(&[
+        "compile",
+        path.to_str().expect("path"),
+        "--protocol",
+        "paper",
+        "-o",
+        dir.to_str().expect("path"),
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(text(&out.stderr).contains("not supported by the paper protocol"));
+    assert!(!dir.exists(), "nothing is written");
+    let lattice = dynarole(&[
+        "compile",
+        path.to_str().expect("path"),
+        "-o",
+        dir.to_str().expect("path"),
+    ]);
+    assert_eq!(lattice.status.code(), Some(0), "{}", text(&lattice.stderr));
+}

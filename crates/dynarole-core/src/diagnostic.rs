@@ -204,6 +204,10 @@ pub enum DiagnosticKind {
         id: u32,
     },
     // ---- protocol limits ----
+    /// The sequence does not fit what the generated code can encode.
+    TargetLimit {
+        message: String,
+    },
     NotSupportedByPaperProtocol {
         reason: String,
     },
@@ -409,6 +413,10 @@ impl Diagnostic {
             K::NoModuleWithId { id } => d
                 .title(format!("no module of the configuration has ID {id}"))
                 .label(format!("`M{id}` means the module whose ID is {id}")),
+            K::TargetLimit { message } => d
+                .title("the sequence exceeds a limit of the generated code")
+                .label(message.clone())
+                .hint("split the sequence, or renumber the modules"),
             K::NotSupportedByPaperProtocol { reason } => d
                 .title("not supported by the paper protocol")
                 .label(reason.clone())

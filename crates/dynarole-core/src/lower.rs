@@ -47,8 +47,11 @@ pub struct IrStatement {
     pub index: u8,
     pub args: Vec<i16>,
     /// Statements that must be complete before this one starts: the previous parallel group
-    /// (within its block) and the previous statement of the same module.
+    /// (within its block). This is the ordering the sequence means, which checkers verify.
     pub deps: Vec<u16>,
+    /// The same module's previous statement: a module runs one operation at a time, in source
+    /// order. The lattice protocol waits for it too; the paper protocol's blocks do not.
+    pub previous_on_module: Option<u16>,
     /// `;` or `&` after it in the flattened source (the paper protocol's view).
     pub separator: SeparatorKind,
     /// The statement as executed, e.g. `M3.Joint.rotateFromToBy(0, 324, false, 150)`.
@@ -145,17 +148,17 @@ impl Program<'_> {
                 Value::Bool(b) => Ok(i16::from(*b)),
             })
             .collect::<Result<Vec<i16>, LimitError>>()?;
-        let mut all_deps: BTreeSet<u16> = deps.iter().copied().collect();
-        // One operation at a time per module, in source order.
-        if let Some(previous) = earlier.iter().rposition(|s| s.address == address) {
-            all_deps.insert(previous as u16);
-        }
+        let previous_on_module = earlier
+            .iter()
+            .rposition(|s| s.address == address)
+            .map(|p| p as u16);
         Ok(IrStatement {
             address,
             op: u8::try_from(op).map_err(|_| limit("more than 256 kinds of operation".into()))?,
             index,
             args,
-            deps: all_deps.into_iter().collect(),
+            deps: deps.to_vec(),
+            previous_on_module,
             separator,
             text: statement.describe(&self.robot),
             span: statement.span,
@@ -270,7 +273,7 @@ fn window_needed(statements: &[IrStatement]) -> usize {
     let mut needed = 1usize;
     for (s, statement) in statements.iter().enumerate() {
         let mut mine = BTreeSet::new();
-        for &d in &statement.deps {
+        for d in statement.waits_for() {
             let d = usize::from(d);
             mine.insert(d);
             if let Some(theirs) = ancestors.get(d) {
@@ -306,6 +309,16 @@ pub struct PaperUnit {
     /// Indices into `Ir::statements`.
     pub statements: Vec<usize>,
     pub address: u8,
+}
+
+impl IrStatement {
+    /// Everything the lattice protocol waits for: the dependencies and the module's previous
+    /// statement, sorted and without repeats.
+    pub fn waits_for(&self) -> Vec<u16> {
+        let mut all: BTreeSet<u16> = self.deps.iter().copied().collect();
+        all.extend(self.previous_on_module);
+        all.into_iter().collect()
+    }
 }
 
 impl Ir {

@@ -295,8 +295,11 @@ fn ir_text(ir: &dynarole_core::lower::Ir) -> String {
         } else {
             ";"
         };
+        let after = s
+            .previous_on_module
+            .map_or(String::new(), |p| format!(" after {p}"));
         out.push_str(&format!(
-            "s{i:<3} @{} op{} [{}] {:?} deps {:?} {sep}  {}\n",
+            "s{i:<3} @{} op{} [{}] {:?} deps {:?}{after} {sep}  {}\n",
             s.address, s.op, s.index, s.args, s.deps, s.text
         ));
     }

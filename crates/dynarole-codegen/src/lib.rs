@@ -1,0 +1,12 @@
+//! Back-ends of the dynarole compiler: from the IR (`dynarole_core::lower::Ir`) to a
+//! self-contained directory of portable C (runtime included) for either protocol.
+//!
+//! **Architecture invariant**: every back-end is generated from the same IR, so the C that
+//! runs on the modules and the models that check it cannot drift apart.
+
+mod c;
+mod paper;
+mod predicate;
+mod runtime;
+
+pub use c::{generate_c, CompileOptions, Generated, PaperMerge, Protocol};

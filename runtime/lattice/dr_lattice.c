@@ -1,0 +1,360 @@
+/* dr_lattice.c - the lattice protocol: semilattice state, statement scheduling, persistence. */
+#include "dr_lattice.h"
+#include "dr_packet.h"
+
+/* Where the persisted state lives in non-volatile storage (two copies, one after the other).
+ * Belongs in dr_conf.h; kept here until that contract is extended. */
+#ifndef DR_CONF_LATTICE_NV_ADDR
+#define DR_CONF_LATTICE_NV_ADDR 0
+#endif
+
+#define W ((uint16_t)DR_CONF_WINDOW)
+#define NBYTES ((uint8_t)(DR_CONF_WINDOW / 8))
+/* Payload: epoch (2, big-endian), low (2, big-endian), done (W/8), started (W/8). */
+#define PAYLOAD ((uint8_t)(4u + 2u * NBYTES))
+#define FRAME ((uint8_t)(PAYLOAD + DR_PACKET_OVERHEAD))
+/* NV record: program id, address, payload, CRC-16 (big-endian) over the bytes before it. */
+#define RECORD ((uint8_t)(2u + PAYLOAD + 2u))
+#define TOP_EPOCH 0xFFFFu
+
+/* Compile-time checks of the configuration (a negative array size fails the build). */
+typedef char dr_lattice_check_window[(DR_CONF_WINDOW % 8 == 0 && DR_CONF_WINDOW >= 8 &&
+                                      DR_CONF_WINDOW <= 1000) ? 1 : -1];
+typedef char dr_lattice_check_packet[(4 + DR_CONF_WINDOW / 4 + DR_PACKET_OVERHEAD <=
+                                      DR_CONF_MAX_PACKET) ? 1 : -1];
+
+static uint8_t bit(const uint8_t *set, uint16_t i)
+{
+    return (uint8_t)(((unsigned)set[i >> 3] >> (i & 7u)) & 1u);
+}
+
+static void set_bit(uint8_t *set, uint16_t i)
+{
+    set[i >> 3] = (uint8_t)(set[i >> 3] | (1u << (i & 7u)));
+}
+
+/* Re-bases both sets `k` statements higher (bits below the new base are dropped). O(W/8). */
+static void shift(dr_shared_t *s, uint16_t k)
+{
+    uint8_t i;
+    uint8_t r = (uint8_t)(k & 7u);
+    uint16_t src;
+    for (i = 0; i < NBYTES; i++) {
+        src = (uint16_t)(i + (k >> 3));
+        if (src < NBYTES) {
+            s->done[i] = (uint8_t)(s->done[src] >> r);
+            s->started[i] = (uint8_t)(s->started[src] >> r);
+            if (r != 0u && src + 1u < NBYTES) {
+                s->done[i] = (uint8_t)(s->done[i] | (s->done[src + 1u] << (8u - r)));
+                s->started[i] = (uint8_t)(s->started[i] | (s->started[src + 1u] << (8u - r)));
+            }
+        } else {
+            s->done[i] = 0;
+            s->started[i] = 0;
+        }
+    }
+}
+
+/* Clears the bits of statements at or above n_statements; returns whether there were any.
+ * Precondition: s->low <= n_statements. O(W). */
+static uint8_t trim(dr_shared_t *s, uint16_t n_statements)
+{
+    uint16_t i;
+    uint8_t mask;
+    uint8_t found = 0;
+    for (i = (uint16_t)(n_statements - s->low); i < W; i++) {
+        mask = (uint8_t)(1u << (i & 7u));
+        found = (uint8_t)(found | ((s->done[i >> 3] | s->started[i >> 3]) & mask));
+        s->done[i >> 3] = (uint8_t)(s->done[i >> 3] & ~mask);
+        s->started[i >> 3] = (uint8_t)(s->started[i >> 3] & ~mask);
+    }
+    return found;
+}
+
+/* Cost: O(W). Result is canonical: bits only for statements below n_statements, low at the
+ * first statement not done, and a complete epoch rolled over to the next one (epoch 0xFFFF,
+ * the top, is never rolled over; with n_statements == 0 every state is the top). */
+void dr_shared_normalise(dr_shared_t *s, uint16_t n_statements)
+{
+    uint16_t i;
+    if (n_statements == 0u) {
+        s->epoch = TOP_EPOCH;
+    }
+    if (s->low > n_statements) {
+        s->low = n_statements;
+    }
+    (void)trim(s, n_statements);
+    for (i = 0; i < W && (uint16_t)(s->low + i) < n_statements && bit(s->done, i); i++) {
+    }
+    shift(s, i);
+    s->low = (uint16_t)(s->low + i);
+    if (s->low == n_statements && s->epoch != TOP_EPOCH) {
+        /* Everything complete in epoch e is the start of epoch e + 1. */
+        s->epoch++;
+        s->low = 0;
+        shift(s, W);
+    }
+}
+
+/* Cost: O(W). Precondition: both states decoded or normalised for n_statements. */
+void dr_shared_join(dr_shared_t *into, const dr_shared_t *other, uint16_t n_statements)
+{
+    dr_shared_t o = *other;
+    uint8_t i;
+    if (o.epoch > into->epoch) {
+        *into = o;
+    } else if (o.epoch == into->epoch) {
+        if (o.low > into->low) {
+            shift(into, (uint16_t)(o.low - into->low));
+            into->low = o.low;
+        } else {
+            shift(&o, (uint16_t)(into->low - o.low));
+        }
+        for (i = 0; i < NBYTES; i++) {
+            into->done[i] = (uint8_t)(into->done[i] | o.done[i]);
+            into->started[i] = (uint8_t)(into->started[i] | o.started[i]);
+        }
+    }
+    dr_shared_normalise(into, n_statements);
+}
+
+/* Whether `statement` is complete in s's epoch. Cost: O(1). */
+uint8_t dr_shared_is_done(const dr_shared_t *s, uint16_t statement)
+{
+    if (statement < s->low) {
+        return 1;
+    }
+    statement = (uint16_t)(statement - s->low);
+    return statement < W ? bit(s->done, statement) : 0u;
+}
+
+/* Returns the payload length (4 + DR_CONF_WINDOW / 4), or 0 when cap is too small. */
+uint8_t dr_shared_encode(const dr_shared_t *s, uint8_t *out, uint8_t cap)
+{
+    uint8_t i;
+    if (cap < PAYLOAD) {
+        return 0;
+    }
+    out[0] = (uint8_t)(s->epoch >> 8);
+    out[1] = (uint8_t)(s->epoch & 0xFFu);
+    out[2] = (uint8_t)(s->low >> 8);
+    out[3] = (uint8_t)(s->low & 0xFFu);
+    for (i = 0; i < NBYTES; i++) {
+        out[4u + i] = s->done[i];
+        out[4u + NBYTES + i] = s->started[i];
+    }
+    return PAYLOAD;
+}
+
+/* Returns 1 and fills s (not normalised) when the payload is well formed: the right length,
+ * low <= n_statements, no bit for a statement at or above n_statements. Cost: O(W). */
+uint8_t dr_shared_decode(dr_shared_t *s, const uint8_t *in, uint8_t len, uint16_t n_statements)
+{
+    uint8_t i;
+    if (len != PAYLOAD) {
+        return 0;
+    }
+    s->epoch = (uint16_t)((in[0] << 8) | in[1]);
+    s->low = (uint16_t)((in[2] << 8) | in[3]);
+    if (s->low > n_statements) {
+        return 0;
+    }
+    for (i = 0; i < NBYTES; i++) {
+        s->done[i] = in[4u + i];
+        s->started[i] = in[4u + NBYTES + i];
+    }
+    return (uint8_t)!trim(s, n_statements);
+}
+
+/* Sends the state now and schedules the next periodic broadcast. */
+static void broadcast(dr_module_t *m, uint32_t now)
+{
+    uint8_t frame[FRAME];
+    uint8_t len;
+    /* Encoded in place: dr_packet_frame then copies each payload byte onto itself. */
+    (void)dr_shared_encode(&m->shared, frame + 3, PAYLOAD);
+    len = dr_packet_frame(frame, FRAME, m->program->program_id, DR_PACKET_LATTICE_STATE,
+                          frame + 3, PAYLOAD);
+    dr_hal_broadcast(m, frame, len);
+    m->packets_sent++;
+    m->next_broadcast_ms = now + DR_CONF_BROADCAST_MS;
+#if DR_CONF_BROADCAST_JITTER_MS > 0
+    m->next_broadcast_ms += (uint32_t)(dr_hal_random(m) % (DR_CONF_BROADCAST_JITTER_MS + 1u));
+#endif
+}
+
+/* Writes the address and the state twice (copy A, then copy B), so that a reset during a
+ * write leaves one copy intact: the old state (the completion was not yet announced) or the
+ * new one. */
+static void persist(dr_module_t *m)
+{
+    uint8_t rec[RECORD];
+    uint16_t crc;
+    uint8_t copy;
+    rec[0] = m->program->program_id;
+    rec[1] = m->address;
+    (void)dr_shared_encode(&m->shared, rec + 2, PAYLOAD);
+    crc = dr_crc16(rec, (uint8_t)(RECORD - 2u));
+    rec[RECORD - 2u] = (uint8_t)(crc >> 8);
+    rec[RECORD - 1u] = (uint8_t)(crc & 0xFFu);
+    for (copy = 0; copy < 2u; copy++) {
+        dr_hal_nv_write(m, (uint16_t)(DR_CONF_LATTICE_NV_ADDR + copy * RECORD), rec, RECORD);
+    }
+}
+
+/* Joins every valid copy of the persisted state into m->shared and takes the address it
+ * records; returns whether there was one. */
+static uint8_t restore(dr_module_t *m)
+{
+    uint8_t rec[RECORD];
+    dr_shared_t s;
+    uint16_t crc;
+    uint8_t copy;
+    uint8_t found = 0;
+    for (copy = 0; copy < 2u; copy++) {
+        dr_hal_nv_read(m, (uint16_t)(DR_CONF_LATTICE_NV_ADDR + copy * RECORD), rec, RECORD);
+        crc = dr_crc16(rec, (uint8_t)(RECORD - 2u));
+        if (rec[0] == m->program->program_id && rec[RECORD - 2u] == (uint8_t)(crc >> 8) &&
+            rec[RECORD - 1u] == (uint8_t)(crc & 0xFFu) &&
+            dr_shared_decode(&s, rec + 2, PAYLOAD, m->program->n_statements)) {
+            dr_shared_join(&m->shared, &s, m->program->n_statements);
+            m->address = rec[1];
+            found = 1;
+        }
+    }
+    return found;
+}
+
+static void issue(dr_module_t *m)
+{
+    const dr_statement_t *st = &m->program->statements[m->running];
+    dr_hal_op_start(m, st->op, st->index, st->args);
+}
+
+/* Starts this module's first statement in the window that is not done and whose
+ * dependencies are all done (after a reset this re-enters an interrupted one). */
+static uint8_t start_next(dr_module_t *m)
+{
+    const dr_program_t *p = m->program;
+    const dr_statement_t *st;
+    dr_shared_t *sh = &m->shared;
+    uint16_t i;
+    uint16_t s;
+    uint8_t d;
+    if (m->address >= DR_MANY_ADDRESSES || (p->n_epochs != 0u && sh->epoch >= p->n_epochs)) {
+        return 0;
+    }
+    for (i = 0; i < W; i++) {
+        s = (uint16_t)(sh->low + i);
+        if (s >= p->n_statements) {
+            break;
+        }
+        st = &p->statements[s];
+        if (st->address != m->address || bit(sh->done, i)) {
+            continue;
+        }
+        for (d = 0; d < st->n_deps && dr_shared_is_done(sh, p->deps[st->first_dep + d]); d++) {
+        }
+        if (d == st->n_deps) {
+            set_bit(sh->started, i);
+            m->running = s;
+            m->running_epoch = sh->epoch;
+            issue(m);
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/* Cost: O(W) plus a read of the NV store (and a write when it holds no valid record).
+ * Precondition: the fields of *m other than the protocol state are zero or left from an
+ * earlier init (counters are kept; `resets` counts the inits of a module already running
+ * `program`). The address comes from the NV record when there is one: role predicates
+ * evaluated again after a reset, in a changed configuration, could give another answer. */
+void dr_module_init(dr_module_t *m, const dr_program_t *program, void *platform)
+{
+    uint8_t i;
+    if (m->program == program) {
+        m->resets++;
+    }
+    m->platform = platform;
+    m->program = program;
+    m->shared.epoch = 0;
+    m->shared.low = 0;
+    for (i = 0; i < NBYTES; i++) {
+        m->shared.done[i] = 0;
+        m->shared.started[i] = 0;
+    }
+    dr_shared_normalise(&m->shared, program->n_statements);
+    if (!restore(m)) {
+        m->address = program->address_of(m);
+        persist(m);
+    }
+    dr_hal_leds(m, m->address);
+    m->running = DR_NONE;
+    m->running_epoch = 0;
+    m->next_broadcast_ms = dr_hal_now_ms(m);
+}
+
+/* Cost: O(W * deps) plus, on a completion, an NV write; at most one packet sent. */
+void dr_module_step(dr_module_t *m)
+{
+    uint32_t now = dr_hal_now_ms(m);
+    uint8_t due = (uint8_t)((uint32_t)(now - m->next_broadcast_ms) < 0x80000000u);
+    uint8_t changed = 0;
+    uint16_t i;
+    enum dr_op_status status;
+    if (m->running != DR_NONE) {
+        status = dr_hal_op_status(m);
+        if (status != DR_OP_RUNNING) {
+            if (m->running_epoch != m->shared.epoch) {
+                m->running = DR_NONE; /* a completion from an older epoch: dropped */
+            } else if (status == DR_OP_DONE) {
+                i = (uint16_t)(m->running - m->shared.low);
+                if (m->running >= m->shared.low && i < W) {
+                    set_bit(m->shared.done, i);
+                }
+                m->running = DR_NONE;
+                dr_shared_normalise(&m->shared, m->program->n_statements);
+                persist(m);
+                changed = 1;
+            } else if (due) {
+                issue(m); /* failed: retry, at the pace of the periodic broadcast */
+            }
+        }
+    }
+    if (m->running == DR_NONE) {
+        changed = (uint8_t)(changed | start_next(m));
+    }
+    if (changed || due) {
+        broadcast(m, now);
+    }
+}
+
+/* Cost: O(len + W). */
+void dr_module_receive(dr_module_t *m, uint8_t channel, const uint8_t *bytes, uint8_t len)
+{
+    const dr_program_t *p = m->program;
+    const uint8_t *payload;
+    uint8_t payload_len;
+    dr_shared_t in;
+    enum dr_packet_result r;
+    (void)channel;
+    m->packets_received++;
+    r = dr_packet_unframe(bytes, len, p->program_id, DR_PACKET_LATTICE_STATE, &payload,
+                          &payload_len);
+    if (r == DR_PACKET_FOREIGN) {
+        m->packets_foreign++;
+    } else if (r != DR_PACKET_OK || !dr_shared_decode(&in, payload, payload_len, p->n_statements) ||
+               (p->n_epochs != 0u && in.epoch > p->n_epochs)) {
+        m->packets_malformed++;
+    } else {
+        dr_shared_join(&m->shared, &in, p->n_statements);
+    }
+}
+
+/* Cost: O(1). */
+uint8_t dr_module_finished(const dr_module_t *m)
+{
+    return (uint8_t)(m->program->n_epochs != 0u && m->shared.epoch >= m->program->n_epochs);
+}

@@ -1,0 +1,89 @@
+/* dr_lattice.h - the lattice protocol: shared state as a join-semilattice, statements started
+ * when their dependencies are complete, resets survived through non-volatile storage.
+ *
+ * The generated dr_program.c provides one dr_program_t (the statement table); the platform
+ * provides dr_hal.h and calls dr_module_init, dr_module_step and dr_module_receive. */
+#ifndef DR_LATTICE_H
+#define DR_LATTICE_H
+
+#include <stdint.h>
+#include "dr_conf.h"
+#include "dr_hal.h"
+
+/* Returned by a program's address_of when no role, or several, match this module. */
+#define DR_NO_ADDRESS 0xFFu
+#define DR_MANY_ADDRESSES 0xFEu
+
+/* One statement of the compiled sequence (generated, constant). Statement indices are source
+ * order after expansion; `deps` lists the statements that must be complete before this one
+ * starts (the previous parallel group, and the same module's previous statement). */
+typedef struct {
+    uint8_t address;                   /* the module (role or M<k>) that runs it */
+    uint8_t op;                        /* operation code, DR_OP_* of the generated header */
+    uint8_t index;                     /* part index (connector, joint); 0 when none */
+    uint8_t n_deps;
+    uint16_t first_dep;                /* position of its first dependency in deps[] */
+    int16_t args[DR_CONF_MAX_ARGS];
+} dr_statement_t;
+
+/* A compiled sequence (generated, constant). */
+typedef struct {
+    uint8_t program_id;                /* packets with another id are foreign */
+    uint16_t n_statements;
+    const dr_statement_t *statements;
+    const uint16_t *deps;
+    uint16_t n_epochs;                 /* runs of the whole sequence before the end; 0: forever */
+    uint8_t (*address_of)(struct dr_module *m); /* evaluates the role predicates */
+} dr_program_t;
+
+/* The shared state: epoch, low-water mark (every statement below it is complete in this
+ * epoch) and, for the window of statements above it, the completed and started bits. */
+typedef struct {
+    uint16_t epoch;
+    uint16_t low;
+    uint8_t done[DR_CONF_WINDOW / 8];
+    uint8_t started[DR_CONF_WINDOW / 8];
+} dr_shared_t;
+
+/* All per-module state (one per module; the simulator has many, an MCU one). */
+typedef struct dr_module {
+    void *platform;                    /* the platform's own data; the runtime never reads it */
+    const dr_program_t *program;
+    uint8_t address;
+    dr_shared_t shared;
+    uint16_t running;                  /* statement being executed here, or DR_NONE */
+    uint16_t running_epoch;            /* the epoch it started in */
+    uint32_t next_broadcast_ms;
+    /* counters, for reports */
+    uint32_t packets_sent;
+    uint32_t packets_received;
+    uint32_t packets_malformed;
+    uint32_t packets_foreign;
+    uint16_t resets;
+} dr_module_t;
+
+#define DR_NONE 0xFFFFu
+
+/* Starts (or restarts after a reset) a module: finds its address, restores the shared state
+ * from non-volatile storage when it is valid. Cost: O(statements). */
+void dr_module_init(dr_module_t *m, const dr_program_t *program, void *platform);
+/* One step of the module: merge is done on receipt; here it starts or polls its own
+ * operation and broadcasts when due. Call every few milliseconds. Cost: O(statements). */
+void dr_module_step(dr_module_t *m);
+/* A packet arrived on `channel`; malformed and foreign packets are counted and dropped. */
+void dr_module_receive(dr_module_t *m, uint8_t channel, const uint8_t *bytes, uint8_t len);
+/* Whether this module knows that the last epoch is complete (the end). */
+uint8_t dr_module_finished(const dr_module_t *m);
+
+/* The semilattice (exported for tests and for the model checker's reference):
+ * join: commutative, associative, idempotent; normalise: advance the low-water mark over the
+ * completed prefix and roll over to the next epoch when everything is complete. */
+void dr_shared_join(dr_shared_t *into, const dr_shared_t *other, uint16_t n_statements);
+void dr_shared_normalise(dr_shared_t *s, uint16_t n_statements);
+uint8_t dr_shared_is_done(const dr_shared_t *s, uint16_t statement);
+/* Encode/decode the payload of a DR_PACKET_LATTICE_STATE packet; decode returns 0 when the
+ * payload has the wrong size or inconsistent fields. */
+uint8_t dr_shared_encode(const dr_shared_t *s, uint8_t *out, uint8_t cap);
+uint8_t dr_shared_decode(dr_shared_t *s, const uint8_t *in, uint8_t len, uint16_t n_statements);
+
+#endif /* DR_LATTICE_H */

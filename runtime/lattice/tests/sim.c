@@ -1,0 +1,422 @@
+/* sim.c - the fake platform of the lattice runtime's tests (see sim.h). */
+#include <string.h>
+#include "sim.h"
+#include "check.h"
+
+sim_t sim;
+
+static sim_node_t *node_of(struct dr_module *m)
+{
+    return (sim_node_t *)m->platform;
+}
+
+static uint32_t xorshift(uint32_t *state)
+{
+    uint32_t x = *state;
+    x ^= x << 13;
+    x ^= x >> 17;
+    x ^= x << 5;
+    *state = x;
+    return x;
+}
+
+uint32_t sim_rand(void)
+{
+    return xorshift(&sim.rng);
+}
+
+static void violation(const char *what, uint16_t epoch, uint16_t statement)
+{
+    sim.violations++;
+    if (sim.violations <= 10u) {
+        fprintf(stderr, "  violation at %lu ms: %s (epoch %u, statement %u)\n",
+                (unsigned long)sim.time, what, (unsigned)epoch, (unsigned)statement);
+    }
+}
+
+/* Operation duration: 20-79 ms, depending on the statement. */
+static uint32_t duration(uint16_t statement)
+{
+    return 20u + ((uint32_t)statement * 37u) % 60u;
+}
+
+void sim_statement(dr_statement_t *st, uint8_t address, uint16_t self, uint8_t n_deps,
+                   uint16_t first_dep)
+{
+    memset(st, 0, sizeof *st);
+    st->address = address;
+    st->op = 1;
+    st->index = 0;
+    st->n_deps = n_deps;
+    st->first_dep = first_dep;
+    st->args[0] = (int16_t)self;
+}
+
+uint8_t sim_address_of(struct dr_module *m)
+{
+    return node_of(m)->answer;
+}
+
+/* ---- the HAL ---- */
+
+uint32_t dr_hal_now_ms(struct dr_module *m)
+{
+    return sim.time + node_of(m)->clock_offset;
+}
+
+uint16_t dr_hal_random(struct dr_module *m)
+{
+    return (uint16_t)(xorshift(&node_of(m)->rng) >> 8);
+}
+
+void dr_hal_broadcast(struct dr_module *m, const uint8_t *bytes, uint8_t len)
+{
+    sim_node_t *from = node_of(m);
+    uint8_t i = (uint8_t)(from - sim.nodes);
+    uint8_t j;
+    uint8_t copies;
+    sim_node_t *to;
+    sim_packet_t *p;
+    if (len == 0u || len > DR_CONF_MAX_PACKET) {
+        violation("bad packet length", 0, len);
+        return;
+    }
+    if (from->mute) {
+        return;
+    }
+    for (j = 0; j < sim.n_nodes; j++) {
+        if (!sim.adj[i][j]) {
+            continue;
+        }
+        to = &sim.nodes[j];
+        if (sim_rand() % 100u < sim.loss_percent) {
+            continue;
+        }
+        copies = (uint8_t)(sim_rand() % 100u < sim.dup_percent ? 2u : 1u);
+        while (copies-- > 0u && to->n_inbox < SIM_INBOX) {
+            p = &to->inbox[to->n_inbox++];
+            p->at = sim.time + 1u + (sim.max_delay_ms ? sim_rand() % sim.max_delay_ms : 0u);
+            p->len = len;
+            memcpy(p->bytes, bytes, len);
+            if (sim_rand() % 100u < sim.corrupt_percent) {
+                uint32_t b = sim_rand() % (8u * len);
+                p->bytes[b / 8u] = (uint8_t)(p->bytes[b / 8u] ^ (1u << (b % 8u)));
+                sim.corrupted++;
+            }
+        }
+    }
+}
+
+void dr_hal_op_start(struct dr_module *m, uint8_t op, uint8_t index, const int16_t *args)
+{
+    sim_node_t *n = node_of(m);
+    const dr_program_t *p = sim.program;
+    uint16_t s = (uint16_t)args[0];
+    uint16_t r = m->running_epoch;
+    uint16_t t;
+    uint16_t d;
+    uint32_t latest;
+    (void)op;
+    (void)index;
+    if (s >= p->n_statements || m->running != s) {
+        violation("op of an unknown statement", r, s);
+        return;
+    }
+    if (p->statements[s].address != n->address) {
+        violation("op started on the wrong module", r, s);
+    }
+    if (n->op_active && !n->op_failed && sim.time < n->op_until) {
+        violation("op started while another runs", r, s);
+    }
+    if (r < SIM_MAX_EPOCHS && sim.checks) {
+        /* S1: every dependency done in this epoch, and the whole previous epoch done. */
+        latest = 0;
+        for (d = 0; d < p->statements[s].n_deps; d++) {
+            t = p->deps[p->statements[s].first_dep + d];
+            if (!sim.reported[r][t]) {
+                violation("S1: started before a dependency was done", r, s);
+            } else if (sim.reported_ms[r][t] > latest) {
+                latest = sim.reported_ms[r][t];
+            }
+        }
+        if (p->statements[s].n_deps > 0u && !sim.starts[r][s] &&
+            sim.time - latest > sim.max_handover_ms) {
+            sim.max_handover_ms = sim.time - latest;
+        }
+        for (t = 0; r > 0u && t < p->n_statements; t++) {
+            if (!sim.reported[r - 1u][t]) {
+                violation("S1: started before the previous epoch was done", r, s);
+            }
+        }
+        /* S2: no op of a statement that depends on s, nor of a later epoch, was started. */
+        for (t = 0; t < p->n_statements; t++) {
+            for (d = 0; d < p->statements[t].n_deps; d++) {
+                if (p->deps[p->statements[t].first_dep + d] == s && sim.starts[r][t]) {
+                    violation("S2: re-issued after a later statement started", r, s);
+                }
+            }
+            if (r + 1u < SIM_MAX_EPOCHS && sim.starts[r + 1u][t]) {
+                violation("S2: started after an op of a later epoch", r, s);
+            }
+        }
+        if (sim.strict && sim.reported[r][s]) {
+            violation("re-issued an operation already completed", r, s);
+        }
+    }
+    if (r < SIM_MAX_EPOCHS) {
+        if (sim.starts[r][s] && sim.time - sim.last_start_ms[r][s] < sim.min_restart_gap_ms) {
+            sim.min_restart_gap_ms = sim.time - sim.last_start_ms[r][s];
+        }
+        sim.starts[r][s]++;
+        sim.last_start_ms[r][s] = sim.time;
+    }
+    sim.total_starts++;
+    n->op_active = 1;
+    n->op_failed = 0;
+    n->op_stmt = s;
+    n->op_epoch = r;
+    n->op_until = sim.time + duration(s) + (n->address == sim.slow_address ? 300u : 0u);
+    if (s == sim.reset_mid_stmt && r == sim.fault_epoch && !sim.fault_fired) {
+        sim.fault_fired = 1;
+        n->reset_at_set = 1;
+        n->reset_at = sim.time + duration(s) / 2u;
+    }
+}
+
+enum dr_op_status dr_hal_op_status(struct dr_module *m)
+{
+    sim_node_t *n = node_of(m);
+    if (!n->op_active) {
+        violation("polled with no operation", 0, 0);
+        return DR_OP_DONE;
+    }
+    if (n->op_failed) {
+        return DR_OP_FAILED;
+    }
+    if (sim.time < n->op_until) {
+        return DR_OP_RUNNING;
+    }
+    if (n->op_stmt == sim.fail_stmt && sim.fail_times > 0u) {
+        sim.fail_times--;
+        n->op_failed = 1;
+        return DR_OP_FAILED;
+    }
+    n->op_active = 0;
+    if (n->op_epoch < SIM_MAX_EPOCHS) {
+        sim.reported[n->op_epoch][n->op_stmt] = 1;
+        sim.reported_ms[n->op_epoch][n->op_stmt] = sim.time;
+    }
+    if (n->op_epoch == sim.fault_epoch && !sim.fault_fired) {
+        if (n->op_stmt == sim.reset_after_done_stmt) {
+            sim.fault_fired = 1;
+            n->reset_now = 1;
+            n->mute = 1; /* the completion is not announced before the reset */
+        } else if (n->op_stmt == sim.tear_after_done_stmt) {
+            sim.fault_fired = 1;
+            n->tear_in = sim.tear_copy;
+        }
+    }
+    return DR_OP_DONE;
+}
+
+uint16_t dr_hal_id(struct dr_module *m)
+{
+    return node_of(m)->id;
+}
+
+uint8_t dr_hal_connected(struct dr_module *m, uint8_t connector)
+{
+    (void)m;
+    (void)connector;
+    return 0;
+}
+
+int16_t dr_hal_neighbour_id(struct dr_module *m, uint8_t connector)
+{
+    (void)m;
+    (void)connector;
+    return -1;
+}
+
+int16_t dr_hal_joint(struct dr_module *m, uint8_t joint)
+{
+    (void)m;
+    (void)joint;
+    return 0;
+}
+
+void dr_hal_leds(struct dr_module *m, uint8_t value)
+{
+    node_of(m)->leds = value;
+}
+
+void dr_hal_nv_read(struct dr_module *m, uint16_t addr, uint8_t *buf, uint8_t len)
+{
+    sim_node_t *n = node_of(m);
+    if ((uint32_t)addr + len > SIM_NV) {
+        violation("NV read out of range", 0, addr);
+        return;
+    }
+    memcpy(buf, n->nv + addr, len);
+}
+
+void dr_hal_nv_write(struct dr_module *m, uint16_t addr, const uint8_t *buf, uint8_t len)
+{
+    sim_node_t *n = node_of(m);
+    if ((uint32_t)addr + len > SIM_NV) {
+        violation("NV write out of range", 0, addr);
+        return;
+    }
+    n->nv_writes++;
+    if (n->tear_in == 0) {
+        /* Power fails half-way through this write. */
+        n->tear_in = -1;
+        memcpy(n->nv + addr, buf, len / 2u);
+        n->nv[addr + len / 2u] = (uint8_t)~buf[len / 2u];
+        longjmp(sim.jmp, 1);
+    }
+    if (n->tear_in > 0) {
+        n->tear_in--;
+    }
+    memcpy(n->nv + addr, buf, len);
+}
+
+/* ---- the simulation ---- */
+
+void sim_setup(const dr_program_t *program, uint8_t n, const uint8_t *addresses, uint32_t seed)
+{
+    uint8_t i;
+    memset(&sim, 0, sizeof sim);
+    sim.program = program;
+    sim.n_nodes = n;
+    sim.rng = seed ? seed : 1u;
+    sim.checks = 1;
+    sim.strict = 1;
+    sim.min_restart_gap_ms = 0xFFFFFFFFu;
+    sim.fail_stmt = SIM_NONE;
+    sim.slow_address = 0xFEu;
+    sim.reset_after_done_stmt = SIM_NONE;
+    sim.reset_mid_stmt = SIM_NONE;
+    sim.tear_after_done_stmt = SIM_NONE;
+    for (i = 0; i < n; i++) {
+        sim_node_t *nd = &sim.nodes[i];
+        nd->id = i;
+        nd->address = addresses[i];
+        nd->answer = addresses[i];
+        nd->rng = 0x9E3779B9u * (i + 1u) ^ sim.rng;
+        /* Clocks close to the 32-bit wrap, each a little different. */
+        nd->clock_offset = 0xFFFFFFFFu - 700u + 13u * i;
+        nd->tear_in = -1;
+        memset(nd->nv, 0xFF, SIM_NV);
+        if (i > 0u) {
+            sim.adj[i][i - 1u] = 1;
+            sim.adj[i - 1u][i] = 1;
+        }
+    }
+    for (i = 0; i < n; i++) {
+        dr_module_init(&sim.nodes[i].mod, program, &sim.nodes[i]);
+    }
+}
+
+void sim_full_mesh(void)
+{
+    uint8_t i;
+    uint8_t j;
+    for (i = 0; i < sim.n_nodes; i++) {
+        for (j = 0; j < sim.n_nodes; j++) {
+            sim.adj[i][j] = (uint8_t)(i != j);
+        }
+    }
+}
+
+void sim_reset(uint8_t i)
+{
+    sim_node_t *n = &sim.nodes[i];
+    n->op_active = 0;
+    n->op_failed = 0;
+    n->mute = 0;
+    n->reset_now = 0;
+    n->reset_at_set = 0;
+    n->n_inbox = 0;
+    n->tear_in = -1;
+    /* RAM is lost: scribble over the protocol state (the counters are kept for reports). */
+    memset(&n->mod.shared, 0xA5, sizeof n->mod.shared);
+    n->mod.address = 0xA5u;
+    n->mod.running = 0xA5A5u;
+    n->mod.running_epoch = 0xA5A5u;
+    n->mod.next_broadcast_ms = 0xA5A5A5A5u;
+    dr_module_init(&n->mod, sim.program, n);
+}
+
+static void deliver(sim_node_t *n)
+{
+    uint16_t k;
+    uint16_t kept = 0;
+    for (k = 0; k < n->n_inbox; k++) {
+        if ((int32_t)(sim.time - n->inbox[k].at) >= 0) {
+            dr_module_receive(&n->mod, 0, n->inbox[k].bytes, n->inbox[k].len);
+        } else {
+            n->inbox[kept++] = n->inbox[k];
+        }
+    }
+    n->n_inbox = kept;
+}
+
+/* Returns 1 when the step was cut short by a torn NV write (power failure). */
+static int guarded_step(sim_node_t *n)
+{
+    if (setjmp(sim.jmp) != 0) {
+        return 1;
+    }
+    dr_module_step(&n->mod);
+    return 0;
+}
+
+uint8_t sim_run(uint32_t max_ms)
+{
+    uint32_t end = sim.time + max_ms;
+    uint8_t i;
+    uint8_t k;
+    uint8_t all;
+    uint16_t r;
+    uint16_t s;
+    sim_node_t *n;
+    while ((int32_t)(sim.time - end) < 0) {
+        uint8_t first = (uint8_t)(sim_rand() % sim.n_nodes);
+        all = 1;
+        for (k = 0; k < sim.n_nodes; k++) {
+            i = (uint8_t)((first + k) % sim.n_nodes);
+            n = &sim.nodes[i];
+            deliver(n);
+            if (guarded_step(n) || n->reset_now || (n->reset_at_set && sim.time >= n->reset_at)) {
+                sim_reset(i);
+            }
+            if (n->mod.running != DR_NONE && n->mod.running_epoch == n->mod.shared.epoch &&
+                n->mod.running >= n->mod.shared.low &&
+                n->mod.running - n->mod.shared.low >= DR_CONF_WINDOW) {
+                violation("running a statement outside the window", n->mod.shared.epoch,
+                          n->mod.running);
+            }
+            if (dr_module_finished(&n->mod)) {
+                if (!n->finished_seen && sim.checks) {
+                    /* S3: when the end is known, every operation of every epoch is done. */
+                    n->finished_seen = 1;
+                    for (r = 0; r < sim.program->n_epochs && r < SIM_MAX_EPOCHS; r++) {
+                        for (s = 0; s < sim.program->n_statements; s++) {
+                            if (!sim.reported[r][s]) {
+                                violation("S3: end known before every operation was done", r, s);
+                            }
+                        }
+                    }
+                }
+            } else {
+                all = 0;
+            }
+        }
+        sim.time += SIM_TICK_MS;
+        if (all) {
+            return 1;
+        }
+    }
+    return 0;
+}

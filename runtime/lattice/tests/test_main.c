@@ -1,0 +1,16 @@
+/* test_main.c - runs the lattice runtime's tests; exits non-zero on any failure. */
+#include "check.h"
+#include "dr_conf.h"
+
+unsigned long check_count;
+unsigned long check_failures;
+
+int main(void)
+{
+    test_laws();
+    test_packets();
+    test_sim();
+    printf("lattice tests (window %d): %lu checks, %lu failed\n", DR_CONF_WINDOW, check_count,
+           check_failures);
+    return check_failures == 0u ? 0 : 1;
+}

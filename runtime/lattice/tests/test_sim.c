@@ -1,0 +1,541 @@
+/* test_sim.c - modules running programs on the fake platform: dependencies respected, the
+ * end reached, resets survived without re-issuing completed operations, epochs. */
+#include <string.h>
+#include "check.h"
+#include "dr_packet.h"
+#include "sim.h"
+
+/* ---- fixed programs (statement k's op carries k; addresses are node numbers) ---- */
+
+/* `A & B; C;`  A@0 B@1 C@2 */
+static dr_statement_t p1_st[3];
+static const uint16_t p1_deps[] = { 0, 1 };
+/* `A; B & C; D;`  A@0 B@1 C@2 D@0 (D also depends on A, the same module's previous) */
+static dr_statement_t p2_st[4];
+static const uint16_t p2_deps[] = { 0, 0, 1, 2, 0 };
+/* `A & B & C; D;`  D on C's module */
+static dr_statement_t p3_st[4];
+static const uint16_t p3_deps[] = { 0, 1, 2 };
+
+static dr_program_t p1 = { 0x11u, 3u, p1_st, p1_deps, 1u, sim_address_of };
+static dr_program_t p2 = { 0x22u, 4u, p2_st, p2_deps, 1u, sim_address_of };
+static dr_program_t p3 = { 0x33u, 4u, p3_st, p3_deps, 1u, sim_address_of };
+
+static const uint8_t addr3[] = { 0, 1, 2 };
+
+static void build_fixed(void)
+{
+    sim_statement(&p1_st[0], 0, 0, 0, 0);
+    sim_statement(&p1_st[1], 1, 1, 0, 0);
+    sim_statement(&p1_st[2], 2, 2, 2, 0);
+    sim_statement(&p2_st[0], 0, 0, 0, 0);
+    sim_statement(&p2_st[1], 1, 1, 1, 0);
+    sim_statement(&p2_st[2], 2, 2, 1, 1);
+    sim_statement(&p2_st[3], 0, 3, 3, 2);
+    sim_statement(&p3_st[0], 0, 0, 0, 0);
+    sim_statement(&p3_st[1], 1, 1, 0, 0);
+    sim_statement(&p3_st[2], 2, 2, 0, 0);
+    sim_statement(&p3_st[3], 2, 3, 3, 0);
+}
+
+/* ---- generated programs: groups of 1-3 statements on random modules; each statement
+ * depends on the previous group and on its module's previous statement ---- */
+
+static dr_statement_t g_st[SIM_MAX_STATEMENTS];
+static uint16_t g_deps[SIM_MAX_STATEMENTS * 5u];
+static dr_program_t g_prog;
+
+static void generate(uint16_t n, uint8_t modules, uint16_t epochs)
+{
+    uint16_t s = 0;
+    uint16_t nd = 0;
+    uint16_t prev_start = 0;
+    uint16_t prev_end = 0;
+    uint16_t size;
+    uint16_t k;
+    uint16_t p;
+    uint16_t first;
+    uint16_t start;
+    uint8_t address;
+    int16_t last_of[SIM_MAX_NODES];
+    for (k = 0; k < SIM_MAX_NODES; k++) {
+        last_of[k] = -1;
+    }
+    while (s < n) {
+        size = (uint16_t)(1u + sim_rand() % 3u);
+        if (s + size > n) {
+            size = (uint16_t)(n - s);
+        }
+        start = s;
+        for (k = 0; k < size; k++, s++) {
+            address = (uint8_t)(sim_rand() % modules);
+            first = nd;
+            for (p = prev_start; p < prev_end; p++) {
+                g_deps[nd++] = p;
+            }
+            if (last_of[address] >= 0 && (uint16_t)last_of[address] >= start) {
+                g_deps[nd++] = (uint16_t)last_of[address];
+            } else if (last_of[address] >= 0 && (uint16_t)last_of[address] < prev_start) {
+                g_deps[nd++] = (uint16_t)last_of[address];
+            }
+            sim_statement(&g_st[s], address, s, (uint8_t)(nd - first), first);
+            last_of[address] = (int16_t)s;
+        }
+        prev_start = start;
+        prev_end = s;
+    }
+    g_prog.program_id = (uint8_t)(0x40u + n);
+    g_prog.n_statements = n;
+    g_prog.statements = g_st;
+    g_prog.deps = g_deps;
+    g_prog.n_epochs = epochs;
+    g_prog.address_of = sim_address_of;
+}
+
+/* ---- helpers ---- */
+
+static void network(uint8_t loss, uint16_t delay, uint8_t dup, uint8_t corrupt)
+{
+    sim.loss_percent = loss;
+    sim.max_delay_ms = delay;
+    sim.dup_percent = dup;
+    sim.corrupt_percent = corrupt;
+}
+
+/* Every statement of epochs [0, epochs) started `times` times, except `special` (started
+ * `special_times`). */
+static void check_starts(const dr_program_t *p, uint16_t epochs, uint8_t times, uint16_t special,
+                         uint8_t special_times)
+{
+    uint16_t r;
+    uint16_t s;
+    for (r = 0; r < epochs; r++) {
+        for (s = 0; s < p->n_statements; s++) {
+            CHECK_EQ(sim.starts[r][s], s == special && r == sim.fault_epoch ? special_times : times);
+        }
+    }
+}
+
+/* Steps for a fixed time, finished or not. */
+static void run_for(uint32_t ms)
+{
+    uint32_t t;
+    for (t = 0; t < ms; t += SIM_TICK_MS) {
+        (void)sim_run(SIM_TICK_MS);
+    }
+}
+
+/* ---- tests ---- */
+
+static void test_programs(void)
+{
+    dr_program_t *programs[3];
+    uint8_t k;
+    uint8_t net;
+    uint8_t mesh;
+    uint32_t malformed;
+    uint8_t i;
+    programs[0] = &p1;
+    programs[1] = &p2;
+    programs[2] = &p3;
+    for (k = 0; k < 3u; k++) {
+        for (mesh = 0; mesh < 2u; mesh++) {
+            for (net = 0; net < 2u; net++) {
+                sim_setup(programs[k], 3, addr3, 100u + k * 10u + mesh * 2u + net);
+                if (mesh) {
+                    sim_full_mesh();
+                }
+                if (net) {
+                    network(30, 150, 10, 10);
+                }
+                CHECK(sim_run(60000u));
+                CHECK_EQ(sim.violations, 0);
+                check_starts(programs[k], 1, 1, SIM_NONE, 0);
+                malformed = 0;
+                for (i = 0; i < 3u; i++) {
+                    malformed += sim.nodes[i].mod.packets_malformed;
+                    CHECK_EQ(sim.nodes[i].mod.shared.epoch, 1);
+                }
+                /* Every corrupted packet delivered is rejected (some are still in flight). */
+                CHECK(malformed <= sim.corrupted);
+                CHECK(net || malformed == 0u);
+                /* Perfect network, everyone in range: a completion is announced at once and
+                 * the next statement starts within two steps. */
+                CHECK(net || !mesh || sim.max_handover_ms <= 2u * SIM_TICK_MS);
+            }
+        }
+    }
+}
+
+/* A module with no (or an ambiguous) address relays the state between the others. */
+static void test_relay(void)
+{
+    uint8_t addresses[4] = { 0, DR_NO_ADDRESS, 1, 2 };
+    uint8_t k;
+    for (k = 0; k < 2u; k++) {
+        addresses[1] = k ? DR_MANY_ADDRESSES : DR_NO_ADDRESS;
+        sim_setup(&p1, 4, addresses, 5u + k);
+        CHECK(sim_run(60000u));
+        CHECK_EQ(sim.violations, 0);
+        check_starts(&p1, 1, 1, SIM_NONE, 0);
+        CHECK_EQ(sim.nodes[1].leds, addresses[1]);
+        CHECK_EQ(sim.nodes[2].leds, 1);
+        CHECK(sim.nodes[1].mod.packets_sent > 0u);
+    }
+}
+
+/* Resets at various moments, the NV store surviving. */
+static void test_resets(void)
+{
+    dr_program_t *programs[3];
+    uint8_t k;
+    uint16_t s;
+    uint8_t i;
+    uint8_t lossy;
+    uint8_t copy;
+    uint32_t starts;
+    programs[0] = &p1;
+    programs[1] = &p2;
+    programs[2] = &p3;
+    for (k = 0; k < 3u; k++) {
+        const dr_program_t *p = programs[k];
+        for (s = 0; s < p->n_statements; s++) {
+            uint8_t owner = p->statements[s].address;
+            for (lossy = 0; lossy < 2u; lossy++) {
+                /* Right after a completion, before it was announced: never re-issued. */
+                sim_setup(p, 3, addr3, 200u + s + lossy);
+                if (lossy) {
+                    network(30, 100, 10, 0);
+                }
+                sim.reset_after_done_stmt = s;
+                CHECK(sim_run(60000u));
+                CHECK(sim.fault_fired);
+                CHECK_EQ(sim.nodes[owner].mod.resets, 1);
+                CHECK_EQ(sim.violations, 0);
+                check_starts(p, 1, 1, SIM_NONE, 0);
+
+                /* Half-way through the operation: re-issued once, completes. */
+                sim_setup(p, 3, addr3, 300u + s + lossy);
+                if (lossy) {
+                    network(30, 100, 10, 0);
+                }
+                sim.reset_mid_stmt = s;
+                CHECK(sim_run(60000u));
+                CHECK(sim.fault_fired);
+                CHECK_EQ(sim.nodes[owner].mod.resets, 1);
+                CHECK_EQ(sim.violations, 0);
+                check_starts(p, 1, 1, s, 2);
+            }
+            /* Power lost while persisting the completion: in the first copy, the completion
+             * is lost with it (it was not announced yet) and the operation is re-issued; in
+             * the second copy, the first one holds it and nothing is re-issued. */
+            for (copy = 0; copy < 2u; copy++) {
+                sim_setup(p, 3, addr3, 400u + s + copy);
+                sim.tear_after_done_stmt = s;
+                sim.tear_copy = (int16_t)copy;
+                sim.strict = (uint8_t)(copy == 1u);
+                CHECK(sim_run(60000u));
+                CHECK(sim.fault_fired);
+                CHECK_EQ(sim.nodes[owner].mod.resets, 1);
+                CHECK_EQ(sim.violations, 0);
+                check_starts(p, 1, 1, s, (uint8_t)(copy == 0u ? 2u : 1u));
+            }
+        }
+        /* After the end: each module in turn (the first one first) is reset; nothing is
+         * re-issued, and the end is known again (from the NV store of the module that
+         * completed the last statement, or else from a neighbour). */
+        sim_setup(p, 3, addr3, 500u + k);
+        CHECK(sim_run(60000u));
+        starts = sim.total_starts;
+        for (i = 0; i < 3u; i++) {
+            sim_reset(i);
+            CHECK(dr_module_finished(&sim.nodes[i].mod) ==
+                  (p->statements[p->n_statements - 1u].address == i));
+            run_for(1000u);
+            CHECK(dr_module_finished(&sim.nodes[i].mod));
+        }
+        /* All of them at once (a power cycle of the robot): the same. */
+        for (i = 0; i < 3u; i++) {
+            sim_reset(i);
+        }
+        CHECK(sim_run(5000u));
+        CHECK_EQ(sim.total_starts, starts);
+        CHECK_EQ(sim.violations, 0);
+        for (i = 0; i < 3u; i++) {
+            CHECK_EQ(sim.nodes[i].mod.resets, 2);
+        }
+    }
+}
+
+/* A module reset after the configuration changed keeps the address it had at the start
+ * (from its NV store), even if its role predicates now say otherwise. */
+static void test_address_kept(void)
+{
+    sim_setup(&p2, 3, addr3, 88u);
+    while (!sim.reported[0][0] && sim.time < 10000u) {
+        run_for(SIM_TICK_MS); /* until A (node 0) is done; D (node 0) waits for B and C */
+    }
+    CHECK_EQ(sim.nodes[0].mod.running, DR_NONE);
+    sim.nodes[0].answer = 2; /* its predicates would now make it C's module */
+    sim_reset(0);
+    CHECK_EQ(sim.nodes[0].mod.address, 0);
+    CHECK_EQ(sim.nodes[0].leds, 0);
+    CHECK(sim_run(60000u));
+    CHECK_EQ(sim.violations, 0);
+    check_starts(&p2, 1, 1, SIM_NONE, 0);
+}
+
+/* The limit of the guarantee: a module whose NV store is lost (here: erased before its
+ * reset) restarts from the bottom and re-issues its first operation before it hears that the
+ * sequence is over. Recorded so that a change of this behaviour is noticed. */
+static void test_without_nv(void)
+{
+    sim_setup(&p1, 3, addr3, 77u);
+    CHECK(sim_run(60000u));
+    sim.checks = 0;
+    memset(sim.nodes[0].nv, 0xFF, SIM_NV);
+    sim_reset(0);
+    CHECK(!dr_module_finished(&sim.nodes[0].mod));
+    run_for(2000u);
+    CHECK_EQ(sim.starts[0][0], 2); /* the known weakness without NV */
+    CHECK(dr_module_finished(&sim.nodes[0].mod)); /* but the end is learnt again */
+    CHECK_EQ(sim.starts[0][1], 1);
+}
+
+/* A failed operation is re-issued at the pace of the broadcast until it succeeds. */
+static void test_failures(void)
+{
+    sim_setup(&p2, 3, addr3, 9u);
+    sim.fail_stmt = 1;
+    sim.fail_times = 2;
+    CHECK(sim_run(60000u));
+    CHECK_EQ(sim.violations, 0);
+    CHECK_EQ(sim.starts[0][1], 3);
+    CHECK(sim.min_restart_gap_ms >= DR_CONF_BROADCAST_MS);
+    CHECK_EQ(sim.starts[0][0] + sim.starts[0][2] + sim.starts[0][3], 3);
+}
+
+static void test_epochs(void)
+{
+    dr_program_t twice = p2;
+    dr_program_t forever = p1;
+    uint8_t lossy;
+    uint8_t i;
+    uint16_t r;
+    twice.n_epochs = 2;
+    forever.n_epochs = 0;
+    for (lossy = 0; lossy < 2u; lossy++) {
+        sim_setup(&twice, 3, addr3, 600u + lossy);
+        if (lossy) {
+            network(30, 100, 10, 2);
+        }
+        CHECK(sim_run(60000u));
+        CHECK_EQ(sim.violations, 0);
+        check_starts(&twice, 2, 1, SIM_NONE, 0);
+        for (i = 0; i < 3u; i++) {
+            CHECK_EQ(sim.nodes[i].mod.shared.epoch, 2);
+        }
+        /* A reset mid-operation in the second epoch. */
+        sim_setup(&twice, 3, addr3, 610u + lossy);
+        sim.reset_mid_stmt = 2;
+        sim.fault_epoch = 1;
+        CHECK(sim_run(60000u));
+        CHECK_EQ(sim.violations, 0);
+        check_starts(&twice, 2, 1, 2, 2);
+    }
+    /* n_epochs = 0: runs again and again, never finishes. */
+    sim_setup(&forever, 3, addr3, 700u);
+    CHECK(!sim_run(4000u));
+    CHECK_EQ(sim.violations, 0);
+    for (i = 0; i < 3u; i++) {
+        CHECK(sim.nodes[i].mod.shared.epoch >= 4u);
+        CHECK(!dr_module_finished(&sim.nodes[i].mod));
+    }
+    for (r = 0; r < 3u; r++) {
+        CHECK_EQ(sim.starts[r][0] + sim.starts[r][1] + sim.starts[r][2], 3);
+    }
+}
+
+/* A completion that arrives after the epoch moved on does not count in the new epoch. */
+static void test_old_epoch_completion(void)
+{
+    static dr_statement_t st[2];
+    static const uint16_t deps[] = { 0 };
+    dr_program_t p = { 0x77u, 2u, st, deps, 3u, sim_address_of };
+    static const uint8_t one[] = { 0 };
+    uint8_t payload[4u + DR_CONF_WINDOW / 4u];
+    uint8_t frame[DR_CONF_MAX_PACKET];
+    uint8_t len;
+    uint32_t until;
+    dr_shared_t s;
+    dr_module_t *m;
+    sim_statement(&st[0], 0, 0, 0, 0);
+    sim_statement(&st[1], 0, 1, 1, 0);
+    sim_setup(&p, 1, one, 3u);
+    sim.checks = 0;
+    m = &sim.nodes[0].mod;
+    dr_module_step(m);
+    CHECK_EQ(m->running, 0);
+    CHECK_EQ(m->running_epoch, 0);
+    /* Another copy says epoch 1 began (possible only after a lost NV store, say). */
+    memset(&s, 0, sizeof s);
+    s.epoch = 1;
+    len = dr_shared_encode(&s, payload, sizeof payload);
+    len = dr_packet_frame(frame, sizeof frame, p.program_id, DR_PACKET_LATTICE_STATE, payload, len);
+    dr_module_receive(m, 0, frame, len);
+    CHECK_EQ(m->shared.epoch, 1);
+    CHECK_EQ(m->running, 0); /* still waiting for the operation it started */
+    until = sim.nodes[0].op_until;
+    while (sim.time < until) {
+        sim.time += SIM_TICK_MS;
+        dr_module_step(m);
+    }
+    /* The epoch-0 completion was dropped: statement 0 is not done in epoch 1, and is started
+     * (again) in epoch 1. */
+    CHECK(!dr_shared_is_done(&m->shared, 0));
+    CHECK_EQ(m->shared.epoch, 1);
+    CHECK_EQ(m->running, 0);
+    CHECK_EQ(m->running_epoch, 1);
+    CHECK_EQ(sim.starts[1][0], 1);
+    CHECK(sim_run(60000u));
+    CHECK_EQ(sim.starts[0][1], 0);
+    CHECK_EQ(sim.starts[1][1], 1);
+    CHECK_EQ(sim.starts[2][0], 1);
+    CHECK_EQ(sim.starts[2][1], 1);
+    CHECK_EQ(m->shared.epoch, 3);
+}
+
+/* A long program: the window slides over it; with several modules per group. */
+static void test_long(void)
+{
+    uint8_t addresses[5] = { 0, 1, 2, 3, 4 };
+    sim_setup(&p1, 1, addresses, 1u); /* seeds sim_rand for generate() */
+    generate(SIM_MAX_STATEMENTS, 5, 2);
+    sim_setup(&g_prog, 5, addresses, 31u);
+    network(20, 80, 5, 1);
+    CHECK(sim_run(200000u));
+    CHECK_EQ(sim.violations, 0);
+    check_starts(&g_prog, 2, 1, SIM_NONE, 0);
+}
+
+/* A program that needs a bigger window than it has (the compiler would refuse it): four
+ * independent chains of statements, one per module, one of them slow. A statement beyond the window waits until
+ * the low-water mark comes close enough: slower, never unsafe, never out of the arrays. */
+static void test_window_too_small(void)
+{
+    static const uint8_t addresses[] = { 0, 1, 2, 3 };
+    uint16_t s;
+    uint16_t nd = 0;
+    uint16_t n = 3u * DR_CONF_WINDOW < SIM_MAX_STATEMENTS ? 3u * DR_CONF_WINDOW : SIM_MAX_STATEMENTS;
+    for (s = 0; s < n; s++) {
+        if (s >= 4u) {
+            g_deps[nd] = (uint16_t)(s - 4u);
+            sim_statement(&g_st[s], (uint8_t)(s % 4u), s, 1, nd);
+            nd++;
+        } else {
+            sim_statement(&g_st[s], (uint8_t)(s % 4u), s, 0, 0);
+        }
+    }
+    g_prog.program_id = 0x99u;
+    g_prog.n_statements = n;
+    g_prog.statements = g_st;
+    g_prog.deps = g_deps;
+    g_prog.n_epochs = 1;
+    g_prog.address_of = sim_address_of;
+    sim_setup(&g_prog, 4, addresses, 8u);
+    sim_full_mesh();
+    sim.slow_address = 3;
+    CHECK(sim_run(200000u));
+    CHECK_EQ(sim.violations, 0);
+    check_starts(&g_prog, 1, 1, SIM_NONE, 0);
+    /* The fast chains were held back by the window. */
+    CHECK(sim.max_handover_ms > 300u);
+}
+
+/* Random programs, networks and resets (the NV store surviving). */
+static void test_fuzz(unsigned runs)
+{
+    unsigned run;
+    uint8_t addresses[SIM_MAX_NODES];
+    uint8_t n_modules;
+    uint8_t n_nodes;
+    uint8_t relay;
+    uint8_t i;
+    uint8_t resets;
+    uint8_t k;
+    uint16_t r;
+    uint16_t s;
+    uint32_t starts;
+    uint32_t failed_runs = 0;
+    for (run = 0; run < runs; run++) {
+        sim_setup(&p1, 1, addr3, 1000u + run);
+        n_modules = (uint8_t)(2u + sim_rand() % 4u);
+        generate((uint16_t)(3u + sim_rand() % 22u), n_modules, (uint16_t)(1u + sim_rand() % 3u));
+        relay = (uint8_t)(sim_rand() % 2u);
+        n_nodes = (uint8_t)(n_modules + relay);
+        for (i = 0; i < n_modules; i++) {
+            addresses[i] = i;
+        }
+        if (relay) {
+            addresses[n_modules] = addresses[0];
+            addresses[0] = DR_NO_ADDRESS; /* the relay is at one end ... */
+            if (n_nodes > 2u) {            /* ... or in the middle */
+                addresses[0] = addresses[1];
+                addresses[1] = DR_NO_ADDRESS;
+            }
+        }
+        sim_setup(&g_prog, n_nodes, addresses, 5000u + run);
+        if (sim_rand() % 2u) {
+            sim_full_mesh();
+        }
+        network((uint8_t)(sim_rand() % 41u), (uint16_t)(sim_rand() % 200u),
+                (uint8_t)(sim_rand() % 21u), (uint8_t)(sim_rand() % 6u));
+        resets = (uint8_t)(sim_rand() % 6u);
+        for (i = 0; i < resets; i++) {
+            if (sim_run(sim_rand() % 1500u)) {
+                break;
+            }
+            if (sim_rand() % 4u == 0u) {
+                for (k = 0; k < n_nodes; k++) {
+                    sim_reset(k); /* all at once: a power cycle */
+                }
+            } else {
+                sim_reset((uint8_t)(sim_rand() % n_nodes));
+            }
+        }
+        CHECK(sim_run(300000u));
+        /* After the end, a reset of a random module re-issues nothing. */
+        starts = sim.total_starts;
+        sim_reset((uint8_t)(sim_rand() % n_nodes));
+        run_for(500u);
+        CHECK_EQ(sim.total_starts, starts);
+        CHECK_EQ(sim.violations, 0);
+        for (r = 0; r < g_prog.n_epochs; r++) {
+            for (s = 0; s < g_prog.n_statements; s++) {
+                CHECK(sim.starts[r][s] >= 1u);
+            }
+        }
+        if (sim.violations != 0u) {
+            failed_runs++;
+            if (failed_runs <= 3u) {
+                fprintf(stderr, "  fuzz run %u failed\n", run);
+            }
+        }
+    }
+}
+
+void test_sim(void)
+{
+    build_fixed();
+    test_programs();
+    test_relay();
+    test_resets();
+    test_address_kept();
+    test_without_nv();
+    test_failures();
+    test_epochs();
+    test_old_epoch_completion();
+    test_long();
+    test_window_too_small();
+    test_fuzz(300u);
+}
