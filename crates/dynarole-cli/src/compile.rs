@@ -3,7 +3,7 @@
 
 use crate::load::{self, Failure, PluginArgs};
 use crate::render;
-use dynarole_codegen::{generate_c, CompileOptions, PaperMerge, Protocol};
+use dynarole_codegen::{generate_c, generate_nesc, CompileOptions, PaperMerge, Protocol};
 use dynarole_core::diagnostic::has_errors;
 use dynarole_core::{analyze, parse, Diagnostic, DiagnosticKind};
 use std::path::Path;
@@ -13,6 +13,8 @@ use std::process::ExitCode;
 pub enum Target {
     /// Portable C99 plus the runtime and a Makefile.
     C,
+    /// The same C wrapped in a TinyOS 2 component (DynaRoleC.nc, DynaRoleP.nc).
+    Nesc,
 }
 
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
@@ -105,8 +107,11 @@ pub fn run(args: &CompileArgs) -> Result<ExitCode, Failure> {
         epochs: args.epochs,
         name: names.join(" + "),
     };
-    let Target::C = args.target;
-    let generated = match generate_c(&ir, &program.robot, &options) {
+    let generate = match args.target {
+        Target::C => generate_c,
+        Target::Nesc => generate_nesc,
+    };
+    let generated = match generate(&ir, &program.robot, &options) {
         Ok(g) => g,
         Err(e) => {
             render::diagnostics(&display, &source, &[limit_error(e)]);

@@ -5,8 +5,9 @@
 //! runs on the modules and the models that check it cannot drift apart.
 
 mod c;
+mod nesc;
 mod paper;
 mod predicate;
 mod runtime;
 
-pub use c::{generate_c, CompileOptions, Generated, PaperMerge, Protocol};
+pub use c::{generate_c, generate_nesc, CompileOptions, Generated, PaperMerge, Protocol};
