@@ -1,4 +1,5 @@
-/* dr_lattice.c - the lattice protocol: semilattice state, statement scheduling, persistence. */
+/* dr_lattice.c - the lattice protocol: semilattice state, statement scheduling, persistence
+ * (or, with DR_PROGRAM_NO_NV, the two rules that stand in for it). */
 #include "dr_lattice.h"
 #include "dr_packet.h"
 
@@ -6,6 +7,18 @@
  * Belongs in dr_conf.h; kept here until that contract is extended. */
 #ifndef DR_CONF_LATTICE_NV_ADDR
 #define DR_CONF_LATTICE_NV_ADDR 0
+#endif
+
+/* DR_PROGRAM_NO_NV: after a (re)start a module waits to hear from every connected neighbour,
+ * but gives up on those still silent at its DR_CONF_LATTICE_FRESH_PERIODS-th periodic
+ * broadcast (the first one is at the restart), i.e. after (periods - 1) x (BROADCAST_MS +
+ * 0..JITTER_MS) ms: 900 ms with the defaults (10 periods of 100 ms, no jitter). So a module
+ * with no connected neighbour starts at once, and one next to a dead or mute neighbour starts
+ * after the bound. The consequence: a live neighbour whose packets were all lost meanwhile
+ * (probability about loss^(periods - 1)) is not heard, and if it alone held a completion of
+ * this module, that operation may be re-issued after its successors started (S2 lost). */
+#ifndef DR_CONF_LATTICE_FRESH_PERIODS
+#define DR_CONF_LATTICE_FRESH_PERIODS 10
 #endif
 
 #define W ((uint16_t)DR_CONF_WINDOW)
@@ -22,6 +35,9 @@ typedef char dr_lattice_check_window[(DR_CONF_WINDOW % 8 == 0 && DR_CONF_WINDOW 
                                       DR_CONF_WINDOW <= 1000) ? 1 : -1];
 typedef char dr_lattice_check_packet[(4 + DR_CONF_WINDOW / 4 + DR_PACKET_OVERHEAD <=
                                       DR_CONF_MAX_PACKET) ? 1 : -1];
+typedef char dr_lattice_check_channels[(DR_CONF_CHANNELS >= 1 && DR_CONF_CHANNELS <= 32 &&
+                                        DR_CONF_LATTICE_FRESH_PERIODS >= 1 &&
+                                        DR_CONF_LATTICE_FRESH_PERIODS <= 255) ? 1 : -1];
 
 static uint8_t bit(const uint8_t *set, uint16_t i)
 {
@@ -225,6 +241,19 @@ static uint8_t restore(dr_module_t *m)
     return found;
 }
 
+/* The channels with a neighbour latched to them now. O(DR_CONF_CHANNELS). */
+static dr_channels_t connected(dr_module_t *m)
+{
+    dr_channels_t set = 0;
+    uint8_t c;
+    for (c = 0; c < DR_CONF_CHANNELS; c++) {
+        if (dr_hal_connected(m, c)) {
+            set = (dr_channels_t)(set | ((dr_channels_t)1 << c));
+        }
+    }
+    return set;
+}
+
 static void issue(dr_module_t *m)
 {
     const dr_statement_t *st = &m->program->statements[m->running];
@@ -266,11 +295,13 @@ static uint8_t start_next(dr_module_t *m)
     return 0;
 }
 
-/* Cost: O(W) plus a read of the NV store (and a write when it holds no valid record).
+/* Cost: O(W) plus a read of the NV store (and a write when it holds no valid record); with
+ * DR_PROGRAM_NO_NV no NV access but O(DR_CONF_CHANNELS) calls of dr_hal_connected.
  * Precondition: the fields of *m other than the protocol state are zero or left from an
  * earlier init (counters are kept; `resets` counts the inits of a module already running
  * `program`). The address comes from the NV record when there is one: role predicates
- * evaluated again after a reset, in a changed configuration, could give another answer. */
+ * evaluated again after a reset, in a changed configuration, could give another answer
+ * (with DR_PROGRAM_NO_NV there is no record: they are evaluated at every (re)start). */
 void dr_module_init(dr_module_t *m, const dr_program_t *program, void *platform)
 {
     uint8_t i;
@@ -286,7 +317,14 @@ void dr_module_init(dr_module_t *m, const dr_program_t *program, void *platform)
         m->shared.started[i] = 0;
     }
     dr_shared_normalise(&m->shared, program->n_statements);
-    if (!restore(m)) {
+    m->unechoed = DR_NONE;
+    m->unheard = 0;
+    if (program->options & DR_PROGRAM_NO_NV) {
+        /* Rule 1: act only once every neighbour connected now has been heard (or the bound). */
+        m->address = program->address_of(m);
+        m->unheard = connected(m);
+        m->wait = DR_CONF_LATTICE_FRESH_PERIODS;
+    } else if (!restore(m)) {
         m->address = program->address_of(m);
         persist(m);
     }
@@ -296,7 +334,8 @@ void dr_module_init(dr_module_t *m, const dr_program_t *program, void *platform)
     m->next_broadcast_ms = dr_hal_now_ms(m);
 }
 
-/* Cost: O(W * deps) plus, on a completion, an NV write; at most one packet sent. */
+/* Cost: O(W * deps) plus, on a completion, an NV write (with DR_PROGRAM_NO_NV: a scan of the
+ * channels instead); at most one packet sent. */
 void dr_module_step(dr_module_t *m)
 {
     uint32_t now = dr_hal_now_ms(m);
@@ -314,16 +353,25 @@ void dr_module_step(dr_module_t *m)
                 if (m->running >= m->shared.low && i < W) {
                     set_bit(m->shared.done, i);
                 }
-                m->running = DR_NONE;
                 dr_shared_normalise(&m->shared, m->program->n_statements);
-                persist(m);
+                if (!(m->program->options & DR_PROGRAM_NO_NV)) {
+                    persist(m);
+                } else if (connected(m)) {
+                    /* Rule 2: not acted on (nothing starts here) until a neighbour echoes it;
+                     * the broadcast below still carries it. running_epoch keeps its epoch. */
+                    m->unechoed = m->running;
+                }
+                m->running = DR_NONE;
                 changed = 1;
             } else if (due) {
                 issue(m); /* failed: retry, at the pace of the periodic broadcast */
             }
         }
     }
-    if (m->running == DR_NONE) {
+    if (due && m->unheard != 0u && --m->wait == 0u) {
+        m->unheard = 0; /* the bound: give up on the neighbours still silent */
+    }
+    if (m->running == DR_NONE && m->unheard == 0u && m->unechoed == DR_NONE) {
         changed = (uint8_t)(changed | start_next(m));
     }
     if (changed || due) {
@@ -339,7 +387,6 @@ void dr_module_receive(dr_module_t *m, uint8_t channel, const uint8_t *bytes, ui
     uint8_t payload_len;
     dr_shared_t in;
     enum dr_packet_result r;
-    (void)channel;
     m->packets_received++;
     r = dr_packet_unframe(bytes, len, p->program_id, DR_PACKET_LATTICE_STATE, &payload,
                           &payload_len);
@@ -349,6 +396,15 @@ void dr_module_receive(dr_module_t *m, uint8_t channel, const uint8_t *bytes, ui
                (p->n_epochs != 0u && in.epoch > p->n_epochs)) {
         m->packets_malformed++;
     } else {
+        /* DR_PROGRAM_NO_NV (both fields stay 0 / DR_NONE otherwise): a neighbour heard; the
+         * own completion echoed (held by two modules now, so it may be acted on). */
+        if (channel < DR_CONF_CHANNELS) {
+            m->unheard = (dr_channels_t)(m->unheard & ~((dr_channels_t)1 << channel));
+        }
+        if (in.epoch > m->running_epoch ||
+            (in.epoch == m->running_epoch && dr_shared_is_done(&in, m->unechoed))) {
+            m->unechoed = DR_NONE; /* (is_done of DR_NONE is 0) */
+        }
         dr_shared_join(&m->shared, &in, p->n_statements);
     }
 }

@@ -1,5 +1,6 @@
 /* dr_lattice.h - the lattice protocol: shared state as a join-semilattice, statements started
- * when their dependencies are complete, resets survived through non-volatile storage.
+ * when their dependencies are complete, resets survived through non-volatile storage (or,
+ * with DR_PROGRAM_NO_NV, through the neighbours' copies: a weaker guarantee, see README.md).
  *
  * The generated dr_program.c provides one dr_program_t (the statement table); the platform
  * provides dr_hal.h and calls dr_module_init, dr_module_step and dr_module_receive. */
@@ -13,6 +14,14 @@
 /* Returned by a program's address_of when no role, or several, match this module. */
 #define DR_NO_ADDRESS 0xFFu
 #define DR_MANY_ADDRESSES 0xFEu
+
+/* Bits of dr_program_t.options (0: the default behaviour).
+ * DR_PROGRAM_NO_NV: the hardware has no non-volatile storage; the runtime never reads or writes
+ * it. After a (re)start a module acts only once it has heard a packet from every neighbour
+ * connected at that moment (or after DR_CONF_LATTICE_FRESH_PERIODS broadcast periods), and it
+ * starts nothing while its own last completion has not been echoed back by a neighbour.
+ * Survives one reset at a time, not two close together (README.md, "Without NV"). */
+#define DR_PROGRAM_NO_NV 0x01u
 
 /* One statement of the compiled sequence (generated, constant). Statement indices are source
  * order after expansion; `deps` lists the statements that must be complete before this one
@@ -34,7 +43,17 @@ typedef struct {
     const uint16_t *deps;
     uint16_t n_epochs;                 /* runs of the whole sequence before the end; 0: forever */
     uint8_t (*address_of)(struct dr_module *m); /* evaluates the role predicates */
+    uint8_t options;                   /* DR_PROGRAM_* bits; 0: the default behaviour */
 } dr_program_t;
+
+/* A set of channels (connectors), bit c = channel c. */
+#if DR_CONF_CHANNELS <= 8
+typedef uint8_t dr_channels_t;
+#elif DR_CONF_CHANNELS <= 16
+typedef uint16_t dr_channels_t;
+#else
+typedef uint32_t dr_channels_t;
+#endif
 
 /* The shared state: epoch, low-water mark (every statement below it is complete in this
  * epoch) and, for the window of statements above it, the completed and started bits. */
@@ -53,6 +72,11 @@ typedef struct dr_module {
     dr_shared_t shared;
     uint16_t running;                  /* statement being executed here, or DR_NONE */
     uint16_t running_epoch;            /* the epoch it started in */
+    /* DR_PROGRAM_NO_NV only (otherwise unheard = 0 and unechoed = DR_NONE, always): */
+    uint16_t unechoed;                 /* own completion (its epoch: running_epoch) that no
+                                          neighbour has sent back yet, or DR_NONE */
+    dr_channels_t unheard;             /* channels connected at the (re)start, not heard yet */
+    uint8_t wait;                      /* periodic broadcasts left before giving up on them */
     uint32_t next_broadcast_ms;
     /* counters, for reports */
     uint32_t packets_sent;
@@ -65,12 +89,16 @@ typedef struct dr_module {
 #define DR_NONE 0xFFFFu
 
 /* Starts (or restarts after a reset) a module: finds its address, restores the shared state
- * from non-volatile storage when it is valid. Cost: O(statements). */
+ * from non-volatile storage when it is valid (with DR_PROGRAM_NO_NV: evaluates the role
+ * predicates, starts from the bottom and notes the connected channels to hear from first).
+ * Cost: O(statements + DR_CONF_CHANNELS). */
 void dr_module_init(dr_module_t *m, const dr_program_t *program, void *platform);
 /* One step of the module: merge is done on receipt; here it starts or polls its own
  * operation and broadcasts when due. Call every few milliseconds. Cost: O(statements). */
 void dr_module_step(dr_module_t *m);
-/* A packet arrived on `channel`; malformed and foreign packets are counted and dropped. */
+/* A packet arrived on `channel` (the connector it came in on; with DR_PROGRAM_NO_NV a valid
+ * one counts as hearing that neighbour); malformed and foreign packets are counted and
+ * dropped. A module must not be handed its own packets. */
 void dr_module_receive(dr_module_t *m, uint8_t channel, const uint8_t *bytes, uint8_t len);
 /* Whether this module knows that the last epoch is complete (the end). */
 uint8_t dr_module_finished(const dr_module_t *m);

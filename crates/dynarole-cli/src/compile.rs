@@ -45,6 +45,7 @@ pub struct CompileArgs<'a> {
     pub single_step_handover: bool,
     pub restart_pending: bool,
     pub epochs: u16,
+    pub no_nv: bool,
     pub out_dir: &'a Path,
     pub plugins: &'a PluginArgs,
 }
@@ -105,6 +106,7 @@ pub fn run(args: &CompileArgs) -> Result<ExitCode, Failure> {
         single_step_handover: args.single_step_handover,
         restart_pending: args.restart_pending,
         epochs: args.epochs,
+        no_nv: args.no_nv,
         name: names.join(" + "),
     };
     let generate = match args.target {

@@ -64,6 +64,9 @@ enum Command {
         /// Lattice protocol: how many times the whole sequence runs (0: forever).
         #[arg(long, default_value_t = 1)]
         epochs: u16,
+        /// Lattice protocol: the modules have no non-volatile storage (weaker reset guarantee).
+        #[arg(long)]
+        no_nv: bool,
         /// The directory to write.
         #[arg(short = 'o', long = "output", value_name = "DIR")]
         out_dir: PathBuf,
@@ -157,6 +160,7 @@ pub fn main() -> ExitCode {
             single_step_handover,
             restart_pending,
             epochs,
+            no_nv,
             out_dir,
             plugins,
         } => compile::run(&compile::CompileArgs {
@@ -168,6 +172,7 @@ pub fn main() -> ExitCode {
             single_step_handover,
             restart_pending,
             epochs,
+            no_nv,
             out_dir: &out_dir,
             plugins: &plugins,
         }),

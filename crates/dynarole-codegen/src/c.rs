@@ -36,6 +36,9 @@ pub struct CompileOptions {
     pub restart_pending: bool,
     /// Lattice protocol: runs of the whole sequence before the end; 0 runs forever.
     pub epochs: u16,
+    /// Lattice protocol: the hardware has no non-volatile storage; survive resets through the
+    /// neighbours instead (a weaker guarantee, see runtime/lattice/README.md).
+    pub no_nv: bool,
     /// Name of the compiled sequence(s), for comments.
     pub name: String,
 }
@@ -276,9 +279,10 @@ fn lattice_tables(ir: &Ir, options: &CompileOptions, program_id: u8) -> String {
     out.push_str("};\n\n");
     let _ = writeln!(
         out,
-        "const dr_program_t dr_program = {{\n    {program_id}u, /* program id */\n    {}u, /* statements */\n    dr_program_statements,\n    dr_program_deps,\n    {}u, /* epochs (0: forever) */\n    dr_program_address_of\n}};\n",
+        "const dr_program_t dr_program = {{\n    {program_id}u, /* program id */\n    {}u, /* statements */\n    dr_program_statements,\n    dr_program_deps,\n    {}u, /* epochs (0: forever) */\n    dr_program_address_of,\n    {} /* options */\n}};\n",
         ir.statements.len(),
-        options.epochs
+        options.epochs,
+        if options.no_nv { "DR_PROGRAM_NO_NV" } else { "0u" }
     );
     out.push_str("void dr_program_init(dr_module_t *m, void *platform)\n{\n    dr_module_init(m, &dr_program, platform);\n}\n");
     out

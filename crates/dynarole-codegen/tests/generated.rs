@@ -16,6 +16,7 @@ fn options(protocol: Protocol) -> CompileOptions {
         single_step_handover: false,
         restart_pending: false,
         epochs: 1,
+        no_nv: false,
         name: "eight2car".into(),
     }
 }
@@ -172,8 +173,16 @@ fn harness_run(dir: &Path) -> String {
 
 #[test]
 fn both_protocols_run_eight2car_in_dependency_order() {
-    for (name, protocol) in [("lattice", Protocol::Lattice), ("paper", Protocol::Paper)] {
-        let generated = compile(FIG5, "eight2car", &options(protocol));
+    let no_nv = CompileOptions {
+        no_nv: true,
+        ..options(Protocol::Lattice)
+    };
+    for (name, options) in [
+        ("lattice", options(Protocol::Lattice)),
+        ("lattice-no-nv", no_nv),
+        ("paper", options(Protocol::Paper)),
+    ] {
+        let generated = compile(FIG5, "eight2car", &options);
         let dir = out_dir(name);
         write(&generated, &dir);
         builds_alone(&dir);

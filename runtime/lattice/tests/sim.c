@@ -28,7 +28,7 @@ uint32_t sim_rand(void)
 static void violation(const char *what, uint16_t epoch, uint16_t statement)
 {
     sim.violations++;
-    if (sim.violations <= 10u) {
+    if (sim.violations <= 10u && !sim.quiet) {
         fprintf(stderr, "  violation at %lu ms: %s (epoch %u, statement %u)\n",
                 (unsigned long)sim.time, what, (unsigned)epoch, (unsigned)statement);
     }
@@ -96,6 +96,7 @@ void dr_hal_broadcast(struct dr_module *m, const uint8_t *bytes, uint8_t len)
         while (copies-- > 0u && to->n_inbox < SIM_INBOX) {
             p = &to->inbox[to->n_inbox++];
             p->at = sim.time + 1u + (sim.max_delay_ms ? sim_rand() % sim.max_delay_ms : 0u);
+            p->from = i;
             p->len = len;
             memcpy(p->bytes, bytes, len);
             if (sim_rand() % 100u < sim.corrupt_percent) {
@@ -207,7 +208,11 @@ enum dr_op_status dr_hal_op_status(struct dr_module *m)
         sim.reported_ms[n->op_epoch][n->op_stmt] = sim.time;
     }
     if (n->op_epoch == sim.fault_epoch && !sim.fault_fired) {
-        if (n->op_stmt == sim.reset_after_done_stmt) {
+        if (n->op_stmt == sim.reset_after_done_stmt && sim.reset_after_done_ms != 0u) {
+            sim.fault_fired = 1;
+            n->reset_at_set = 1;
+            n->reset_at = sim.time + sim.reset_after_done_ms;
+        } else if (n->op_stmt == sim.reset_after_done_stmt) {
             sim.fault_fired = 1;
             n->reset_now = 1;
             n->mute = 1; /* the completion is not announced before the reset */
@@ -226,9 +231,8 @@ uint16_t dr_hal_id(struct dr_module *m)
 
 uint8_t dr_hal_connected(struct dr_module *m, uint8_t connector)
 {
-    (void)m;
-    (void)connector;
-    return 0;
+    uint8_t i = (uint8_t)(node_of(m) - sim.nodes);
+    return (uint8_t)(connector < sim.n_nodes && sim.adj[i][connector]);
 }
 
 int16_t dr_hal_neighbour_id(struct dr_module *m, uint8_t connector)
@@ -257,6 +261,7 @@ void dr_hal_nv_read(struct dr_module *m, uint16_t addr, uint8_t *buf, uint8_t le
         violation("NV read out of range", 0, addr);
         return;
     }
+    n->nv_reads++;
     memcpy(buf, n->nv + addr, len);
 }
 
@@ -345,6 +350,9 @@ void sim_reset(uint8_t i)
     n->mod.running = 0xA5A5u;
     n->mod.running_epoch = 0xA5A5u;
     n->mod.next_broadcast_ms = 0xA5A5A5A5u;
+    n->mod.unechoed = 0xA5A5u;
+    n->mod.unheard = (dr_channels_t)0xA5A5A5A5u;
+    n->mod.wait = 0xA5u;
     dr_module_init(&n->mod, sim.program, n);
 }
 
@@ -354,7 +362,7 @@ static void deliver(sim_node_t *n)
     uint16_t kept = 0;
     for (k = 0; k < n->n_inbox; k++) {
         if ((int32_t)(sim.time - n->inbox[k].at) >= 0) {
-            dr_module_receive(&n->mod, 0, n->inbox[k].bytes, n->inbox[k].len);
+            dr_module_receive(&n->mod, n->inbox[k].from, n->inbox[k].bytes, n->inbox[k].len);
         } else {
             n->inbox[kept++] = n->inbox[k];
         }

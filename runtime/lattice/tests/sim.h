@@ -18,6 +18,7 @@
 
 typedef struct {
     uint32_t at;
+    uint8_t from;                 /* the sender's node number: the channel it arrives on */
     uint8_t len;
     uint8_t bytes[DR_CONF_MAX_PACKET];
 } sim_packet_t;
@@ -32,6 +33,7 @@ typedef struct {
     uint32_t rng;
     uint8_t nv[SIM_NV];
     uint32_t nv_writes;
+    uint32_t nv_reads;
     /* the operation in progress */
     uint8_t op_active;
     uint8_t op_failed;
@@ -73,12 +75,14 @@ typedef struct {
     uint8_t checks;               /* check S1/S2 at each start (default 1) */
     uint8_t strict;               /* also: never start an op already reported done */
     uint32_t violations;
+    uint8_t quiet;                /* count violations without printing them (expected ones) */
     uint32_t total_starts;
     /* operation faults */
     uint8_t slow_address;         /* operations of this address take 300 ms longer */
     uint16_t fail_stmt;           /* this statement fails fail_times times first */
     uint8_t fail_times;
-    uint16_t reset_after_done_stmt; /* its module resets right after it completes, muted */
+    uint16_t reset_after_done_stmt; /* its module resets right after it completes, muted ... */
+    uint32_t reset_after_done_ms;   /* ... or, if not 0, this many ms later and not muted */
     uint16_t reset_mid_stmt;        /* its module resets half-way through its operation */
     uint16_t tear_after_done_stmt;  /* its completion's NV write number tear_copy is torn */
     int16_t tear_copy;
@@ -94,6 +98,9 @@ extern sim_t sim;
 void sim_statement(dr_statement_t *st, uint8_t address, uint16_t self, uint8_t n_deps,
                    uint16_t first_dep);
 uint8_t sim_address_of(struct dr_module *m);
+
+/* Channels: node i's channel c is its link to node c; dr_hal_connected(c) = adj[i][c], and a
+ * packet from node c is received on channel c. */
 
 /* Sets up n nodes in a line (node i hears i-1 and i+1), node i with id i and address
  * addresses[i], blank NV stores, no faults, and runs dr_module_init on each. */

@@ -11,7 +11,8 @@
 
 static dr_statement_t statements[N_STMT];
 static const uint16_t no_deps[1] = { 0 };
-static const dr_program_t program = { 0x5Au, N_STMT, statements, no_deps, 3u, sim_address_of };
+static const dr_program_t program = { 0x5Au, N_STMT, statements, no_deps, 3u, sim_address_of,
+                                      0u };
 
 /* A frame of `payload` with any header bytes and a correct CRC. */
 static uint8_t frame_raw(uint8_t *out, uint8_t magic, uint8_t id, uint8_t kind,

@@ -17,9 +17,9 @@ static const uint16_t p2_deps[] = { 0, 0, 1, 2, 0 };
 static dr_statement_t p3_st[4];
 static const uint16_t p3_deps[] = { 0, 1, 2 };
 
-static dr_program_t p1 = { 0x11u, 3u, p1_st, p1_deps, 1u, sim_address_of };
-static dr_program_t p2 = { 0x22u, 4u, p2_st, p2_deps, 1u, sim_address_of };
-static dr_program_t p3 = { 0x33u, 4u, p3_st, p3_deps, 1u, sim_address_of };
+static dr_program_t p1 = { 0x11u, 3u, p1_st, p1_deps, 1u, sim_address_of, 0u };
+static dr_program_t p2 = { 0x22u, 4u, p2_st, p2_deps, 1u, sim_address_of, 0u };
+static dr_program_t p3 = { 0x33u, 4u, p3_st, p3_deps, 1u, sim_address_of, 0u };
 
 static const uint8_t addr3[] = { 0, 1, 2 };
 
@@ -90,6 +90,7 @@ static void generate(uint16_t n, uint8_t modules, uint16_t epochs)
     g_prog.deps = g_deps;
     g_prog.n_epochs = epochs;
     g_prog.address_of = sim_address_of;
+    g_prog.options = 0;
 }
 
 /* ---- helpers ---- */
@@ -361,7 +362,7 @@ static void test_old_epoch_completion(void)
 {
     static dr_statement_t st[2];
     static const uint16_t deps[] = { 0 };
-    dr_program_t p = { 0x77u, 2u, st, deps, 3u, sim_address_of };
+    dr_program_t p = { 0x77u, 2u, st, deps, 3u, sim_address_of, 0u };
     static const uint8_t one[] = { 0 };
     uint8_t payload[4u + DR_CONF_WINDOW / 4u];
     uint8_t frame[DR_CONF_MAX_PACKET];
@@ -442,6 +443,7 @@ static void test_window_too_small(void)
     g_prog.deps = g_deps;
     g_prog.n_epochs = 1;
     g_prog.address_of = sim_address_of;
+    g_prog.options = 0;
     sim_setup(&g_prog, 4, addresses, 8u);
     sim_full_mesh();
     sim.slow_address = 3;
@@ -524,6 +526,375 @@ static void test_fuzz(unsigned runs)
     }
 }
 
+/* ---- without non-volatile storage (DR_PROGRAM_NO_NV) ---- */
+
+static dr_program_t without_nv(const dr_program_t *p)
+{
+    dr_program_t q = *p;
+    q.options = DR_PROGRAM_NO_NV;
+    return q;
+}
+
+/* The runtime never touched any node's NV store. */
+static void check_no_nv_access(void)
+{
+    uint8_t i;
+    uint16_t b;
+    for (i = 0; i < sim.n_nodes; i++) {
+        CHECK_EQ(sim.nodes[i].nv_reads, 0);
+        CHECK_EQ(sim.nodes[i].nv_writes, 0);
+        for (b = 0; b < SIM_NV && sim.nodes[i].nv[b] == 0xFFu; b++) {
+        }
+        CHECK_EQ(b, SIM_NV);
+    }
+}
+
+/* Without resets: every program finishes, each operation started once, S1 checked at each
+ * start, under a perfect or a lossy/delaying/duplicating/corrupting network, line or mesh,
+ * one or two epochs, and a long program with five modules. */
+static void test_no_nv_programs(void)
+{
+    dr_program_t programs[4];
+    uint8_t addresses[5] = { 0, 1, 2, 3, 4 };
+    uint8_t k;
+    uint8_t net;
+    uint8_t mesh;
+    programs[0] = without_nv(&p1);
+    programs[1] = without_nv(&p2);
+    programs[2] = without_nv(&p3);
+    programs[3] = without_nv(&p2);
+    programs[3].n_epochs = 2;
+    for (k = 0; k < 4u; k++) {
+        for (mesh = 0; mesh < 2u; mesh++) {
+            for (net = 0; net < 2u; net++) {
+                sim_setup(&programs[k], 3, addr3, 800u + k * 10u + mesh * 2u + net);
+                if (mesh) {
+                    sim_full_mesh();
+                }
+                if (net) {
+                    network(30, 150, 10, 10);
+                }
+                CHECK(sim_run(60000u));
+                CHECK_EQ(sim.violations, 0);
+                check_starts(&programs[k], programs[k].n_epochs, 1, SIM_NONE, 0);
+                check_no_nv_access();
+                /* Perfect network: everyone broadcasts at start-up, so rule 1 costs one tick. */
+                CHECK(net || sim.last_start_ms[0][0] <= 2u * SIM_TICK_MS);
+            }
+        }
+    }
+    sim_setup(&p1, 1, addresses, 1u); /* seeds sim_rand for generate() */
+    generate(SIM_MAX_STATEMENTS, 5, 2);
+    g_prog.options = DR_PROGRAM_NO_NV;
+    sim_setup(&g_prog, 5, addresses, 32u);
+    network(20, 80, 5, 1);
+    CHECK(sim_run(200000u));
+    CHECK_EQ(sim.violations, 0);
+    check_starts(&g_prog, 2, 1, SIM_NONE, 0);
+    check_no_nv_access();
+}
+
+/* The two rules, one at a time, on `A; B;` (both on node 0) with a relay as node 0's only
+ * neighbour; and a module with no neighbour at all. */
+static void test_no_nv_rules(void)
+{
+    static dr_statement_t st[2];
+    static const uint16_t deps[] = { 0 };
+    static const uint8_t nodes[] = { 0, DR_NO_ADDRESS };
+    dr_program_t q = { 0x55u, 2u, st, deps, 1u, sim_address_of, DR_PROGRAM_NO_NV };
+    uint32_t t;
+    sim_statement(&st[0], 0, 0, 0, 0);
+    sim_statement(&st[1], 0, 1, 1, 0);
+
+    /* Rule 1 and its bound: the relay never talks, so node 0 waits until its
+     * DR_CONF_LATTICE_FRESH_PERIODS-th (10th) broadcast, 9 periods of 100-120 ms. */
+    sim_setup(&q, 2, nodes, 51u);
+    sim.nodes[1].mute = 1;
+    CHECK_EQ(sim.nodes[0].mod.unheard, 2); /* channel 1: the relay */
+    run_for(850u);
+    CHECK_EQ(sim.starts[0][0], 0);
+    CHECK_EQ(sim.nodes[0].mod.unheard, 2);
+    run_for(400u);
+    CHECK_EQ(sim.starts[0][0], 1);
+    CHECK(sim.last_start_ms[0][0] >= 900u);
+    CHECK(sim.last_start_ms[0][0] <= 9u * (DR_CONF_BROADCAST_MS + DR_CONF_BROADCAST_JITTER_MS) +
+                                          9u * SIM_TICK_MS);
+    /* Rule 2: A is done (and broadcast), but no neighbour has sent it back: B waits. */
+    run_for(2000u);
+    CHECK(sim.reported[0][0]);
+    CHECK(dr_shared_is_done(&sim.nodes[0].mod.shared, 0));
+    CHECK_EQ(sim.nodes[0].mod.unechoed, 0);
+    CHECK_EQ(sim.starts[0][1], 0);
+    /* The relay speaks: its state holds A (it heard node 0), B starts. */
+    t = sim.time;
+    sim.nodes[1].mute = 0;
+    CHECK(sim_run(5000u));
+    CHECK_EQ(sim.starts[0][1], 1);
+    CHECK(sim.last_start_ms[0][1] > t);
+    CHECK_EQ(sim.violations, 0);
+    check_no_nv_access();
+
+    /* Rule 1 when the neighbour talks: a start-up costs about one tick. */
+    sim_setup(&q, 2, nodes, 52u);
+    CHECK(sim_run(5000u));
+    CHECK(sim.last_start_ms[0][0] <= 2u * SIM_TICK_MS);
+    CHECK_EQ(sim.violations, 0);
+
+    /* No connected neighbour: nothing to wait for and no one to echo; it runs alone (and a
+     * reset of it starts the program again: nobody else holds a copy). */
+    sim_setup(&q, 1, nodes, 53u);
+    CHECK_EQ(sim.nodes[0].mod.unheard, 0);
+    CHECK(sim_run(5000u));
+    CHECK(sim.last_start_ms[0][0] <= SIM_TICK_MS);
+    CHECK_EQ(sim.violations, 0);
+    check_starts(&q, 1, 1, SIM_NONE, 0);
+    check_no_nv_access();
+}
+
+/* A single reset at various moments, on a perfect or a lossy network (loss, duplication,
+ * corruption; no delay, so no packet sent before a reset arrives after it): S1 and S2 hold
+ * at every start and the program finishes. */
+static void test_no_nv_resets(void)
+{
+    dr_program_t programs[3];
+    uint8_t k;
+    uint16_t s;
+    uint8_t i;
+    uint16_t t;
+    uint8_t lossy;
+    uint32_t starts;
+    programs[0] = without_nv(&p1);
+    programs[1] = without_nv(&p2);
+    programs[2] = without_nv(&p3);
+    for (k = 0; k < 3u; k++) {
+        const dr_program_t *p = &programs[k];
+        for (s = 0; s < p->n_statements; s++) {
+            uint8_t owner = p->statements[s].address;
+            for (lossy = 0; lossy < 2u; lossy++) {
+                /* Right after a completion, before it was broadcast: the completion is lost
+                 * with the reset and the operation re-issued once; harmless, nothing after it
+                 * could start (no neighbour had echoed it). */
+                sim_setup(p, 3, addr3, 900u + s + lossy);
+                if (lossy) {
+                    network(30, 0, 10, 5);
+                }
+                sim.reset_after_done_stmt = s;
+                sim.strict = 0;
+                CHECK(sim_run(60000u));
+                CHECK(sim.fault_fired);
+                CHECK_EQ(sim.nodes[owner].mod.resets, 1);
+                CHECK_EQ(sim.violations, 0);
+                check_starts(p, 1, 1, s, 2);
+                check_no_nv_access();
+
+                /* 10 ms after a completion was broadcast (before or after its echo): a
+                 * neighbour holds it, so it is not re-issued (on the lossy network it is
+                 * when every copy of the broadcast was lost: harmless as above). */
+                sim_setup(p, 3, addr3, 1000u + s + lossy);
+                if (lossy) {
+                    network(30, 0, 10, 5);
+                }
+                sim.reset_after_done_stmt = s;
+                sim.reset_after_done_ms = 10;
+                sim.strict = (uint8_t)!lossy;
+                CHECK(sim_run(60000u));
+                CHECK(sim.fault_fired);
+                CHECK_EQ(sim.nodes[owner].mod.resets, 1);
+                CHECK_EQ(sim.violations, 0);
+                for (t = 0; t < p->n_statements; t++) {
+                    CHECK(sim.starts[0][t] == 1u ||
+                          (lossy && t == s && sim.starts[0][t] == 2u));
+                }
+                check_no_nv_access();
+
+                /* Half-way through the operation: re-issued once, completes. */
+                sim_setup(p, 3, addr3, 1100u + s + lossy);
+                if (lossy) {
+                    network(30, 0, 10, 5);
+                }
+                sim.reset_mid_stmt = s;
+                CHECK(sim_run(60000u));
+                CHECK(sim.fault_fired);
+                CHECK_EQ(sim.nodes[owner].mod.resets, 1);
+                CHECK_EQ(sim.violations, 0);
+                check_starts(p, 1, 1, s, 2);
+                check_no_nv_access();
+            }
+        }
+        /* After the end, each module in turn: it starts from the bottom, hears a neighbour
+         * that knows the end, re-issues nothing. */
+        sim_setup(p, 3, addr3, 1200u + k);
+        CHECK(sim_run(60000u));
+        starts = sim.total_starts;
+        for (i = 0; i < 3u; i++) {
+            sim_reset(i);
+            CHECK(!dr_module_finished(&sim.nodes[i].mod));
+            run_for(1500u);
+            CHECK(dr_module_finished(&sim.nodes[i].mod));
+        }
+        CHECK_EQ(sim.total_starts, starts);
+        CHECK_EQ(sim.violations, 0);
+        check_no_nv_access();
+    }
+}
+
+/* The limits, recorded as expected outcomes: resets close together, and a packet sent before
+ * a reset and delivered after it. */
+static void test_no_nv_limits(void)
+{
+    static dr_statement_t st[2];
+    static const uint16_t deps[] = { 0 };
+    static const uint8_t two[] = { 0, 1 };
+    dr_program_t q2 = without_nv(&p2);
+    static const uint8_t with_relay[] = { 0, DR_NO_ADDRESS };
+    dr_program_t ab = { 0x56u, 2u, st, deps, 1u, sim_address_of, DR_PROGRAM_NO_NV };
+    uint8_t payload[4u + DR_CONF_WINDOW / 4u];
+    sim_packet_t *stale;
+    dr_shared_t old;
+    uint32_t c_started;
+    uint32_t starts;
+    uint8_t i;
+    /* `A; B & C; D;` on the line 0-1-2. A (node 0) is done, B (node 1) and C (node 2) run;
+     * nodes 0 and 1 reset at the same moment. Node 2 still holds A, but node 0's only
+     * neighbour is node 1, whose first packet after its reset is the bottom: node 0 has heard
+     * every neighbour and re-issues A after B and C started. S2 is broken (the checker sees
+     * it); the sequence still finishes. */
+    sim_setup(&q2, 3, addr3, 1300u);
+    while ((sim.starts[0][1] == 0u || sim.starts[0][2] == 0u) && sim.time < 10000u) {
+        run_for(SIM_TICK_MS);
+    }
+    c_started = sim.last_start_ms[0][2];
+    CHECK_EQ(sim.starts[0][0], 1);
+    sim.quiet = 1;
+    sim_reset(0);
+    sim_reset(1);
+    CHECK(sim_run(60000u));
+    CHECK_EQ(sim.starts[0][0], 2);
+    CHECK(sim.last_start_ms[0][0] > c_started);
+    CHECK(sim.violations >= 1u); /* S2: re-issued after a later statement started */
+    CHECK_EQ(sim.starts[0][2], 1);
+    CHECK_EQ(sim.starts[0][3], 1);
+
+    /* Two modules, both reset after the end (two resets, or one power cycle): every copy of
+     * the state is gone, and the whole sequence runs again. */
+    sim_statement(&st[0], 0, 0, 0, 0);
+    sim_statement(&st[1], 1, 1, 1, 0);
+    sim_setup(&ab, 2, two, 1301u);
+    CHECK(sim_run(60000u));
+    CHECK_EQ(sim.violations, 0);
+    starts = sim.total_starts;
+    sim.quiet = 1;
+    for (i = 0; i < 2u; i++) {
+        sim_reset(i);
+    }
+    CHECK(sim_run(60000u));
+    CHECK_EQ(sim.total_starts, 2u * starts);
+    CHECK_EQ(sim.starts[0][0], 2);
+    CHECK_EQ(sim.starts[0][1], 2);
+    CHECK(sim.violations >= 1u);
+    check_no_nv_access();
+
+    /* One reset, and a packet the relay sent before it (A started, not done) delivered to
+     * node 0 after it: `A; B;` both on node 0. B runs (A was echoed); node 0 resets; the stale
+     * packet counts as fresh, node 0 has heard its only neighbour and re-issues A after B
+     * started (S2 broken). The platform must drop what was received before a reset. */
+    sim_statement(&st[1], 0, 1, 1, 0);
+    sim_setup(&ab, 2, with_relay, 1302u);
+    while (sim.starts[0][1] == 0u && sim.time < 10000u) {
+        run_for(SIM_TICK_MS);
+    }
+    CHECK_EQ(sim.starts[0][0], 1);
+    c_started = sim.last_start_ms[0][1];
+    sim.quiet = 1;
+    sim_reset(0);
+    memset(&old, 0, sizeof old);
+    old.started[0] = 1; /* the relay's state while A ran */
+    stale = &sim.nodes[0].inbox[sim.nodes[0].n_inbox++];
+    stale->at = sim.time;
+    stale->from = 1;
+    stale->len = dr_packet_frame(stale->bytes, sizeof stale->bytes, ab.program_id,
+                                 DR_PACKET_LATTICE_STATE, payload,
+                                 dr_shared_encode(&old, payload, sizeof payload));
+    CHECK(sim_run(60000u));
+    CHECK_EQ(sim.starts[0][0], 2);
+    CHECK(sim.last_start_ms[0][0] > c_started);
+    CHECK(sim.violations >= 1u);
+    check_no_nv_access();
+}
+
+/* Random programs and networks (no delay: see test_no_nv_resets), with up to five single
+ * resets at random moments, each one at least 1500 ms after the previous one (longer than
+ * the rule-1 bound): S1 and S2 hold at every start, every program finishes, and a reset after
+ * the end re-issues nothing. */
+static void test_no_nv_fuzz(unsigned runs)
+{
+    unsigned run;
+    uint8_t addresses[SIM_MAX_NODES];
+    uint8_t n_modules;
+    uint8_t n_nodes;
+    uint8_t relay;
+    uint8_t i;
+    uint8_t resets;
+    uint16_t r;
+    uint16_t s;
+    uint32_t starts;
+    uint32_t failed_runs = 0;
+    for (run = 0; run < runs; run++) {
+        sim_setup(&p1, 1, addr3, 7000u + run);
+        n_modules = (uint8_t)(2u + sim_rand() % 4u);
+        generate((uint16_t)(3u + sim_rand() % 22u), n_modules, (uint16_t)(1u + sim_rand() % 3u));
+        g_prog.options = DR_PROGRAM_NO_NV;
+        relay = (uint8_t)(sim_rand() % 2u);
+        n_nodes = (uint8_t)(n_modules + relay);
+        for (i = 0; i < n_modules; i++) {
+            addresses[i] = i;
+        }
+        if (relay) {
+            addresses[n_modules] = addresses[0];
+            addresses[0] = DR_NO_ADDRESS;
+            if (n_nodes > 2u) {
+                addresses[0] = addresses[1];
+                addresses[1] = DR_NO_ADDRESS;
+            }
+        }
+        sim_setup(&g_prog, n_nodes, addresses, 8000u + run);
+        sim.strict = 0; /* an unannounced completion lost with a reset is re-issued */
+        if (sim_rand() % 2u) {
+            sim_full_mesh();
+        }
+        network((uint8_t)(sim_rand() % 41u), 0, (uint8_t)(sim_rand() % 21u),
+                (uint8_t)(sim_rand() % 6u));
+        resets = (uint8_t)(sim_rand() % 6u);
+        if (sim_run(sim_rand() % 1500u)) {
+            resets = 0;
+        }
+        for (i = 0; i < resets; i++) {
+            sim_reset((uint8_t)(sim_rand() % n_nodes));
+            if (sim_run(1500u + sim_rand() % 1500u)) {
+                break;
+            }
+        }
+        CHECK(sim_run(300000u));
+        starts = sim.total_starts;
+        sim_reset((uint8_t)(sim_rand() % n_nodes));
+        run_for(1500u);
+        CHECK_EQ(sim.total_starts, starts);
+        CHECK_EQ(sim.violations, 0);
+        for (r = 0; r < g_prog.n_epochs; r++) {
+            for (s = 0; s < g_prog.n_statements; s++) {
+                CHECK(sim.starts[r][s] >= 1u);
+            }
+        }
+        check_no_nv_access();
+        if (sim.violations != 0u) {
+            failed_runs++;
+            if (failed_runs <= 3u) {
+                fprintf(stderr, "  no-NV fuzz run %u failed\n", run);
+            }
+        }
+    }
+}
+
 void test_sim(void)
 {
     build_fixed();
@@ -538,4 +909,9 @@ void test_sim(void)
     test_long();
     test_window_too_small();
     test_fuzz(300u);
+    test_no_nv_programs();
+    test_no_nv_rules();
+    test_no_nv_resets();
+    test_no_nv_limits();
+    test_no_nv_fuzz(300u);
 }
