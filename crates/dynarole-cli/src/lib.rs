@@ -10,6 +10,7 @@ pub mod render;
 pub mod replay;
 pub mod reverse;
 pub mod show;
+pub mod simulate;
 pub mod world;
 
 use clap::{Parser, Subcommand};
@@ -98,6 +99,41 @@ enum Command {
         #[command(flatten)]
         plugins: load::PluginArgs,
     },
+    /// Run the generated C on every module over lossy infrared links, with faults (exit 3
+    /// when the goal is not reached).
+    Simulate {
+        file: PathBuf,
+        /// Sequence to run; repeat to run several in turn.
+        #[arg(long = "sequence", value_name = "NAME", required = true)]
+        sequences: Vec<String>,
+        /// The configuration to start from (JSON).
+        #[arg(long, value_name = "CONFIG")]
+        from: PathBuf,
+        /// The configuration the run must end in.
+        #[arg(long, value_name = "CONFIG")]
+        expect: Option<PathBuf>,
+        #[arg(long, value_enum, default_value_t = compile::ProtocolArg::Lattice)]
+        protocol: compile::ProtocolArg,
+        /// Faults, network and timing (TOML; see crates/dynarole-sim/SCENARIO.md).
+        #[arg(long, value_name = "FILE")]
+        scenario: Option<PathBuf>,
+        /// Per-packet loss at the receiving connector (overrides the scenario's).
+        #[arg(long, value_name = "P")]
+        loss: Option<f64>,
+        #[arg(long, default_value_t = 0)]
+        seed: u64,
+        /// Runs with seeds SEED, SEED+1, ...
+        #[arg(long, default_value_t = 1)]
+        repeat: u64,
+        /// Write the event trace (fixed columns) here.
+        #[arg(long, value_name = "FILE")]
+        trace: Option<PathBuf>,
+        /// Print the report as JSON (one line per run).
+        #[arg(long)]
+        json: bool,
+        #[command(flatten)]
+        plugins: load::PluginArgs,
+    },
     /// Rewrite `.dr` files in the canonical layout (comments kept).
     Fmt {
         files: Vec<PathBuf>,
@@ -148,6 +184,33 @@ pub fn main() -> ExitCode {
             from: &from,
             expect: expect.as_ref(),
             out: out.as_ref(),
+            plugins: &plugins,
+        }),
+        Command::Simulate {
+            file,
+            sequences,
+            from,
+            expect,
+            protocol,
+            scenario,
+            loss,
+            seed,
+            repeat,
+            trace,
+            json,
+            plugins,
+        } => simulate::run(&simulate::SimulateArgs {
+            file: &file,
+            sequences: &sequences,
+            from: &from,
+            expect: expect.as_ref(),
+            protocol,
+            scenario: scenario.as_ref(),
+            loss,
+            seed,
+            repeat,
+            trace: trace.as_ref(),
+            json,
             plugins: &plugins,
         }),
         Command::Fmt { files, check } => fmt::run(&files, check),

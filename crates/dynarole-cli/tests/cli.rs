@@ -310,14 +310,14 @@ fn replay_rejects_a_configuration_of_another_robot_or_a_bad_field() {
 fn check_from_reports_the_order_dependent_group_of_fig5() {
     let out = dynarole(&[
         "check",
-        "examples/atron/eight2car.dr",
+        "examples/atron/fig5.dr",
         "--from",
         "examples/atron/eight.json",
     ]);
     assert_eq!(out.status.code(), Some(0), "warnings do not fail a check");
     let stderr = text(&out.stderr);
     assert!(stderr.contains("warning[not-independent]"), "{stderr}");
-    assert!(stderr.contains("eight2car.dr:19:5"), "{stderr}");
+    assert!(stderr.contains("fig5.dr:19:5"), "{stderr}");
 }
 
 #[test]

@@ -7,7 +7,7 @@ use dynarole_core::{analyze, parse, RobotRegistry};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-const FIG5: &str = include_str!("../../../examples/atron/eight2car.dr");
+const FIG5: &str = include_str!("../../../examples/atron/fig5.dr");
 
 fn options(protocol: Protocol) -> CompileOptions {
     CompileOptions {

@@ -1,0 +1,199 @@
+//! `dynarole simulate`: the generated C on every module, over lossy infrared links, with the
+//! faults of a scenario; exit 0 on success, 3 when the goal was not reached.
+
+use crate::compile::ProtocolArg;
+use crate::load::{self, Failure, PluginArgs};
+use crate::render;
+use crate::world::read_configuration;
+use dynarole_codegen::{CompileOptions, PaperMerge, Protocol};
+use dynarole_core::diagnostic::has_errors;
+use dynarole_core::{analyze, parse};
+use dynarole_sim::{Report, Run, Scenario, SimError, Simulator};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Instant;
+
+/// What `simulate` was asked to do.
+pub struct SimulateArgs<'a> {
+    pub file: &'a Path,
+    pub sequences: &'a [String],
+    pub from: &'a Path,
+    pub expect: Option<&'a PathBuf>,
+    pub protocol: ProtocolArg,
+    pub scenario: Option<&'a PathBuf>,
+    pub loss: Option<f64>,
+    pub seed: u64,
+    pub repeat: u64,
+    pub trace: Option<&'a PathBuf>,
+    pub json: bool,
+    pub plugins: &'a PluginArgs,
+}
+
+pub fn run(args: &SimulateArgs) -> Result<ExitCode, Failure> {
+    let display = args.file.display().to_string();
+    let source = load::read_source(args.file)?;
+    let parsed = parse(&source);
+    let registry = load::registry(args.plugins, args.file, load::robot_name(&parsed.file))?;
+    let (program, mut diagnostics) = analyze(&parsed.file, &registry);
+    diagnostics.extend(parsed.diagnostics);
+    let Some(program) = program.filter(|_| !has_errors(&diagnostics)) else {
+        render::diagnostics(&display, &source, &diagnostics);
+        return Ok(ExitCode::from(1));
+    };
+    let mut plans = Vec::new();
+    for name in args.sequences {
+        let plan = program
+            .expand(name)
+            .ok_or_else(|| Failure::Input(format!("{display}: no sequence named `{name}`")))?;
+        plans.push(plan);
+    }
+    let scenario = scenario(args)?;
+    let start = read_configuration(args.from)?;
+    let expect = args.expect.map(|p| read_configuration(p)).transpose()?;
+    let options = CompileOptions {
+        protocol: match args.protocol {
+            ProtocolArg::Lattice => Protocol::Lattice,
+            ProtocolArg::Paper => Protocol::Paper,
+        },
+        merge: PaperMerge::CPort,
+        single_step_handover: false,
+        restart_pending: false,
+        epochs: 1,
+        no_nv: false,
+        name: args.sequences.join(" + "),
+    };
+    let simulator = match Simulator::new(&program, &plans, &options) {
+        Ok(s) => s,
+        Err(SimError::Diagnostic(d)) => {
+            render::diagnostics(&display, &source, &[d]);
+            return Ok(ExitCode::from(1));
+        }
+        Err(e) => return Err(Failure::Input(e.to_string())),
+    };
+    let mut failed = 0u64;
+    for k in 0..args.repeat.max(1) {
+        let seed = args.seed.wrapping_add(k);
+        let started = Instant::now();
+        let report = simulator
+            .run(&Run {
+                start: &start,
+                expect: expect.as_ref(),
+                scenario: &scenario,
+                seed,
+                trace: args.trace.is_some(),
+            })
+            .map_err(|e| Failure::Input(e.to_string()))?;
+        let wall = started.elapsed().as_secs_f64();
+        output(args, &report, wall, k)?;
+        if !report.success {
+            failed += 1;
+            eprintln!("replay with: {}", replay_command(args, seed));
+        }
+    }
+    if args.repeat > 1 && !args.json {
+        println!(
+            "{} of {} runs reached the goal",
+            args.repeat - failed,
+            args.repeat
+        );
+    }
+    Ok(ExitCode::from(if failed == 0 { 0 } else { 3 }))
+}
+
+fn scenario(args: &SimulateArgs) -> Result<Scenario, Failure> {
+    let mut scenario = match args.scenario {
+        Some(path) => {
+            let text = load::read_source(path)?;
+            Scenario::from_toml_str(&text)
+                .map_err(|e| Failure::Input(format!("{}: {e}", path.display())))?
+        }
+        None => Scenario::default(),
+    };
+    if let Some(loss) = args.loss {
+        if !(0.0..=1.0).contains(&loss) {
+            return Err(Failure::Usage(format!(
+                "--loss {loss} is not a probability (0 to 1)"
+            )));
+        }
+        scenario.network.loss = loss;
+    }
+    Ok(scenario)
+}
+
+fn output(args: &SimulateArgs, report: &Report, wall: f64, k: u64) -> Result<(), Failure> {
+    if let (Some(path), Some(trace)) = (args.trace, &report.trace) {
+        let path = if args.repeat > 1 {
+            PathBuf::from(format!("{}.{k}", path.display()))
+        } else {
+            path.clone()
+        };
+        std::fs::write(&path, trace)
+            .map_err(|e| Failure::Input(format!("cannot write {}: {e}", path.display())))?;
+    }
+    if args.json {
+        let text = serde_json::to_string(report)
+            .map_err(|e| Failure::Input(format!("cannot serialise the report: {e}")))?;
+        println!("{text}");
+        return Ok(());
+    }
+    print!("{}", report.summary());
+    if let Some(d) = &report.difference {
+        println!("  difference from the expected configuration:\n{d}");
+    }
+    let speed = if wall > 0.0 {
+        report.end_ms / 1000.0 / wall
+    } else {
+        0.0
+    };
+    println!(
+        "  simulated {:.3} s in {:.3} s of wall time ({speed:.0} x real time)",
+        report.end_ms / 1000.0,
+        wall
+    );
+    Ok(())
+}
+
+/// The command line that replays one run exactly.
+fn replay_command(args: &SimulateArgs, seed: u64) -> String {
+    let mut parts = vec![
+        "dynarole simulate".to_string(),
+        quote(&args.file.display().to_string()),
+    ];
+    for s in args.sequences {
+        parts.push(format!("--sequence {}", quote(s)));
+    }
+    parts.push(format!(
+        "--from {}",
+        quote(&args.from.display().to_string())
+    ));
+    if let Some(e) = args.expect {
+        parts.push(format!("--expect {}", quote(&e.display().to_string())));
+    }
+    let protocol = match args.protocol {
+        ProtocolArg::Lattice => "lattice",
+        ProtocolArg::Paper => "paper",
+    };
+    parts.push(format!("--protocol {protocol}"));
+    if let Some(s) = args.scenario {
+        parts.push(format!("--scenario {}", quote(&s.display().to_string())));
+    }
+    if let Some(l) = args.loss {
+        parts.push(format!("--loss {l}"));
+    }
+    for p in &args.plugins.plugins {
+        parts.push(format!("--plugin {}", quote(&p.display().to_string())));
+    }
+    parts.push(format!("--seed {seed}"));
+    parts.join(" ")
+}
+
+fn quote(s: &str) -> String {
+    let plain = s
+        .chars()
+        .all(|c| c.is_ascii_alphanumeric() || "-_./=+,:@".contains(c));
+    if plain && !s.is_empty() {
+        s.to_string()
+    } else {
+        format!("'{}'", s.replace('\'', "'\\''"))
+    }
+}

@@ -1,0 +1,191 @@
+//! From generated C to a loaded shared library: the output directory plus the simulator's
+//! platform (`runtime/sim/dr_sim.c`) compiled with the system `cc` into a cache directory
+//! keyed by a hash of everything that goes into the build, then loaded with libloading.
+
+use crate::ffi;
+use std::ffi::c_void;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::Mutex;
+
+/// The simulator's platform, embedded so that a build needs nothing but `cc`.
+pub const DR_SIM_C: &str = include_str!("../../../runtime/sim/dr_sim.c");
+
+const LIBRARY: &str = "libdrsim.so";
+
+/// Loading and registering the callbacks is serialised: the C side keeps one global table.
+static LOAD_LOCK: Mutex<()> = Mutex::new(());
+static TEMP_COUNTER: AtomicU64 = AtomicU64::new(0);
+
+pub type InitFn = unsafe extern "C" fn(*mut c_void, *mut c_void);
+pub type StepFn = unsafe extern "C" fn(*mut c_void);
+pub type ReceiveFn = unsafe extern "C" fn(*mut c_void, u8, *const u8, u8);
+pub type QueryFn = unsafe extern "C" fn(*mut c_void) -> u8;
+type SizeFn = unsafe extern "C" fn() -> u32;
+type RegisterFn = unsafe extern "C" fn(*const ffi::Callbacks);
+
+/// The protocol-agnostic entry points of a compiled program.
+#[derive(Clone, Copy)]
+pub struct Entry {
+    pub init: InitFn,
+    pub step: StepFn,
+    pub receive: ReceiveFn,
+    pub finished: QueryFn,
+    pub address: QueryFn,
+    pub module_size: usize,
+}
+
+/// A compiled program, loaded. The entry points are valid while `_library` lives.
+pub struct Loaded {
+    _library: libloading::Library,
+    pub entry: Entry,
+    pub directory: PathBuf,
+    /// True when this build was found in the cache.
+    pub cached: bool,
+}
+
+/// Where builds are cached: `$DYNAROLE_SIM_CACHE`, else `dynarole-sim` in the temp directory.
+pub fn cache_root() -> PathBuf {
+    std::env::var_os("DYNAROLE_SIM_CACHE")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| std::env::temp_dir().join("dynarole-sim"))
+}
+
+/// Builds (or finds in the cache) and loads `files` (name, text) with `defines` (-D flags).
+pub fn build_and_load(files: &[(String, String)], defines: &[String]) -> Result<Loaded, String> {
+    let key = cache_key(files, defines);
+    let directory = cache_root().join(format!("{key:016x}"));
+    let library = directory.join(LIBRARY);
+    let cached = library.is_file();
+    if !cached {
+        build(files, defines, &directory)?;
+    }
+    let (lib, entry) = load(&library)?;
+    Ok(Loaded {
+        _library: lib,
+        entry,
+        directory,
+        cached,
+    })
+}
+
+/// FNV-1a (64 bits) over every input of the build: stable across Rust releases.
+fn cache_key(files: &[(String, String)], defines: &[String]) -> u64 {
+    let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
+    let mut feed = |bytes: &[u8]| {
+        for b in bytes.iter().chain(&[0u8]) {
+            hash ^= u64::from(*b);
+            hash = hash.wrapping_mul(0x0100_0000_01b3);
+        }
+    };
+    feed(DR_SIM_C.as_bytes());
+    for (name, text) in files {
+        feed(name.as_bytes());
+        feed(text.as_bytes());
+    }
+    for d in defines {
+        feed(d.as_bytes());
+    }
+    feed(env!("CARGO_PKG_VERSION").as_bytes());
+    hash
+}
+
+/// Writes the files into a fresh temporary directory, compiles, then renames it into place
+/// (another process may have won the race: then its build is used).
+fn build(files: &[(String, String)], defines: &[String], directory: &Path) -> Result<(), String> {
+    let root = directory.parent().unwrap_or(directory);
+    std::fs::create_dir_all(root).map_err(|e| format!("cannot create {}: {e}", root.display()))?;
+    let temp = root.join(format!(
+        "tmp-{}-{}",
+        std::process::id(),
+        TEMP_COUNTER.fetch_add(1, Ordering::Relaxed)
+    ));
+    let result = write_and_compile(files, defines, &temp);
+    if result.is_ok() && std::fs::rename(&temp, directory).is_ok() {
+        return Ok(());
+    }
+    let _ = std::fs::remove_dir_all(&temp);
+    result?;
+    if directory.join(LIBRARY).is_file() {
+        Ok(())
+    } else {
+        Err(format!(
+            "cannot move the build into {}",
+            directory.display()
+        ))
+    }
+}
+
+fn write_and_compile(
+    files: &[(String, String)],
+    defines: &[String],
+    dir: &Path,
+) -> Result<(), String> {
+    std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+    let mut sources = Vec::new();
+    for (name, text) in files
+        .iter()
+        .map(|(n, t)| (n.as_str(), t.as_str()))
+        .chain([("dr_sim.c", DR_SIM_C)])
+    {
+        std::fs::write(dir.join(name), text)
+            .map_err(|e| format!("cannot write {}: {e}", dir.join(name).display()))?;
+        if name.ends_with(".c") && name != "dr_meta.c" {
+            sources.push(name.to_string());
+        }
+    }
+    let output = Command::new("cc")
+        .current_dir(dir)
+        .args([
+            "-std=c99", "-O2", "-shared", "-fPIC", "-Wall", "-Wextra", "-Werror", "-I.",
+        ])
+        .args(defines)
+        .args(&sources)
+        .args(["-o", LIBRARY])
+        .output()
+        .map_err(|e| format!("cannot run cc: {e}"))?;
+    if output.status.success() {
+        Ok(())
+    } else {
+        Err(format!(
+            "cc failed on the generated C in {}:\n{}",
+            dir.display(),
+            String::from_utf8_lossy(&output.stderr)
+        ))
+    }
+}
+
+fn symbol<T: Copy>(lib: &libloading::Library, name: &str) -> Result<T, String> {
+    // SAFETY: the symbols are the functions of dr_sim.c with the signatures declared there;
+    // the copied pointers are used only while the library is loaded (Loaded keeps it).
+    unsafe {
+        lib.get::<T>(name.as_bytes())
+            .map(|s| *s)
+            .map_err(|e| format!("the simulator library has no `{name}`: {e}"))
+    }
+}
+
+fn load(path: &Path) -> Result<(libloading::Library, Entry), String> {
+    let _guard = LOAD_LOCK.lock().unwrap_or_else(|p| p.into_inner());
+    // SAFETY: the library is ours (built from dr_sim.c and the generated C); its
+    // initialisers do nothing.
+    let lib = unsafe { libloading::Library::new(path) }
+        .map_err(|e| format!("cannot load {}: {e}", path.display()))?;
+    let register: RegisterFn = symbol(&lib, "dr_sim_register")?;
+    let size: SizeFn = symbol(&lib, "dr_sim_module_size")?;
+    // SAFETY: plain C functions with no preconditions; the table is a 'static.
+    let module_size = unsafe {
+        register(&ffi::CALLBACKS);
+        size()
+    };
+    let entry = Entry {
+        init: symbol(&lib, "dr_sim_init")?,
+        step: symbol(&lib, "dr_sim_step")?,
+        receive: symbol(&lib, "dr_sim_receive")?,
+        finished: symbol(&lib, "dr_sim_finished")?,
+        address: symbol(&lib, "dr_sim_address")?,
+        module_size: module_size as usize,
+    };
+    Ok((lib, entry))
+}

@@ -1,0 +1,267 @@
+//! dynarole-sim: a deterministic discrete-event simulator that runs the generated C of a
+//! compiled sequence on every module (compiled for the host, with the simulator as its HAL),
+//! over lossy infrared links, with faults; it checks S1, S2, S3 at every step and compares the
+//! final configuration with the expected one. See `README.md` and `SCENARIO.md`.
+//!
+//! ```text
+//! let sim = Simulator::new(&program, &plans, &compile_options)?;
+//! let report = sim.run(&Run { start: &config, expect: Some(&car), scenario: &scenario,
+//!                             seed: 7, trace: true })?;
+//! ```
+
+mod build;
+mod engine;
+mod ffi;
+mod network;
+mod ops;
+mod report;
+mod scenario;
+mod sequence;
+mod state;
+
+pub use build::cache_root;
+pub use report::{Counters, ModuleReport, Refusal, Report, Violation};
+pub use scenario::{
+    Block, JointModel, Network, Power, Preset, RandomResets, Reset, Scenario, ScenarioError, Timing,
+};
+
+use build::Loaded;
+use dynarole_codegen::{generate_c, CompileOptions, Protocol};
+use dynarole_core::diagnostic::{Diagnostic, DiagnosticKind};
+use dynarole_core::expand::Plan;
+use dynarole_core::Program;
+use dynarole_replay::RobotWorld;
+use dynarole_world::{compare, Configuration};
+use sequence::{Sequence, View};
+use state::State;
+use std::cell::RefCell;
+use std::fmt;
+use std::rc::Rc;
+use std::sync::Arc;
+
+/// Why a simulation could not run (as opposed to a run that did not reach its goal).
+#[derive(Debug)]
+pub enum SimError {
+    /// The sequence cannot be compiled for the protocol (rendered at its source location).
+    Diagnostic(Diagnostic),
+    /// The C did not build or load.
+    Build(String),
+    /// A configuration or scenario that does not fit the sequence.
+    Input(String),
+}
+
+impl fmt::Display for SimError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            SimError::Diagnostic(d) => write!(f, "{:?}", d.kind),
+            SimError::Build(m) | SimError::Input(m) => f.write_str(m),
+        }
+    }
+}
+
+impl std::error::Error for SimError {}
+
+/// One run's inputs besides the compiled sequence.
+#[derive(Clone, Copy, Debug)]
+pub struct Run<'a> {
+    pub start: &'a Configuration,
+    pub expect: Option<&'a Configuration>,
+    pub scenario: &'a Scenario,
+    pub seed: u64,
+    /// Keep the event trace (`Report::trace`).
+    pub trace: bool,
+}
+
+/// A compiled sequence, ready to run any number of times (builds are cached per preset).
+pub struct Simulator {
+    sequence: Arc<Sequence>,
+    files: Vec<(String, String)>,
+    protocol: Protocol,
+    packet_bytes: usize,
+    loaded: RefCell<Vec<(Preset, Rc<Loaded>)>>,
+}
+
+impl Simulator {
+    /// Lowers `plans` (run in turn) and generates their C for `options.protocol`.
+    pub fn new(
+        program: &Program,
+        plans: &[Plan],
+        options: &CompileOptions,
+    ) -> Result<Simulator, SimError> {
+        if options.protocol == Protocol::Paper {
+            for plan in plans {
+                plan.flatten_for_paper().map_err(SimError::Diagnostic)?;
+            }
+        }
+        let limit = |e: dynarole_core::lower::LimitError| {
+            SimError::Diagnostic(Diagnostic::new(
+                DiagnosticKind::TargetLimit { message: e.message },
+                e.span,
+            ))
+        };
+        let ir = program.lower(plans).map_err(limit)?;
+        let generated = generate_c(&ir, &program.robot, options).map_err(limit)?;
+        let resolved = plans
+            .iter()
+            .flat_map(|p| p.statements().into_iter().cloned())
+            .collect();
+        Ok(Simulator {
+            sequence: Arc::new(Sequence::new(program.robot.clone(), ir, resolved)),
+            files: generated.files,
+            protocol: options.protocol,
+            packet_bytes: generated.packet_bytes,
+            loaded: RefCell::new(Vec::new()),
+        })
+    }
+
+    /// Bytes of one state packet on the wire.
+    pub fn packet_bytes(&self) -> usize {
+        self.packet_bytes
+    }
+
+    pub fn statements(&self) -> usize {
+        self.sequence.len()
+    }
+
+    /// Builds (or finds in the cache) the C for `preset` and loads it.
+    fn library(&self, preset: Preset) -> Result<Rc<Loaded>, SimError> {
+        if let Some((_, l)) = self.loaded.borrow().iter().find(|(p, _)| *p == preset) {
+            return Ok(Rc::clone(l));
+        }
+        let defines = vec![format!(
+            "-DDR_CONF_BROADCAST_JITTER_MS={}",
+            preset.jitter_ms()
+        )];
+        let loaded =
+            Rc::new(build::build_and_load(&self.files, &defines).map_err(SimError::Build)?);
+        self.loaded.borrow_mut().push((preset, Rc::clone(&loaded)));
+        Ok(loaded)
+    }
+
+    /// Where the build for `preset` lives (building it if needed), and whether it was found
+    /// in the cache.
+    pub fn build_directory(&self, preset: Preset) -> Result<(std::path::PathBuf, bool), SimError> {
+        let library = self.library(preset)?;
+        Ok((library.directory.clone(), library.cached))
+    }
+
+    /// One run: deterministic in the inputs and the seed.
+    pub fn run(&self, run: &Run) -> Result<Report, SimError> {
+        let world =
+            RobotWorld::new(run.start.clone(), &self.sequence.robot).map_err(SimError::Input)?;
+        run.scenario
+            .check()
+            .map_err(|e| SimError::Input(e.to_string()))?;
+        let view = View::of(&world);
+        run.scenario
+            .check_modules(|name| view.index(name).is_some(), view.connectors())
+            .map_err(|e| SimError::Input(format!("scenario: {e}")))?;
+        let preset = run.scenario.network.preset;
+        let library = self.library(preset)?;
+        let state = State::new(
+            Arc::clone(&self.sequence),
+            world,
+            run.scenario.clone(),
+            run.seed,
+            run.trace,
+        );
+        let finished = engine::run(library.entry, state).map_err(SimError::Build)?;
+        Ok(self.report(run, finished))
+    }
+
+    fn report(&self, run: &Run, finished: engine::Finished) -> Report {
+        let engine::Finished {
+            mut state,
+            addresses,
+        } = finished;
+        let ms = |t: u64| t as f64 / 1000.0;
+        let final_configuration = state.world.configuration();
+        let (matches, difference) = match run.expect {
+            Some(expected) => match compare(&final_configuration, expected) {
+                Ok(()) => (Some(true), None),
+                Err(d) => (Some(false), Some(d.to_string())),
+            },
+            None => (None, None),
+        };
+        let statements_done = state.phys.iter().filter(|p| p.done.is_some()).count();
+        let modules = state
+            .modules
+            .iter()
+            .zip(&addresses)
+            .map(|(m, address)| ModuleReport {
+                name: m.name.clone(),
+                id: m.id,
+                address: *address,
+                packets_sent: m.stats.sent,
+                packets_received: m.stats.received,
+                packets_dropped: m.stats.dropped,
+                operations: m.stats.operations,
+                resets: m.stats.resets,
+                power_cycles: m.stats.power_cycles,
+                finished_ms: m.finished_at.map(ms),
+            })
+            .collect();
+        let all_finished_ms = state
+            .all_finished()
+            .then(|| state.modules.iter().filter_map(|m| m.finished_at).max())
+            .flatten()
+            .map(ms);
+        let mut report = Report {
+            success: false,
+            failures: Vec::new(),
+            seed: run.seed,
+            protocol: match self.protocol {
+                Protocol::Lattice => "lattice".into(),
+                Protocol::Paper => "paper".into(),
+            },
+            preset: state.preset.name().into(),
+            completion_ms: state.first_finished.map(ms),
+            all_finished_ms,
+            end_ms: ms(state.now),
+            statements: self.sequence.len(),
+            statements_done,
+            counters: state.counters.clone(),
+            violations: std::mem::take(&mut state.violations),
+            refusals: std::mem::take(&mut state.refusals),
+            modules,
+            configuration_matches: matches,
+            difference,
+            final_configuration: serde_json::from_str(&final_configuration.to_json_string())
+                .unwrap_or(serde_json::Value::Null),
+            trace: state.trace.take(),
+        };
+        report.failures = failures(&report, run.scenario.timeout_ms);
+        report.success = report.failures.is_empty();
+        report
+    }
+}
+
+fn failures(report: &Report, timeout_ms: u64) -> Vec<String> {
+    let mut out = Vec::new();
+    if report.completion_ms.is_none() {
+        out.push(format!(
+            "timeout: no module declared the end within {:.3} s",
+            timeout_ms as f64 / 1000.0
+        ));
+    }
+    if report.statements_done < report.statements {
+        out.push(format!(
+            "{} of {} statements never completed",
+            report.statements - report.statements_done,
+            report.statements
+        ));
+    }
+    if !report.violations.is_empty() {
+        out.push(format!(
+            "{} violations (S1 {}, S2 {}, S3 {})",
+            report.violations.len(),
+            report.count("S1"),
+            report.count("S2"),
+            report.count("S3")
+        ));
+    }
+    if report.configuration_matches == Some(false) {
+        out.push("the final configuration is not the expected one".into());
+    }
+    out
+}

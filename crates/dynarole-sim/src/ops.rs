@@ -1,0 +1,344 @@
+//! Robot operations: which statement a module's `dr_hal_op_start` is, how long it takes,
+//! what the world says when it completes, and the checks S1, S2 and S3.
+
+use crate::report::{Refusal, Violation};
+use crate::sequence::{OpKind, View};
+use crate::state::{Attempt, Event, State};
+use dynarole_replay::RobotWorld;
+
+/// How a call of `dr_hal_op_start` relates to what already happened to its statement.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Call {
+    /// Its operation is in progress (a module re-entering it after a reset): wait for it.
+    Resume(usize),
+    /// It was started and failed: a new attempt.
+    Retry(usize),
+    /// The first start.
+    First(usize),
+    /// It was done already: done again physically (the world decides what that does).
+    Reissue(usize),
+}
+
+const DONE: u8 = 1;
+const RUNNING: u8 = 0;
+const FAILED: u8 = 2;
+
+impl State {
+    /// `dr_hal_op_start` of module `m` (whose runtime says it has `address`).
+    pub fn op_start(&mut self, m: usize, address: u8, op: u8, index: u8, args: &[i16]) {
+        if !self.modules[m].powered {
+            return;
+        }
+        let Some(call) = self.classify(address, op, index, args) else {
+            self.counters.ops_unknown += 1;
+            self.clear_finished_waits(m);
+            self.modules[m].failed = true;
+            let detail = format!("address {address} op {op} index {index} args {args:?}");
+            self.log(Some(m), "unknown-op", detail);
+            return;
+        };
+        self.clear_finished_waits(m);
+        let s = match call {
+            Call::Resume(s) | Call::Retry(s) | Call::First(s) | Call::Reissue(s) => s,
+        };
+        if !self.modules[m].waiting.contains(&s) {
+            self.modules[m].waiting.push(s);
+        }
+        let label = self.statement_label(s);
+        match call {
+            Call::First(s) => {
+                self.check_dependencies(m, s);
+                self.phys[s].started = Some(self.now);
+                self.log(Some(m), "start", label);
+            }
+            Call::Resume(_) => self.log(Some(m), "resume", label),
+            Call::Retry(_) => self.log(Some(m), "retry", label),
+            Call::Reissue(_) => {
+                self.counters.ops_reissued += 1;
+                self.log(Some(m), "reissue", label);
+            }
+        }
+        if call != Call::First(s) {
+            self.check_not_overtaken(m, s);
+        }
+        if !matches!(call, Call::Resume(_)) {
+            self.begin_attempt(m, s);
+        }
+    }
+
+    /// `dr_hal_op_status`: running while any operation the module waits for runs.
+    pub fn op_status(&self, m: usize) -> u8 {
+        let module = &self.modules[m];
+        if module
+            .waiting
+            .iter()
+            .any(|s| self.phys[*s].running.is_some())
+        {
+            RUNNING
+        } else if module.failed {
+            FAILED
+        } else {
+            DONE
+        }
+    }
+
+    fn classify(&self, address: u8, op: u8, index: u8, args: &[i16]) -> Option<Call> {
+        let candidates: Vec<usize> = (0..self.seq.len())
+            .filter(|s| self.seq.matches(*s, address, op, index, args))
+            .collect();
+        let phys = |s: &&usize| &self.phys[**s];
+        if let Some(s) = candidates.iter().find(|s| phys(s).running.is_some()) {
+            return Some(Call::Resume(*s));
+        }
+        if let Some(s) = candidates
+            .iter()
+            .find(|s| phys(s).started.is_some() && phys(s).done.is_none())
+        {
+            return Some(Call::Retry(*s));
+        }
+        if let Some(s) = candidates.iter().find(|s| phys(s).started.is_none()) {
+            return Some(Call::First(*s));
+        }
+        candidates.last().map(|s| Call::Reissue(*s))
+    }
+
+    /// A new batch of operations starts once every earlier one has finished.
+    fn clear_finished_waits(&mut self, m: usize) {
+        let phys = &self.phys;
+        let module = &mut self.modules[m];
+        if module.waiting.iter().all(|s| phys[*s].running.is_none()) {
+            module.waiting.clear();
+            module.failed = false;
+        }
+    }
+
+    /// S1: every dependency of `s` is physically done.
+    fn check_dependencies(&mut self, m: usize, s: usize) {
+        let missing: Vec<usize> = self.seq.ir.statements[s]
+            .deps
+            .iter()
+            .map(|d| usize::from(*d))
+            .filter(|d| self.phys.get(*d).is_some_and(|p| p.done.is_none()))
+            .collect();
+        if !missing.is_empty() {
+            self.violation(
+                "S1",
+                m,
+                s,
+                missing,
+                "started before its dependencies were done",
+            );
+        }
+    }
+
+    /// S2: `s` is issued again only while nothing that depends on it has started.
+    fn check_not_overtaken(&mut self, m: usize, s: usize) {
+        let started: Vec<usize> = self.seq.dependents[s]
+            .iter()
+            .copied()
+            .filter(|t| self.phys[*t].started.is_some())
+            .collect();
+        if !started.is_empty() {
+            self.violation(
+                "S2",
+                m,
+                s,
+                started,
+                "re-issued after a dependent statement started",
+            );
+        }
+    }
+
+    /// S3: module `m` declared the end; every operation must be done and none running.
+    pub fn check_end(&mut self, m: usize) {
+        let open: Vec<usize> = (0..self.seq.len())
+            .filter(|s| self.phys[*s].done.is_none() || self.phys[*s].running.is_some())
+            .collect();
+        if let Some(first) = open.first().copied() {
+            self.violation(
+                "S3",
+                m,
+                first,
+                open,
+                "end declared before every operation was done",
+            );
+        }
+    }
+
+    fn violation(&mut self, check: &str, m: usize, s: usize, involved: Vec<usize>, what: &str) {
+        let others: Vec<String> = involved.iter().map(|t| format!("#{t}")).collect();
+        let detail = format!(
+            "{}: {what} ({})",
+            self.statement_label(s),
+            others.join(", ")
+        );
+        self.log(Some(m), check, &detail);
+        self.violations.push(Violation {
+            check: check.to_string(),
+            time_ms: self.now as f64 / 1000.0,
+            module: self.modules[m].name.clone(),
+            statement: s,
+            text: self.seq.text(s).to_string(),
+            involved,
+            message: what.to_string(),
+        });
+    }
+
+    fn begin_attempt(&mut self, m: usize, s: usize) {
+        let id = self.next_id;
+        self.next_id += 1;
+        self.attempts.insert(
+            id,
+            Attempt {
+                statement: s,
+                module: m,
+            },
+        );
+        self.phys[s].running = Some(id);
+        self.phys[s].failed = false;
+        self.modules[m].stats.operations += 1;
+        self.counters.ops_started += 1;
+        if self.seq.kinds[s] == OpKind::Turn {
+            self.note_turn(id, m, s);
+        }
+        let at = self.now + self.duration_ms(m, s) * 1000;
+        self.schedule(at, Event::OpDone { attempt: id });
+    }
+
+    fn duration_ms(&self, m: usize, s: usize) -> u64 {
+        let timing = &self.scenario.timing;
+        match self.seq.kinds[s] {
+            OpKind::Extend => timing.extend_ms,
+            OpKind::Retract => timing.retract_ms,
+            OpKind::Turn => {
+                let view = self.view();
+                let current = view.joint(m, 0).unwrap_or(0);
+                let quarters = self
+                    .seq
+                    .quarters(s, current, matches!(view, View::Atron(_)));
+                timing.turn_ms(quarters)
+            }
+            OpKind::Other => 0,
+        }
+    }
+
+    /// Which modules move during a turn, so that their links break while it lasts.
+    fn note_turn(&mut self, id: u64, m: usize, s: usize) {
+        let name = self.modules[m].name.clone();
+        let Some(motion) = self
+            .world
+            .turn_motion(&self.seq.robot, &self.seq.resolved[s], &name)
+        else {
+            self.turns.insert(id, (m, vec![false; self.modules.len()]));
+            return;
+        };
+        let mut moving = vec![false; self.modules.len()];
+        let view = self.view();
+        for (module, _) in &motion.moving {
+            if let Some(i) = view.index(module) {
+                moving[i] = true;
+            }
+        }
+        self.turns.insert(id, (m, moving));
+    }
+
+    /// An operation's time has come: the world applies it or refuses it.
+    pub fn op_done(&mut self, id: u64) {
+        let Some(Attempt {
+            statement: s,
+            module: m,
+        }) = self.attempts.remove(&id)
+        else {
+            return;
+        };
+        self.turns.remove(&id);
+        if self.phys[s].running != Some(id) {
+            return;
+        }
+        self.phys[s].running = None;
+        let name = self.modules[m].name.clone();
+        let label = self.statement_label(s);
+        match self
+            .world
+            .apply(&self.seq.robot, &self.seq.resolved[s], &name)
+        {
+            Ok(outcome) => {
+                let notes: Vec<String> = outcome.warnings.iter().map(ToString::to_string).collect();
+                self.completed(m, s, label, &notes.join("; "));
+            }
+            Err(_) if self.already_there(m, s) => {
+                self.completed(m, s, label, "joint already there")
+            }
+            Err(reason) => self.refused(m, s, label, reason),
+        }
+    }
+
+    fn completed(&mut self, m: usize, s: usize, label: String, note: &str) {
+        self.phys[s].done.get_or_insert(self.now);
+        let detail = if note.is_empty() {
+            label
+        } else {
+            format!("{label} ({note})")
+        };
+        self.log(Some(m), "done", detail);
+    }
+
+    fn refused(&mut self, m: usize, s: usize, label: String, reason: String) {
+        self.phys[s].failed = true;
+        self.counters.ops_refused += 1;
+        self.mark_failed(s);
+        self.log(Some(m), "refused", format!("{label}: {reason}"));
+        self.refusals.push(Refusal {
+            time_ms: self.now as f64 / 1000.0,
+            module: self.modules[m].name.clone(),
+            statement: s,
+            text: self.seq.text(s).to_string(),
+            reason,
+        });
+    }
+
+    fn mark_failed(&mut self, s: usize) {
+        for module in &mut self.modules {
+            if module.waiting.contains(&s) {
+                module.failed = true;
+            }
+        }
+    }
+
+    /// A turn the world refuses because the joint is already at its target took effect
+    /// already (operations are idempotent, dr_hal.h).
+    fn already_there(&self, m: usize, s: usize) -> bool {
+        if self.seq.kinds[s] != OpKind::Turn {
+            return false;
+        }
+        let joint = match &self.world {
+            RobotWorld::Atron(_) => 0,
+            RobotWorld::Mtran(_) => self.seq.ir.statements[s].index,
+        };
+        let current = self.view().joint(m, joint);
+        current.is_some() && current == self.seq.turn_target(s)
+    }
+
+    /// The module lost power: its operations stop where they are and take no effect.
+    pub fn interrupt_operations(&mut self, m: usize) {
+        let ids: Vec<u64> = self
+            .attempts
+            .iter()
+            .filter(|(_, a)| a.module == m)
+            .map(|(id, _)| *id)
+            .collect();
+        for id in ids {
+            let Some(a) = self.attempts.remove(&id) else {
+                continue;
+            };
+            self.turns.remove(&id);
+            if self.phys[a.statement].running == Some(id) {
+                self.phys[a.statement].running = None;
+                self.phys[a.statement].failed = true;
+                self.mark_failed(a.statement);
+                let label = self.statement_label(a.statement);
+                self.log(Some(m), "interrupt", label);
+            }
+        }
+    }
+}

@@ -1,0 +1,239 @@
+//! What a run reports: outcome, times, packets, per-module figures, violations and refused
+//! operations, as data (serialised by `--json`) and as a human summary.
+
+use serde::Serialize;
+use std::fmt::Write;
+
+/// Whole-run counters.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct Counters {
+    /// Calls of `dr_hal_broadcast`.
+    pub broadcasts: u64,
+    /// Transmissions (one per channel a broadcast goes out on), counted at the sender.
+    pub packets_sent: u64,
+    pub delivered: u64,
+    pub lost: u64,
+    pub dead: u64,
+    pub collided: u64,
+    pub blocked: u64,
+    /// Dropped because a turn in progress broke the link.
+    pub broken: u64,
+    /// Dropped because the receiver was powered off.
+    pub off: u64,
+    /// Not sent: the channel's send buffer was full.
+    pub overflow: u64,
+    pub ops_started: u64,
+    pub ops_reissued: u64,
+    pub ops_refused: u64,
+    pub ops_unknown: u64,
+    pub resets: u64,
+    pub power_cycles: u64,
+}
+
+impl Counters {
+    /// Packets sent that did not reach the protocol.
+    pub fn dropped(&self) -> u64 {
+        self.lost + self.dead + self.collided + self.blocked + self.broken + self.off
+    }
+}
+
+/// A check that failed: S1 (started before its dependencies were done), S2 (re-issued after
+/// a dependent started) or S3 (end declared before every operation was done).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Violation {
+    pub check: String,
+    pub time_ms: f64,
+    pub module: String,
+    pub statement: usize,
+    pub text: String,
+    /// The other statements involved (missing dependencies, started dependents, open ones).
+    pub involved: Vec<usize>,
+    pub message: String,
+}
+
+/// An operation the world refused.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Refusal {
+    pub time_ms: f64,
+    pub module: String,
+    pub statement: usize,
+    pub text: String,
+    pub reason: String,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ModuleReport {
+    pub name: String,
+    pub id: u16,
+    /// The address the module's runtime found (255: none, 254: several).
+    pub address: u8,
+    pub packets_sent: u64,
+    pub packets_received: u64,
+    pub packets_dropped: u64,
+    pub operations: u64,
+    pub resets: u64,
+    pub power_cycles: u64,
+    pub finished_ms: Option<f64>,
+}
+
+/// The result of one run.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Report {
+    pub success: bool,
+    /// Why the goal was not reached (empty on success).
+    pub failures: Vec<String>,
+    pub seed: u64,
+    pub protocol: String,
+    pub preset: String,
+    /// When the first module declared the end (the original simulator's success time).
+    pub completion_ms: Option<f64>,
+    /// When the last module declared the end.
+    pub all_finished_ms: Option<f64>,
+    /// Simulated time at which the run stopped.
+    pub end_ms: f64,
+    pub statements: usize,
+    pub statements_done: usize,
+    pub counters: Counters,
+    pub violations: Vec<Violation>,
+    pub refusals: Vec<Refusal>,
+    pub modules: Vec<ModuleReport>,
+    /// Whether the final configuration equals the expected one (`None`: nothing expected).
+    pub configuration_matches: Option<bool>,
+    pub difference: Option<String>,
+    /// The final configuration, in the data-file JSON format.
+    pub final_configuration: serde_json::Value,
+    #[serde(skip)]
+    pub trace: Option<String>,
+}
+
+impl Report {
+    /// Violations of one check.
+    pub fn count(&self, check: &str) -> usize {
+        self.violations.iter().filter(|v| v.check == check).count()
+    }
+
+    /// A few lines for people.
+    pub fn summary(&self) -> String {
+        let mut out = String::new();
+        let verdict = if self.success { "SUCCESS" } else { "FAILURE" };
+        let when = self
+            .completion_ms
+            .map_or("never".to_string(), |t| format!("at {:.3} s", t / 1000.0));
+        let _ = writeln!(
+            out,
+            "{verdict}: {} protocol, {} preset, seed {}: end declared {when}; {} of {} statements done; run stopped at {:.3} s",
+            self.protocol,
+            self.preset,
+            self.seed,
+            self.statements_done,
+            self.statements,
+            self.end_ms / 1000.0
+        );
+        for f in &self.failures {
+            let _ = writeln!(out, "  not reached: {f}");
+        }
+        self.packets_line(&mut out);
+        let c = &self.counters;
+        let _ = writeln!(
+            out,
+            "  operations: {} started, {} re-issued, {} refused, {} unknown; resets {}, power cycles {}",
+            c.ops_started, c.ops_reissued, c.ops_refused, c.ops_unknown, c.resets, c.power_cycles
+        );
+        let _ = writeln!(
+            out,
+            "  violations: S1 {}, S2 {}, S3 {}",
+            self.count("S1"),
+            self.count("S2"),
+            self.count("S3")
+        );
+        for v in &self.violations {
+            let _ = writeln!(
+                out,
+                "    {} at {:.3} s on {}: #{} {} {} (involved: {:?})",
+                v.check,
+                v.time_ms / 1000.0,
+                v.module,
+                v.statement,
+                v.text,
+                v.message,
+                v.involved
+            );
+        }
+        // A refused operation is usually retried: one line per statement and reason, with how
+        // often and over which interval, rather than one per attempt.
+        let mut shown: Vec<(usize, &str)> = Vec::new();
+        for r in &self.refusals {
+            if shown.contains(&(r.statement, r.reason.as_str())) {
+                continue;
+            }
+            shown.push((r.statement, r.reason.as_str()));
+            let same: Vec<&Refusal> = self
+                .refusals
+                .iter()
+                .filter(|o| o.statement == r.statement && o.reason == r.reason)
+                .collect();
+            let last = same.last().map_or(r.time_ms, |o| o.time_ms);
+            let times = if same.len() > 1 {
+                format!(
+                    "{} times from {:.3} s to {:.3} s",
+                    same.len(),
+                    r.time_ms / 1000.0,
+                    last / 1000.0
+                )
+            } else {
+                format!("at {:.3} s", r.time_ms / 1000.0)
+            };
+            let _ = writeln!(
+                out,
+                "  refused {times} on {}: #{} {}: {}",
+                r.module, r.statement, r.text, r.reason
+            );
+        }
+        self.modules_table(&mut out);
+        out
+    }
+
+    fn packets_line(&self, out: &mut String) {
+        let c = &self.counters;
+        let _ = writeln!(
+            out,
+            "  packets: {} sent, {} delivered, {} dropped (lost {}, dead link {}, collision {}, blocked {}, turn {}, off {}), {} overflow",
+            c.packets_sent,
+            c.delivered,
+            c.dropped(),
+            c.lost,
+            c.dead,
+            c.collided,
+            c.blocked,
+            c.broken,
+            c.off,
+            c.overflow
+        );
+    }
+
+    fn modules_table(&self, out: &mut String) {
+        let _ = writeln!(
+            out,
+            "  {:<6} {:>4} {:>4} {:>7} {:>7} {:>7} {:>4} {:>6} {:>10}",
+            "module", "id", "addr", "sent", "recv", "dropped", "ops", "resets", "end (s)"
+        );
+        for m in &self.modules {
+            let end = m
+                .finished_ms
+                .map_or("-".to_string(), |t| format!("{:.3}", t / 1000.0));
+            let _ = writeln!(
+                out,
+                "  {:<6} {:>4} {:>4} {:>7} {:>7} {:>7} {:>4} {:>6} {:>10}",
+                m.name,
+                m.id,
+                m.address,
+                m.packets_sent,
+                m.packets_received,
+                m.packets_dropped,
+                m.operations,
+                m.resets,
+                end
+            );
+        }
+    }
+}

@@ -1,0 +1,295 @@
+//! Faults as data: the TOML scenario file (network, timing, resets, power cycles, blocked
+//! links, the faults-on phase and the timeout). Every field is documented in `SCENARIO.md`.
+
+use serde::{Deserialize, Serialize};
+use std::fmt;
+
+/// How the infrared network and the modules' clocks behave.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum Preset {
+    /// The physical ATRON: half-duplex, one UART per hemisphere (collisions), modules powered
+    /// on at random times in the first 100 ms and broadcasts jittered by up to 20 ms.
+    #[default]
+    Atron,
+    /// The original simulator (USSR): full duplex per channel, no collisions, every module
+    /// powered on at 0 and broadcasting in the same step every 100 ms.
+    Ussr,
+}
+
+impl Preset {
+    pub fn name(self) -> &'static str {
+        match self {
+            Preset::Atron => "atron",
+            Preset::Ussr => "ussr",
+        }
+    }
+
+    /// Broadcast jitter compiled into the runtime (`DR_CONF_BROADCAST_JITTER_MS`).
+    pub fn jitter_ms(self) -> u32 {
+        match self {
+            Preset::Atron => 20,
+            Preset::Ussr => 0,
+        }
+    }
+}
+
+/// Joint speed model.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum JointModel {
+    /// The original simulator's joint: 0.55 s a quarter turn, 0.86 s a half turn, +0.31 s
+    /// per further quarter.
+    #[default]
+    Ussr,
+    /// The "realistic" variant: 6 s per revolution plus 0.6 s to settle (2.1 s a quarter).
+    Realistic,
+}
+
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Network {
+    pub loss: f64,
+    pub dead_link_p: f64,
+    pub dead_loss: f64,
+    pub preset: Preset,
+}
+
+impl Default for Network {
+    fn default() -> Network {
+        Network {
+            loss: 0.0,
+            dead_link_p: 0.0,
+            dead_loss: 0.98,
+            preset: Preset::Atron,
+        }
+    }
+}
+
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Timing {
+    pub extend_ms: u64,
+    pub retract_ms: u64,
+    pub joint: JointModel,
+}
+
+impl Default for Timing {
+    fn default() -> Timing {
+        Timing {
+            extend_ms: 3000,
+            retract_ms: 2000,
+            joint: JointModel::Ussr,
+        }
+    }
+}
+
+impl Timing {
+    /// Duration of a joint turn of `quarters` quarter turns, in ms (0 for no motion).
+    pub fn turn_ms(&self, quarters: u64) -> u64 {
+        if quarters == 0 {
+            return 0;
+        }
+        match self.joint {
+            JointModel::Ussr => 550 + 310 * (quarters - 1),
+            JointModel::Realistic => 1500 * quarters + 600,
+        }
+    }
+}
+
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Reset {
+    pub module: String,
+    pub at_ms: u64,
+}
+
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Power {
+    pub module: String,
+    pub off_ms: u64,
+    pub on_ms: u64,
+}
+
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Block {
+    pub module: String,
+    pub connector: u8,
+    pub from_ms: u64,
+    pub to_ms: u64,
+}
+
+/// Spontaneous resets as in the original experiments: module k checks every
+/// `interval_ms + k * 1000 / 7` ms and resets with probability `probability`.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct RandomResets {
+    pub interval_ms: u64,
+    pub probability: f64,
+}
+
+/// A whole scenario. Every field has a default, so an empty file is the fault-free run.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Scenario {
+    pub timeout_ms: u64,
+    /// After this time: no loss, dead links pass everything, no blocks, no resets.
+    pub faults_until_ms: Option<u64>,
+    pub network: Network,
+    pub timing: Timing,
+    pub reset: Vec<Reset>,
+    pub power: Vec<Power>,
+    pub block: Vec<Block>,
+    pub random_resets: Option<RandomResets>,
+}
+
+impl Default for Scenario {
+    fn default() -> Scenario {
+        Scenario {
+            timeout_ms: 300_000,
+            faults_until_ms: None,
+            network: Network::default(),
+            timing: Timing::default(),
+            reset: Vec::new(),
+            power: Vec::new(),
+            block: Vec::new(),
+            random_resets: None,
+        }
+    }
+}
+
+/// A scenario that does not parse or does not make sense; `field` names where.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ScenarioError {
+    pub field: String,
+    pub message: String,
+}
+
+impl fmt::Display for ScenarioError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.field.is_empty() {
+            f.write_str(&self.message)
+        } else {
+            write!(f, "{}: {}", self.field, self.message)
+        }
+    }
+}
+
+impl std::error::Error for ScenarioError {}
+
+fn error(field: impl Into<String>, message: impl Into<String>) -> ScenarioError {
+    ScenarioError {
+        field: field.into(),
+        message: message.into(),
+    }
+}
+
+impl Scenario {
+    /// Parses and checks a scenario. Module names are checked later, against the
+    /// configuration ([`Scenario::check_modules`]).
+    pub fn from_toml_str(text: &str) -> Result<Scenario, ScenarioError> {
+        let scenario: Scenario = toml::from_str(text).map_err(|e| error("", toml_message(&e)))?;
+        scenario.check()?;
+        Ok(scenario)
+    }
+
+    /// The end of the faults-on phase (the timeout when there is none).
+    pub fn faults_end_ms(&self) -> u64 {
+        self.faults_until_ms.unwrap_or(self.timeout_ms)
+    }
+
+    /// Checks ranges and times.
+    pub fn check(&self) -> Result<(), ScenarioError> {
+        probability("network.loss", self.network.loss)?;
+        probability("network.dead_link_p", self.network.dead_link_p)?;
+        probability("network.dead_loss", self.network.dead_loss)?;
+        if self.timeout_ms == 0 {
+            return Err(error("timeout_ms", "must be above 0"));
+        }
+        let end = self.faults_end_ms();
+        if end > self.timeout_ms {
+            return Err(error("faults_until_ms", "is after timeout_ms"));
+        }
+        for (i, r) in self.reset.iter().enumerate() {
+            before(&format!("reset[{i}].at_ms"), r.at_ms, end)?;
+        }
+        for (i, p) in self.power.iter().enumerate() {
+            before(&format!("power[{i}].off_ms"), p.off_ms, end)?;
+            if p.on_ms <= p.off_ms {
+                return Err(error(format!("power[{i}].on_ms"), "must be after off_ms"));
+            }
+        }
+        for (i, b) in self.block.iter().enumerate() {
+            if b.to_ms <= b.from_ms {
+                return Err(error(format!("block[{i}].to_ms"), "must be after from_ms"));
+            }
+        }
+        if let Some(r) = &self.random_resets {
+            probability("random_resets.probability", r.probability)?;
+            if r.interval_ms == 0 {
+                return Err(error("random_resets.interval_ms", "must be above 0"));
+            }
+        }
+        Ok(())
+    }
+
+    /// Every module a fault names must exist, and every connector must be below `connectors`.
+    pub fn check_modules(
+        &self,
+        exists: impl Fn(&str) -> bool,
+        connectors: u8,
+    ) -> Result<(), ScenarioError> {
+        let unknown = |field: String, name: &str| {
+            error(
+                field,
+                format!("no module named `{name}` in the configuration"),
+            )
+        };
+        for (i, r) in self.reset.iter().enumerate() {
+            if !exists(&r.module) {
+                return Err(unknown(format!("reset[{i}].module"), &r.module));
+            }
+        }
+        for (i, p) in self.power.iter().enumerate() {
+            if !exists(&p.module) {
+                return Err(unknown(format!("power[{i}].module"), &p.module));
+            }
+        }
+        for (i, b) in self.block.iter().enumerate() {
+            if !exists(&b.module) {
+                return Err(unknown(format!("block[{i}].module"), &b.module));
+            }
+            if b.connector >= connectors {
+                let message = format!("a module has connectors 0 to {}", connectors - 1);
+                return Err(error(format!("block[{i}].connector"), message));
+            }
+        }
+        Ok(())
+    }
+}
+
+fn probability(field: &str, p: f64) -> Result<(), ScenarioError> {
+    if (0.0..=1.0).contains(&p) {
+        Ok(())
+    } else {
+        Err(error(field, format!("{p} is not a probability (0 to 1)")))
+    }
+}
+
+fn before(field: &str, at: u64, end: u64) -> Result<(), ScenarioError> {
+    if at < end {
+        Ok(())
+    } else {
+        Err(error(
+            field,
+            format!("{at} is not inside the faults-on phase (ends at {end} ms)"),
+        ))
+    }
+}
+
+/// toml's message names the key (`unknown field `x``) and the line; keep it on one line.
+fn toml_message(e: &toml::de::Error) -> String {
+    e.to_string().lines().collect::<Vec<_>>().join(" ")
+}

@@ -1,0 +1,253 @@
+//! What the simulator knows of the compiled sequence, from the IR (never from the C): each
+//! statement's module address, operation, dependencies and transitive dependents, the
+//! resolved statement the world applies, and the configuration queries the HAL answers.
+
+use dynarole_core::check::ResolvedStatement;
+use dynarole_core::lower::Ir;
+use dynarole_core::robot::Value;
+use dynarole_core::RobotApi;
+use dynarole_replay::RobotWorld;
+use dynarole_world::{AtronConfiguration, MtranConfiguration, Port};
+use std::collections::BTreeSet;
+
+/// The physical kind of an operation (for its duration and the links it breaks).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OpKind {
+    Extend,
+    Retract,
+    Turn,
+    Other,
+}
+
+/// The compiled sequence, as the simulator's checks and world need it.
+#[derive(Clone, Debug)]
+pub struct Sequence {
+    pub robot: RobotApi,
+    pub ir: Ir,
+    pub resolved: Vec<ResolvedStatement>,
+    pub kinds: Vec<OpKind>,
+    /// For each statement, every statement that depends on it directly or transitively.
+    pub dependents: Vec<Vec<usize>>,
+}
+
+impl Sequence {
+    pub fn new(robot: RobotApi, ir: Ir, resolved: Vec<ResolvedStatement>) -> Sequence {
+        let kinds = ir
+            .statements
+            .iter()
+            .map(|s| match ir.operations.get(usize::from(s.op)) {
+                Some((part, op)) => kind(part, op),
+                None => OpKind::Other,
+            })
+            .collect();
+        let dependents = dependents(&ir);
+        Sequence {
+            robot,
+            ir,
+            resolved,
+            kinds,
+            dependents,
+        }
+    }
+
+    pub fn len(&self) -> usize {
+        self.ir.statements.len()
+    }
+
+    pub fn text(&self, s: usize) -> &str {
+        self.ir.statements.get(s).map_or("?", |st| st.text.as_str())
+    }
+
+    /// Whether statement `s` is the call (address, op, index, args) a module made; the C
+    /// passes the arguments padded with zeros to `DR_CONF_MAX_ARGS`.
+    pub fn matches(&self, s: usize, address: u8, op: u8, index: u8, args: &[i16]) -> bool {
+        let Some(st) = self.ir.statements.get(s) else {
+            return false;
+        };
+        let padded = |k: usize| st.args.get(k).copied().unwrap_or(0);
+        st.address == address
+            && st.op == op
+            && st.index == index
+            && args.iter().enumerate().all(|(k, a)| *a == padded(k))
+    }
+
+    /// The angle a turn ends at (plugin units), for the "already there" rule.
+    pub fn turn_target(&self, s: usize) -> Option<i64> {
+        let st = self.resolved.get(s)?;
+        let name = self.op_name(s);
+        let at = match name {
+            "rotateFromToBy" => 1,
+            "rotateToBy" => 0,
+            _ => return None,
+        };
+        match st.args.get(at) {
+            Some(Value::Int(v)) => Some(*v),
+            _ => None,
+        }
+    }
+
+    /// Quarter turns a turn makes from joint angle `current` (ATRON units of 1/432 turn,
+    /// M-TRAN degrees).
+    pub fn quarters(&self, s: usize, current: i64, atron: bool) -> u64 {
+        let Some(st) = self.resolved.get(s) else {
+            return 0;
+        };
+        let (full, quarter) = if atron { (432, 108) } else { (360, 90) };
+        let (from, to, increasing) = match (self.op_name(s), st.args.as_slice()) {
+            ("rotateFromToBy", [Value::Int(f), Value::Int(t), Value::Bool(d), ..]) => (*f, *t, *d),
+            ("rotateToBy", [Value::Int(t), Value::Bool(d), ..]) => (current, *t, *d),
+            _ => return 0,
+        };
+        let delta = if !atron {
+            (to - from).abs()
+        } else if increasing {
+            (to - from).rem_euclid(full)
+        } else {
+            (from - to).rem_euclid(full)
+        };
+        u64::try_from((delta + quarter - 1) / quarter).unwrap_or(0)
+    }
+
+    fn op_name(&self, s: usize) -> &str {
+        self.ir
+            .statements
+            .get(s)
+            .and_then(|st| self.ir.operations.get(usize::from(st.op)))
+            .map_or("", |(_, op)| op.as_str())
+    }
+}
+
+fn kind(part: &str, op: &str) -> OpKind {
+    match (part, op) {
+        ("Connector", "extend") => OpKind::Extend,
+        ("Connector", "retract") => OpKind::Retract,
+        ("Joint", _) => OpKind::Turn,
+        _ => OpKind::Other,
+    }
+}
+
+/// Transitive dependents through `deps` (what the sequence means). Dependencies always point
+/// backwards, so one pass from the end suffices.
+fn dependents(ir: &Ir) -> Vec<Vec<usize>> {
+    let n = ir.statements.len();
+    let mut out: Vec<BTreeSet<usize>> = vec![BTreeSet::new(); n];
+    for s in (0..n).rev() {
+        let mine: Vec<usize> = std::iter::once(s).chain(out[s].iter().copied()).collect();
+        for d in &ir.statements[s].deps {
+            if let Some(set) = out.get_mut(usize::from(*d)) {
+                set.extend(mine.iter().copied());
+            }
+        }
+    }
+    out.into_iter().map(|s| s.into_iter().collect()).collect()
+}
+
+/// The configuration of either robot, borrowed, with the queries the simulator needs.
+#[derive(Clone, Copy)]
+pub enum View<'w> {
+    Atron(&'w AtronConfiguration),
+    Mtran(&'w MtranConfiguration),
+}
+
+impl<'w> View<'w> {
+    pub fn of(world: &'w RobotWorld) -> View<'w> {
+        match world {
+            RobotWorld::Atron(w) => View::Atron(w.configuration()),
+            RobotWorld::Mtran(w) => View::Mtran(w.configuration()),
+        }
+    }
+
+    pub fn connectors(self) -> u8 {
+        match self {
+            View::Atron(_) => 8,
+            View::Mtran(_) => 6,
+        }
+    }
+
+    pub fn is_male(self, connector: u8) -> bool {
+        match self {
+            View::Atron(_) => dynarole_world::atron::is_male(connector),
+            View::Mtran(_) => dynarole_world::mtran::is_mtran_male(connector),
+        }
+    }
+
+    /// Which send queue (UART) a connector uses on a half-duplex module: its hemisphere.
+    pub fn hemisphere(self, connector: u8) -> usize {
+        usize::from(connector >= self.connectors() / 2)
+    }
+
+    pub fn len(self) -> usize {
+        match self {
+            View::Atron(c) => c.modules().len(),
+            View::Mtran(c) => c.modules().len(),
+        }
+    }
+
+    pub fn name(self, m: usize) -> String {
+        match self {
+            View::Atron(c) => c.module(m).map(|x| x.name.clone()),
+            View::Mtran(c) => c.modules().get(m).map(|x| x.name.clone()),
+        }
+        .unwrap_or_default()
+    }
+
+    pub fn id(self, m: usize) -> Option<u32> {
+        match self {
+            View::Atron(c) => c.module(m).and_then(|x| x.id),
+            View::Mtran(c) => c.modules().get(m).and_then(|x| x.id),
+        }
+    }
+
+    pub fn index(self, name: &str) -> Option<usize> {
+        match self {
+            View::Atron(c) => c.module_index(name),
+            View::Mtran(c) => c.module_index(name),
+        }
+    }
+
+    pub fn joint(self, m: usize, joint: u8) -> Option<i64> {
+        match self {
+            View::Atron(c) => c.module(m).map(|x| i64::from(x.joint_units)),
+            View::Mtran(c) => c
+                .modules()
+                .get(m)
+                .and_then(|x| x.joints_deg.get(usize::from(joint)))
+                .map(|d| i64::from(*d)),
+        }
+    }
+
+    pub fn latched_to(self, port: Port) -> Option<Port> {
+        match self {
+            View::Atron(c) => c.latched_to(port),
+            View::Mtran(c) => c.latched_to(port),
+        }
+    }
+
+    pub fn facing(self, port: Port) -> Option<Port> {
+        match self {
+            View::Atron(c) => c.facing(port),
+            View::Mtran(c) => c.facing(port),
+        }
+    }
+
+    pub fn port_name(self, port: Port) -> String {
+        match self {
+            View::Atron(c) => c.port_name(port),
+            View::Mtran(c) => c.port_name(port),
+        }
+    }
+
+    /// Where a packet sent on `port` goes (atron.md a.8): the latched partner, or, for an
+    /// unlatched male connector, an unlatched female connector facing it.
+    pub fn link_target(self, port: Port) -> Option<Port> {
+        if let Some(p) = self.latched_to(port) {
+            return Some(p);
+        }
+        if !self.is_male(port.connector) {
+            return None;
+        }
+        let other = self.facing(port)?;
+        let free_female = !self.is_male(other.connector) && self.latched_to(other).is_none();
+        free_female.then_some(other)
+    }
+}

@@ -1,0 +1,465 @@
+//! The simulation state that the HAL callbacks and the event loop share: time, the event
+//! queue, the world, every module's platform data, counters, violations and the trace.
+//! Operations live in `ops.rs`, the infrared network in `network.rs`.
+
+use crate::report::{Counters, Refusal, Violation};
+use crate::scenario::{Preset, Scenario};
+use crate::sequence::{Sequence, View};
+use dynarole_replay::RobotWorld;
+use dynarole_world::Port;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use std::cmp::{Ordering, Reverse};
+use std::collections::{BTreeMap, BinaryHeap};
+use std::fmt::Write;
+use std::sync::Arc;
+
+/// Controller period of every module (atron.md c).
+pub const STEP_US: u64 = 5_000;
+/// Bytes of non-volatile storage per module (the ATmega128's EEPROM).
+const NV_BYTES: usize = 4096;
+
+/// A packet on its way from one connector to another.
+#[derive(Clone, Debug)]
+pub struct Packet {
+    pub id: u64,
+    pub from: Port,
+    pub to: Port,
+    pub start: u64,
+    pub end: u64,
+    pub bytes: Vec<u8>,
+}
+
+#[derive(Clone, Debug)]
+pub enum Event {
+    PowerOn { module: usize },
+    PowerOff { module: usize },
+    Step { module: usize, generation: u64 },
+    OpDone { attempt: u64 },
+    Arrival(Box<Packet>),
+    Reset { module: usize },
+    ResetCheck { module: usize },
+}
+
+/// An event at a time; ties are broken by the order of scheduling.
+#[derive(Debug)]
+struct Scheduled {
+    time: u64,
+    seq: u64,
+    event: Event,
+}
+
+impl PartialEq for Scheduled {
+    fn eq(&self, other: &Self) -> bool {
+        (self.time, self.seq) == (other.time, other.seq)
+    }
+}
+impl Eq for Scheduled {}
+impl PartialOrd for Scheduled {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+impl Ord for Scheduled {
+    fn cmp(&self, other: &Self) -> Ordering {
+        (self.time, self.seq).cmp(&(other.time, other.seq))
+    }
+}
+
+/// The platform data of one module.
+#[derive(Clone, Debug)]
+pub struct Module {
+    pub name: String,
+    pub id: u16,
+    pub powered: bool,
+    pub power_on_at: u64,
+    pub generation: u64,
+    pub nv: Vec<u8>,
+    /// Statements started since the last time all were finished (what op_status reports on).
+    pub waiting: Vec<usize>,
+    pub failed: bool,
+    pub finished_at: Option<u64>,
+    pub leds: u8,
+    /// When each send queue (channel, or hemisphere when half duplex) is free again.
+    pub busy_until: Vec<u64>,
+    /// Receive channels that are dead (permanent link failure).
+    pub dead: Vec<bool>,
+    /// Recent transmissions and receptions per hemisphere: (start, end, packet id; 0 = own).
+    pub air: [Vec<(u64, u64, u64)>; 2],
+    pub stats: ModuleStats,
+}
+
+#[derive(Clone, Debug, Default)]
+pub struct ModuleStats {
+    pub sent: u64,
+    pub received: u64,
+    pub dropped: u64,
+    pub operations: u64,
+    pub resets: u64,
+    pub power_cycles: u64,
+}
+
+/// Physical state of one statement.
+#[derive(Clone, Debug, Default)]
+pub struct Phys {
+    pub started: Option<u64>,
+    pub done: Option<u64>,
+    pub running: Option<u64>,
+    pub failed: bool,
+}
+
+/// One physical execution of a statement's operation.
+#[derive(Clone, Debug)]
+pub struct Attempt {
+    pub statement: usize,
+    pub module: usize,
+}
+
+pub struct State {
+    pub seq: Arc<Sequence>,
+    pub scenario: Scenario,
+    pub preset: Preset,
+    pub now: u64,
+    queue: BinaryHeap<Reverse<Scheduled>>,
+    next_seq: u64,
+    pub world: RobotWorld,
+    pub modules: Vec<Module>,
+    pub phys: Vec<Phys>,
+    pub attempts: BTreeMap<u64, Attempt>,
+    pub next_id: u64,
+    /// Turns in progress: attempt -> (turning module, which modules move).
+    pub turns: BTreeMap<u64, (usize, Vec<bool>)>,
+    pub rng_loss: ChaCha8Rng,
+    rng_hal: ChaCha8Rng,
+    pub rng_faults: ChaCha8Rng,
+    pub counters: Counters,
+    pub violations: Vec<Violation>,
+    pub refusals: Vec<Refusal>,
+    pub trace: Option<String>,
+    pub first_finished: Option<u64>,
+}
+
+/// A uniform draw in [0, 1).
+pub fn uniform(rng: &mut ChaCha8Rng) -> f64 {
+    (rng.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+}
+
+fn stream(seed: u64, stream: u64) -> ChaCha8Rng {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    rng.set_stream(stream);
+    rng
+}
+
+impl State {
+    pub fn new(
+        seq: Arc<Sequence>,
+        world: RobotWorld,
+        scenario: Scenario,
+        seed: u64,
+        trace: bool,
+    ) -> State {
+        let view = View::of(&world);
+        let preset = scenario.network.preset;
+        let mut setup = stream(seed, 0);
+        let connectors = usize::from(view.connectors());
+        let modules = (0..view.len())
+            .map(|m| Module {
+                name: view.name(m),
+                id: view.id(m).and_then(|i| u16::try_from(i).ok()).unwrap_or(0),
+                powered: false,
+                power_on_at: 0,
+                generation: 0,
+                nv: vec![0xFF; NV_BYTES],
+                waiting: Vec::new(),
+                failed: false,
+                finished_at: None,
+                leds: 0,
+                busy_until: vec![0; connectors],
+                dead: (0..connectors)
+                    .map(|_| uniform(&mut setup) < scenario.network.dead_link_p)
+                    .collect(),
+                air: [Vec::new(), Vec::new()],
+                stats: ModuleStats::default(),
+            })
+            .collect();
+        let phys = vec![Phys::default(); seq.len()];
+        let mut state = State {
+            seq,
+            scenario,
+            preset,
+            now: 0,
+            queue: BinaryHeap::new(),
+            next_seq: 0,
+            world,
+            modules,
+            phys,
+            attempts: BTreeMap::new(),
+            next_id: 1,
+            turns: BTreeMap::new(),
+            rng_loss: stream(seed, 1),
+            rng_hal: stream(seed, 2),
+            rng_faults: stream(seed, 3),
+            counters: Counters::default(),
+            violations: Vec::new(),
+            refusals: Vec::new(),
+            trace: trace.then(String::new),
+            first_finished: None,
+        };
+        state.schedule_start(&mut setup);
+        state
+    }
+
+    /// Power-on of every module, then the scenario's faults, as events.
+    fn schedule_start(&mut self, setup: &mut ChaCha8Rng) {
+        for m in 0..self.modules.len() {
+            let at = match self.preset {
+                Preset::Ussr => 0,
+                Preset::Atron => setup.next_u64() % 100_000,
+            };
+            self.schedule(at, Event::PowerOn { module: m });
+        }
+        let view = View::of(&self.world);
+        let index = |name: &str| view.index(name).unwrap_or(usize::MAX);
+        let mut faults = Vec::new();
+        for r in &self.scenario.reset {
+            faults.push((
+                r.at_ms * 1000,
+                Event::Reset {
+                    module: index(&r.module),
+                },
+            ));
+        }
+        for p in &self.scenario.power {
+            let module = index(&p.module);
+            faults.push((p.off_ms * 1000, Event::PowerOff { module }));
+            faults.push((p.on_ms * 1000, Event::PowerOn { module }));
+        }
+        if let Some(r) = &self.scenario.random_resets {
+            for m in 0..self.modules.len() {
+                faults.push((
+                    reset_interval(r.interval_ms, m),
+                    Event::ResetCheck { module: m },
+                ));
+            }
+        }
+        for (at, event) in faults {
+            self.schedule(at, event);
+        }
+    }
+
+    pub fn n_modules(&self) -> usize {
+        self.modules.len()
+    }
+
+    pub fn view(&self) -> View<'_> {
+        View::of(&self.world)
+    }
+
+    pub fn schedule(&mut self, time: u64, event: Event) {
+        let seq = self.next_seq;
+        self.next_seq += 1;
+        self.queue.push(Reverse(Scheduled { time, seq, event }));
+    }
+
+    /// The next event, and the clock moved to it; `None` when nothing is left before `until`.
+    pub fn pop(&mut self, until: u64) -> Option<Event> {
+        let Reverse(next) = self.queue.peek()?;
+        if next.time > until {
+            return None;
+        }
+        let Reverse(next) = self.queue.pop()?;
+        self.now = next.time;
+        Some(next.event)
+    }
+
+    /// Whether faults (loss, blocks, resets) are still on.
+    pub fn faults_on(&self) -> bool {
+        self.now < self.scenario.faults_end_ms() * 1000
+    }
+
+    pub fn log(&mut self, module: Option<usize>, event: &str, detail: impl AsRef<str>) {
+        let name = module
+            .and_then(|m| self.modules.get(m))
+            .map_or("-", |m| m.name.as_str());
+        if let Some(trace) = &mut self.trace {
+            let _ = writeln!(
+                trace,
+                "{:>8}.{:03} {:<6} {:<10} {}",
+                self.now / 1000,
+                self.now % 1000,
+                name,
+                event,
+                detail.as_ref()
+            );
+        }
+    }
+
+    pub fn statement_label(&self, s: usize) -> String {
+        format!("#{s} {}", self.seq.text(s))
+    }
+
+    // ----- module life -----
+
+    /// Powers a module on (first time or after a power-off): the engine then runs its init.
+    pub fn power_on(&mut self, m: usize) -> bool {
+        let now = self.now;
+        let Some(module) = self.modules.get_mut(m) else {
+            return false;
+        };
+        if module.powered {
+            return false;
+        }
+        module.powered = true;
+        module.power_on_at = now;
+        module.generation += 1;
+        let generation = module.generation;
+        self.log(Some(m), "power-on", "");
+        self.schedule(
+            now,
+            Event::Step {
+                module: m,
+                generation,
+            },
+        );
+        true
+    }
+
+    /// Powers a module off: silent and inert; its operation in progress stops.
+    pub fn power_off(&mut self, m: usize) {
+        let Some(module) = self.modules.get_mut(m) else {
+            return;
+        };
+        if !module.powered {
+            return;
+        }
+        module.powered = false;
+        module.generation += 1;
+        module.stats.power_cycles += 1;
+        self.counters.power_cycles += 1;
+        self.log(Some(m), "power-off", "");
+        self.interrupt_operations(m);
+    }
+
+    /// A reset is due: true when the module is on (the engine then re-runs its init).
+    pub fn reset(&mut self, m: usize) -> bool {
+        if !self.modules.get(m).is_some_and(|x| x.powered) {
+            return false;
+        }
+        self.modules[m].stats.resets += 1;
+        self.counters.resets += 1;
+        self.log(Some(m), "reset", "");
+        true
+    }
+
+    /// A periodic random-reset check; true when the module resets now.
+    pub fn reset_check(&mut self, m: usize) -> bool {
+        let Some(r) = self.scenario.random_resets.clone() else {
+            return false;
+        };
+        if !self.faults_on() {
+            return false;
+        }
+        let next = self.now + reset_interval(r.interval_ms, m);
+        self.schedule(next, Event::ResetCheck { module: m });
+        uniform(&mut self.rng_faults) < r.probability && self.reset(m)
+    }
+
+    /// Whether a step of `m` in `generation` is still due (not cancelled by a power cycle).
+    pub fn step_due(&self, m: usize, generation: u64) -> bool {
+        self.modules
+            .get(m)
+            .is_some_and(|x| x.powered && x.generation == generation)
+    }
+
+    pub fn schedule_step(&mut self, m: usize, generation: u64) {
+        self.schedule(
+            self.now + STEP_US,
+            Event::Step {
+                module: m,
+                generation,
+            },
+        );
+    }
+
+    /// After a step: the module says whether it knows the sequence is over (S3 is checked).
+    pub fn note_finished(&mut self, m: usize, finished: bool) {
+        let known = self.modules.get(m).map(|x| x.finished_at.is_some());
+        if !finished || known != Some(false) {
+            return;
+        }
+        self.modules[m].finished_at = Some(self.now);
+        self.first_finished.get_or_insert(self.now);
+        self.log(Some(m), "finished", "declares the end");
+        self.check_end(m);
+    }
+
+    pub fn all_finished(&self) -> bool {
+        self.modules.iter().all(|m| m.finished_at.is_some())
+    }
+
+    // ----- HAL answers -----
+
+    pub fn now_ms(&self, m: usize) -> u32 {
+        let since = self.now.saturating_sub(self.modules[m].power_on_at) / 1000;
+        (since & u64::from(u32::MAX)) as u32
+    }
+
+    pub fn random(&mut self) -> u16 {
+        (self.rng_hal.next_u64() >> 48) as u16
+    }
+
+    pub fn id(&self, m: usize) -> u16 {
+        self.modules[m].id
+    }
+
+    pub fn connected(&self, m: usize, connector: u8) -> u8 {
+        let port = Port {
+            module: m,
+            connector,
+        };
+        u8::from(self.view().latched_to(port).is_some())
+    }
+
+    pub fn neighbour_id(&self, m: usize, connector: u8) -> i16 {
+        let view = self.view();
+        view.latched_to(Port {
+            module: m,
+            connector,
+        })
+        .and_then(|p| view.id(p.module))
+        .and_then(|id| i16::try_from(id).ok())
+        .unwrap_or(-1)
+    }
+
+    pub fn joint(&self, m: usize, joint: u8) -> i16 {
+        self.view()
+            .joint(m, joint)
+            .and_then(|j| i16::try_from(j).ok())
+            .unwrap_or(0)
+    }
+
+    pub fn leds(&mut self, m: usize, value: u8) {
+        self.modules[m].leds = value;
+    }
+
+    pub fn nv_read(&self, m: usize, addr: u16, out: &mut [u8]) {
+        let nv = &self.modules[m].nv;
+        for (k, byte) in out.iter_mut().enumerate() {
+            *byte = nv.get(usize::from(addr) + k).copied().unwrap_or(0xFF);
+        }
+    }
+
+    pub fn nv_write(&mut self, m: usize, addr: u16, data: &[u8]) {
+        let nv = &mut self.modules[m].nv;
+        for (k, byte) in data.iter().enumerate() {
+            if let Some(slot) = nv.get_mut(usize::from(addr) + k) {
+                *slot = *byte;
+            }
+        }
+    }
+}
+
+/// USSR's reset checks: module k every `interval + k/7` seconds (faults notes, d).
+fn reset_interval(interval_ms: u64, m: usize) -> u64 {
+    interval_ms * 1000 + (m as u64) * 1_000_000 / 7
+}

@@ -1,0 +1,62 @@
+//! Shared by the simulator's tests: compile a sequence from source and run it.
+#![allow(dead_code)]
+
+use dynarole_codegen::{CompileOptions, PaperMerge, Protocol};
+use dynarole_core::{analyze, parse, RobotRegistry};
+use dynarole_sim::{Report, Run, Scenario, Simulator};
+use dynarole_world::Configuration;
+
+pub const EIGHT2CAR: &str = include_str!("../../../../examples/atron/eight2car.dr");
+pub const EIGHT: &str = include_str!("../../../../examples/atron/eight.json");
+pub const CAR: &str = include_str!("../../../../examples/atron/car.json");
+
+pub fn options(protocol: Protocol) -> CompileOptions {
+    CompileOptions {
+        protocol,
+        merge: PaperMerge::CPort,
+        single_step_handover: false,
+        restart_pending: false,
+        epochs: 1,
+        no_nv: false,
+        name: "test".into(),
+    }
+}
+
+pub fn config(text: &str) -> Configuration {
+    Configuration::from_json_str(text).expect("valid configuration")
+}
+
+pub fn simulator(source: &str, sequences: &[&str], protocol: Protocol) -> Simulator {
+    let parsed = parse(source);
+    let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
+    let program = program.unwrap_or_else(|| panic!("{diagnostics:?}"));
+    let plans: Vec<_> = sequences
+        .iter()
+        .map(|s| program.expand(s).expect("sequence exists"))
+        .collect();
+    Simulator::new(&program, &plans, &options(protocol)).expect("compiles")
+}
+
+pub fn run(
+    sim: &Simulator,
+    start: &str,
+    expect: Option<&str>,
+    scenario: &Scenario,
+    seed: u64,
+) -> Report {
+    let start = config(start);
+    let expect = expect.map(config);
+    sim.run(&Run {
+        start: &start,
+        expect: expect.as_ref(),
+        scenario,
+        seed,
+        trace: true,
+    })
+    .expect("runs")
+}
+
+pub fn eight2car(protocol: Protocol, scenario: &Scenario, seed: u64) -> Report {
+    let sim = simulator(EIGHT2CAR, &["eight2car"], protocol);
+    run(&sim, EIGHT, Some(CAR), scenario, seed)
+}

@@ -1,0 +1,273 @@
+//! The simulator end to end: eight2car on both protocols, loss, determinism, a reset in the
+//! middle of an operation, dead links, power cycles, blocked links, a refused operation, the
+//! scenario format, and a golden trace.
+
+mod common;
+
+use common::*;
+use dynarole_codegen::Protocol;
+use dynarole_sim::{Block, Power, Preset, Report, Reset, Scenario};
+
+const CHAIN3_DR: &str = include_str!("data/chain3.dr");
+const CHAIN3: &str = include_str!("data/chain3.json");
+const CHAIN3_AFTER: &str = include_str!("data/chain3-after.json");
+
+fn ussr() -> Scenario {
+    let mut s = Scenario::default();
+    s.network.preset = Preset::Ussr;
+    s
+}
+
+fn lossy(loss: f64) -> Scenario {
+    let mut s = Scenario::default();
+    s.network.loss = loss;
+    s
+}
+
+fn assert_success(report: &Report) {
+    assert!(report.success, "{}", report.summary());
+    assert_eq!(report.statements_done, report.statements);
+    assert_eq!(report.configuration_matches, Some(true));
+}
+
+/// When a module started a statement, from the trace (ms).
+fn start_time(report: &Report, statement: usize) -> u64 {
+    let trace = report.trace.as_deref().unwrap_or_default();
+    let needle = format!(" start      #{statement} ");
+    let line = trace
+        .lines()
+        .find(|l| l.contains(&needle))
+        .unwrap_or_else(|| panic!("statement {statement} never started:\n{trace}"));
+    let ms = line.split_whitespace().next().unwrap_or_default();
+    ms.split('.')
+        .next()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(0)
+}
+
+#[test]
+fn eight2car_lattice_reaches_the_car_without_violations() {
+    for preset in [Preset::Atron, Preset::Ussr] {
+        let mut scenario = Scenario::default();
+        scenario.network.preset = preset;
+        let report = eight2car(Protocol::Lattice, &scenario, 1);
+        assert_success(&report);
+        assert!(report.violations.is_empty(), "{}", report.summary());
+        assert_eq!(report.counters.ops_started, 25);
+        assert!(report.counters.packets_sent > 1000);
+    }
+}
+
+#[test]
+fn eight2car_paper_reaches_the_car() {
+    for preset in [Preset::Atron, Preset::Ussr] {
+        let mut scenario = Scenario::default();
+        scenario.network.preset = preset;
+        let report = eight2car(Protocol::Paper, &scenario, 1);
+        assert_eq!(
+            report.configuration_matches,
+            Some(true),
+            "{}",
+            report.summary()
+        );
+        assert_eq!(report.statements_done, 25, "{}", report.summary());
+        assert!(report.completion_ms.is_some());
+    }
+}
+
+#[test]
+fn eight2car_lattice_survives_thirty_percent_loss() {
+    for seed in 0..4 {
+        let report = eight2car(Protocol::Lattice, &lossy(0.3), seed);
+        assert_success(&report);
+        assert!(report.violations.is_empty(), "{}", report.summary());
+        assert!(report.counters.lost > 0);
+    }
+}
+
+#[test]
+fn same_seed_same_trace_other_seed_other_trace() {
+    let sim = simulator(EIGHT2CAR, &["eight2car"], Protocol::Lattice);
+    let scenario = lossy(0.2);
+    let a = run(&sim, EIGHT, Some(CAR), &scenario, 42);
+    let b = run(&sim, EIGHT, Some(CAR), &scenario, 42);
+    let c = run(&sim, EIGHT, Some(CAR), &scenario, 43);
+    assert!(a.trace.as_ref().is_some_and(|t| !t.is_empty()));
+    assert_eq!(a.trace, b.trace);
+    assert_eq!(a, b, "the whole report is reproducible");
+    assert_ne!(a.trace, c.trace);
+}
+
+#[test]
+fn reset_in_the_middle_of_an_operation_is_survived_by_the_lattice() {
+    let sim = simulator(EIGHT2CAR, &["eight2car"], Protocol::Lattice);
+    let plain = run(&sim, EIGHT, Some(CAR), &ussr(), 0);
+    // M3's first turn (statement 2) lasts 550 ms: reset M3 200 ms into it.
+    let at_ms = start_time(&plain, 2) + 200;
+    let mut scenario = ussr();
+    scenario.reset.push(Reset {
+        module: "M3".into(),
+        at_ms,
+    });
+    let report = run(&sim, EIGHT, Some(CAR), &scenario, 0);
+    assert_success(&report);
+    assert_eq!(report.count("S2"), 0, "{}", report.summary());
+    assert_eq!(report.counters.resets, 1);
+    let trace = report.trace.as_deref().unwrap_or_default();
+    assert!(trace.contains(" M3     reset "), "{trace}");
+    // It re-enters the interrupted statement: while the turn still runs (resume) or, when it
+    // hears that #0 is done only after the turn ended, by issuing it again (a no-op).
+    assert!(
+        trace.contains(" M3     resume     #2 ") || trace.contains(" M3     reissue    #2 "),
+        "the reset module re-enters its operation:\n{trace}"
+    );
+}
+
+#[test]
+fn dead_links_slow_the_lattice_down_but_do_not_stop_it() {
+    let mut scenario = lossy(0.25);
+    scenario.network.dead_link_p = 0.3;
+    let report = eight2car(Protocol::Lattice, &scenario, 5);
+    assert_success(&report);
+    assert!(report.counters.dead > 0, "{}", report.summary());
+}
+
+#[test]
+fn power_cycle_and_blocked_link_are_survived_by_the_lattice() {
+    let mut scenario = Scenario::default();
+    scenario.power.push(Power {
+        module: "M2".into(),
+        off_ms: 5_000,
+        on_ms: 9_000,
+    });
+    scenario.block.push(Block {
+        module: "M3".into(),
+        connector: 2,
+        from_ms: 1_000,
+        to_ms: 8_000,
+    });
+    let report = eight2car(Protocol::Lattice, &scenario, 3);
+    assert_success(&report);
+    assert_eq!(report.counters.power_cycles, 1);
+    assert!(report.counters.blocked > 0, "{}", report.summary());
+    assert!(report.counters.off > 0);
+}
+
+#[test]
+fn faults_stop_at_the_end_of_the_faults_phase() {
+    let mut scenario = lossy(0.9);
+    scenario.faults_until_ms = Some(10_000);
+    let report = eight2car(Protocol::Lattice, &scenario, 2);
+    assert_success(&report);
+    let trace = report.trace.as_deref().unwrap_or_default();
+    let late_loss = trace.lines().any(|l| {
+        l.contains(" lost ")
+            && l.split('.')
+                .next()
+                .and_then(|t| t.trim().parse::<u64>().ok())
+                >= Some(10_000)
+    });
+    assert!(!late_loss, "no loss after faults_until_ms");
+}
+
+#[test]
+fn an_impossible_operation_is_reported_and_the_goal_not_reached() {
+    // M2 has nothing facing its connector 4 in the chain.
+    let source = "robot atron;\nsequence bad { M2.Connector[4].extend(); }\n";
+    let sim = simulator(source, &["bad"], Protocol::Lattice);
+    let mut scenario = ussr();
+    scenario.timeout_ms = 10_000;
+    let report = run(&sim, CHAIN3, None, &scenario, 0);
+    assert!(!report.success);
+    assert!(!report.refusals.is_empty(), "{}", report.summary());
+    assert!(
+        report.refusals[0].reason.contains("M2"),
+        "{:?}",
+        report.refusals
+    );
+    assert!(report.failures.iter().any(|f| f.contains("timeout")));
+}
+
+#[test]
+fn scenario_errors_name_the_field() {
+    let unknown = Scenario::from_toml_str("[network]\nlos = 0.1\n").map(|_| ());
+    let message = unknown.err().map(|e| e.to_string()).unwrap_or_default();
+    assert!(message.contains("los"), "{message}");
+    let range = Scenario::from_toml_str("[network]\nloss = 1.5\n").map(|_| ());
+    let message = range.err().map(|e| e.to_string()).unwrap_or_default();
+    assert!(message.starts_with("network.loss:"), "{message}");
+    let late = Scenario::from_toml_str(
+        "faults_until_ms = 1000\n[[reset]]\nmodule = \"M3\"\nat_ms = 2000\n",
+    )
+    .map(|_| ());
+    let message = late.err().map(|e| e.to_string()).unwrap_or_default();
+    assert!(message.starts_with("reset[0].at_ms:"), "{message}");
+    let full = Scenario::from_toml_str(
+        "timeout_ms = 60000\nfaults_until_ms = 30000\n[network]\nloss = 0.1\ndead_link_p = 0.05\ndead_loss = 0.98\npreset = \"ussr\"\n[timing]\njoint = \"realistic\"\n[[reset]]\nmodule = \"M3\"\nat_ms = 12000\n[[power]]\nmodule = \"M1\"\noff_ms = 1000\non_ms = 2000\n[[block]]\nmodule = \"M0\"\nconnector = 4\nfrom_ms = 0\nto_ms = 500\n[random_resets]\ninterval_ms = 1000\nprobability = 0.01\n",
+    );
+    assert!(full.is_ok(), "{full:?}");
+}
+
+#[test]
+fn unknown_module_in_a_scenario_is_bad_input() {
+    let sim = simulator(CHAIN3_DR, &["short"], Protocol::Lattice);
+    let mut scenario = ussr();
+    scenario.reset.push(Reset {
+        module: "M9".into(),
+        at_ms: 10,
+    });
+    let start = config(CHAIN3);
+    let result = sim.run(&dynarole_sim::Run {
+        start: &start,
+        expect: None,
+        scenario: &scenario,
+        seed: 0,
+        trace: false,
+    });
+    let message = result.err().map(|e| e.to_string()).unwrap_or_default();
+    assert!(message.contains("reset[0].module"), "{message}");
+}
+
+#[test]
+fn golden_trace_of_a_short_run() {
+    let sim = simulator(CHAIN3_DR, &["short"], Protocol::Lattice);
+    let report = run(&sim, CHAIN3, Some(CHAIN3_AFTER), &ussr(), 0);
+    assert_success(&report);
+    let text = format!(
+        "{CHAIN3_DR}\n----- trace (lattice, ussr preset, seed 0) -----\n{}\n----- summary -----\n{}",
+        report.trace.as_deref().unwrap_or_default(),
+        report.summary()
+    );
+    insta::assert_snapshot!("chain3_short_trace", text);
+}
+
+#[test]
+fn random_resets_are_survived_by_the_lattice() {
+    let mut scenario = lossy(0.1);
+    scenario.faults_until_ms = Some(20_000);
+    scenario.random_resets = Some(dynarole_sim::RandomResets {
+        interval_ms: 1_000,
+        probability: 0.05,
+    });
+    let report = eight2car(Protocol::Lattice, &scenario, 11);
+    assert_success(&report);
+    assert!(report.counters.resets > 0, "{}", report.summary());
+    assert!(report.violations.is_empty(), "{}", report.summary());
+}
+
+#[test]
+fn a_reset_first_module_of_the_paper_protocol_reissues_and_s2_catches_it() {
+    let mut scenario = ussr();
+    scenario.reset.push(Reset {
+        module: "M0".into(),
+        at_ms: 8_000,
+    });
+    let report = eight2car(Protocol::Paper, &scenario, 0);
+    assert!(!report.success);
+    assert!(report.count("S2") >= 1, "{}", report.summary());
+    let s2 = report.violations.iter().find(|v| v.check == "S2");
+    assert_eq!(
+        s2.map(|v| (v.module.as_str(), v.statement)),
+        Some(("M0", 0))
+    );
+}

@@ -1,0 +1,164 @@
+/* dr_sim.c - the simulator's platform: every function of dr_hal.h forwards to a callback of
+ * the host simulator (registered once with dr_sim_register), and protocol-agnostic entry
+ * points let the host run any compiled program on many module contexts in one process.
+ *
+ * Built by dynarole-sim together with a `dynarole compile` output directory into a shared
+ * library:  cc -std=c99 -O2 -shared -fPIC -I OUT OUT/dr_packet.c OUT/dr_<protocol>.c
+ *           OUT/dr_program.c dr_sim.c -o libdrsim.so
+ * The context of a module is a zeroed buffer of dr_sim_module_size() bytes owned by the host;
+ * `platform` is an opaque value (the simulator passes the module's index). */
+#include <stddef.h>
+#include <stdint.h>
+#include "dr_program.h"
+
+/* What the host provides; `platform` is the value given to dr_sim_init for this module. */
+struct dr_sim_callbacks {
+    uint32_t (*now_ms)(void *platform);
+    uint16_t (*random)(void *platform);
+    void (*broadcast)(void *platform, const uint8_t *bytes, uint8_t len);
+    void (*op_start)(void *platform, uint8_t address, uint8_t op, uint8_t index,
+                     const int16_t *args, uint8_t n_args);
+    uint8_t (*op_status)(void *platform);
+    uint16_t (*id)(void *platform);
+    uint8_t (*connected)(void *platform, uint8_t connector);
+    int16_t (*neighbour_id)(void *platform, uint8_t connector);
+    int16_t (*joint)(void *platform, uint8_t joint);
+    void (*leds)(void *platform, uint8_t value);
+    void (*nv_read)(void *platform, uint16_t addr, uint8_t *buf, uint8_t len);
+    void (*nv_write)(void *platform, uint16_t addr, const uint8_t *buf, uint8_t len);
+};
+
+void dr_sim_register(const struct dr_sim_callbacks *callbacks);
+uint32_t dr_sim_module_size(void);
+uint32_t dr_sim_max_args(void);
+void dr_sim_init(void *m, void *platform);
+void dr_sim_step(void *m);
+void dr_sim_receive(void *m, uint8_t channel, const uint8_t *bytes, uint8_t len);
+uint8_t dr_sim_finished(void *m);
+uint8_t dr_sim_address(void *m);
+
+static const struct dr_sim_callbacks *host;
+
+static void *platform_of(struct dr_module *m)
+{
+    return m->platform;
+}
+
+void dr_sim_register(const struct dr_sim_callbacks *callbacks)
+{
+    host = callbacks;
+}
+
+uint32_t dr_sim_module_size(void)
+{
+    return (uint32_t)sizeof(dr_module_t);
+}
+
+uint32_t dr_sim_max_args(void)
+{
+    return (uint32_t)DR_CONF_MAX_ARGS;
+}
+
+void dr_sim_init(void *m, void *platform)
+{
+    dr_program_init((dr_module_t *)m, platform);
+}
+
+void dr_sim_step(void *m)
+{
+    dr_module_step((dr_module_t *)m);
+}
+
+void dr_sim_receive(void *m, uint8_t channel, const uint8_t *bytes, uint8_t len)
+{
+    dr_module_receive((dr_module_t *)m, channel, bytes, len);
+}
+
+uint8_t dr_sim_finished(void *m)
+{
+    return dr_module_finished((const dr_module_t *)m);
+}
+
+uint8_t dr_sim_address(void *m)
+{
+    return ((const dr_module_t *)m)->address;
+}
+
+uint32_t dr_hal_now_ms(struct dr_module *m)
+{
+    return host ? host->now_ms(platform_of(m)) : 0u;
+}
+
+uint16_t dr_hal_random(struct dr_module *m)
+{
+    return host ? host->random(platform_of(m)) : 0u;
+}
+
+void dr_hal_broadcast(struct dr_module *m, const uint8_t *bytes, uint8_t len)
+{
+    if (host) {
+        host->broadcast(platform_of(m), bytes, len);
+    }
+}
+
+void dr_hal_op_start(struct dr_module *m, uint8_t op, uint8_t index, const int16_t *args)
+{
+    if (host) {
+        host->op_start(platform_of(m), m->address, op, index, args, (uint8_t)DR_CONF_MAX_ARGS);
+    }
+}
+
+enum dr_op_status dr_hal_op_status(struct dr_module *m)
+{
+    uint8_t status = host ? host->op_status(platform_of(m)) : (uint8_t)DR_OP_FAILED;
+    if (status == (uint8_t)DR_OP_DONE) {
+        return DR_OP_DONE;
+    }
+    return status == (uint8_t)DR_OP_RUNNING ? DR_OP_RUNNING : DR_OP_FAILED;
+}
+
+uint16_t dr_hal_id(struct dr_module *m)
+{
+    return host ? host->id(platform_of(m)) : 0u;
+}
+
+uint8_t dr_hal_connected(struct dr_module *m, uint8_t connector)
+{
+    return host ? host->connected(platform_of(m), connector) : 0u;
+}
+
+int16_t dr_hal_neighbour_id(struct dr_module *m, uint8_t connector)
+{
+    return host ? host->neighbour_id(platform_of(m), connector) : (int16_t)-1;
+}
+
+int16_t dr_hal_joint(struct dr_module *m, uint8_t joint)
+{
+    return host ? host->joint(platform_of(m), joint) : (int16_t)0;
+}
+
+void dr_hal_leds(struct dr_module *m, uint8_t value)
+{
+    if (host) {
+        host->leds(platform_of(m), value);
+    }
+}
+
+void dr_hal_nv_read(struct dr_module *m, uint16_t addr, uint8_t *buf, uint8_t len)
+{
+    uint8_t i;
+    if (host) {
+        host->nv_read(platform_of(m), addr, buf, len);
+        return;
+    }
+    for (i = 0; i < len; i++) {
+        buf[i] = 0xFFu;
+    }
+}
+
+void dr_hal_nv_write(struct dr_module *m, uint16_t addr, const uint8_t *buf, uint8_t len)
+{
+    if (host) {
+        host->nv_write(platform_of(m), addr, buf, len);
+    }
+}
