@@ -35,17 +35,54 @@ pub enum MergeArg {
     CPort,
 }
 
+/// Options of the protocols, shared by `compile` and `simulate`.
+#[derive(Clone, Debug, clap::Args)]
+pub struct ProtocolOptions {
+    #[arg(long, value_enum, default_value_t = ProtocolArg::Lattice)]
+    pub protocol: ProtocolArg,
+    /// Paper protocol: which of the three historical merge functions to use.
+    #[arg(long, value_enum, default_value_t = MergeArg::CPort)]
+    pub merge: MergeArg,
+    /// Paper protocol: add the pending state and transfer control in one step.
+    #[arg(long)]
+    pub single_step_handover: bool,
+    /// Paper protocol: restart an interrupted pending operation after a reset (Sec. III-C).
+    #[arg(long)]
+    pub restart_pending: bool,
+    /// Lattice protocol: the modules have no non-volatile storage (weaker reset guarantee).
+    #[arg(long)]
+    pub no_nv: bool,
+}
+
+impl ProtocolOptions {
+    /// The back-end's options for these flags.
+    pub fn compile_options(&self, epochs: u16, name: String) -> CompileOptions {
+        CompileOptions {
+            protocol: match self.protocol {
+                ProtocolArg::Lattice => Protocol::Lattice,
+                ProtocolArg::Paper => Protocol::Paper,
+            },
+            merge: match self.merge {
+                MergeArg::Printed => PaperMerge::Printed,
+                MergeArg::Java => PaperMerge::Java,
+                MergeArg::CPort => PaperMerge::CPort,
+            },
+            single_step_handover: self.single_step_handover,
+            restart_pending: self.restart_pending,
+            epochs,
+            no_nv: self.no_nv,
+            name,
+        }
+    }
+}
+
 /// What `compile` was asked to do.
 pub struct CompileArgs<'a> {
     pub file: &'a Path,
     pub sequences: &'a [String],
     pub target: Target,
-    pub protocol: ProtocolArg,
-    pub merge: MergeArg,
-    pub single_step_handover: bool,
-    pub restart_pending: bool,
+    pub options: &'a ProtocolOptions,
     pub epochs: u16,
-    pub no_nv: bool,
     pub out_dir: &'a Path,
     pub plugins: &'a PluginArgs,
 }
@@ -77,7 +114,7 @@ pub fn run(args: &CompileArgs) -> Result<ExitCode, Failure> {
         let plan = program
             .expand(name)
             .ok_or_else(|| Failure::Input(format!("{display}: no sequence named `{name}`")))?;
-        if let (ProtocolArg::Paper, Err(d)) = (args.protocol, plan.flatten_for_paper()) {
+        if let (ProtocolArg::Paper, Err(d)) = (args.options.protocol, plan.flatten_for_paper()) {
             render::diagnostics(&display, &source, &[d]);
             return Ok(ExitCode::from(1));
         }
@@ -93,22 +130,7 @@ pub fn run(args: &CompileArgs) -> Result<ExitCode, Failure> {
             return Ok(ExitCode::from(1));
         }
     };
-    let options = CompileOptions {
-        protocol: match args.protocol {
-            ProtocolArg::Lattice => Protocol::Lattice,
-            ProtocolArg::Paper => Protocol::Paper,
-        },
-        merge: match args.merge {
-            MergeArg::Printed => PaperMerge::Printed,
-            MergeArg::Java => PaperMerge::Java,
-            MergeArg::CPort => PaperMerge::CPort,
-        },
-        single_step_handover: args.single_step_handover,
-        restart_pending: args.restart_pending,
-        epochs: args.epochs,
-        no_nv: args.no_nv,
-        name: names.join(" + "),
-    };
+    let options = args.options.compile_options(args.epochs, names.join(" + "));
     let generate = match args.target {
         Target::C => generate_c,
         Target::Nesc => generate_nesc,
@@ -130,7 +152,7 @@ pub fn run(args: &CompileArgs) -> Result<ExitCode, Failure> {
     println!(
         "compiled {} ({:?} protocol): {} statements, {} modules/roles, window {}, packet {} bytes, program id {} -> {}",
         options.name,
-        args.protocol,
+        args.options.protocol,
         ir.statements.len(),
         ir.addresses.len(),
         ir.window,

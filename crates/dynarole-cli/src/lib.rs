@@ -51,23 +51,11 @@ enum Command {
         sequences: Vec<String>,
         #[arg(long, value_enum, default_value_t = compile::Target::C)]
         target: compile::Target,
-        #[arg(long, value_enum, default_value_t = compile::ProtocolArg::Lattice)]
-        protocol: compile::ProtocolArg,
-        /// Paper protocol: which of the three historical merge functions to use.
-        #[arg(long, value_enum, default_value_t = compile::MergeArg::CPort)]
-        merge: compile::MergeArg,
-        /// Paper protocol: add the pending state and transfer control in one step.
-        #[arg(long)]
-        single_step_handover: bool,
-        /// Paper protocol: restart an interrupted pending operation after a reset (Sec. III-C).
-        #[arg(long)]
-        restart_pending: bool,
+        #[command(flatten)]
+        options: compile::ProtocolOptions,
         /// Lattice protocol: how many times the whole sequence runs (0: forever).
         #[arg(long, default_value_t = 1)]
         epochs: u16,
-        /// Lattice protocol: the modules have no non-volatile storage (weaker reset guarantee).
-        #[arg(long)]
-        no_nv: bool,
         /// The directory to write.
         #[arg(short = 'o', long = "output", value_name = "DIR")]
         out_dir: PathBuf,
@@ -112,8 +100,8 @@ enum Command {
         /// The configuration the run must end in.
         #[arg(long, value_name = "CONFIG")]
         expect: Option<PathBuf>,
-        #[arg(long, value_enum, default_value_t = compile::ProtocolArg::Lattice)]
-        protocol: compile::ProtocolArg,
+        #[command(flatten)]
+        options: compile::ProtocolOptions,
         /// Faults, network and timing (TOML; see crates/dynarole-sim/SCENARIO.md).
         #[arg(long, value_name = "FILE")]
         scenario: Option<PathBuf>,
@@ -191,7 +179,7 @@ pub fn main() -> ExitCode {
             sequences,
             from,
             expect,
-            protocol,
+            options,
             scenario,
             loss,
             seed,
@@ -204,7 +192,7 @@ pub fn main() -> ExitCode {
             sequences: &sequences,
             from: &from,
             expect: expect.as_ref(),
-            protocol,
+            options: &options,
             scenario: scenario.as_ref(),
             loss,
             seed,
@@ -218,24 +206,16 @@ pub fn main() -> ExitCode {
             file,
             sequences,
             target,
-            protocol,
-            merge,
-            single_step_handover,
-            restart_pending,
+            options,
             epochs,
-            no_nv,
             out_dir,
             plugins,
         } => compile::run(&compile::CompileArgs {
             file: &file,
             sequences: &sequences,
             target,
-            protocol,
-            merge,
-            single_step_handover,
-            restart_pending,
+            options: &options,
             epochs,
-            no_nv,
             out_dir: &out_dir,
             plugins: &plugins,
         }),

@@ -1,11 +1,10 @@
 //! `dynarole simulate`: the generated C on every module, over lossy infrared links, with the
 //! faults of a scenario; exit 0 on success, 3 when the goal was not reached.
 
-use crate::compile::ProtocolArg;
+use crate::compile::{ProtocolArg, ProtocolOptions};
 use crate::load::{self, Failure, PluginArgs};
 use crate::render;
 use crate::world::read_configuration;
-use dynarole_codegen::{CompileOptions, PaperMerge, Protocol};
 use dynarole_core::diagnostic::has_errors;
 use dynarole_core::{analyze, parse};
 use dynarole_sim::{Report, Run, Scenario, SimError, Simulator};
@@ -19,7 +18,7 @@ pub struct SimulateArgs<'a> {
     pub sequences: &'a [String],
     pub from: &'a Path,
     pub expect: Option<&'a PathBuf>,
-    pub protocol: ProtocolArg,
+    pub options: &'a ProtocolOptions,
     pub scenario: Option<&'a PathBuf>,
     pub loss: Option<f64>,
     pub seed: u64,
@@ -50,18 +49,7 @@ pub fn run(args: &SimulateArgs) -> Result<ExitCode, Failure> {
     let scenario = scenario(args)?;
     let start = read_configuration(args.from)?;
     let expect = args.expect.map(|p| read_configuration(p)).transpose()?;
-    let options = CompileOptions {
-        protocol: match args.protocol {
-            ProtocolArg::Lattice => Protocol::Lattice,
-            ProtocolArg::Paper => Protocol::Paper,
-        },
-        merge: PaperMerge::CPort,
-        single_step_handover: false,
-        restart_pending: false,
-        epochs: 1,
-        no_nv: false,
-        name: args.sequences.join(" + "),
-    };
+    let options = args.options.compile_options(1, args.sequences.join(" + "));
     let simulator = match Simulator::new(&program, &plans, &options) {
         Ok(s) => s,
         Err(SimError::Diagnostic(d)) => {
@@ -169,7 +157,7 @@ fn replay_command(args: &SimulateArgs, seed: u64) -> String {
     if let Some(e) = args.expect {
         parts.push(format!("--expect {}", quote(&e.display().to_string())));
     }
-    let protocol = match args.protocol {
+    let protocol = match args.options.protocol {
         ProtocolArg::Lattice => "lattice",
         ProtocolArg::Paper => "paper",
     };

@@ -165,7 +165,7 @@ fn unit_cases(out: &mut String, ir: &Ir, unit: &PaperUnit, next: Option<&PaperUn
 /// `checkPendingStateResponsibility`: whether `address` runs the parallel statement that
 /// starts at `state`.
 fn responsibility(out: &mut String, units: &[PaperUnit]) {
-    out.push_str("static uint8_t dr_program_responsible(uint8_t address, uint8_t state)\n{\n    switch (state) {\n");
+    out.push_str("static uint8_t dr_program_responsible(uint8_t address, uint8_t state)\n{\n    (void)address; /* unused when the sequence has no parallel statement */\n    switch (state) {\n");
     for unit in units.iter().filter(|u| u.kind == PaperUnitKind::Parallel) {
         let _ = writeln!(
             out,

@@ -416,7 +416,7 @@ impl Diagnostic {
             K::TargetLimit { message } => d
                 .title("the sequence exceeds a limit of the generated code")
                 .label(message.clone())
-                .hint("split the sequence, or renumber the modules"),
+                .hint("compile fewer sequences at once (the paper protocol numbers states in one byte), or renumber the modules (IDs at most 253)"),
             K::NotSupportedByPaperProtocol { reason } => d
                 .title("not supported by the paper protocol")
                 .label(reason.clone())
