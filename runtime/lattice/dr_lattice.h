@@ -102,6 +102,13 @@ void dr_module_step(dr_module_t *m);
 void dr_module_receive(dr_module_t *m, uint8_t channel, const uint8_t *bytes, uint8_t len);
 /* Whether this module knows that the last epoch is complete (the end). */
 uint8_t dr_module_finished(const dr_module_t *m);
+/* A short description of the module's protocol state, for traces and debugging:
+ * `e<epoch> low<low> done<window> run<statement>`, decimal except `done`, the completed set
+ * of the window as a hexadecimal number (bit i: statement low + i; no leading zeros), and
+ * `run-` when nothing runs here; e.g. "e0 low3 done5 run4". Writes at most `cap` bytes
+ * including the terminating NUL (a shorter prefix when it does not fit; nothing when cap is
+ * 0) and returns the length without the NUL. No printf, no allocation. Cost: O(W/4). */
+uint8_t dr_module_describe(const dr_module_t *m, char *out, uint8_t cap);
 
 /* The semilattice (exported for tests and for the model checker's reference):
  * join: commutative, associative, idempotent; normalise: advance the low-water mark over the

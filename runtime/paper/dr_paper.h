@@ -62,6 +62,12 @@ void dr_module_init(dr_module_t *m, const dr_paper_program_t *program, void *pla
 void dr_module_step(dr_module_t *m);
 void dr_module_receive(dr_module_t *m, uint8_t channel, const uint8_t *bytes, uint8_t len);
 uint8_t dr_module_finished(const dr_module_t *m);
+/* A short description of the module's protocol state, for traces and debugging:
+ * `s<state> a<address> p{<pending>} l<local_state>`, in decimal, the non-empty pending slots
+ * in slot order separated by commas; e.g. "s4 a3 p{1,4} l255". Writes at most `cap` bytes
+ * including the terminating NUL (a shorter prefix when it does not fit; nothing when cap is
+ * 0) and returns the length without the NUL. No printf, no allocation. Cost: O(pending). */
+uint8_t dr_module_describe(const dr_module_t *m, char *out, uint8_t cap);
 
 /* Called by the generated state machine. */
 void dr_paper_add_pending(dr_module_t *m, uint8_t state);

@@ -1,6 +1,7 @@
 /* dr_sim.c - the simulator's platform: every function of dr_hal.h forwards to a callback of
  * the host simulator (registered once with dr_sim_register), and protocol-agnostic entry
- * points let the host run any compiled program on many module contexts in one process.
+ * points let the host run any compiled program on many module contexts in one process
+ * (init, step, receive, finished, address, and describe: the protocol state as text).
  *
  * Built by dynarole-sim together with a `dynarole compile` output directory into a shared
  * library:  cc -std=c99 -O2 -shared -fPIC -I OUT OUT/dr_packet.c OUT/dr_<protocol>.c
@@ -36,6 +37,7 @@ void dr_sim_step(void *m);
 void dr_sim_receive(void *m, uint8_t channel, const uint8_t *bytes, uint8_t len);
 uint8_t dr_sim_finished(void *m);
 uint8_t dr_sim_address(void *m);
+uint8_t dr_sim_describe(void *m, char *out, uint8_t cap);
 
 static const struct dr_sim_callbacks *host;
 
@@ -82,6 +84,12 @@ uint8_t dr_sim_finished(void *m)
 uint8_t dr_sim_address(void *m)
 {
     return ((const dr_module_t *)m)->address;
+}
+
+/* The protocol state of a module, as text (dr_module_describe of its runtime). */
+uint8_t dr_sim_describe(void *m, char *out, uint8_t cap)
+{
+    return dr_module_describe((const dr_module_t *)m, out, cap);
 }
 
 uint32_t dr_hal_now_ms(struct dr_module *m)

@@ -1,14 +1,18 @@
 //! The runtime sources, embedded so that a compiled directory is self-contained.
 
 /// Files every protocol needs.
-pub const COMMON: [(&str, &str); 4] = [
+pub const COMMON: [(&str, &str); 6] = [
     ("dr_conf.h", include_str!("../../../runtime/dr_conf.h")),
     ("dr_hal.h", include_str!("../../../runtime/dr_hal.h")),
     ("dr_packet.h", include_str!("../../../runtime/dr_packet.h")),
     ("dr_packet.c", include_str!("../../../runtime/dr_packet.c")),
+    ("dr_text.h", include_str!("../../../runtime/dr_text.h")),
+    ("dr_text.c", include_str!("../../../runtime/dr_text.c")),
 ];
 
-pub const LATTICE: [(&str, &str); 2] = [
+/// The lattice protocol. The describe file is for traces (host, simulator); the MCU build in
+/// the generated Makefile leaves it out, with dr_text.c.
+pub const LATTICE: [(&str, &str); 3] = [
     (
         "dr_lattice.h",
         include_str!("../../../runtime/lattice/dr_lattice.h"),
@@ -17,9 +21,14 @@ pub const LATTICE: [(&str, &str); 2] = [
         "dr_lattice.c",
         include_str!("../../../runtime/lattice/dr_lattice.c"),
     ),
+    (
+        "dr_lattice_describe.c",
+        include_str!("../../../runtime/lattice/dr_lattice_describe.c"),
+    ),
 ];
 
-pub const PAPER: [(&str, &str); 2] = [
+/// The paper's protocol (describe file as above).
+pub const PAPER: [(&str, &str); 3] = [
     (
         "dr_paper.h",
         include_str!("../../../runtime/paper/dr_paper.h"),
@@ -27,5 +36,9 @@ pub const PAPER: [(&str, &str); 2] = [
     (
         "dr_paper.c",
         include_str!("../../../runtime/paper/dr_paper.c"),
+    ),
+    (
+        "dr_paper_describe.c",
+        include_str!("../../../runtime/paper/dr_paper_describe.c"),
     ),
 ];

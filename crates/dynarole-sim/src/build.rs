@@ -22,6 +22,7 @@ pub type InitFn = unsafe extern "C" fn(*mut c_void, *mut c_void);
 pub type StepFn = unsafe extern "C" fn(*mut c_void);
 pub type ReceiveFn = unsafe extern "C" fn(*mut c_void, u8, *const u8, u8);
 pub type QueryFn = unsafe extern "C" fn(*mut c_void) -> u8;
+pub type DescribeFn = unsafe extern "C" fn(*mut c_void, *mut u8, u8) -> u8;
 type SizeFn = unsafe extern "C" fn() -> u32;
 type RegisterFn = unsafe extern "C" fn(*const ffi::Callbacks);
 
@@ -33,6 +34,8 @@ pub struct Entry {
     pub receive: ReceiveFn,
     pub finished: QueryFn,
     pub address: QueryFn,
+    /// `dr_sim_describe`: the protocol state as text (`dr_module_describe`).
+    pub describe: DescribeFn,
     pub module_size: usize,
 }
 
@@ -185,6 +188,7 @@ fn load(path: &Path) -> Result<(libloading::Library, Entry), String> {
         receive: symbol(&lib, "dr_sim_receive")?,
         finished: symbol(&lib, "dr_sim_finished")?,
         address: symbol(&lib, "dr_sim_address")?,
+        describe: symbol(&lib, "dr_sim_describe")?,
         module_size: module_size as usize,
     };
     Ok((lib, entry))

@@ -2,7 +2,7 @@
 //! event concerns a module (power-on and resets run its init, steps its step, arrivals its
 //! receive). Every module has its own zeroed context buffer.
 
-use crate::build::Entry;
+use crate::build::{DescribeFn, Entry};
 use crate::ffi::{self, Installed};
 use crate::state::{Event, Packet, State};
 use std::cell::RefCell;
@@ -64,6 +64,16 @@ impl Contexts {
         unsafe { (self.entry.receive)(ctx, packet.to.connector, packet.bytes.as_ptr(), len) }
     }
 
+    /// What reads the modules' protocol state for the trace; valid while `self` lives.
+    fn describer(&mut self) -> Describer {
+        let n = self.buffers.len();
+        Describer {
+            describe: self.entry.describe,
+            contexts: (0..n).filter_map(|m| self.ptr(m)).collect(),
+            initialised: vec![false; n],
+        }
+    }
+
     fn address(&mut self, m: usize) -> u8 {
         match self.ptr(m) {
             // SAFETY: reads one field of a context (zero if the module never started).
@@ -73,13 +83,53 @@ impl Contexts {
     }
 }
 
+/// Reads each module's protocol state as text (`dr_sim_describe`) for the trace's state
+/// column. It holds pointers into the engine's context buffers: the engine installs it in
+/// the state for the run and removes it before the buffers go.
+pub struct Describer {
+    describe: DescribeFn,
+    contexts: Vec<*mut c_void>,
+    /// Whether the module's runtime has been initialised (a context before that is zeros).
+    initialised: Vec<bool>,
+}
+
+/// Longest description kept (the runtimes' are about 20 characters).
+pub const DESCRIPTION_BYTES: usize = 64;
+
+impl Describer {
+    /// Module `m`'s protocol state, or `-` before its first init.
+    pub fn describe(&self, m: usize, out: &mut [u8; DESCRIPTION_BYTES]) -> usize {
+        let (Some(ctx), Some(true)) = (self.contexts.get(m), self.initialised.get(m)) else {
+            out[0] = b'-';
+            return 1;
+        };
+        let cap = u8::try_from(out.len()).unwrap_or(u8::MAX);
+        // SAFETY: `ctx` is module m's live, initialised context (the engine removes the
+        // describer before freeing the buffers); dr_module_describe only reads it and writes
+        // at most `cap` bytes into `out`. A call from inside a HAL callback reads the context
+        // of a module whose step is suspended in that callback: same thread, no data race.
+        let len = unsafe { (self.describe)(*ctx, out.as_mut_ptr(), cap) };
+        usize::from(len).min(out.len())
+    }
+
+    fn initialised(&mut self, m: usize) {
+        if let Some(flag) = self.initialised.get_mut(m) {
+            *flag = true;
+        }
+    }
+}
+
 /// Runs until every module has declared the end, or the scenario's timeout.
 pub fn run(entry: Entry, state: State) -> Result<Finished, String> {
     let n = state.n_modules();
     let timeout = state.scenario.timeout_ms * 1000;
+    let mut contexts = Contexts::new(entry, n);
+    let mut state = state;
+    if state.trace.is_some() {
+        state.describer = Some(contexts.describer());
+    }
     let state = Rc::new(RefCell::new(state));
     let installed = Installed::new(&state);
-    let mut contexts = Contexts::new(entry, n);
     loop {
         let event = state.borrow_mut().pop(timeout);
         let Some(event) = event else {
@@ -87,6 +137,7 @@ pub fn run(entry: Entry, state: State) -> Result<Finished, String> {
         };
         dispatch(&state, &mut contexts, event);
         if installed.faulted() {
+            state.borrow_mut().describer = None;
             return Err("a HAL callback failed (a bug in the simulator)".into());
         }
         if state.borrow().all_finished() {
@@ -95,6 +146,7 @@ pub fn run(entry: Entry, state: State) -> Result<Finished, String> {
     }
     let addresses = (0..n).map(|m| contexts.address(m)).collect();
     drop(installed);
+    state.borrow_mut().describer = None;
     let mut state = Rc::try_unwrap(state)
         .map_err(|_| "the simulation state is still shared".to_string())?
         .into_inner();
@@ -105,11 +157,19 @@ pub fn run(entry: Entry, state: State) -> Result<Finished, String> {
     Ok(Finished { state, addresses })
 }
 
+/// Runs module `m`'s init (power-on, reset) and notes it for the trace's state column.
+fn init(state: &Rc<RefCell<State>>, contexts: &mut Contexts, m: usize) {
+    contexts.init(m);
+    if let Some(d) = state.borrow_mut().describer.as_mut() {
+        d.initialised(m);
+    }
+}
+
 fn dispatch(state: &Rc<RefCell<State>>, contexts: &mut Contexts, event: Event) {
     match event {
         Event::PowerOn { module } => {
             if state.borrow_mut().power_on(module) {
-                contexts.init(module);
+                init(state, contexts, module);
             }
         }
         Event::PowerOff { module } => state.borrow_mut().power_off(module),
@@ -130,12 +190,12 @@ fn dispatch(state: &Rc<RefCell<State>>, contexts: &mut Contexts, event: Event) {
         }
         Event::Reset { module } => {
             if state.borrow_mut().reset(module) {
-                contexts.init(module);
+                init(state, contexts, module);
             }
         }
         Event::ResetCheck { module } => {
             if state.borrow_mut().reset_check(module) {
-                contexts.init(module);
+                init(state, contexts, module);
             }
         }
     }

@@ -79,8 +79,8 @@ fn with_state<R>(platform: *mut c_void, default: R, f: impl FnOnce(&mut State, u
     let module = (platform as usize).wrapping_sub(1);
     let result = catch_unwind(AssertUnwindSafe(|| {
         CURRENT.with(|c| {
-            let rc = c.borrow().as_ref().map(Rc::clone)?;
-            let mut state = rc.try_borrow_mut().ok()?;
+            let current = c.try_borrow().ok()?;
+            let mut state = current.as_ref()?.try_borrow_mut().ok()?;
             if module >= state.n_modules() {
                 return None;
             }

@@ -10,6 +10,7 @@
 //! ```
 
 mod build;
+mod critical;
 mod engine;
 mod ffi;
 mod network;
@@ -20,6 +21,7 @@ mod sequence;
 mod state;
 
 pub use build::cache_root;
+pub use critical::CriticalPath;
 pub use report::{Counters, ModuleReport, Refusal, Report, Violation};
 pub use scenario::{
     Block, JointModel, Network, Power, Preset, RandomResets, Reset, Scenario, ScenarioError, Timing,
@@ -121,6 +123,12 @@ impl Simulator {
 
     pub fn statements(&self) -> usize {
         self.sequence.len()
+    }
+
+    /// The mechanical critical path with `timing`'s durations: the heaviest chain of
+    /// dependencies, a lower bound of any run's completion time (`critical.rs`).
+    pub fn critical_path(&self, timing: &Timing) -> CriticalPath {
+        critical::critical_path(&self.sequence, timing)
     }
 
     /// Builds (or finds in the cache) the C for `preset` and loads it.

@@ -5,14 +5,18 @@
 use crate::scenario::Preset;
 use crate::state::{uniform, Event, Packet, State};
 use dynarole_world::Port;
-use std::collections::BTreeMap;
 
 /// 19200 baud, modelled as 1920 bytes per second.
 const BYTES_PER_SECOND: u64 = 1920;
 /// Send buffer per channel (bytes).
 const SEND_BUFFER: u64 = 128;
-/// How long transmissions are remembered for collision checks (µs).
-const AIR_MEMORY_US: u64 = 1_000_000;
+/// Send queues per module, at most (one per connector; ATRON and M-TRAN have 8 and 6).
+const QUEUES: usize = 8;
+/// How long transmissions are remembered for collision checks (µs): longer than any
+/// packet's air time (a packet has at most 255 bytes: 133 ms), so forgetting older ones
+/// changes no check (a packet arriving now started at most that long ago).
+const AIR_MEMORY_US: u64 = 200_000;
+const _: () = assert!(AIR_MEMORY_US > 255 * 1_000_000 / BYTES_PER_SECOND + 1);
 
 /// What happened to a packet at the receiving connector.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -57,26 +61,46 @@ impl State {
             return;
         }
         self.counters.broadcasts += 1;
-        let view = self.view();
-        let targets: Vec<(Port, Port)> = (0..view.connectors())
-            .map(|c| Port {
-                module: m,
-                connector: c,
-            })
-            .filter_map(|from| view.link_target(from).map(|to| (from, to)))
-            .collect();
-        let mut slots: BTreeMap<usize, Option<(u64, u64)>> = BTreeMap::new();
-        for (from, to) in targets {
+        let targets = match self.links.get_mut(m).and_then(Option::take) {
+            Some(targets) => targets,
+            None => self.link_targets(m),
+        };
+        // The air time reserved on each send queue (one reservation per queue and broadcast).
+        let mut slots: [Option<Option<(u64, u64)>>; QUEUES] = [None; QUEUES];
+        for &(from, to) in &targets {
             let queue = self.send_queue(from.connector);
-            let slot = *slots
-                .entry(queue)
-                .or_insert_with(|| self.reserve(m, queue, bytes.len()));
+            let slot = match slots.get(queue).copied().flatten() {
+                Some(slot) => slot,
+                None => {
+                    let slot = self.reserve(m, queue, bytes.len());
+                    if let Some(s) = slots.get_mut(queue) {
+                        *s = Some(slot);
+                    }
+                    slot
+                }
+            };
             let Some((start, end)) = slot else {
                 self.counters.overflow += 1;
                 continue;
             };
             self.send(from, to, start, end, bytes);
         }
+        if let Some(cache) = self.links.get_mut(m) {
+            *cache = Some(targets);
+        }
+    }
+
+    /// Where module `m`'s broadcasts go: (sending connector, receiving connector), by
+    /// connector. Cached in `links` until the world changes.
+    fn link_targets(&self, m: usize) -> Vec<(Port, Port)> {
+        let view = self.view();
+        (0..view.connectors())
+            .map(|c| Port {
+                module: m,
+                connector: c,
+            })
+            .filter_map(|from| view.link_target(from).map(|to| (from, to)))
+            .collect()
     }
 
     /// Full duplex: one queue per channel; half duplex: one UART per hemisphere.
@@ -141,14 +165,16 @@ impl State {
         }
         self.counters.count_drop(fate);
         self.modules[packet.to.module].stats.dropped += 1;
-        let view = self.view();
-        let detail = format!(
-            "{} <- {} ({} bytes)",
-            view.port_name(packet.to),
-            view.port_name(packet.from),
-            packet.bytes.len()
-        );
-        self.log(Some(packet.to.module), fate.name(), detail);
+        if self.tracing() {
+            let view = self.view();
+            let detail = format!(
+                "{} <- {} ({} bytes)",
+                view.port_name(packet.to),
+                view.port_name(packet.from),
+                packet.bytes.len()
+            );
+            self.log(Some(packet.to.module), fate.name(), detail);
+        }
         false
     }
 

@@ -33,8 +33,10 @@ impl State {
             self.counters.ops_unknown += 1;
             self.clear_finished_waits(m);
             self.modules[m].failed = true;
-            let detail = format!("address {address} op {op} index {index} args {args:?}");
-            self.log(Some(m), "unknown-op", detail);
+            if self.tracing() {
+                let detail = format!("address {address} op {op} index {index} args {args:?}");
+                self.log(Some(m), "unknown-op", detail);
+            }
             return;
         };
         self.clear_finished_waits(m);
@@ -44,7 +46,7 @@ impl State {
         if !self.modules[m].waiting.contains(&s) {
             self.modules[m].waiting.push(s);
         }
-        let label = self.statement_label(s);
+        let label = self.trace_label(s);
         match call {
             Call::First(s) => {
                 self.check_dependencies(m, s);
@@ -166,13 +168,15 @@ impl State {
     }
 
     fn violation(&mut self, check: &str, m: usize, s: usize, involved: Vec<usize>, what: &str) {
-        let others: Vec<String> = involved.iter().map(|t| format!("#{t}")).collect();
-        let detail = format!(
-            "{}: {what} ({})",
-            self.statement_label(s),
-            others.join(", ")
-        );
-        self.log(Some(m), check, &detail);
+        if self.tracing() {
+            let others: Vec<String> = involved.iter().map(|t| format!("#{t}")).collect();
+            let detail = format!(
+                "{}: {what} ({})",
+                self.statement_label(s),
+                others.join(", ")
+            );
+            self.log(Some(m), check, &detail);
+        }
         self.violations.push(Violation {
             check: check.to_string(),
             time_ms: self.now as f64 / 1000.0,
@@ -257,14 +261,22 @@ impl State {
         }
         self.phys[s].running = None;
         let name = self.modules[m].name.clone();
-        let label = self.statement_label(s);
-        match self
+        let label = self.trace_label(s);
+        let applied = self
             .world
-            .apply(&self.seq.robot, &self.seq.resolved[s], &name)
-        {
+            .apply(&self.seq.robot, &self.seq.resolved[s], &name);
+        // Links may have changed (latches, facing connectors).
+        self.links.iter_mut().for_each(|l| *l = None);
+        match applied {
             Ok(outcome) => {
-                let notes: Vec<String> = outcome.warnings.iter().map(ToString::to_string).collect();
-                self.completed(m, s, label, &notes.join("; "));
+                let notes = if self.tracing() {
+                    let notes: Vec<String> =
+                        outcome.warnings.iter().map(ToString::to_string).collect();
+                    notes.join("; ")
+                } else {
+                    String::new()
+                };
+                self.completed(m, s, label, &notes);
             }
             Err(_) if self.already_there(m, s) => {
                 self.completed(m, s, label, "joint already there")
@@ -275,19 +287,23 @@ impl State {
 
     fn completed(&mut self, m: usize, s: usize, label: String, note: &str) {
         self.phys[s].done.get_or_insert(self.now);
-        let detail = if note.is_empty() {
-            label
-        } else {
-            format!("{label} ({note})")
-        };
-        self.log(Some(m), "done", detail);
+        if self.tracing() {
+            let detail = if note.is_empty() {
+                label
+            } else {
+                format!("{label} ({note})")
+            };
+            self.log(Some(m), "done", detail);
+        }
     }
 
     fn refused(&mut self, m: usize, s: usize, label: String, reason: String) {
         self.phys[s].failed = true;
         self.counters.ops_refused += 1;
         self.mark_failed(s);
-        self.log(Some(m), "refused", format!("{label}: {reason}"));
+        if self.tracing() {
+            self.log(Some(m), "refused", format!("{label}: {reason}"));
+        }
         self.refusals.push(Refusal {
             time_ms: self.now as f64 / 1000.0,
             module: self.modules[m].name.clone(),
@@ -336,7 +352,7 @@ impl State {
                 self.phys[a.statement].running = None;
                 self.phys[a.statement].failed = true;
                 self.mark_failed(a.statement);
-                let label = self.statement_label(a.statement);
+                let label = self.trace_label(a.statement);
                 self.log(Some(m), "interrupt", label);
             }
         }

@@ -7,6 +7,9 @@ use std::fmt::Write;
 /// Whole-run counters.
 #[derive(Clone, Debug, Default, PartialEq, Eq, Serialize)]
 pub struct Counters {
+    /// Events the engine processed (popped from its queue: steps, including those a power
+    /// cycle cancelled, arrivals, operation completions, faults).
+    pub events: u64,
     /// Calls of `dr_hal_broadcast`.
     pub broadcasts: u64,
     /// Transmissions (one per channel a broadcast goes out on), counted at the sender.

@@ -2,6 +2,7 @@
 //! queue, the world, every module's platform data, counters, violations and the trace.
 //! Operations live in `ops.rs`, the infrared network in `network.rs`.
 
+use crate::engine::{Describer, DESCRIPTION_BYTES};
 use crate::report::{Counters, Refusal, Violation};
 use crate::scenario::{Preset, Scenario};
 use crate::sequence::{Sequence, View};
@@ -10,7 +11,7 @@ use dynarole_world::Port;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::cmp::{Ordering, Reverse};
-use std::collections::{BTreeMap, BinaryHeap};
+use std::collections::{BTreeMap, BinaryHeap, VecDeque};
 use std::fmt::Write;
 use std::sync::Arc;
 
@@ -18,6 +19,8 @@ use std::sync::Arc;
 pub const STEP_US: u64 = 5_000;
 /// Bytes of non-volatile storage per module (the ATmega128's EEPROM).
 const NV_BYTES: usize = 4096;
+/// Width of the trace's state column (padded; a longer description widens its line).
+pub const STATE_COLUMN: usize = 28;
 
 /// A packet on its way from one connector to another.
 #[derive(Clone, Debug)]
@@ -121,8 +124,16 @@ pub struct State {
     pub preset: Preset,
     pub now: u64,
     queue: BinaryHeap<Reverse<Scheduled>>,
+    /// The periodic steps (most events), outside the heap: each is scheduled STEP_US after
+    /// the current time with the next sequence number, so they come in (time, seq) order and
+    /// a FIFO keeps them sorted. `pop` takes the smaller of its front and the heap's top: the
+    /// order is exactly that of a single queue.
+    steps: VecDeque<Scheduled>,
     next_seq: u64,
+    /// The configuration; change it only through `apply` (the link cache depends on it).
     pub world: RobotWorld,
+    /// Per module, where its broadcasts go (`network.rs`), while the world is unchanged.
+    pub links: Vec<Option<Vec<(Port, Port)>>>,
     pub modules: Vec<Module>,
     pub phys: Vec<Phys>,
     pub attempts: BTreeMap<u64, Attempt>,
@@ -136,6 +147,9 @@ pub struct State {
     pub violations: Vec<Violation>,
     pub refusals: Vec<Refusal>,
     pub trace: Option<String>,
+    /// Reads the modules' protocol state for the trace (set by the engine while it runs, and
+    /// only when there is a trace).
+    pub describer: Option<Describer>,
     pub first_finished: Option<u64>,
 }
 
@@ -183,14 +197,17 @@ impl State {
             })
             .collect();
         let phys = vec![Phys::default(); seq.len()];
+        let links = vec![None; view.len()];
         let mut state = State {
             seq,
             scenario,
             preset,
             now: 0,
             queue: BinaryHeap::new(),
+            steps: VecDeque::new(),
             next_seq: 0,
             world,
+            links,
             modules,
             phys,
             attempts: BTreeMap::new(),
@@ -203,6 +220,7 @@ impl State {
             violations: Vec::new(),
             refusals: Vec::new(),
             trace: trace.then(String::new),
+            describer: None,
             first_finished: None,
         };
         state.schedule_start(&mut setup);
@@ -263,12 +281,24 @@ impl State {
 
     /// The next event, and the clock moved to it; `None` when nothing is left before `until`.
     pub fn pop(&mut self, until: u64) -> Option<Event> {
-        let Reverse(next) = self.queue.peek()?;
-        if next.time > until {
+        let heap = self.queue.peek().map(|Reverse(e)| (e.time, e.seq));
+        let step = self.steps.front().map(|e| (e.time, e.seq));
+        let from_steps = match (heap, step) {
+            (_, None) => false,
+            (None, Some(_)) => true,
+            (Some(h), Some(s)) => s < h,
+        };
+        let (time, _) = if from_steps { step } else { heap }?;
+        if time > until {
             return None;
         }
-        let Reverse(next) = self.queue.pop()?;
+        let next = if from_steps {
+            self.steps.pop_front()?
+        } else {
+            self.queue.pop()?.0
+        };
         self.now = next.time;
+        self.counters.events += 1;
         Some(next.event)
     }
 
@@ -277,25 +307,56 @@ impl State {
         self.now < self.scenario.faults_end_ms() * 1000
     }
 
+    /// Whether a trace is kept (callers skip formatting details when not).
+    pub fn tracing(&self) -> bool {
+        self.trace.is_some()
+    }
+
+    /// One trace line: time, module, event, the module's protocol state (`-` when there is
+    /// none), detail.
     pub fn log(&mut self, module: Option<usize>, event: &str, detail: impl AsRef<str>) {
+        let Some(trace) = &mut self.trace else {
+            return;
+        };
         let name = module
             .and_then(|m| self.modules.get(m))
             .map_or("-", |m| m.name.as_str());
-        if let Some(trace) = &mut self.trace {
-            let _ = writeln!(
-                trace,
-                "{:>8}.{:03} {:<6} {:<10} {}",
-                self.now / 1000,
-                self.now % 1000,
-                name,
-                event,
-                detail.as_ref()
-            );
-        }
+        let mut buffer = [0u8; DESCRIPTION_BYTES];
+        let len = match (module, &self.describer) {
+            (Some(m), Some(d)) => d.describe(m, &mut buffer),
+            _ => {
+                buffer[0] = b'-';
+                1
+            }
+        };
+        let state = std::str::from_utf8(buffer.get(..len).unwrap_or_default()).unwrap_or("?");
+        let _ = write!(
+            trace,
+            "{:>8}.{:03} {:<6} {:<10} {:<width$} {}",
+            self.now / 1000,
+            self.now % 1000,
+            name,
+            event,
+            state,
+            detail.as_ref(),
+            width = STATE_COLUMN
+        );
+        trace.truncate(trace.trim_end_matches(' ').len());
+        trace.push('\n');
     }
 
     pub fn statement_label(&self, s: usize) -> String {
         format!("#{s} {}", self.seq.text(s))
+    }
+
+    /// The statement's label when there is a trace to write it to (else nothing: no
+    /// formatting on the simulation path of an untraced run).
+    pub fn trace_label(&self, s: usize) -> String {
+        if self.tracing() {
+            self.statement_label(s)
+        } else {
+            String::new()
+        }
     }
 
     // ----- module life -----
@@ -371,14 +432,25 @@ impl State {
             .is_some_and(|x| x.powered && x.generation == generation)
     }
 
+    /// The next periodic step of `m`, after STEP_US (into the FIFO of steps; see `steps`).
     pub fn schedule_step(&mut self, m: usize, generation: u64) {
-        self.schedule(
-            self.now + STEP_US,
-            Event::Step {
-                module: m,
-                generation,
-            },
-        );
+        let time = self.now + STEP_US;
+        let seq = self.next_seq;
+        let event = Event::Step {
+            module: m,
+            generation,
+        };
+        if self
+            .steps
+            .back()
+            .is_some_and(|last| (last.time, last.seq) > (time, seq))
+        {
+            // Cannot happen (time never goes back), but the heap is always correct.
+            self.schedule(time, event);
+            return;
+        }
+        self.next_seq += 1;
+        self.steps.push_back(Scheduled { time, seq, event });
     }
 
     /// After a step: the module says whether it knows the sequence is over (S3 is checked).

@@ -30,19 +30,37 @@ fn assert_success(report: &Report) {
     assert_eq!(report.configuration_matches, Some(true));
 }
 
+/// One trace line in its columns: time (ms), module, event, protocol state, detail.
+struct Line<'a> {
+    ms: u64,
+    module: &'a str,
+    event: &'a str,
+    state: &'a str,
+    detail: &'a str,
+}
+
+/// Splits a trace line at its fixed columns (time 12, module 6, event 10, state 28).
+fn columns(line: &str) -> Line<'_> {
+    let field = |from: usize, to: usize| line.get(from..to.min(line.len())).unwrap_or("").trim();
+    Line {
+        ms: field(0, 8).parse().unwrap_or(0),
+        module: field(13, 19),
+        event: field(20, 30),
+        state: field(31, 59),
+        detail: line.get(60..).unwrap_or(""),
+    }
+}
+
 /// When a module started a statement, from the trace (ms).
 fn start_time(report: &Report, statement: usize) -> u64 {
     let trace = report.trace.as_deref().unwrap_or_default();
-    let needle = format!(" start      #{statement} ");
-    let line = trace
+    let prefix = format!("#{statement} ");
+    trace
         .lines()
-        .find(|l| l.contains(&needle))
-        .unwrap_or_else(|| panic!("statement {statement} never started:\n{trace}"));
-    let ms = line.split_whitespace().next().unwrap_or_default();
-    ms.split('.')
-        .next()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(0)
+        .map(columns)
+        .find(|l| l.event == "start" && l.detail.starts_with(&prefix))
+        .unwrap_or_else(|| panic!("statement {statement} never started:\n{trace}"))
+        .ms
 }
 
 #[test]
@@ -118,7 +136,9 @@ fn reset_in_the_middle_of_an_operation_is_survived_by_the_lattice() {
     // It re-enters the interrupted statement: while the turn still runs (resume) or, when it
     // hears that #0 is done only after the turn ended, by issuing it again (a no-op).
     assert!(
-        trace.contains(" M3     resume     #2 ") || trace.contains(" M3     reissue    #2 "),
+        trace.lines().map(columns).any(|l| l.module == "M3"
+            && (l.event == "resume" || l.event == "reissue")
+            && l.detail.starts_with("#2 ")),
         "the reset module re-enters its operation:\n{trace}"
     );
 }
@@ -226,6 +246,35 @@ fn unknown_module_in_a_scenario_is_bad_input() {
     });
     let message = result.err().map(|e| e.to_string()).unwrap_or_default();
     assert!(message.contains("reset[0].module"), "{message}");
+}
+
+#[test]
+fn the_trace_shows_each_modules_protocol_state() {
+    for (protocol, end) in [
+        (Protocol::Lattice, "e1 low0 done0 run-"),
+        (Protocol::Paper, "s254 "),
+    ] {
+        let report = eight2car(protocol, &Scenario::default(), 1);
+        let trace = report.trace.as_deref().unwrap_or_default();
+        let lines: Vec<Line> = trace.lines().map(columns).collect();
+        assert!(lines.iter().all(|l| !l.state.is_empty()), "{trace}");
+        // Before its first init a module has no state; when it declares the end, its state
+        // says so (the lattice's epoch rolled over, the paper's END state).
+        let first = lines.iter().find(|l| l.event == "power-on");
+        assert_eq!(first.map(|l| l.state), Some("-"), "{trace}");
+        let finished: Vec<&Line> = lines.iter().filter(|l| l.event == "finished").collect();
+        assert_eq!(finished.len(), 7, "{trace}");
+        assert!(finished.iter().all(|l| l.state.starts_with(end)), "{trace}");
+        // A module that starts a statement is running it (lattice: `run<statement>`).
+        if protocol == Protocol::Lattice {
+            assert!(lines.iter().filter(|l| l.event == "start").all(|l| l
+                .detail
+                .split(' ')
+                .next()
+                .map(|s| s.replacen('#', "run", 1))
+                == l.state.split(' ').nth(3).map(str::to_string)));
+        }
+    }
 }
 
 #[test]

@@ -38,5 +38,6 @@ extern unsigned long check_failures;
 void test_laws(void);
 void test_packets(void);
 void test_sim(void);
+void test_describe(void);
 
 #endif /* CHECK_H */

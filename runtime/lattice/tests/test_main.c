@@ -10,6 +10,7 @@ int main(void)
     test_laws();
     test_packets();
     test_sim();
+    test_describe();
     printf("lattice tests (window %d): %lu checks, %lu failed\n", DR_CONF_WINDOW, check_count,
            check_failures);
     return check_failures == 0u ? 0 : 1;

@@ -1,0 +1,153 @@
+//! Benchmark: the simulator on eight2car (`eight.json` to `car.json`), lattice and paper
+//! protocols, 0 % and 30 % loss (atron preset; the figures also with the ussr preset).
+//! Criterion times one run; before that, the
+//! figures of `README.md` ("Figures") are printed: simulated seconds per wall second, events
+//! per second, completion time, and completion over the mechanical critical path (with and
+//! without one broadcast period per hand-over).
+//!
+//! `cargo bench -p dynarole-sim --bench sim`
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use dynarole_codegen::{CompileOptions, PaperMerge, Protocol};
+use dynarole_core::{analyze, parse, RobotRegistry};
+use dynarole_sim::{Preset, Run, Scenario, Simulator};
+use dynarole_world::Configuration;
+use std::time::Instant;
+
+const EIGHT2CAR: &str = include_str!("../../../examples/atron/eight2car.dr");
+const EIGHT: &str = include_str!("../../../examples/atron/eight.json");
+const CAR: &str = include_str!("../../../examples/atron/car.json");
+/// The runtime's broadcast period (`DR_CONF_BROADCAST_MS`): what a hand-over costs at most
+/// when no packet is lost.
+const BROADCAST_MS: u64 = 100;
+/// Seeds per configuration for the printed figures.
+const SEEDS: u64 = 50;
+
+fn simulator(protocol: Protocol) -> Simulator {
+    let parsed = parse(EIGHT2CAR);
+    let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
+    let program = program.unwrap_or_else(|| panic!("{diagnostics:?}"));
+    let plans = vec![program.expand("eight2car").expect("eight2car")];
+    let options = CompileOptions {
+        protocol,
+        merge: PaperMerge::CPort,
+        single_step_handover: false,
+        restart_pending: false,
+        epochs: 1,
+        no_nv: false,
+        name: "bench".into(),
+    };
+    Simulator::new(&program, &plans, &options).expect("compiles")
+}
+
+fn config(text: &str) -> Configuration {
+    Configuration::from_json_str(text).expect("valid configuration")
+}
+
+fn scenario(preset: Preset, loss: f64) -> Scenario {
+    let mut s = Scenario::default();
+    s.network.preset = preset;
+    s.network.loss = loss;
+    s
+}
+
+fn name(protocol: Protocol) -> &'static str {
+    match protocol {
+        Protocol::Lattice => "lattice",
+        Protocol::Paper => "paper",
+    }
+}
+
+/// Runs SEEDS seeds and prints one line of figures.
+fn figures(
+    sim: &Simulator,
+    protocol: Protocol,
+    preset: Preset,
+    loss: f64,
+    start: &Configuration,
+    car: &Configuration,
+) {
+    let scenario = scenario(preset, loss);
+    let path = sim.critical_path(&scenario.timing);
+    let bound_ms = path.with_handovers(BROADCAST_MS);
+    let run = |seed| {
+        sim.run(&Run {
+            start,
+            expect: Some(car),
+            scenario: &scenario,
+            seed,
+            trace: false,
+        })
+        .expect("runs")
+    };
+    let _ = run(0); // builds or loads the C
+    let started = Instant::now();
+    let reports: Vec<_> = (0..SEEDS).map(run).collect();
+    let wall = started.elapsed().as_secs_f64();
+    let successes = reports.iter().filter(|r| r.success).count();
+    let simulated: f64 = reports.iter().map(|r| r.end_ms / 1000.0).sum();
+    let events: u64 = reports.iter().map(|r| r.counters.events).sum();
+    let completions: Vec<f64> = reports.iter().filter_map(|r| r.completion_ms).collect();
+    let mean = completions.iter().sum::<f64>() / completions.len().max(1) as f64;
+    let min = completions.iter().copied().fold(f64::INFINITY, f64::min);
+    let max = completions.iter().copied().fold(0.0, f64::max);
+    println!(
+        "{} {:<7} loss {:>3.0} %: {successes}/{SEEDS} ok; {:>7.0} simulated s / wall s; {:>9.0} events/s ({:.0} events/run); \
+         completion {:.3} s ({:.3}-{:.3}); critical path {:.3} s ({} statements, {} hand-overs) -> x{:.3}; \
+         + {BROADCAST_MS} ms per hand-over {:.3} s -> x{:.3}",
+        preset.name(),
+        name(protocol),
+        loss * 100.0,
+        simulated / wall,
+        events as f64 / wall,
+        events as f64 / SEEDS as f64,
+        mean / 1000.0,
+        min / 1000.0,
+        max / 1000.0,
+        path.duration_ms as f64 / 1000.0,
+        path.statements.len(),
+        path.handovers,
+        mean / path.duration_ms as f64,
+        bound_ms as f64 / 1000.0,
+        mean / bound_ms as f64,
+    );
+}
+
+fn benches(c: &mut Criterion) {
+    let start = config(EIGHT);
+    let car = config(CAR);
+    let sims: Vec<(Protocol, Simulator)> = [Protocol::Lattice, Protocol::Paper]
+        .into_iter()
+        .map(|p| (p, simulator(p)))
+        .collect();
+    for preset in [Preset::Atron, Preset::Ussr] {
+        for (protocol, sim) in &sims {
+            for loss in [0.0, 0.3] {
+                figures(sim, *protocol, preset, loss, &start, &car);
+            }
+        }
+    }
+    for (protocol, sim) in &sims {
+        for loss in [0.0, 0.3] {
+            let scenario = scenario(Preset::Atron, loss);
+            let run = Run {
+                start: &start,
+                expect: Some(&car),
+                scenario: &scenario,
+                seed: 1,
+                trace: false,
+            };
+            c.bench_function(
+                &format!("simulate eight2car, {}, loss {loss}", name(*protocol)),
+                |b| b.iter(|| sim.run(&run).expect("runs")),
+            );
+        }
+    }
+}
+
+criterion_group! {
+    name = sim_benches;
+    config = Criterion::default().sample_size(10);
+    targets = benches
+}
+criterion_main!(sim_benches);

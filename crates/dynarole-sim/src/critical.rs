@@ -1,0 +1,165 @@
+//! The mechanical critical path of a compiled sequence: the longest chain of dependencies
+//! (the IR's `deps`, what the sequence means) weighted by the timing preset's operation
+//! durations, and the hand-overs along it (dependency edges between statements of different
+//! modules). No run can complete sooner; a protocol that passes the baton from one module to
+//! the next by broadcast pays about one broadcast period per hand-over on top.
+
+use crate::scenario::Timing;
+use crate::sequence::{OpKind, Sequence};
+use dynarole_core::lower::Ir;
+use serde::Serialize;
+
+/// The heaviest dependency chain of a sequence.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize)]
+pub struct CriticalPath {
+    /// Sum of the operation durations along the chain (ms).
+    pub duration_ms: u64,
+    /// The chain, first statement first (indices of the IR's statements).
+    pub statements: Vec<usize>,
+    /// Dependency edges along the chain between statements of different modules.
+    pub handovers: usize,
+}
+
+impl CriticalPath {
+    /// The critical path plus `period_ms` per hand-over (ms).
+    pub fn with_handovers(&self, period_ms: u64) -> u64 {
+        self.duration_ms + period_ms * self.handovers as u64
+    }
+}
+
+/// The longest chain through `deps`, statement `s` weighing `duration(s)`. Among chains of
+/// equal duration, the one with the most hand-overs (the stricter bound), then the earliest
+/// statements. Dependencies point backwards (lowering guarantees it; others are ignored).
+pub fn longest_chain(ir: &Ir, duration: impl Fn(usize) -> u64) -> CriticalPath {
+    // For each statement: (finish, hand-overs) of the heaviest chain ending with it, and the
+    // previous statement on that chain.
+    let mut best: Vec<((u64, usize), Option<usize>)> = Vec::with_capacity(ir.statements.len());
+    for (s, st) in ir.statements.iter().enumerate() {
+        let mut top = ((0, 0), None);
+        for d in st.deps.iter().map(|d| usize::from(*d)).filter(|d| *d < s) {
+            let ((finish, handovers), _) = best[d];
+            let handovers = handovers + usize::from(ir.statements[d].address != st.address);
+            if top.1.is_none() || (finish, handovers) > top.0 {
+                top = ((finish, handovers), Some(d));
+            }
+        }
+        let ((finish, handovers), previous) = top;
+        best.push(((finish + duration(s), handovers), previous));
+    }
+    let mut last = None;
+    for (s, (weight, _)) in best.iter().enumerate() {
+        if last.is_none_or(|l: usize| *weight > best[l].0) {
+            last = Some(s);
+        }
+    }
+    let mut statements = Vec::new();
+    let mut at = last;
+    while let Some(s) = at {
+        statements.push(s);
+        at = best[s].1;
+    }
+    statements.reverse();
+    let ((duration_ms, handovers), _) = last.map_or(((0, 0), None), |s| best[s]);
+    CriticalPath {
+        duration_ms,
+        statements,
+        handovers,
+    }
+}
+
+/// The critical path of `seq` with `timing`'s durations. A turn's duration comes from its
+/// arguments: `rotateFromToBy` names where it starts; `rotateToBy` is taken to start where
+/// the same module's previous turn of that joint ended (0 when there is none), an estimate.
+pub fn critical_path(seq: &Sequence, timing: &Timing) -> CriticalPath {
+    let atron = seq.robot.name == "atron";
+    let duration = |s: usize| match seq.kinds[s] {
+        OpKind::Extend => timing.extend_ms,
+        OpKind::Retract => timing.retract_ms,
+        OpKind::Turn => {
+            let st = &seq.ir.statements[s];
+            let current = (0..s)
+                .rev()
+                .filter(|t| {
+                    let other = &seq.ir.statements[*t];
+                    seq.kinds[*t] == OpKind::Turn
+                        && other.address == st.address
+                        && other.index == st.index
+                })
+                .find_map(|t| seq.turn_target(t))
+                .unwrap_or(0);
+            timing.turn_ms(seq.quarters(s, current, atron))
+        }
+        OpKind::Other => 0,
+    };
+    longest_chain(&seq.ir, duration)
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::{Simulator, Timing};
+    use dynarole_codegen::{CompileOptions, PaperMerge, Protocol};
+    use dynarole_core::{analyze, parse, RobotRegistry};
+
+    fn simulator(source: &str) -> Simulator {
+        let parsed = parse(source);
+        let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
+        let program = program.unwrap_or_else(|| panic!("{diagnostics:?}"));
+        let plans = vec![program.expand("s").expect("sequence s")];
+        let options = CompileOptions {
+            protocol: Protocol::Lattice,
+            merge: PaperMerge::CPort,
+            single_step_handover: false,
+            restart_pending: false,
+            epochs: 1,
+            no_nv: false,
+            name: "critical".into(),
+        };
+        Simulator::new(&program, &plans, &options).expect("compiles")
+    }
+
+    #[test]
+    fn the_heaviest_chain_and_its_handovers() {
+        // #0 (M1, 2 s) -> #1 (M1, 3 s) and #2 (M0, half turn 0.86 s) -> #3 (M0, 0.86 s):
+        // 0-1-3 weighs 5.86 s with one hand-over (M1 to M0); 0-2-3 only 3.72 s.
+        let sim = simulator(
+            "robot atron;\nsequence s {\n    M1.Connector[2].retract();\n    \
+             M1.Connector[2].extend() &\n    M0.Joint.rotateFromToBy(0, 216, true, 150);\n    \
+             M0.Joint.rotateFromToBy(216, 0, false, 150);\n}\n",
+        );
+        let path = sim.critical_path(&Timing::default());
+        assert_eq!(path.statements, vec![0, 1, 3]);
+        assert_eq!(path.duration_ms, 2000 + 3000 + 860);
+        assert_eq!(path.handovers, 1);
+        assert_eq!(path.with_handovers(100), 5960);
+    }
+
+    #[test]
+    fn rotate_to_starts_where_the_previous_turn_ended_and_ties_take_more_handovers() {
+        // #1 turns back from 108 (where #0 ended): a quarter, 0.55 s. #2 (M1) and #3 (M0)
+        // weigh the same after #1; #4 depends on both and is M0's: the chain through #2
+        // (a hand-over M0 to M1 and back) is preferred to the one through #3 (none).
+        let sim = simulator(
+            "robot atron;\nsequence s {\n    M0.Joint.rotateFromToBy(0, 108, true, 150);\n    \
+             M0.Joint.rotateToBy(0, false, 150);\n    M1.Connector[2].retract() &\n    \
+             M0.Connector[4].retract();\n    M0.Connector[4].extend();\n}\n",
+        );
+        let path = sim.critical_path(&Timing::default());
+        assert_eq!(path.duration_ms, 550 + 550 + 2000 + 3000);
+        assert_eq!(path.statements, vec![0, 1, 2, 4]);
+        assert_eq!(path.handovers, 2);
+    }
+
+    #[test]
+    fn any_weights() {
+        // With every statement weighing 1: three statements on the longest chain.
+        let sim = simulator(
+            "robot atron;\nsequence s {\n    M1.Connector[2].retract();\n    \
+             M1.Connector[2].extend() &\n    M0.Joint.rotateFromToBy(0, 216, true, 150);\n    \
+             M0.Joint.rotateFromToBy(216, 0, false, 150);\n}\n",
+        );
+        let path = super::longest_chain(&sim.sequence.ir, |_| 1);
+        assert_eq!(path.duration_ms, 3);
+        assert_eq!(path.statements.len(), 3);
+        assert_eq!(path.handovers, 1);
+    }
+}

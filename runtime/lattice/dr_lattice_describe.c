@@ -1,0 +1,40 @@
+/* dr_lattice_describe.c - a one-line description of a lattice module's state, for traces
+ * (host and simulator builds; not needed on the modules). */
+#include "dr_lattice.h"
+#include "dr_text.h"
+
+#define W ((uint16_t)DR_CONF_WINDOW)
+
+/* Cost: O(W/4). */
+uint8_t dr_module_describe(const dr_module_t *m, char *out, uint8_t cap)
+{
+    static const char hex[] = "0123456789abcdef";
+    uint8_t n = 0;
+    uint8_t leading = 1;
+    uint8_t nibble;
+    uint16_t j;
+    if (cap == 0u) {
+        return 0;
+    }
+    dr_text_char(out, cap, &n, 'e');
+    dr_text_decimal(out, cap, &n, m->shared.epoch);
+    dr_text_str(out, cap, &n, " low");
+    dr_text_decimal(out, cap, &n, m->shared.low);
+    dr_text_str(out, cap, &n, " done");
+    for (j = (uint16_t)(W / 4u); j > 0u; j--) {
+        nibble = (uint8_t)(((unsigned)m->shared.done[(j - 1u) >> 1] >> (((j - 1u) & 1u) * 4u)) &
+                           0x0Fu);
+        if (nibble != 0u || j == 1u || !leading) {
+            leading = 0;
+            dr_text_char(out, cap, &n, hex[nibble]);
+        }
+    }
+    dr_text_str(out, cap, &n, " run");
+    if (m->running == DR_NONE) {
+        dr_text_char(out, cap, &n, '-');
+    } else {
+        dr_text_decimal(out, cap, &n, m->running);
+    }
+    out[n] = '\0';
+    return n;
+}

@@ -1,0 +1,100 @@
+/* test_describe.c - dr_module_describe: the format, the window in hexadecimal, and bounds
+ * (every cap from 0 up: a NUL-terminated prefix, nothing written at or beyond cap). */
+#include <string.h>
+#include "check.h"
+#include "dr_lattice.h"
+
+#define BUF 96u
+
+/* Describes `m` with every cap from 0 to past the full length; each result is a prefix of
+ * the full description and no byte at or beyond cap is touched. */
+static void check_bounded(const dr_module_t *m, const char *want)
+{
+    char buf[BUF];
+    uint8_t full = (uint8_t)strlen(want);
+    uint8_t cap;
+    uint8_t len;
+    uint8_t i;
+    uint8_t untouched;
+    for (cap = 0; cap <= (uint8_t)(full + 3u); cap++) {
+        memset(buf, 'X', sizeof buf);
+        len = dr_module_describe(m, buf, cap);
+        untouched = 1;
+        for (i = cap; i < BUF; i++) {
+            untouched = (uint8_t)(untouched & (buf[i] == 'X'));
+        }
+        CHECK(untouched);
+        if (cap == 0u) {
+            CHECK_EQ(len, 0);
+            continue;
+        }
+        CHECK_EQ(len, cap > full ? full : (uint8_t)(cap - 1u));
+        CHECK_EQ(buf[len], '\0');
+        CHECK(strncmp(buf, want, len) == 0);
+    }
+}
+
+static void check_text(const dr_module_t *m, const char *want)
+{
+    char buf[BUF];
+    uint8_t len = dr_module_describe(m, buf, (uint8_t)sizeof buf);
+    CHECK_EQ(len, strlen(want));
+    CHECK(strcmp(buf, want) == 0);
+    if (strcmp(buf, want) != 0) {
+        fprintf(stderr, "  described \"%s\", want \"%s\"\n", buf, want);
+    }
+}
+
+void test_describe(void)
+{
+    dr_module_t m;
+    char want[BUF];
+    uint16_t k;
+
+    memset(&m, 0, sizeof m);
+    m.running = DR_NONE;
+    check_text(&m, "e0 low0 done0 run-");
+    check_bounded(&m, "e0 low0 done0 run-");
+
+    /* statements low + 0 and low + 2 done, statement 4 running */
+    m.shared.epoch = 12u;
+    m.shared.low = 3u;
+    m.shared.done[0] = 0x05u;
+    m.running = 4u;
+    check_text(&m, "e12 low3 done5 run4");
+    check_bounded(&m, "e12 low3 done5 run4");
+
+    /* the largest values: every field at its maximum width */
+    m.shared.epoch = 65535u;
+    m.shared.low = 65534u;
+    m.running = 65534u;
+    m.shared.done[0] = 0xA5u;
+    check_text(&m, "e65535 low65534 donea5 run65534");
+
+    /* the top of the window: W/4 hexadecimal digits, the first '8' */
+    memset(m.shared.done, 0, sizeof m.shared.done);
+    m.shared.done[DR_CONF_WINDOW / 8 - 1] = 0x80u;
+    m.shared.epoch = 1u;
+    m.shared.low = 0u;
+    m.running = DR_NONE;
+    strcpy(want, "e1 low0 done8");
+    for (k = 1; k < DR_CONF_WINDOW / 4; k++) {
+        strcat(want, "0");
+    }
+    strcat(want, " run-");
+    check_text(&m, want);
+    check_bounded(&m, want);
+
+    /* a zero in the middle of the window is kept (only leading zeros are dropped) */
+    if (DR_CONF_WINDOW >= 16) {
+        memset(m.shared.done, 0, sizeof m.shared.done);
+        m.shared.done[1] = 0x01u;
+        m.shared.done[0] = 0x0Fu;
+        check_text(&m, "e1 low0 done10f run-");
+    }
+
+    /* the started set is not part of the description */
+    memset(m.shared.done, 0, sizeof m.shared.done);
+    memset(m.shared.started, 0xFF, sizeof m.shared.started);
+    check_text(&m, "e1 low0 done0 run-");
+}
