@@ -4,8 +4,7 @@
 use crate::load::{self, Failure, PluginArgs};
 use crate::render;
 use dynarole_codegen::{generate_c, generate_nesc, CompileOptions, PaperMerge, Protocol};
-use dynarole_core::diagnostic::has_errors;
-use dynarole_core::{analyze, parse, Diagnostic, DiagnosticKind};
+use dynarole_core::{Diagnostic, DiagnosticKind};
 use std::path::Path;
 use std::process::ExitCode;
 
@@ -88,77 +87,62 @@ pub struct CompileArgs<'a> {
 }
 
 pub fn run(args: &CompileArgs) -> Result<ExitCode, Failure> {
-    let display = args.file.display().to_string();
-    let source = load::read_source(args.file)?;
-    let parsed = parse(&source);
-    let registry = load::registry(args.plugins, args.file, load::robot_name(&parsed.file))?;
-    let (program, mut diagnostics) = analyze(&parsed.file, &registry);
-    diagnostics.extend(parsed.diagnostics);
-    let Some(program) = program.filter(|_| !has_errors(&diagnostics)) else {
-        render::diagnostics(&display, &source, &diagnostics);
-        return Ok(ExitCode::from(1));
-    };
-    let names: Vec<String> = if args.sequences.is_empty() {
-        program
-            .file
-            .sequences()
-            .next()
-            .map(|d| d.name.name.clone())
-            .into_iter()
-            .collect()
-    } else {
-        args.sequences.to_vec()
-    };
-    let mut plans = Vec::new();
-    for name in &names {
-        let plan = program
-            .expand(name)
-            .ok_or_else(|| Failure::Input(format!("{display}: no sequence named `{name}`")))?;
-        if let (ProtocolArg::Paper, Err(d)) = (args.options.protocol, plan.flatten_for_paper()) {
-            render::diagnostics(&display, &source, &[d]);
-            return Ok(ExitCode::from(1));
+    load::with_program(args.file, args.plugins, |program, source| {
+        let display = args.file.display().to_string();
+        let names = load::sequence_names(program, args.sequences);
+        let mut plans = Vec::new();
+        for name in &names {
+            let plan = program
+                .expand(name)
+                .ok_or_else(|| Failure::Input(format!("{display}: no sequence named `{name}`")))?;
+            if let (ProtocolArg::Paper, Err(d)) = (args.options.protocol, plan.flatten_for_paper())
+            {
+                render::diagnostics(&display, source, &[d]);
+                return Ok(ExitCode::from(1));
+            }
+            plans.push(plan);
         }
-        plans.push(plan);
-    }
-    let limit_error = |e: dynarole_core::lower::LimitError| {
-        Diagnostic::new(DiagnosticKind::TargetLimit { message: e.message }, e.span)
-    };
-    let ir = match program.lower(&plans) {
-        Ok(ir) => ir,
-        Err(e) => {
-            render::diagnostics(&display, &source, &[limit_error(e)]);
-            return Ok(ExitCode::from(1));
+        let limit_error = |e: dynarole_core::lower::LimitError| {
+            Diagnostic::new(DiagnosticKind::TargetLimit { message: e.message }, e.span)
+        };
+        let ir = match program.lower(&plans) {
+            Ok(ir) => ir,
+            Err(e) => {
+                render::diagnostics(&display, source, &[limit_error(e)]);
+                return Ok(ExitCode::from(1));
+            }
+        };
+        let options = args.options.compile_options(args.epochs, names.join(" + "));
+        let generate = match args.target {
+            Target::C => generate_c,
+            Target::Nesc => generate_nesc,
+        };
+        let generated = match generate(&ir, &program.robot, &options) {
+            Ok(g) => g,
+            Err(e) => {
+                render::diagnostics(&display, source, &[limit_error(e)]);
+                return Ok(ExitCode::from(1));
+            }
+        };
+        std::fs::create_dir_all(args.out_dir).map_err(|e| {
+            Failure::Input(format!("cannot create {}: {e}", args.out_dir.display()))
+        })?;
+        for (name, text) in &generated.files {
+            let path = args.out_dir.join(name);
+            std::fs::write(&path, text)
+                .map_err(|e| Failure::Input(format!("cannot write {}: {e}", path.display())))?;
         }
-    };
-    let options = args.options.compile_options(args.epochs, names.join(" + "));
-    let generate = match args.target {
-        Target::C => generate_c,
-        Target::Nesc => generate_nesc,
-    };
-    let generated = match generate(&ir, &program.robot, &options) {
-        Ok(g) => g,
-        Err(e) => {
-            render::diagnostics(&display, &source, &[limit_error(e)]);
-            return Ok(ExitCode::from(1));
-        }
-    };
-    std::fs::create_dir_all(args.out_dir)
-        .map_err(|e| Failure::Input(format!("cannot create {}: {e}", args.out_dir.display())))?;
-    for (name, text) in &generated.files {
-        let path = args.out_dir.join(name);
-        std::fs::write(&path, text)
-            .map_err(|e| Failure::Input(format!("cannot write {}: {e}", path.display())))?;
-    }
-    println!(
-        "compiled {} ({:?} protocol): {} statements, {} modules/roles, window {}, packet {} bytes, program id {} -> {}",
-        options.name,
-        args.options.protocol,
-        ir.statements.len(),
-        ir.addresses.len(),
-        ir.window,
-        generated.packet_bytes,
-        generated.program_id,
-        args.out_dir.display()
-    );
-    Ok(ExitCode::SUCCESS)
+        println!(
+            "compiled {} ({:?} protocol): {} statements, {} modules/roles, window {}, packet {} bytes, program id {} -> {}",
+            options.name,
+            args.options.protocol,
+            ir.statements.len(),
+            ir.addresses.len(),
+            ir.window,
+            generated.packet_bytes,
+            generated.program_id,
+            args.out_dir.display()
+        );
+        Ok(ExitCode::SUCCESS)
+    })
 }

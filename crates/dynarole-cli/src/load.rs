@@ -74,3 +74,39 @@ pub fn robot_name(file: &dynarole_core::ast::SourceFile) -> Option<&str> {
         _ => None,
     })
 }
+
+/// Reads, parses and checks a source file: renders its errors and exits 1, or hands the checked
+/// program and its text to `then` (every command that works on a checked file starts here).
+pub fn with_program(
+    path: &Path,
+    plugins: &PluginArgs,
+    then: impl FnOnce(&dynarole_core::Program, &str) -> Result<ExitCode, Failure>,
+) -> Result<ExitCode, Failure> {
+    let source = read_source(path)?;
+    let parsed = dynarole_core::parse(&source);
+    let registry = registry(plugins, path, robot_name(&parsed.file))?;
+    let (program, mut diagnostics) = dynarole_core::analyze(&parsed.file, &registry);
+    diagnostics.extend(parsed.diagnostics);
+    diagnostics.sort_by_key(|d| d.span);
+    match program.filter(|_| !dynarole_core::diagnostic::has_errors(&diagnostics)) {
+        Some(program) => then(&program, &source),
+        None => {
+            crate::render::diagnostics(&path.display().to_string(), &source, &diagnostics);
+            Ok(ExitCode::from(1))
+        }
+    }
+}
+
+/// The named sequences, or the first one the file declares when none is named.
+pub fn sequence_names(program: &dynarole_core::Program, sequences: &[String]) -> Vec<String> {
+    if !sequences.is_empty() {
+        return sequences.to_vec();
+    }
+    program
+        .file
+        .sequences()
+        .next()
+        .map(|d| d.name.name.clone())
+        .into_iter()
+        .collect()
+}

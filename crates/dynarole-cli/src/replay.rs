@@ -4,8 +4,6 @@
 use crate::load::{self, Failure, PluginArgs};
 use crate::render;
 use crate::world::{prepare, read_configuration};
-use dynarole_core::diagnostic::has_errors;
-use dynarole_core::{analyze, parse};
 use dynarole_world::{compare, Configuration};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -21,50 +19,43 @@ pub struct ReplayArgs<'a> {
 }
 
 pub fn run(args: &ReplayArgs) -> Result<ExitCode, Failure> {
-    let display = args.file.display().to_string();
-    let source = load::read_source(args.file)?;
-    let parsed = parse(&source);
-    let registry = load::registry(args.plugins, args.file, load::robot_name(&parsed.file))?;
-    let (program, mut diagnostics) = analyze(&parsed.file, &registry);
-    diagnostics.extend(parsed.diagnostics);
-    let Some(program) = program.filter(|_| !has_errors(&diagnostics)) else {
-        render::diagnostics(&display, &source, &diagnostics);
-        return Ok(ExitCode::from(1));
-    };
-    let start = read_configuration(args.from)?;
-    let prepared = match prepare(&program, args.sequences, start)? {
-        Ok(prepared) => prepared,
-        Err(errors) => {
-            render::diagnostics(&display, &source, &errors);
-            return Ok(ExitCode::from(1));
+    load::with_program(args.file, args.plugins, |program, source| {
+        let display = args.file.display().to_string();
+        let start = read_configuration(args.from)?;
+        let prepared = match prepare(program, args.sequences, start)? {
+            Ok(prepared) => prepared,
+            Err(errors) => {
+                render::diagnostics(&display, source, &errors);
+                return Ok(ExitCode::from(1));
+            }
+        };
+        let result = dynarole_replay::replay(
+            program,
+            &prepared.plans,
+            prepared.world,
+            &prepared.assignment,
+        );
+        render::diagnostics(&display, source, &result.diagnostics);
+        println!(
+            "replayed {} from {}: {} statements, {} rejected, {} warnings",
+            args.sequences.join(", "),
+            args.from.display(),
+            result.n_statements,
+            result.n_rejected,
+            result.diagnostics.len() - result.n_rejected
+        );
+        print_configuration(&result.final_configuration);
+        if let Some(out) = args.out {
+            std::fs::write(out, result.final_configuration.to_json_string())
+                .map_err(|e| Failure::Input(format!("cannot write {}: {e}", out.display())))?;
+            println!("final configuration written to {}", out.display());
         }
-    };
-    let result = dynarole_replay::replay(
-        &program,
-        &prepared.plans,
-        prepared.world,
-        &prepared.assignment,
-    );
-    render::diagnostics(&display, &source, &result.diagnostics);
-    println!(
-        "replayed {} from {}: {} statements, {} rejected, {} warnings",
-        args.sequences.join(", "),
-        args.from.display(),
-        result.n_statements,
-        result.n_rejected,
-        result.diagnostics.len() - result.n_rejected
-    );
-    print_configuration(&result.final_configuration);
-    if let Some(out) = args.out {
-        std::fs::write(out, result.final_configuration.to_json_string())
-            .map_err(|e| Failure::Input(format!("cannot write {}: {e}", out.display())))?;
-        println!("final configuration written to {}", out.display());
-    }
-    let matches = match args.expect {
-        Some(path) => expect(&result.final_configuration, path)?,
-        None => true,
-    };
-    Ok(ExitCode::from(u8::from(result.n_rejected > 0 || !matches)))
+        let matches = match args.expect {
+            Some(path) => expect(&result.final_configuration, path)?,
+            None => true,
+        };
+        Ok(ExitCode::from(u8::from(result.n_rejected > 0 || !matches)))
+    })
 }
 
 fn expect(actual: &Configuration, path: &Path) -> Result<bool, Failure> {

@@ -3,9 +3,7 @@
 use crate::load::{self, Failure, PluginArgs};
 use crate::render;
 use dynarole_core::ast::{Item, SequenceDef, SourceFile};
-use dynarole_core::diagnostic::has_errors;
 use dynarole_core::format::format_items;
-use dynarole_core::{analyze, parse};
 use std::path::Path;
 use std::process::ExitCode;
 
@@ -15,17 +13,19 @@ pub fn run(
     name: Option<&str>,
     plugins: &PluginArgs,
 ) -> Result<ExitCode, Failure> {
-    let source = load::read_source(path)?;
-    let display = path.display().to_string();
-    let parsed = parse(&source);
-    let registry = load::registry(plugins, path, load::robot_name(&parsed.file))?;
-    let (program, mut diagnostics) = analyze(&parsed.file, &registry);
-    diagnostics.extend(parsed.diagnostics);
-    diagnostics.sort_by_key(|d| d.span);
-    let Some(program) = program.filter(|_| !has_errors(&diagnostics)) else {
-        render::diagnostics(&display, &source, &diagnostics);
-        return Ok(ExitCode::from(1));
-    };
+    load::with_program(path, plugins, |program, source| {
+        let display = path.display().to_string();
+        reverse_in(program, source, &display, sequence, name)
+    })
+}
+
+fn reverse_in(
+    program: &dynarole_core::Program,
+    source: &str,
+    display: &str,
+    sequence: &str,
+    name: Option<&str>,
+) -> Result<ExitCode, Failure> {
     let new_name = name.map_or_else(|| program.reverse_name(sequence), str::to_string);
     let reversed = match program.reverse_sequence(sequence, &new_name) {
         None => {
@@ -34,12 +34,12 @@ pub fn run(
             )))
         }
         Some(Err(errors)) => {
-            render::diagnostics(&display, &source, &errors);
+            render::diagnostics(display, source, &errors);
             return Ok(ExitCode::from(1));
         }
         Some(Ok(decl)) => decl,
     };
-    let mut items = context_items(&parsed.file, &reversed.definition);
+    let mut items = context_items(program.file, &reversed.definition);
     if items
         .iter()
         .any(|i| matches!(i, Item::Sequence(d) if d.name.name == new_name))

@@ -5,8 +5,6 @@ use crate::compile::{ProtocolArg, ProtocolOptions};
 use crate::load::{self, Failure, PluginArgs};
 use crate::render;
 use crate::world::read_configuration;
-use dynarole_core::diagnostic::has_errors;
-use dynarole_core::{analyze, parse};
 use dynarole_sim::{Report, Run, Scenario, SimError, Simulator};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -29,63 +27,56 @@ pub struct SimulateArgs<'a> {
 }
 
 pub fn run(args: &SimulateArgs) -> Result<ExitCode, Failure> {
-    let display = args.file.display().to_string();
-    let source = load::read_source(args.file)?;
-    let parsed = parse(&source);
-    let registry = load::registry(args.plugins, args.file, load::robot_name(&parsed.file))?;
-    let (program, mut diagnostics) = analyze(&parsed.file, &registry);
-    diagnostics.extend(parsed.diagnostics);
-    let Some(program) = program.filter(|_| !has_errors(&diagnostics)) else {
-        render::diagnostics(&display, &source, &diagnostics);
-        return Ok(ExitCode::from(1));
-    };
-    let mut plans = Vec::new();
-    for name in args.sequences {
-        let plan = program
-            .expand(name)
-            .ok_or_else(|| Failure::Input(format!("{display}: no sequence named `{name}`")))?;
-        plans.push(plan);
-    }
-    let scenario = scenario(args)?;
-    let start = read_configuration(args.from)?;
-    let expect = args.expect.map(|p| read_configuration(p)).transpose()?;
-    let options = args.options.compile_options(1, args.sequences.join(" + "));
-    let simulator = match Simulator::new(&program, &plans, &options) {
-        Ok(s) => s,
-        Err(SimError::Diagnostic(d)) => {
-            render::diagnostics(&display, &source, &[d]);
-            return Ok(ExitCode::from(1));
+    load::with_program(args.file, args.plugins, |program, source| {
+        let display = args.file.display().to_string();
+        let mut plans = Vec::new();
+        for name in args.sequences {
+            let plan = program
+                .expand(name)
+                .ok_or_else(|| Failure::Input(format!("{display}: no sequence named `{name}`")))?;
+            plans.push(plan);
         }
-        Err(e) => return Err(Failure::Input(e.to_string())),
-    };
-    let mut failed = 0u64;
-    for k in 0..args.repeat.max(1) {
-        let seed = args.seed.wrapping_add(k);
-        let started = Instant::now();
-        let report = simulator
-            .run(&Run {
-                start: &start,
-                expect: expect.as_ref(),
-                scenario: &scenario,
-                seed,
-                trace: args.trace.is_some(),
-            })
-            .map_err(|e| Failure::Input(e.to_string()))?;
-        let wall = started.elapsed().as_secs_f64();
-        output(args, &report, wall, k)?;
-        if !report.success {
-            failed += 1;
-            eprintln!("replay with: {}", replay_command(args, seed));
+        let scenario = scenario(args)?;
+        let start = read_configuration(args.from)?;
+        let expect = args.expect.map(|p| read_configuration(p)).transpose()?;
+        let options = args.options.compile_options(1, args.sequences.join(" + "));
+        let simulator = match Simulator::new(program, &plans, &options) {
+            Ok(s) => s,
+            Err(SimError::Diagnostic(d)) => {
+                render::diagnostics(&display, source, &[d]);
+                return Ok(ExitCode::from(1));
+            }
+            Err(e) => return Err(Failure::Input(e.to_string())),
+        };
+        let mut failed = 0u64;
+        for k in 0..args.repeat.max(1) {
+            let seed = args.seed.wrapping_add(k);
+            let started = Instant::now();
+            let report = simulator
+                .run(&Run {
+                    start: &start,
+                    expect: expect.as_ref(),
+                    scenario: &scenario,
+                    seed,
+                    trace: args.trace.is_some(),
+                })
+                .map_err(|e| Failure::Input(e.to_string()))?;
+            let wall = started.elapsed().as_secs_f64();
+            output(args, &report, wall, k)?;
+            if !report.success {
+                failed += 1;
+                eprintln!("replay with: {}", replay_command(args, seed));
+            }
         }
-    }
-    if args.repeat > 1 && !args.json {
-        println!(
-            "{} of {} runs reached the goal",
-            args.repeat - failed,
-            args.repeat
-        );
-    }
-    Ok(ExitCode::from(if failed == 0 { 0 } else { 3 }))
+        if args.repeat > 1 && !args.json {
+            println!(
+                "{} of {} runs reached the goal",
+                args.repeat - failed,
+                args.repeat
+            );
+        }
+        Ok(ExitCode::from(if failed == 0 { 0 } else { 3 }))
+    })
 }
 
 fn scenario(args: &SimulateArgs) -> Result<Scenario, Failure> {

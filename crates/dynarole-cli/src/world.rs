@@ -30,17 +30,7 @@ pub fn prepare(
     sequences: &[String],
     config: Configuration,
 ) -> Result<Result<Prepared, Vec<Diagnostic>>, Failure> {
-    let names: Vec<String> = if sequences.is_empty() {
-        program
-            .file
-            .sequences()
-            .next()
-            .map(|d| d.name.name.clone())
-            .into_iter()
-            .collect()
-    } else {
-        sequences.to_vec()
-    };
+    let names = crate::load::sequence_names(program, sequences);
     let mut plans = Vec::new();
     for name in &names {
         let plan = program
