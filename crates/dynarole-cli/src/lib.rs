@@ -2,6 +2,7 @@
 //!
 //! **Architecture invariant**: only this crate knows about files, exit codes and colours.
 
+pub mod campaign;
 pub mod check;
 pub mod compile;
 pub mod fmt;
@@ -122,6 +123,23 @@ enum Command {
         #[command(flatten)]
         plugins: load::PluginArgs,
     },
+    /// Run a sweep of simulations described by a TOML file, in parallel: DIR/runs.csv (one
+    /// row per run; an interrupted campaign resumes where it stopped), summary.csv, plots.
+    Campaign {
+        file: PathBuf,
+        /// The output directory (default: NAME-results for NAME.toml).
+        #[arg(short = 'o', long = "output", value_name = "DIR")]
+        out_dir: Option<PathBuf>,
+        /// Do at most N of the runs not yet recorded, then stop (run again to go on).
+        #[arg(long, value_name = "N")]
+        max_runs: Option<u64>,
+        /// Worker threads (default: one per core).
+        #[arg(short = 'j', long, value_name = "N")]
+        jobs: Option<usize>,
+        /// Write no plots.
+        #[arg(long)]
+        no_plots: bool,
+    },
     /// Rewrite `.dr` files in the canonical layout (comments kept).
     Fmt {
         files: Vec<PathBuf>,
@@ -200,6 +218,19 @@ pub fn main() -> ExitCode {
             trace: trace.as_ref(),
             json,
             plugins: &plugins,
+        }),
+        Command::Campaign {
+            file,
+            out_dir,
+            max_runs,
+            jobs,
+            no_plots,
+        } => campaign::run(&campaign::CampaignArgs {
+            file: &file,
+            out_dir: out_dir.as_ref(),
+            max_runs,
+            jobs,
+            no_plots,
         }),
         Command::Fmt { files, check } => fmt::run(&files, check),
         Command::Compile {

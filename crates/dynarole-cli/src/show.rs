@@ -348,26 +348,7 @@ fn south_half(
 }
 
 /// PNG bytes of an SVG document. Text needs a system font; without one the shapes still draw.
+/// (Shared with the campaign plots.)
 fn rasterise(svg: &str) -> Result<Vec<u8>, String> {
-    let mut options = resvg::usvg::Options::default();
-    let fonts = options.fontdb_mut();
-    fonts.load_system_fonts();
-    // `sans-serif` maps to Arial by default; use a sans face that is actually installed.
-    let family = fonts
-        .faces()
-        .flat_map(|f| f.families.iter().map(|(name, _)| name.clone()))
-        .find(|n| n.contains("Sans"));
-    if let Some(family) = family {
-        fonts.set_sans_serif_family(family);
-    }
-    let tree = resvg::usvg::Tree::from_str(svg, &options).map_err(|e| e.to_string())?;
-    let size = tree.size().to_int_size();
-    let mut pixmap =
-        resvg::tiny_skia::Pixmap::new(size.width(), size.height()).ok_or("empty picture")?;
-    resvg::render(
-        &tree,
-        resvg::tiny_skia::Transform::default(),
-        &mut pixmap.as_mut(),
-    );
-    pixmap.encode_png().map_err(|e| e.to_string())
+    dynarole_campaign::rasterise_svg(svg)
 }

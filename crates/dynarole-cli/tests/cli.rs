@@ -559,3 +559,35 @@ fn the_paper_protocol_as_it_is() {
         );
     }
 }
+
+#[test]
+fn campaign_writes_runs_summary_and_plots_and_resumes() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli-campaign");
+    let _ = std::fs::remove_dir_all(&dir);
+    let dir_arg = dir.to_str().expect("path");
+    let first = dynarole(&[
+        "campaign",
+        "examples/campaigns/smoke.toml",
+        "-o",
+        dir_arg,
+        "--max-runs",
+        "2",
+    ]);
+    assert_eq!(first.status.code(), Some(0), "{}", text(&first.stderr));
+    let partial = std::fs::read_to_string(dir.join("runs.csv")).expect("runs.csv");
+    assert_eq!(
+        partial.lines().count(),
+        3,
+        "a header and two runs:\n{partial}"
+    );
+    let rest = dynarole(&["campaign", "examples/campaigns/smoke.toml", "-o", dir_arg]);
+    assert_eq!(rest.status.code(), Some(0), "{}", text(&rest.stderr));
+    let runs = std::fs::read_to_string(dir.join("runs.csv")).expect("runs.csv");
+    assert!(
+        runs.starts_with(&partial),
+        "resuming keeps what was recorded"
+    );
+    assert!(runs.lines().count() > 3);
+    assert!(dir.join("summary.csv").is_file());
+    assert!(dir.join("success-loss.svg").is_file() && dir.join("success-loss.png").is_file());
+}

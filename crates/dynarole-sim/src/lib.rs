@@ -146,6 +146,12 @@ impl Simulator {
         Ok(loaded)
     }
 
+    /// Bytes of one module's C context (`dr_sim_module_size()`; the engine rounds it up to
+    /// whole 8-byte words), building the C for `preset` if needed.
+    pub fn module_context_bytes(&self, preset: Preset) -> Result<usize, SimError> {
+        Ok(self.library(preset)?.entry.module_size)
+    }
+
     /// Where the build for `preset` lives (building it if needed), and whether it was found
     /// in the cache.
     pub fn build_directory(&self, preset: Preset) -> Result<(std::path::PathBuf, bool), SimError> {

@@ -19,6 +19,10 @@ use std::sync::Arc;
 pub const STEP_US: u64 = 5_000;
 /// Bytes of non-volatile storage per module (the ATmega128's EEPROM).
 const NV_BYTES: usize = 4096;
+/// What `dr_hal_id` answers for a module without an ID (or with one that does not fit the
+/// runtime's 16 bits): the last 16-bit value, so that no label `M0` to `M65534` names it and
+/// an unlabelled module never takes module 0's role (it did when this was 0).
+pub const NO_ID: u16 = 0xFFFF;
 /// Width of the trace's state column (padded; a longer description widens its line).
 pub const STATE_COLUMN: usize = 28;
 
@@ -77,6 +81,8 @@ pub struct Module {
     pub powered: bool,
     pub power_on_at: u64,
     pub generation: u64,
+    /// The storage up to the last byte ever written (at most NV_BYTES): bytes beyond it have
+    /// never been written and read as 0xFF.
     pub nv: Vec<u8>,
     /// Statements started since the last time all were finished (what op_status reports on).
     pub waiting: Vec<usize>,
@@ -151,6 +157,9 @@ pub struct State {
     /// only when there is a trace).
     pub describer: Option<Describer>,
     pub first_finished: Option<u64>,
+    /// Modules that have declared the end (`finished_at` set), so that `all_finished`, asked
+    /// after every event, does not walk every module.
+    finished: usize,
 }
 
 /// A uniform draw in [0, 1).
@@ -179,11 +188,14 @@ impl State {
         let modules = (0..view.len())
             .map(|m| Module {
                 name: view.name(m),
-                id: view.id(m).and_then(|i| u16::try_from(i).ok()).unwrap_or(0),
+                id: view
+                    .id(m)
+                    .and_then(|i| u16::try_from(i).ok())
+                    .unwrap_or(NO_ID),
                 powered: false,
                 power_on_at: 0,
                 generation: 0,
-                nv: vec![0xFF; NV_BYTES],
+                nv: Vec::new(),
                 waiting: Vec::new(),
                 failed: false,
                 finished_at: None,
@@ -222,6 +234,7 @@ impl State {
             trace: trace.then(String::new),
             describer: None,
             first_finished: None,
+            finished: 0,
         };
         state.schedule_start(&mut setup);
         state
@@ -460,13 +473,14 @@ impl State {
             return;
         }
         self.modules[m].finished_at = Some(self.now);
+        self.finished += 1;
         self.first_finished.get_or_insert(self.now);
         self.log(Some(m), "finished", "declares the end");
         self.check_end(m);
     }
 
     pub fn all_finished(&self) -> bool {
-        self.modules.iter().all(|m| m.finished_at.is_some())
+        self.finished == self.modules.len()
     }
 
     // ----- HAL answers -----
@@ -523,6 +537,10 @@ impl State {
 
     pub fn nv_write(&mut self, m: usize, addr: u16, data: &[u8]) {
         let nv = &mut self.modules[m].nv;
+        let end = (usize::from(addr) + data.len()).min(NV_BYTES);
+        if nv.len() < end {
+            nv.resize(end, 0xFF);
+        }
         for (k, byte) in data.iter().enumerate() {
             if let Some(slot) = nv.get_mut(usize::from(addr) + k) {
                 *slot = *byte;

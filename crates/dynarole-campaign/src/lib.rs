@@ -1,0 +1,192 @@
+//! dynarole-campaign: a sweep of simulated runs described as data (a TOML campaign file: the
+//! program, the configurations, the protocols, a base scenario and the fault axes), run in
+//! parallel, streamed to `runs.csv` (resumable), summarised in `summary.csv` and plotted.
+//! See `README.md` for the file format and the outputs.
+
+mod exec;
+mod load;
+mod plan;
+mod plot;
+mod results;
+mod spec;
+mod stats;
+
+pub use plan::{Axis, Faults, PlannedRun};
+pub use plot::rasterise_svg;
+pub use results::{Outcome, Row, COLUMNS};
+pub use spec::{CampaignFile, Merge, ProtocolName, ProtocolOptions, Range, SpecError, Sweep};
+pub use stats::{median, summarise, wilson, PointSummary};
+
+use dynarole_core::Diagnostic;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Why a campaign could not run (runs that fail their goal are results, not errors).
+#[derive(Debug)]
+pub enum Error {
+    /// The campaign file is wrong (the error names the field).
+    Spec {
+        path: PathBuf,
+        error: SpecError,
+    },
+    /// The `.dr` file has errors, or a sequence cannot be compiled for a protocol.
+    Diagnostics {
+        path: PathBuf,
+        source: String,
+        diagnostics: Vec<Diagnostic>,
+    },
+    /// A file that could not be read or written.
+    Io(String),
+    /// A configuration, plugin or sequence that does not fit.
+    Input(String),
+    /// The simulator could not build or run.
+    Sim(String),
+    /// `runs.csv` is unreadable or was written by another campaign.
+    Results(String),
+    Plot(String),
+}
+
+impl Error {
+    fn io(path: &Path, e: std::io::Error) -> Error {
+        Error::Io(format!("{}: {e}", path.display()))
+    }
+}
+
+impl std::fmt::Display for Error {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Error::Spec { path, error } => write!(f, "{}: {error}", path.display()),
+            Error::Diagnostics { path, .. } => {
+                write!(f, "{}: the program has errors", path.display())
+            }
+            Error::Io(m) | Error::Input(m) | Error::Sim(m) | Error::Results(m) => f.write_str(m),
+            Error::Plot(m) => write!(f, "cannot draw {m}"),
+        }
+    }
+}
+
+impl std::error::Error for Error {}
+
+/// What `run` was asked to do.
+#[derive(Clone, Debug)]
+pub struct Options {
+    pub campaign: PathBuf,
+    pub out_dir: PathBuf,
+    /// Do at most this many of the runs not yet recorded (then stop, resumable).
+    pub max_runs: Option<u64>,
+    /// Worker threads (default: one per core).
+    pub jobs: Option<usize>,
+    /// Show a progress bar on stderr (it stays hidden when stderr is not a terminal).
+    pub progress: bool,
+    /// Draw the plots (SVG and PNG).
+    pub plots: bool,
+}
+
+/// What a campaign did.
+#[derive(Clone, Debug)]
+pub struct Done {
+    /// Runs in the campaign.
+    pub total: u64,
+    /// Runs found in `runs.csv` at the start.
+    pub already: u64,
+    /// Runs done now.
+    pub ran: u64,
+    /// Every recorded row, by run index.
+    pub rows: Vec<Row>,
+    pub summaries: Vec<PointSummary>,
+    /// `runs.csv`, `summary.csv` and the plots.
+    pub files: Vec<PathBuf>,
+    pub wall_seconds: f64,
+}
+
+/// Runs (or resumes) the campaign described by `options.campaign`, writing into
+/// `options.out_dir`.
+pub fn run(options: &Options) -> Result<Done, Error> {
+    let started = Instant::now();
+    let sources = load::sources(&options.campaign)?;
+    let inputs = load::inputs(&sources)?;
+    let planned = plan::plan(inputs.campaign).map_err(|error| Error::Spec {
+        path: options.campaign.clone(),
+        error,
+    })?;
+    std::fs::create_dir_all(&options.out_dir).map_err(|e| Error::io(&options.out_dir, e))?;
+    let csv_path = options.out_dir.join("runs.csv");
+    let mut rows = recorded(&csv_path, &planned, inputs.campaign)?;
+    let already = rows.len() as u64;
+    let done: std::collections::BTreeSet<u64> = rows.iter().map(|r| r.run).collect();
+    let pending: Vec<PlannedRun> = planned
+        .iter()
+        .filter(|r| !done.contains(&r.index))
+        .take(options.max_runs.map_or(usize::MAX, |n| n as usize))
+        .cloned()
+        .collect();
+    if !pending.is_empty() {
+        exec::prepare(&inputs)?;
+    }
+    let sink = results::Sink::open(&csv_path)?;
+    let new = exec::run_all(&inputs, &pending, sink, options.jobs, options.progress)?;
+    let ran = new.len() as u64;
+    rows.extend(new);
+    rows.sort_by_key(|r| r.run);
+    let summaries = summarise(&rows);
+    let mut files = vec![csv_path, write_summary(&summaries, &options.out_dir)?];
+    if options.plots {
+        files.extend(plot::write_all(&summaries, &options.out_dir)?);
+    }
+    Ok(Done {
+        total: planned.len() as u64,
+        already,
+        ran,
+        rows,
+        summaries,
+        files,
+        wall_seconds: started.elapsed().as_secs_f64(),
+    })
+}
+
+/// The rows already in `runs.csv`, each checked against the planned run of its index.
+fn recorded(
+    path: &Path,
+    planned: &[PlannedRun],
+    campaign: &CampaignFile,
+) -> Result<Vec<Row>, Error> {
+    let rows = results::read_existing(path)?;
+    let preset = campaign.scenario.network.preset.name();
+    let timeout = campaign.scenario.timeout_ms;
+    let mut seen = std::collections::BTreeSet::new();
+    for row in &rows {
+        let matches = usize::try_from(row.run)
+            .ok()
+            .and_then(|i| planned.get(i))
+            .is_some_and(|run| row.is_result_of(run, preset, timeout));
+        if !matches {
+            return Err(Error::Results(format!(
+                "{}: run {} was recorded with other parameters than this campaign's; \
+                 write to another directory (-o) or remove the file",
+                path.display(),
+                row.run
+            )));
+        }
+        if !seen.insert(row.run) {
+            return Err(Error::Results(format!(
+                "{}: run {} is recorded twice",
+                path.display(),
+                row.run
+            )));
+        }
+    }
+    Ok(rows)
+}
+
+fn write_summary(summaries: &[PointSummary], dir: &Path) -> Result<PathBuf, Error> {
+    let path = dir.join("summary.csv");
+    let mut writer = csv::Writer::from_path(&path)
+        .map_err(|e| Error::Results(format!("{}: {e}", path.display())))?;
+    for s in summaries {
+        writer
+            .serialize(s)
+            .map_err(|e| Error::Results(format!("{}: {e}", path.display())))?;
+    }
+    writer.flush().map_err(|e| Error::io(&path, e))?;
+    Ok(path)
+}

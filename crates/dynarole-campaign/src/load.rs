@@ -1,0 +1,143 @@
+//! Reading a campaign's inputs: the campaign file, the `.dr` program (built-in robots, the
+//! campaign's plugins, and a `NAME.robot.toml` beside the source), the sequences'
+//! plans and the configurations.
+
+use crate::spec::{CampaignFile, Merge, ProtocolName};
+use crate::Error;
+use dynarole_codegen::{CompileOptions, PaperMerge, Protocol};
+use dynarole_core::expand::Plan;
+use dynarole_core::{Program, RobotApi, RobotRegistry};
+use dynarole_world::Configuration;
+use std::path::Path;
+
+/// The files a campaign reads, parsed (the program borrows the syntax tree from here).
+pub struct Sources {
+    pub path: std::path::PathBuf,
+    pub campaign: CampaignFile,
+    pub source: String,
+    pub file: dynarole_core::ast::SourceFile,
+    syntax: Vec<dynarole_core::Diagnostic>,
+    pub start: Configuration,
+    pub expect: Option<Configuration>,
+}
+
+/// Everything the runs share (all `Sync`: each worker builds its own simulators from it).
+pub struct Inputs<'a> {
+    pub campaign: &'a CampaignFile,
+    pub source: &'a str,
+    pub program: Program<'a>,
+    pub plans: Vec<Plan>,
+    pub start: &'a Configuration,
+    pub expect: Option<&'a Configuration>,
+}
+
+fn read(path: &Path) -> Result<String, Error> {
+    std::fs::read_to_string(path).map_err(|e| Error::io(path, e))
+}
+
+/// Reads the campaign file and everything it names.
+pub fn sources(path: &Path) -> Result<Sources, Error> {
+    let text = read(path)?;
+    let dir = path.parent().unwrap_or(Path::new("."));
+    let campaign = CampaignFile::parse(&text, dir).map_err(|e| Error::Spec {
+        path: path.to_path_buf(),
+        error: e,
+    })?;
+    let source = read(&campaign.file)?;
+    let parsed = dynarole_core::parse(&source);
+    let start = configuration(&campaign.from)?;
+    let expect = campaign.expect.as_deref().map(configuration).transpose()?;
+    Ok(Sources {
+        path: path.to_path_buf(),
+        campaign,
+        source,
+        file: parsed.file,
+        syntax: parsed.diagnostics,
+        start,
+        expect,
+    })
+}
+
+/// Checks the program and expands its sequences.
+pub fn inputs(sources: &Sources) -> Result<Inputs<'_>, Error> {
+    let campaign = &sources.campaign;
+    let program = program(sources)?;
+    let mut plans = Vec::new();
+    for name in &campaign.sequences {
+        let plan = program.expand(name).ok_or_else(|| {
+            Error::Input(format!(
+                "{}: sequences: no sequence named `{name}` in {}",
+                sources.path.display(),
+                campaign.file.display()
+            ))
+        })?;
+        plans.push(plan);
+    }
+    Ok(Inputs {
+        campaign,
+        source: &sources.source,
+        program,
+        plans,
+        start: &sources.start,
+        expect: sources.expect.as_ref(),
+    })
+}
+
+fn configuration(path: &Path) -> Result<Configuration, Error> {
+    Configuration::from_json_str(&read(path)?)
+        .map_err(|e| Error::Input(format!("{}: {e}", path.display())))
+}
+
+fn program(sources: &Sources) -> Result<Program<'_>, Error> {
+    let campaign = &sources.campaign;
+    let mut registry = RobotRegistry::builtin();
+    for path in &campaign.plugins {
+        registry.add(plugin(path)?);
+    }
+    let robot = sources.file.items.iter().find_map(|item| match item {
+        dynarole_core::ast::Item::Robot(decl) => Some(decl.name.name.as_str()),
+        _ => None,
+    });
+    if let Some(name) = robot {
+        let beside = campaign.file.with_file_name(format!("{name}.robot.toml"));
+        if registry.get(name).is_none() && beside.is_file() {
+            registry.add(plugin(&beside)?);
+        }
+    }
+    let (program, mut diagnostics) = dynarole_core::analyze(&sources.file, &registry);
+    diagnostics.extend(sources.syntax.iter().cloned());
+    diagnostics.sort_by_key(|d| d.span);
+    match program.filter(|_| !dynarole_core::diagnostic::has_errors(&diagnostics)) {
+        Some(program) => Ok(program),
+        None => Err(Error::Diagnostics {
+            path: campaign.file.clone(),
+            source: sources.source.clone(),
+            diagnostics,
+        }),
+    }
+}
+
+fn plugin(path: &Path) -> Result<RobotApi, Error> {
+    RobotApi::from_toml(&read(path)?).map_err(|e| Error::Input(format!("{}: {e}", path.display())))
+}
+
+/// The back-end's options for `protocol` and the campaign's `[options]`.
+pub fn compile_options(campaign: &CampaignFile, protocol: ProtocolName) -> CompileOptions {
+    let o = &campaign.options;
+    CompileOptions {
+        protocol: match protocol {
+            ProtocolName::Lattice => Protocol::Lattice,
+            ProtocolName::Paper => Protocol::Paper,
+        },
+        merge: match o.merge {
+            Merge::Printed => PaperMerge::Printed,
+            Merge::Java => PaperMerge::Java,
+            Merge::CPort => PaperMerge::CPort,
+        },
+        single_step_handover: o.single_step_handover,
+        restart_pending: o.restart_pending,
+        epochs: 1,
+        no_nv: o.no_nv,
+        name: campaign.sequences.join(" + "),
+    }
+}

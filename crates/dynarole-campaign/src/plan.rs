@@ -1,0 +1,150 @@
+//! The runs of a campaign, in a fixed order: axis by axis (loss, dead links, resets), value by
+//! value, protocol by protocol, seed by seed. A run's index is its place in this order, and a
+//! run depends only on its parameters and its seed.
+
+use crate::spec::{CampaignFile, ProtocolName, SpecError};
+use dynarole_sim::{RandomResets, Scenario};
+
+/// A swept fault axis.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Axis {
+    Loss,
+    DeadLinkP,
+    ResetProbability,
+}
+
+impl Axis {
+    pub const ALL: [Axis; 3] = [Axis::Loss, Axis::DeadLinkP, Axis::ResetProbability];
+
+    /// The name in the campaign file and in the CSV.
+    pub fn name(self) -> &'static str {
+        match self {
+            Axis::Loss => "loss",
+            Axis::DeadLinkP => "dead_link_p",
+            Axis::ResetProbability => "reset_probability",
+        }
+    }
+
+    /// A label for plots.
+    pub fn label(self) -> &'static str {
+        match self {
+            Axis::Loss => "packet loss probability",
+            Axis::DeadLinkP => "dead-link probability",
+            Axis::ResetProbability => "reset probability per check",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<Axis> {
+        Axis::ALL.into_iter().find(|a| a.name() == name)
+    }
+}
+
+/// The fault parameters of one point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Faults {
+    pub loss: f64,
+    pub dead_link_p: f64,
+    pub dead_loss: f64,
+    /// (interval in ms, probability) of random resets.
+    pub resets: Option<(u64, f64)>,
+}
+
+/// One run to do.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PlannedRun {
+    pub index: u64,
+    pub axis: Axis,
+    pub value: f64,
+    pub protocol: ProtocolName,
+    pub seed: u64,
+    pub faults: Faults,
+}
+
+impl PlannedRun {
+    /// The base scenario with this run's faults.
+    pub fn scenario(&self, base: &Scenario) -> Scenario {
+        let mut s = base.clone();
+        s.network.loss = self.faults.loss;
+        s.network.dead_link_p = self.faults.dead_link_p;
+        s.network.dead_loss = self.faults.dead_loss;
+        s.random_resets = self
+            .faults
+            .resets
+            .map(|(interval_ms, probability)| RandomResets {
+                interval_ms,
+                probability,
+            });
+        s
+    }
+}
+
+/// Every run of the campaign, in index order.
+pub fn plan(campaign: &CampaignFile) -> Result<Vec<PlannedRun>, SpecError> {
+    let mut runs = Vec::new();
+    for axis in Axis::ALL {
+        for (value, faults) in points(campaign, axis)? {
+            for &protocol in &campaign.protocols {
+                for k in 0..campaign.seeds {
+                    runs.push(PlannedRun {
+                        index: runs.len() as u64,
+                        axis,
+                        value,
+                        protocol,
+                        seed: campaign.first_seed.wrapping_add(k),
+                        faults,
+                    });
+                }
+            }
+        }
+    }
+    Ok(runs)
+}
+
+/// The values of `axis` and the faults at each (none when the axis is not swept).
+fn points(campaign: &CampaignFile, axis: Axis) -> Result<Vec<(f64, Faults)>, SpecError> {
+    let sweep = &campaign.sweep;
+    let network = &campaign.scenario.network;
+    let base = Faults {
+        loss: network.loss,
+        dead_link_p: network.dead_link_p,
+        dead_loss: network.dead_loss,
+        resets: campaign
+            .scenario
+            .random_resets
+            .as_ref()
+            .map(|r| (r.interval_ms, r.probability)),
+    };
+    let range = match axis {
+        Axis::Loss => &sweep.loss,
+        Axis::DeadLinkP => &sweep.dead_link_p,
+        Axis::ResetProbability => &sweep.reset_probability,
+    };
+    let Some(range) = range else {
+        return Ok(Vec::new());
+    };
+    let values = range.values(&format!("sweep.{}", axis.name()))?;
+    Ok(values
+        .into_iter()
+        .map(|v| (v, faults_at(campaign, axis, v, base)))
+        .collect())
+}
+
+fn faults_at(campaign: &CampaignFile, axis: Axis, value: f64, base: Faults) -> Faults {
+    let sweep = &campaign.sweep;
+    match axis {
+        Axis::Loss => Faults {
+            loss: value,
+            ..base
+        },
+        Axis::DeadLinkP => Faults {
+            loss: sweep.dead_background_loss.unwrap_or(base.loss),
+            dead_link_p: value,
+            dead_loss: sweep.dead_loss.unwrap_or(base.dead_loss),
+            ..base
+        },
+        Axis::ResetProbability => Faults {
+            resets: Some((sweep.reset_interval_ms.unwrap_or(1000), value)),
+            ..base
+        },
+    }
+}

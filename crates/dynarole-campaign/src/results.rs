@@ -1,0 +1,239 @@
+//! `runs.csv`: one row per run (its parameters, seed and results), appended and flushed as
+//! runs finish, and read back to resume an interrupted campaign.
+
+use crate::plan::PlannedRun;
+use crate::Error;
+use dynarole_sim::Report;
+use serde::{Deserialize, Serialize};
+use std::fs::{File, OpenOptions};
+use std::io::Write;
+use std::path::Path;
+
+/// How a run ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Outcome {
+    Success,
+    /// No module declared the end before the timeout.
+    Timeout,
+    /// The end was declared, but the final configuration is not the expected one.
+    WrongConfiguration,
+    /// An S1, S2 or S3 violation (whatever else happened).
+    Violation,
+    /// The end was declared with statements not done and no violation (not expected).
+    Incomplete,
+}
+
+impl Outcome {
+    fn of(report: &Report) -> Outcome {
+        if report.success {
+            Outcome::Success
+        } else if !report.violations.is_empty() {
+            Outcome::Violation
+        } else if report.completion_ms.is_none() {
+            Outcome::Timeout
+        } else if report.configuration_matches == Some(false) {
+            Outcome::WrongConfiguration
+        } else {
+            Outcome::Incomplete
+        }
+    }
+}
+
+/// One line of `runs.csv` (the columns, in order).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Row {
+    pub run: u64,
+    pub axis: String,
+    pub value: f64,
+    pub protocol: String,
+    pub preset: String,
+    pub seed: u64,
+    pub loss: f64,
+    pub dead_link_p: f64,
+    pub dead_loss: f64,
+    pub reset_interval_ms: Option<u64>,
+    pub reset_probability: Option<f64>,
+    pub timeout_ms: u64,
+    pub outcome: Outcome,
+    pub completion_ms: Option<f64>,
+    pub end_ms: f64,
+    pub statements_done: usize,
+    pub packets_sent: u64,
+    pub packets_lost: u64,
+    pub packets_dropped: u64,
+    pub s1: usize,
+    pub s2: usize,
+    pub s3: usize,
+    pub resets: u64,
+}
+
+/// The column names, in order.
+pub const COLUMNS: [&str; 23] = [
+    "run",
+    "axis",
+    "value",
+    "protocol",
+    "preset",
+    "seed",
+    "loss",
+    "dead_link_p",
+    "dead_loss",
+    "reset_interval_ms",
+    "reset_probability",
+    "timeout_ms",
+    "outcome",
+    "completion_ms",
+    "end_ms",
+    "statements_done",
+    "packets_sent",
+    "packets_lost",
+    "packets_dropped",
+    "s1",
+    "s2",
+    "s3",
+    "resets",
+];
+
+impl Row {
+    /// The row of a finished run.
+    pub fn new(run: &PlannedRun, preset: &str, timeout_ms: u64, report: &Report) -> Row {
+        let mut row = Row::parameters(run, preset, timeout_ms);
+        let c = &report.counters;
+        row.outcome = Outcome::of(report);
+        row.completion_ms = report.completion_ms;
+        row.end_ms = report.end_ms;
+        row.statements_done = report.statements_done;
+        row.packets_sent = c.packets_sent;
+        row.packets_lost = c.lost + c.dead;
+        row.packets_dropped = c.dropped();
+        row.s1 = report.count("S1");
+        row.s2 = report.count("S2");
+        row.s3 = report.count("S3");
+        row.resets = c.resets;
+        row
+    }
+
+    /// The parameter columns of `run`, with empty results.
+    fn parameters(run: &PlannedRun, preset: &str, timeout_ms: u64) -> Row {
+        Row {
+            run: run.index,
+            axis: run.axis.name().into(),
+            value: run.value,
+            protocol: run.protocol.name().into(),
+            preset: preset.into(),
+            seed: run.seed,
+            loss: run.faults.loss,
+            dead_link_p: run.faults.dead_link_p,
+            dead_loss: run.faults.dead_loss,
+            reset_interval_ms: run.faults.resets.map(|r| r.0),
+            reset_probability: run.faults.resets.map(|r| r.1),
+            timeout_ms,
+            outcome: Outcome::Incomplete,
+            completion_ms: None,
+            end_ms: 0.0,
+            statements_done: 0,
+            packets_sent: 0,
+            packets_lost: 0,
+            packets_dropped: 0,
+            s1: 0,
+            s2: 0,
+            s3: 0,
+            resets: 0,
+        }
+    }
+
+    /// Whether this recorded row is a result of `run` (same index and parameters).
+    pub fn is_result_of(&self, run: &PlannedRun, preset: &str, timeout_ms: u64) -> bool {
+        let p = Row::parameters(run, preset, timeout_ms);
+        (
+            self.run,
+            &self.axis,
+            self.value,
+            &self.protocol,
+            &self.preset,
+            self.seed,
+        ) == (p.run, &p.axis, p.value, &p.protocol, &p.preset, p.seed)
+            && (self.loss, self.dead_link_p, self.dead_loss) == (p.loss, p.dead_link_p, p.dead_loss)
+            && (
+                self.reset_interval_ms,
+                self.reset_probability,
+                self.timeout_ms,
+            ) == (p.reset_interval_ms, p.reset_probability, p.timeout_ms)
+    }
+}
+
+/// Reads the rows already in `path` (none if it does not exist). A last line cut short by an
+/// interruption (no final newline) is removed from the file.
+pub fn read_existing(path: &Path) -> Result<Vec<Row>, Error> {
+    let text = match std::fs::read_to_string(path) {
+        Ok(t) => t,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Vec::new()),
+        Err(e) => return Err(Error::io(path, e)),
+    };
+    let complete = match text.rfind('\n') {
+        Some(end) => &text[..=end],
+        None => "",
+    };
+    if complete.len() != text.len() {
+        let file = OpenOptions::new()
+            .write(true)
+            .open(path)
+            .map_err(|e| Error::io(path, e))?;
+        file.set_len(complete.len() as u64)
+            .map_err(|e| Error::io(path, e))?;
+    }
+    parse_rows(complete, path)
+}
+
+fn parse_rows(text: &str, path: &Path) -> Result<Vec<Row>, Error> {
+    if text.is_empty() {
+        return Ok(Vec::new());
+    }
+    let mut reader = csv::Reader::from_reader(text.as_bytes());
+    let headers = reader
+        .headers()
+        .map_err(|e| Error::Results(format!("{}: {e}", path.display())))?;
+    if headers.iter().ne(COLUMNS) {
+        return Err(Error::Results(format!(
+            "{}: the columns are not those of this version of dynarole campaign; \
+             write to another directory (-o)",
+            path.display()
+        )));
+    }
+    reader
+        .deserialize()
+        .map(|r| r.map_err(|e| Error::Results(format!("{}: {e}", path.display()))))
+        .collect()
+}
+
+/// Appends rows to `runs.csv`, flushing each.
+pub struct Sink {
+    writer: csv::Writer<File>,
+}
+
+impl Sink {
+    /// Opens `path` for appending; writes the header when the file is new or empty.
+    pub fn open(path: &Path) -> Result<Sink, Error> {
+        let mut file = OpenOptions::new()
+            .create(true)
+            .append(true)
+            .open(path)
+            .map_err(|e| Error::io(path, e))?;
+        let empty = file.metadata().map_err(|e| Error::io(path, e))?.len() == 0;
+        if empty {
+            writeln!(file, "{}", COLUMNS.join(",")).map_err(|e| Error::io(path, e))?;
+        }
+        let writer = csv::WriterBuilder::new()
+            .has_headers(false)
+            .from_writer(file);
+        Ok(Sink { writer })
+    }
+
+    pub fn write(&mut self, row: &Row) -> Result<(), Error> {
+        self.writer
+            .serialize(row)
+            .and_then(|()| self.writer.flush().map_err(csv::Error::from))
+            .map_err(|e| Error::Results(format!("cannot write runs.csv: {e}")))
+    }
+}

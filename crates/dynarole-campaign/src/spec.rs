@@ -1,0 +1,277 @@
+//! The campaign file (TOML): what to run, the base scenario, the fault axes to sweep. Every
+//! field is documented in the crate's `README.md`; unknown fields are errors, and every error
+//! names its field.
+
+use dynarole_sim::{Preset, Scenario};
+use serde::Deserialize;
+use std::path::{Path, PathBuf};
+
+/// The most points one axis may have (a typo in `step` should not plan a billion runs).
+const MAX_POINTS_PER_AXIS: usize = 10_000;
+
+/// A protocol to compare.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ProtocolName {
+    Lattice,
+    Paper,
+}
+
+impl ProtocolName {
+    pub fn name(self) -> &'static str {
+        match self {
+            ProtocolName::Lattice => "lattice",
+            ProtocolName::Paper => "paper",
+        }
+    }
+}
+
+/// `{ from, to, step }`, both ends included.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Range {
+    pub from: f64,
+    pub to: f64,
+    pub step: f64,
+}
+
+/// The fault axes. Each axis is swept on its own (one family of points), the others staying
+/// at the base scenario's values, as in the original batches.
+#[derive(Clone, Debug, Default, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Sweep {
+    pub loss: Option<Range>,
+    pub dead_link_p: Option<Range>,
+    /// Loss on every channel during the dead-link sweep (default: the base scenario's).
+    pub dead_background_loss: Option<f64>,
+    /// Loss on a dead channel during the dead-link sweep (default: the base scenario's).
+    pub dead_loss: Option<f64>,
+    pub reset_probability: Option<Range>,
+    /// Required with `reset_probability`.
+    pub reset_interval_ms: Option<u64>,
+}
+
+/// The campaign file as written.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CampaignFile {
+    pub file: PathBuf,
+    #[serde(default)]
+    pub plugins: Vec<PathBuf>,
+    pub sequences: Vec<String>,
+    pub from: PathBuf,
+    pub expect: Option<PathBuf>,
+    pub protocols: Vec<ProtocolName>,
+    pub preset: Option<Preset>,
+    pub timeout_ms: Option<u64>,
+    pub seeds: u64,
+    #[serde(default)]
+    pub first_seed: u64,
+    #[serde(default)]
+    pub options: ProtocolOptions,
+    #[serde(default)]
+    pub scenario: Scenario,
+    #[serde(default)]
+    pub sweep: Sweep,
+}
+
+/// An error in the campaign file, naming the field.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SpecError {
+    pub field: String,
+    pub message: String,
+}
+
+impl std::fmt::Display for SpecError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if self.field.is_empty() {
+            f.write_str(&self.message)
+        } else {
+            write!(f, "{}: {}", self.field, self.message)
+        }
+    }
+}
+
+fn error(field: &str, message: impl Into<String>) -> SpecError {
+    SpecError {
+        field: field.into(),
+        message: message.into(),
+    }
+}
+
+impl CampaignFile {
+    /// Parses and checks a campaign; relative paths are made relative to `dir` (the
+    /// campaign file's directory).
+    pub fn parse(text: &str, dir: &Path) -> Result<CampaignFile, SpecError> {
+        let raw: toml::Table = toml::from_str(text).map_err(|e| error("", one_line(&e)))?;
+        reject_overridden(&raw)?;
+        let mut campaign: CampaignFile =
+            toml::from_str(text).map_err(|e| error("", one_line(&e)))?;
+        if let Some(preset) = campaign.preset {
+            campaign.scenario.network.preset = preset;
+        }
+        if let Some(timeout) = campaign.timeout_ms {
+            campaign.scenario.timeout_ms = timeout;
+        }
+        campaign.check()?;
+        campaign.resolve_paths(dir);
+        Ok(campaign)
+    }
+
+    fn check(&self) -> Result<(), SpecError> {
+        if self.sequences.is_empty() {
+            return Err(error("sequences", "name at least one sequence"));
+        }
+        if self.protocols.is_empty() {
+            return Err(error("protocols", "name at least one protocol"));
+        }
+        let mut sorted = self.protocols.clone();
+        sorted.sort();
+        sorted.dedup();
+        if sorted.len() != self.protocols.len() {
+            return Err(error("protocols", "a protocol is listed twice"));
+        }
+        if self.seeds == 0 {
+            return Err(error("seeds", "must be above 0"));
+        }
+        self.scenario
+            .check()
+            .map_err(|e| error("scenario", e.to_string()))?;
+        self.sweep.check()
+    }
+
+    fn resolve_paths(&mut self, dir: &Path) {
+        let join = |p: &mut PathBuf| {
+            if p.is_relative() {
+                *p = dir.join(&*p);
+            }
+        };
+        join(&mut self.file);
+        join(&mut self.from);
+        if let Some(e) = &mut self.expect {
+            join(e);
+        }
+        self.plugins.iter_mut().for_each(join);
+    }
+}
+
+/// `timeout_ms` and `preset` are campaign fields; the same in `[scenario]` would be ambiguous.
+fn reject_overridden(raw: &toml::Table) -> Result<(), SpecError> {
+    let scenario = raw.get("scenario").and_then(|s| s.as_table());
+    if scenario.is_some_and(|s| s.contains_key("timeout_ms")) {
+        return Err(error(
+            "scenario.timeout_ms",
+            "set timeout_ms at the top level of the campaign",
+        ));
+    }
+    let network = scenario
+        .and_then(|s| s.get("network"))
+        .and_then(|n| n.as_table());
+    if network.is_some_and(|n| n.contains_key("preset")) {
+        return Err(error(
+            "scenario.network.preset",
+            "set preset at the top level of the campaign",
+        ));
+    }
+    Ok(())
+}
+
+impl Sweep {
+    fn check(&self) -> Result<(), SpecError> {
+        if self.loss.is_none() && self.dead_link_p.is_none() && self.reset_probability.is_none() {
+            return Err(error(
+                "sweep",
+                "no axis to sweep: give loss, dead_link_p or reset_probability",
+            ));
+        }
+        let axes = [
+            ("sweep.loss", &self.loss),
+            ("sweep.dead_link_p", &self.dead_link_p),
+            ("sweep.reset_probability", &self.reset_probability),
+        ];
+        for (field, range) in axes {
+            if let Some(r) = range {
+                r.values(field)?;
+            }
+        }
+        probability("sweep.dead_background_loss", self.dead_background_loss)?;
+        probability("sweep.dead_loss", self.dead_loss)?;
+        match (&self.reset_probability, self.reset_interval_ms) {
+            (Some(_), None) => Err(error(
+                "sweep.reset_interval_ms",
+                "required with reset_probability",
+            )),
+            (_, Some(0)) => Err(error("sweep.reset_interval_ms", "must be above 0")),
+            (None, Some(_)) => Err(error(
+                "sweep.reset_interval_ms",
+                "given without reset_probability",
+            )),
+            _ => Ok(()),
+        }
+    }
+}
+
+fn probability(field: &str, p: Option<f64>) -> Result<(), SpecError> {
+    match p {
+        Some(p) if !(0.0..=1.0).contains(&p) => {
+            Err(error(field, format!("{p} is not a probability (0 to 1)")))
+        }
+        _ => Ok(()),
+    }
+}
+
+impl Range {
+    /// The values from `from` to `to` (included, within a millionth of a step) by `step`,
+    /// rounded to 9 decimals so that 0.1 + 0.05 is written 0.15. All are probabilities.
+    pub fn values(&self, field: &str) -> Result<Vec<f64>, SpecError> {
+        if !(self.step > 0.0 && self.step.is_finite()) {
+            return Err(error(&format!("{field}.step"), "must be above 0"));
+        }
+        if self.from.is_nan() || self.to.is_nan() || self.to < self.from {
+            return Err(error(&format!("{field}.to"), "must not be below from"));
+        }
+        let count = ((self.to - self.from) / self.step + 1e-6).floor() + 1.0;
+        if count > MAX_POINTS_PER_AXIS as f64 {
+            return Err(error(
+                &format!("{field}.step"),
+                format!("more than {MAX_POINTS_PER_AXIS} points"),
+            ));
+        }
+        let values: Vec<f64> = (0..count as usize)
+            .map(|i| ((self.from + i as f64 * self.step) * 1e9).round() / 1e9)
+            .collect();
+        for v in &values {
+            probability(field, Some(*v))?;
+        }
+        Ok(values)
+    }
+}
+
+/// toml's message names the key and the line; keep it on one line.
+fn one_line(e: &toml::de::Error) -> String {
+    e.to_string()
+        .lines()
+        .filter(|l| !l.trim().is_empty())
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+/// The paper protocol's merge function (`dynarole simulate --merge`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Merge {
+    Printed,
+    Java,
+    #[default]
+    CPort,
+}
+
+/// Protocol options, as `dynarole simulate`'s flags.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ProtocolOptions {
+    pub merge: Merge,
+    pub single_step_handover: bool,
+    pub restart_pending: bool,
+    pub no_nv: bool,
+}

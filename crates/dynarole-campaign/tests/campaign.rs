@@ -1,0 +1,153 @@
+//! End-to-end tests on `examples/campaigns/smoke.toml`: one row per run with the right columns,
+//! a resumed campaign gives the rows of an uninterrupted one, plots are written, and errors in
+//! the campaign file name their field.
+
+use dynarole_campaign::{run, CampaignFile, Done, Options, COLUMNS};
+use std::path::{Path, PathBuf};
+
+fn smoke() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/campaigns/smoke.toml")
+}
+
+fn options(out: &Path, max_runs: Option<u64>, plots: bool) -> Options {
+    Options {
+        campaign: smoke(),
+        out_dir: out.to_path_buf(),
+        max_runs,
+        jobs: Some(2),
+        progress: false,
+        plots,
+    }
+}
+
+fn campaign(out: &Path, max_runs: Option<u64>, plots: bool) -> Done {
+    match run(&options(out, max_runs, plots)) {
+        Ok(done) => done,
+        Err(e) => panic!("campaign failed: {e}"),
+    }
+}
+
+/// The data lines of runs.csv, sorted by run index.
+fn sorted_rows(out: &Path) -> Vec<String> {
+    let text = std::fs::read_to_string(out.join("runs.csv")).expect("runs.csv");
+    let mut lines: Vec<String> = text.lines().skip(1).map(str::to_string).collect();
+    lines.sort_by_key(|l| l.split(',').next().and_then(|n| n.parse::<u64>().ok()));
+    lines
+}
+
+#[test]
+fn one_row_per_run_with_the_columns() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let done = campaign(dir.path(), None, false);
+    // 3 loss levels + 1 dead-link level + 1 reset level, 2 protocols, 2 seeds.
+    assert_eq!(done.total, 20);
+    assert_eq!(done.ran, 20);
+    let text = std::fs::read_to_string(dir.path().join("runs.csv")).expect("runs.csv");
+    let header = text.lines().next().expect("a header");
+    assert_eq!(header, COLUMNS.join(","));
+    let rows = sorted_rows(dir.path());
+    assert_eq!(rows.len(), 20);
+    for (i, row) in rows.iter().enumerate() {
+        assert_eq!(row.split(',').count(), COLUMNS.len(), "{row}");
+        assert!(row.starts_with(&format!("{i},")), "{row}");
+    }
+    assert!(rows.iter().any(|r| r.contains(",success,")));
+    assert!(dir.path().join("summary.csv").is_file());
+}
+
+#[test]
+fn a_resumed_campaign_gives_the_same_rows() {
+    let whole = tempfile::tempdir().expect("temp dir");
+    campaign(whole.path(), None, false);
+    let parts = tempfile::tempdir().expect("temp dir");
+    let first = campaign(parts.path(), Some(7), false);
+    assert_eq!((first.already, first.ran), (0, 7));
+    // An interruption in the middle of a line: the partial line is dropped and redone.
+    let csv = parts.path().join("runs.csv");
+    let mut text = std::fs::read_to_string(&csv).expect("runs.csv");
+    text.truncate(text.len() - 10);
+    std::fs::write(&csv, text).expect("truncate");
+    let second = campaign(parts.path(), Some(5), false);
+    assert_eq!((second.already, second.ran), (6, 5));
+    let third = campaign(parts.path(), None, false);
+    assert_eq!((third.already, third.ran), (11, 9));
+    assert_eq!(sorted_rows(parts.path()), sorted_rows(whole.path()));
+    let again = campaign(parts.path(), None, false);
+    assert_eq!(again.ran, 0);
+}
+
+#[test]
+fn rows_of_another_campaign_are_refused() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    campaign(dir.path(), Some(2), false);
+    let csv = dir.path().join("runs.csv");
+    let text = std::fs::read_to_string(&csv).expect("runs.csv");
+    std::fs::write(&csv, text.replacen(",atron,", ",ussr,", 1)).expect("write");
+    let err = run(&options(dir.path(), None, false)).expect_err("must refuse");
+    assert!(err.to_string().contains("other parameters"), "{err}");
+}
+
+#[test]
+fn plots_are_written() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let done = campaign(dir.path(), None, true);
+    for name in [
+        "success-loss",
+        "success-dead_link_p",
+        "success-reset_probability",
+        "completion-loss",
+        "packets-loss",
+    ] {
+        for ext in ["svg", "png"] {
+            let path = dir.path().join(format!("{name}.{ext}"));
+            let bytes = std::fs::read(&path).expect("plot written");
+            assert!(bytes.len() > 1000, "{}", path.display());
+            assert!(done.files.contains(&path));
+        }
+    }
+}
+
+fn parse_error(text: &str) -> String {
+    match CampaignFile::parse(text, Path::new(".")) {
+        Ok(_) => panic!("accepted: {text}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+const MINIMAL: &str = r#"
+file = "a.dr"
+sequences = ["s"]
+from = "a.json"
+protocols = ["lattice"]
+seeds = 1
+"#;
+
+#[test]
+fn errors_name_the_field() {
+    let bad_step = format!("{MINIMAL}[sweep]\nloss = {{ from = 0.0, to = 0.4, step = 0.0 }}\n");
+    assert!(parse_error(&bad_step).starts_with("sweep.loss.step:"));
+    let unknown =
+        format!("{MINIMAL}colour = 1\n[sweep]\nloss = {{ from = 0.0, to = 0.4, step = 0.1 }}\n");
+    assert!(parse_error(&unknown).contains("unknown field `colour`"));
+    let no_interval =
+        format!("{MINIMAL}[sweep]\nreset_probability = {{ from = 0.0, to = 0.1, step = 0.1 }}\n");
+    assert!(parse_error(&no_interval).starts_with("sweep.reset_interval_ms:"));
+    assert!(parse_error(MINIMAL).starts_with("sweep:"));
+    let beyond = format!("{MINIMAL}[sweep]\nloss = {{ from = 0.5, to = 1.5, step = 0.5 }}\n");
+    assert!(parse_error(&beyond).starts_with("sweep.loss:"));
+    let both = format!("{MINIMAL}[scenario]\ntimeout_ms = 5\n[sweep]\nloss = {{ from = 0.0, to = 0.0, step = 1.0 }}\n");
+    assert!(parse_error(&both).starts_with("scenario.timeout_ms:"));
+}
+
+#[test]
+fn ranges_include_their_end_and_round() {
+    let r = dynarole_campaign::Range {
+        from: 0.0,
+        to: 0.4,
+        step: 0.05,
+    };
+    let values = r.values("loss").expect("values");
+    assert_eq!(values.len(), 9);
+    assert_eq!(values.get(3), Some(&0.15));
+    assert_eq!(values.last(), Some(&0.4));
+}

@@ -1,0 +1,328 @@
+//! Scale benchmark: a flat ATRON structure of 1,000, 10,000 and 100,000 modules spreading
+//! one statement's end state from a corner to every module; prints wall time, simulated time,
+//! events, events per wall second, packets and bytes per module (`README.md`, "Figures").
+//!
+//! `cargo bench -p dynarole-sim --bench scale` (ussr at 1,000, 10,000 and 100,000 modules,
+//! atron at 1,000 and 10,000; other sizes as arguments, for every preset of
+//! `DYNAROLE_SCALE_PRESETS`, default `ussr,atron`:
+//! `DYNAROLE_SCALE_PRESETS=atron cargo bench -p dynarole-sim --bench scale -- 100000`). Each
+//! row runs in a fresh process (the benchmark re-runs itself with `--row PRESET N`), so that
+//! its peak RSS is its own.
+//!
+//! The structure is generated in memory: sites (x, 0, z) with x and z of the same parity
+//! (lattice phase (0,0,1)), taken row by row (z, then x) from (0, 0) in a square of side
+//! ceil(sqrt(2N)); NS_BROKEN modules at even-even sites, EW modules at odd-odd ones, every
+//! NS_BROKEN module latched to its EW neighbours exactly as in the paper's "eight"
+//! (`examples/atron/eight.json`, checked first). Only the corner module (0, 0) has an ID (0,
+//! named `M0`): the others have none, so `dr_hal_id` answers 0xFFFF for them.
+
+use dynarole_codegen::{CompileOptions, PaperMerge, Protocol};
+use dynarole_core::expand::Plan;
+use dynarole_core::{analyze, parse, Program, RobotRegistry};
+use dynarole_replay::RobotWorld;
+use dynarole_sim::{Preset, Run, Scenario, Simulator};
+use dynarole_world::{compare, Configuration};
+use std::collections::{BTreeMap, BTreeSet};
+use std::fmt::Write;
+use std::time::Instant;
+
+const EIGHT: &str = include_str!("../../../examples/atron/eight.json");
+
+/// The one statement: M0 (the corner, NS_BROKEN, latched only on connector 4, in its south
+/// hemisphere) turns its joint a quarter; nothing is attached to the turning half.
+const SOURCE: &str = "robot atron;\n\
+    sequence spread {\n    M0.Joint.rotateFromToBy(0, 108, true, 150);\n}\n";
+
+/// Sizes run by default, per preset: 100,000 modules with the `atron` preset takes about
+/// 5 minutes on its own (random power-on phases make every step touch another module's
+/// memory), so it runs only when asked (`DYNAROLE_SCALE_PRESETS=atron ... -- 100000`).
+const SIZES: [(Preset, &[usize]); 2] = [
+    (Preset::Ussr, &[1_000, 10_000, 100_000]),
+    (Preset::Atron, &[1_000, 10_000]),
+];
+
+/// The connections of a NS_BROKEN module at (x, z): its male connector, the EW neighbour's
+/// offset (dx, dz), and the EW module's female connector (`eight.json`).
+const LATCHES: [(u8, i64, i64, u8); 4] =
+    [(0, 1, -1, 1), (2, -1, -1, 5), (4, 1, 1, 3), (6, -1, 1, 7)];
+
+/// One module of the generated structure.
+struct Site {
+    name: String,
+    id: Option<u32>,
+    x: i64,
+    z: i64,
+}
+
+/// The data-file JSON of a flat structure on `sites` (modules and their latches).
+fn structure_json(name: &str, sites: &[Site]) -> String {
+    let at: BTreeMap<(i64, i64), &str> = sites
+        .iter()
+        .map(|s| ((s.x, s.z), s.name.as_str()))
+        .collect();
+    let mut out = String::with_capacity(sites.len() * 160);
+    let _ = write!(
+        out,
+        "{{\"name\": \"{name}\", \"robot\": \"ATRON\", \"lattice_unit_m\": 0.08, \"modules\": ["
+    );
+    for (k, s) in sites.iter().enumerate() {
+        let separator = if k == 0 { "" } else { "," };
+        let id = s.id.map(|i| format!("\"id\": {i}, ")).unwrap_or_default();
+        let orientation = if s.x.rem_euclid(2) == 0 {
+            "NS_BROKEN"
+        } else {
+            "EW"
+        };
+        let _ = write!(
+            out,
+            "{separator}\n{{\"name\": \"{}\", {id}\"position\": [{}, 0, {}], \"orientation\": \"{orientation}\", \"joint\": 0}}",
+            s.name, s.x, s.z
+        );
+    }
+    out.push_str("\n], \"connections\": [");
+    let mut first = true;
+    for s in sites.iter().filter(|s| s.x.rem_euclid(2) == 0) {
+        for (male, dx, dz, female) in LATCHES {
+            if let Some(other) = at.get(&(s.x + dx, s.z + dz)) {
+                let separator = if first { "" } else { "," };
+                first = false;
+                let _ = write!(
+                    out,
+                    "{separator}\n[\"{}\", {male}, \"{other}\", {female}]",
+                    s.name
+                );
+            }
+        }
+    }
+    out.push_str("\n]}\n");
+    out
+}
+
+/// `n` sites row by row from the corner (0, 0), which is `M0` (ID 0); no other ID.
+fn square(n: usize) -> Vec<Site> {
+    let side = ((2 * n) as f64).sqrt().ceil() as i64;
+    let mut sites = Vec::with_capacity(n);
+    'rows: for z in 0.. {
+        for x in (z % 2..side).step_by(2) {
+            if sites.len() == n {
+                break 'rows;
+            }
+            let (name, id) = if (x, z) == (0, 0) {
+                ("M0".to_string(), Some(0))
+            } else {
+                (format!("s{x}_{z}"), None)
+            };
+            sites.push(Site { name, id, x, z });
+        }
+    }
+    sites
+}
+
+/// A connection without its direction: the two (module, connector) ends, sorted.
+fn unordered(c: &serde_json::Value) -> (String, u64, String, u64) {
+    let name = |k: usize| c[k].as_str().unwrap_or_default().to_string();
+    let conn = |k: usize| c[k].as_u64().unwrap_or(u64::MAX);
+    let (a, b) = ((name(0), conn(1)), (name(2), conn(3)));
+    let ((a, ac), (b, bc)) = if a <= b { (a, b) } else { (b, a) };
+    (a, ac, b, bc)
+}
+
+fn connections(json: &str) -> BTreeSet<(String, u64, String, u64)> {
+    let value: serde_json::Value = serde_json::from_str(json).expect("JSON");
+    value["connections"]
+        .as_array()
+        .expect("connections")
+        .iter()
+        .map(unordered)
+        .collect()
+}
+
+/// The generator, on the eight's seven sites and names, gives the eight's connections (and
+/// the same configuration).
+fn check_against_eight() {
+    let eight: serde_json::Value = serde_json::from_str(EIGHT).expect("eight.json");
+    let sites: Vec<Site> = eight["modules"]
+        .as_array()
+        .expect("modules")
+        .iter()
+        .map(|m| Site {
+            name: m["name"].as_str().expect("name").to_string(),
+            id: m["id"].as_u64().map(|i| i as u32),
+            x: m["position"][0].as_i64().expect("x"),
+            z: m["position"][2].as_i64().expect("z"),
+        })
+        .collect();
+    let generated = structure_json("eight", &sites);
+    assert_eq!(
+        connections(&generated),
+        connections(EIGHT),
+        "the generator does not rebuild eight.json's connections"
+    );
+    let a = Configuration::from_json_str(&generated).expect("generated eight");
+    let b = Configuration::from_json_str(EIGHT).expect("eight.json");
+    compare(&a, &b).expect("the generated eight is eight.json");
+}
+
+fn simulator(program: &Program, plan: &Plan) -> Simulator {
+    let options = CompileOptions {
+        protocol: Protocol::Lattice,
+        merge: PaperMerge::CPort,
+        single_step_handover: false,
+        restart_pending: false,
+        epochs: 1,
+        no_nv: false,
+        name: "scale".into(),
+    };
+    Simulator::new(program, std::slice::from_ref(plan), &options).expect("compiles")
+}
+
+/// The statement is valid on the structure: the replay crate's world does it without refusal
+/// or warning.
+fn check_with_replay(program: &Program, plan: &Plan) {
+    let config = Configuration::from_json_str(&structure_json("check", &square(200))).expect("ok");
+    let mut world = RobotWorld::new(config, &program.robot).expect("world");
+    for statement in plan.statements() {
+        let outcome = world
+            .apply(&program.robot, statement, "M0")
+            .unwrap_or_else(|e| panic!("the replay refuses the statement: {e}"));
+        assert!(outcome.warnings.is_empty(), "{:?}", outcome.warnings);
+    }
+}
+
+/// Peak resident set (VmHWM) in KiB.
+fn peak_kib() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    line.split_whitespace().nth(1)?.parse().ok()
+}
+
+/// Resets VmHWM to the current RSS (Linux 4.0+); false when it cannot.
+fn reset_peak() -> bool {
+    std::fs::write("/proc/self/clear_refs", "5").is_ok()
+}
+
+fn current_kib() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmRSS:"))?;
+    line.split_whitespace().nth(1)?.parse().ok()
+}
+
+/// The rows to run: the given sizes (arguments) for every preset asked
+/// (`DYNAROLE_SCALE_PRESETS`, default both), else `SIZES`.
+fn rows() -> Vec<(Preset, usize)> {
+    let text = std::env::var("DYNAROLE_SCALE_PRESETS").unwrap_or_else(|_| "ussr,atron".into());
+    let presets: Vec<Preset> = text
+        .split(',')
+        .filter_map(|p| match p.trim() {
+            "ussr" => Some(Preset::Ussr),
+            "atron" => Some(Preset::Atron),
+            "" => None,
+            other => panic!("unknown preset {other}"),
+        })
+        .collect();
+    let given: Vec<usize> = std::env::args()
+        .skip(1)
+        .filter(|a| !a.starts_with('-'))
+        .filter_map(|a| a.replace(['_', ','], "").parse().ok())
+        .collect();
+    let mut out = Vec::new();
+    for preset in presets {
+        let default = SIZES
+            .iter()
+            .find(|(p, _)| *p == preset)
+            .map(|(_, s)| s.to_vec());
+        let sizes = if given.is_empty() {
+            default.unwrap_or_default()
+        } else {
+            given.clone()
+        };
+        out.extend(sizes.into_iter().map(|n| (preset, n)));
+    }
+    out
+}
+
+/// One row of the table: `preset` on `n` modules (run in a fresh process, so that the peak
+/// RSS is this run's alone).
+fn row(sim: &Simulator, preset: Preset, n: usize) {
+    let context = sim.module_context_bytes(preset).expect("builds");
+    let started = Instant::now();
+    let json = structure_json(&format!("flat-{n}"), &square(n));
+    let start = Configuration::from_json_str(&json).expect("valid configuration");
+    drop(json);
+    let built = started.elapsed().as_secs_f64();
+    let mut scenario = Scenario::default();
+    scenario.network.preset = preset;
+    scenario.network.loss = 0.0;
+    scenario.timeout_ms = 600_000;
+    let before = if reset_peak() {
+        current_kib()
+    } else {
+        peak_kib()
+    };
+    let started = Instant::now();
+    let report = sim
+        .run(&Run {
+            start: &start,
+            expect: None,
+            scenario: &scenario,
+            seed: 1,
+            trace: false,
+        })
+        .expect("runs");
+    let wall = started.elapsed().as_secs_f64();
+    let rss = match (before, peak_kib()) {
+        (Some(b), Some(a)) => format!("{:.0}", (a.saturating_sub(b) * 1024) as f64 / n as f64),
+        _ => "?".into(),
+    };
+    assert!(report.success, "{n} modules: {:?}", report.failures);
+    let all = report
+        .all_finished_ms
+        .expect("every module declared the end");
+    println!(
+        "| {} | {n} | {wall:.2} | {built:.2} | {:.3} / {:.3} | {} | {:.2} M | {} | {context} | {rss} |",
+        preset.name(),
+        report.completion_ms.unwrap_or(f64::NAN) / 1000.0,
+        all / 1000.0,
+        report.counters.events,
+        report.counters.events as f64 / wall / 1e6,
+        report.counters.packets_sent,
+    );
+}
+
+fn main() {
+    let parsed = parse(SOURCE);
+    let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
+    let program = program.unwrap_or_else(|| panic!("{diagnostics:?}"));
+    let plan = program.expand("spread").expect("spread");
+    let sim = simulator(&program, &plan);
+    // A child: `--row PRESET N` prints one row.
+    let args: Vec<String> = std::env::args().collect();
+    if let Some(k) = args.iter().position(|a| a == "--row") {
+        let preset = match args.get(k + 1).map(String::as_str) {
+            Some("atron") => Preset::Atron,
+            _ => Preset::Ussr,
+        };
+        let n = args.get(k + 2).and_then(|n| n.parse().ok()).expect("N");
+        row(&sim, preset, n);
+        return;
+    }
+    check_against_eight();
+    check_with_replay(&program, &plan);
+    println!(
+        "scale: one statement on M0 at a corner (lattice protocol, no loss, seed 1); the run \
+         ends when every module has declared the end"
+    );
+    println!(
+        "| preset | modules | wall s | structure s | simulated s (first / all declared the end) | events | events / wall s | packets sent | C context B / module | peak RSS B / module |"
+    );
+    println!("|---|---|---|---|---|---|---|---|---|---|");
+    let exe = std::env::current_exe().expect("this benchmark's path");
+    for (preset, n) in rows() {
+        sim.module_context_bytes(preset).expect("builds"); // into the cache, once
+        let status = std::process::Command::new(&exe)
+            .args(["--row", preset.name(), &n.to_string()])
+            .status()
+            .expect("runs a row");
+        assert!(status.success(), "{} {n}: {status}", preset.name());
+    }
+}
