@@ -3,7 +3,7 @@
 
 use crate::report::{Refusal, Violation};
 use crate::sequence::{OpKind, View};
-use crate::state::{Attempt, Event, State};
+use crate::state::{uniform, Attempt, Event, State};
 use dynarole_replay::RobotWorld;
 
 /// How a call of `dr_hal_op_start` relates to what already happened to its statement.
@@ -209,7 +209,18 @@ impl State {
         self.schedule(at, Event::OpDone { attempt: id });
     }
 
-    fn duration_ms(&self, m: usize, s: usize) -> u64 {
+    /// The operation's nominal duration, varied at random when the scenario asks for it.
+    fn duration_ms(&mut self, m: usize, s: usize) -> u64 {
+        let nominal = self.nominal_ms(m, s);
+        let variation = self.scenario.timing.variation;
+        if variation <= 0.0 {
+            return nominal;
+        }
+        let factor = 1.0 - variation + 2.0 * variation * uniform(&mut self.rng_timing);
+        (nominal as f64 * factor).round() as u64
+    }
+
+    fn nominal_ms(&self, m: usize, s: usize) -> u64 {
         let timing = &self.scenario.timing;
         match self.seq.kinds[s] {
             OpKind::Extend => timing.extend_ms,

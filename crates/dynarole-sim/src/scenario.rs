@@ -72,6 +72,9 @@ pub struct Timing {
     pub extend_ms: u64,
     pub retract_ms: u64,
     pub joint: JointModel,
+    /// Random variation of every operation's duration: each takes its nominal time times a
+    /// factor drawn uniformly from [1 - variation, 1 + variation] (0: exact durations).
+    pub variation: f64,
 }
 
 impl Default for Timing {
@@ -80,6 +83,7 @@ impl Default for Timing {
             extend_ms: 3000,
             retract_ms: 2000,
             joint: JointModel::Ussr,
+            variation: 0.0,
         }
     }
 }
@@ -205,6 +209,15 @@ impl Scenario {
         probability("network.loss", self.network.loss)?;
         probability("network.dead_link_p", self.network.dead_link_p)?;
         probability("network.dead_loss", self.network.dead_loss)?;
+        if !(0.0..1.0).contains(&self.timing.variation) {
+            return Err(error(
+                "timing.variation",
+                format!(
+                    "{} is not a fraction from 0 up to (not including) 1",
+                    self.timing.variation
+                ),
+            ));
+        }
         if self.timeout_ms == 0 {
             return Err(error("timeout_ms", "must be above 0"));
         }

@@ -149,6 +149,8 @@ pub struct State {
     pub rng_loss: ChaCha8Rng,
     rng_hal: ChaCha8Rng,
     pub rng_faults: ChaCha8Rng,
+    /// Only drawn from when `timing.variation` is set, so exact runs are unchanged by it.
+    pub rng_timing: ChaCha8Rng,
     pub counters: Counters,
     pub violations: Vec<Violation>,
     pub refusals: Vec<Refusal>,
@@ -228,6 +230,7 @@ impl State {
             rng_loss: stream(seed, 1),
             rng_hal: stream(seed, 2),
             rng_faults: stream(seed, 3),
+            rng_timing: stream(seed, 4),
             counters: Counters::default(),
             violations: Vec::new(),
             refusals: Vec::new(),
