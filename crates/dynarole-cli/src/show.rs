@@ -176,20 +176,7 @@ fn atron_shapes(config: &AtronConfiguration) -> Vec<Shape> {
     for latch in config.latches() {
         let centre = |p: Port| config.module(p.module).map(|m| m.position.map(f64::from));
         if let (Some(from), Some(to)) = (centre(latch.male), centre(latch.female)) {
-            // The bar goes behind every module; a dot on top marks the contact.
-            shapes.push(Shape {
-                depth: f64::INFINITY,
-                kind: ShapeKind::Segment {
-                    from,
-                    to,
-                    latch: true,
-                },
-            });
-            let middle = std::array::from_fn(|k| (from[k] + to[k]) / 2.0);
-            shapes.push(Shape {
-                depth: f64::NEG_INFINITY,
-                kind: ShapeKind::Contact { at: middle },
-            });
+            push_latch(&mut shapes, from, to);
         }
     }
     shapes
@@ -242,22 +229,27 @@ fn mtran_shapes(config: &MtranConfiguration) -> Vec<Shape> {
     for latch in config.latches() {
         let block = |p: Port| blocks(p.module).map(|(n, s)| if p.connector < 3 { n } else { s });
         if let (Some(from), Some(to)) = (block(latch.male), block(latch.female)) {
-            shapes.push(Shape {
-                depth: f64::INFINITY,
-                kind: ShapeKind::Segment {
-                    from,
-                    to,
-                    latch: true,
-                },
-            });
-            let middle = std::array::from_fn(|k| (from[k] + to[k]) / 2.0);
-            shapes.push(Shape {
-                depth: f64::NEG_INFINITY,
-                kind: ShapeKind::Contact { at: middle },
-            });
+            push_latch(&mut shapes, from, to);
         }
     }
     shapes
+}
+
+/// A latch: a bar behind every module, and a dot on top where the connectors meet.
+fn push_latch(shapes: &mut Vec<Shape>, from: [f64; 3], to: [f64; 3]) {
+    shapes.push(Shape {
+        depth: f64::INFINITY,
+        kind: ShapeKind::Segment {
+            from,
+            to,
+            latch: true,
+        },
+    });
+    let middle = std::array::from_fn(|k| (from[k] + to[k]) / 2.0);
+    shapes.push(Shape {
+        depth: f64::NEG_INFINITY,
+        kind: ShapeKind::Contact { at: middle },
+    });
 }
 
 type Area<'a> = DrawingArea<SVGBackend<'a>, plotters::coord::Shift>;

@@ -15,6 +15,15 @@ fn repo_root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
 }
 
+/// `dynarole replay FILE --sequence S... --from FROM --expect EXPECT`.
+fn replay(file: &str, sequences: &[&str], from: &str, expect: &str) -> Output {
+    let mut args = vec!["replay", file, "--from", from, "--expect", expect];
+    for sequence in sequences {
+        args.extend(["--sequence", sequence]);
+    }
+    dynarole(&args)
+}
+
 fn text(bytes: &[u8]) -> String {
     String::from_utf8_lossy(bytes).into_owned()
 }
@@ -148,16 +157,12 @@ fn paper_protocol_reports_nested_blocks() {
 
 #[test]
 fn replay_of_fig5_gives_exactly_the_car_and_its_reverse_the_eight() {
-    let forward = dynarole(&[
-        "replay",
+    let forward = replay(
         "examples/atron/eight2car.dr",
-        "--sequence",
-        "eight2car",
-        "--from",
+        &["eight2car"],
         "examples/atron/eight.json",
-        "--expect",
         "examples/atron/car.json",
-    ]);
+    );
     assert_eq!(
         forward.status.code(),
         Some(0),
@@ -166,55 +171,37 @@ fn replay_of_fig5_gives_exactly_the_car_and_its_reverse_the_eight() {
         text(&forward.stderr)
     );
     assert!(text(&forward.stdout).contains("25 statements, 0 rejected, 0 warnings"));
-    let back = dynarole(&[
-        "replay",
+    let back = replay(
         "examples/atron/eight2car.dr",
-        "--sequence",
-        "car2eight",
-        "--from",
+        &["car2eight"],
         "examples/atron/car.json",
-        "--expect",
         "examples/atron/eight.json",
-    ]);
+    );
     assert_eq!(back.status.code(), Some(0), "{}", text(&back.stdout));
-    let both = dynarole(&[
-        "replay",
+    let both = replay(
         "examples/atron/eight2car.dr",
-        "--sequence",
-        "eight2car",
-        "--sequence",
-        "car2eight",
-        "--from",
+        &["eight2car", "car2eight"],
         "examples/atron/eight.json",
-        "--expect",
         "examples/atron/eight.json",
-    ]);
+    );
     assert_eq!(both.status.code(), Some(0), "{}", text(&both.stdout));
 }
 
 #[test]
 fn replay_of_the_tour_and_the_snake() {
-    let snake = dynarole(&[
-        "replay",
+    let snake = replay(
         "examples/atron/eight2car.dr",
-        "--sequence",
-        "eight2snake",
-        "--from",
+        &["eight2snake"],
         "examples/atron/eight.json",
-        "--expect",
         "examples/atron/snake.json",
-    ]);
+    );
     assert_eq!(snake.status.code(), Some(0), "{}", text(&snake.stdout));
-    let tour = dynarole(&[
-        "replay",
+    let tour = replay(
         "examples/atron/eight2car.dr",
-        "--sequence",
-        "tour",
-        "--from",
+        &["tour"],
         "examples/atron/car.json",
-        "--expect",
         "examples/atron/car.json",
-    ]);
+    );
     assert_eq!(tour.status.code(), Some(0), "{}", text(&tour.stdout));
     assert!(text(&tour.stdout).contains("62 statements, 0 rejected"));
 }
@@ -251,16 +238,12 @@ fn replay_of_the_mtran_experiment_and_its_derived_reverse() {
 
 #[test]
 fn replay_reports_a_mismatch_with_the_difference_and_exit_1() {
-    let out = dynarole(&[
-        "replay",
+    let out = replay(
         "examples/atron/eight2car.dr",
-        "--sequence",
-        "eight2car",
-        "--from",
+        &["eight2car"],
         "examples/atron/eight.json",
-        "--expect",
         "examples/atron/eight.json",
-    ]);
+    );
     assert_eq!(out.status.code(), Some(1));
     let stdout = text(&out.stdout);
     assert!(
