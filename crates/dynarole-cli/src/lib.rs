@@ -73,15 +73,8 @@ enum Command {
     /// Run sequences on the kinematic model of the robot (no network) and report the result.
     Replay {
         file: PathBuf,
-        /// Sequence to run; repeat to run several in turn.
-        #[arg(long = "sequence", value_name = "NAME", required = true)]
-        sequences: Vec<String>,
-        /// The configuration to start from (JSON).
-        #[arg(long, value_name = "CONFIG")]
-        from: PathBuf,
-        /// The configuration to expect at the end; exit 1 with the difference if it is not.
-        #[arg(long, value_name = "CONFIG")]
-        expect: Option<PathBuf>,
+        #[command(flatten)]
+        run: world::RunArgs,
         /// Write the final configuration (JSON) here.
         #[arg(long, value_name = "CONFIG")]
         out: Option<PathBuf>,
@@ -92,15 +85,8 @@ enum Command {
     /// when the goal is not reached).
     Simulate {
         file: PathBuf,
-        /// Sequence to run; repeat to run several in turn.
-        #[arg(long = "sequence", value_name = "NAME", required = true)]
-        sequences: Vec<String>,
-        /// The configuration to start from (JSON).
-        #[arg(long, value_name = "CONFIG")]
-        from: PathBuf,
-        /// The configuration the run must end in.
-        #[arg(long, value_name = "CONFIG")]
-        expect: Option<PathBuf>,
+        #[command(flatten)]
+        run: world::RunArgs,
         #[command(flatten)]
         options: compile::ProtocolOptions,
         /// Faults, network and timing (TOML; see crates/dynarole-sim/SCENARIO.md).
@@ -179,24 +165,20 @@ pub fn main() -> ExitCode {
         }
         Command::Replay {
             file,
-            sequences,
-            from,
-            expect,
+            run,
             out,
             plugins,
         } => replay::run(&replay::ReplayArgs {
             file: &file,
-            sequences: &sequences,
-            from: &from,
-            expect: expect.as_ref(),
+            sequences: &run.sequences,
+            from: &run.from,
+            expect: run.expect.as_ref(),
             out: out.as_ref(),
             plugins: &plugins,
         }),
         Command::Simulate {
             file,
-            sequences,
-            from,
-            expect,
+            run,
             options,
             scenario,
             loss,
@@ -207,9 +189,9 @@ pub fn main() -> ExitCode {
             plugins,
         } => simulate::run(&simulate::SimulateArgs {
             file: &file,
-            sequences: &sequences,
-            from: &from,
-            expect: expect.as_ref(),
+            sequences: &run.sequences,
+            from: &run.from,
+            expect: run.expect.as_ref(),
             options: &options,
             scenario: scenario.as_ref(),
             loss,

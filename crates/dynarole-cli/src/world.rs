@@ -8,6 +8,20 @@ use dynarole_replay::{assign_modules, Assignment, RobotWorld};
 use dynarole_world::Configuration;
 use std::path::Path;
 
+/// `--sequence NAME... --from CONFIG [--expect CONFIG]`, shared by `replay` and `simulate`.
+#[derive(clap::Args, Clone, Debug)]
+pub struct RunArgs {
+    /// Sequence to run; repeat to run several in turn.
+    #[arg(long = "sequence", value_name = "NAME", required = true)]
+    pub sequences: Vec<String>,
+    /// The configuration to start from (JSON).
+    #[arg(long, value_name = "CONFIG")]
+    pub from: std::path::PathBuf,
+    /// The configuration the run must end in (up to rigid motion).
+    #[arg(long, value_name = "CONFIG")]
+    pub expect: Option<std::path::PathBuf>,
+}
+
 /// Everything needed to run `plans` on the model.
 pub struct Prepared {
     pub plans: Vec<Plan>,
