@@ -26,6 +26,9 @@ uint16_t dr_hal_random(struct dr_module *m);
 
 /* Sends `len` bytes on every channel the module can send on (continuous local broadcast). */
 void dr_hal_broadcast(struct dr_module *m, const uint8_t *bytes, uint8_t len);
+/* Sends `len` bytes on one channel (connector) only: the token baseline's routed hand-overs
+ * and acknowledgements. Protocols that only broadcast never call it. */
+void dr_hal_send(struct dr_module *m, uint8_t channel, const uint8_t *bytes, uint8_t len);
 /* Incoming packets are handed to dr_module_receive() (dr_module.h) by the platform. */
 
 /* Starts a robot operation: `op` is the plugin's operation code (generated dr_program.h),

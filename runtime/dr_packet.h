@@ -16,6 +16,7 @@
 /* Packet kinds. */
 #define DR_PACKET_LATTICE_STATE 1u
 #define DR_PACKET_PAPER_STATE 2u
+#define DR_PACKET_TOKEN 3u
 
 enum dr_packet_result {
     DR_PACKET_OK = 0,

@@ -27,6 +27,7 @@ struct dr_sim_callbacks {
     void (*leds)(void *platform, uint8_t value);
     void (*nv_read)(void *platform, uint16_t addr, uint8_t *buf, uint8_t len);
     void (*nv_write)(void *platform, uint16_t addr, const uint8_t *buf, uint8_t len);
+    void (*send)(void *platform, uint8_t channel, const uint8_t *bytes, uint8_t len);
 };
 
 void dr_sim_register(const struct dr_sim_callbacks *callbacks);
@@ -106,6 +107,13 @@ void dr_hal_broadcast(struct dr_module *m, const uint8_t *bytes, uint8_t len)
 {
     if (host) {
         host->broadcast(platform_of(m), bytes, len);
+    }
+}
+
+void dr_hal_send(struct dr_module *m, uint8_t channel, const uint8_t *bytes, uint8_t len)
+{
+    if (host) {
+        host->send(platform_of(m), channel, bytes, len);
     }
 }
 

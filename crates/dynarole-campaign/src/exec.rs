@@ -65,7 +65,16 @@ impl<'a> Worker<'a> {
 
 /// A simulator for `protocol`.
 pub fn simulator(inputs: &Inputs, protocol: crate::spec::ProtocolName) -> Result<Simulator, Error> {
-    let options = compile_options(inputs.campaign, protocol);
+    let mut options = compile_options(inputs.campaign, protocol);
+    if options.protocol == dynarole_codegen::Protocol::Token {
+        let routes = dynarole_sim::token_routes(&inputs.program, &inputs.plans, inputs.start)
+            .map_err(|diagnostics| Error::Diagnostics {
+                path: inputs.campaign.file.clone(),
+                source: inputs.source.to_string(),
+                diagnostics,
+            })?;
+        options.routes = Some(routes);
+    }
     Simulator::new(&inputs.program, &inputs.plans, &options).map_err(|e| match e {
         SimError::Diagnostic(d) => Error::Diagnostics {
             path: inputs.campaign.file.clone(),

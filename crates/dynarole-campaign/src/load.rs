@@ -4,7 +4,7 @@
 
 use crate::spec::{CampaignFile, Merge, ProtocolName};
 use crate::Error;
-use dynarole_codegen::{CompileOptions, PaperMerge, Protocol};
+use dynarole_codegen::{CompileOptions, PaperMerge, Protocol, TokenRetries};
 use dynarole_core::expand::Plan;
 use dynarole_core::{Program, RobotApi, RobotRegistry};
 use dynarole_world::Configuration;
@@ -124,11 +124,16 @@ fn plugin(path: &Path) -> Result<RobotApi, Error> {
 /// The back-end's options for `protocol` and the campaign's `[options]`.
 pub fn compile_options(campaign: &CampaignFile, protocol: ProtocolName) -> CompileOptions {
     let o = &campaign.options;
+    let (protocol, token_retries) = match protocol {
+        ProtocolName::Lattice => (Protocol::Lattice, TokenRetries::Tries(32)),
+        ProtocolName::Paper => (Protocol::Paper, TokenRetries::Tries(32)),
+        ProtocolName::TokenPlain => (Protocol::Token, TokenRetries::Plain),
+        ProtocolName::Token32 => (Protocol::Token, TokenRetries::Tries(32)),
+        ProtocolName::Token128 => (Protocol::Token, TokenRetries::Tries(128)),
+        ProtocolName::TokenUnlimited => (Protocol::Token, TokenRetries::Unlimited),
+    };
     CompileOptions {
-        protocol: match protocol {
-            ProtocolName::Lattice => Protocol::Lattice,
-            ProtocolName::Paper => Protocol::Paper,
-        },
+        protocol,
         merge: match o.merge {
             Merge::Printed => PaperMerge::Printed,
             Merge::Java => PaperMerge::Java,
@@ -138,6 +143,8 @@ pub fn compile_options(campaign: &CampaignFile, protocol: ProtocolName) -> Compi
         restart_pending: o.restart_pending,
         epochs: 1,
         no_nv: o.no_nv,
+        token_retries,
+        routes: None,
         name: campaign.sequences.join(" + "),
     }
 }

@@ -11,10 +11,17 @@ pub enum Axis {
     Loss,
     DeadLinkP,
     ResetProbability,
+    /// Loss, dead links and resets together, scaled by one level.
+    Combined,
 }
 
 impl Axis {
-    pub const ALL: [Axis; 3] = [Axis::Loss, Axis::DeadLinkP, Axis::ResetProbability];
+    pub const ALL: [Axis; 4] = [
+        Axis::Loss,
+        Axis::DeadLinkP,
+        Axis::ResetProbability,
+        Axis::Combined,
+    ];
 
     /// The name in the campaign file and in the CSV.
     pub fn name(self) -> &'static str {
@@ -22,6 +29,7 @@ impl Axis {
             Axis::Loss => "loss",
             Axis::DeadLinkP => "dead_link_p",
             Axis::ResetProbability => "reset_probability",
+            Axis::Combined => "combined",
         }
     }
 
@@ -31,6 +39,7 @@ impl Axis {
             Axis::Loss => "packet loss probability",
             Axis::DeadLinkP => "dead-link probability",
             Axis::ResetProbability => "reset probability per check",
+            Axis::Combined => "combined fault level (loss, dead links, resets scaled together)",
         }
     }
 
@@ -118,6 +127,7 @@ fn points(campaign: &CampaignFile, axis: Axis) -> Result<Vec<(f64, Faults)>, Spe
         Axis::Loss => &sweep.loss,
         Axis::DeadLinkP => &sweep.dead_link_p,
         Axis::ResetProbability => &sweep.reset_probability,
+        Axis::Combined => &sweep.combined,
     };
     let Some(range) = range else {
         return Ok(Vec::new());
@@ -146,5 +156,24 @@ fn faults_at(campaign: &CampaignFile, axis: Axis, value: f64, base: Faults) -> F
             resets: Some((sweep.reset_interval_ms.unwrap_or(1000), value)),
             ..base
         },
+        Axis::Combined => {
+            let interval = sweep
+                .combined_reset_interval_ms
+                .or(sweep.reset_interval_ms)
+                .unwrap_or(1000);
+            let scaled = |at_one: Option<f64>| round9(at_one.unwrap_or(0.0) * value);
+            let reset_p = scaled(sweep.combined_reset_probability);
+            Faults {
+                loss: scaled(sweep.combined_loss),
+                dead_link_p: scaled(sweep.combined_dead_link_p),
+                dead_loss: sweep.dead_loss.unwrap_or(base.dead_loss),
+                resets: (reset_p > 0.0).then_some((interval, reset_p)),
+            }
+        }
     }
+}
+
+/// Rounded to 9 decimals, as the ranges' values are, so 0.1 x 0.3 is written 0.03.
+fn round9(v: f64) -> f64 {
+    (v * 1e9).round() / 1e9
 }

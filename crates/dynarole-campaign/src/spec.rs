@@ -9,12 +9,22 @@ use std::path::{Path, PathBuf};
 /// The most points one axis may have (a typo in `step` should not plan a billion runs).
 const MAX_POINTS_PER_AXIS: usize = 10_000;
 
-/// A protocol to compare.
+/// A protocol to compare. The token baseline comes in the original experiments' variants:
+/// each hop sent once (`token-plain`), or acknowledged with 32, 128 or unlimited tries.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Deserialize)]
-#[serde(rename_all = "lowercase")]
 pub enum ProtocolName {
+    #[serde(rename = "lattice")]
     Lattice,
+    #[serde(rename = "paper")]
     Paper,
+    #[serde(rename = "token-plain")]
+    TokenPlain,
+    #[serde(rename = "token-32")]
+    Token32,
+    #[serde(rename = "token-128")]
+    Token128,
+    #[serde(rename = "token-unlimited")]
+    TokenUnlimited,
 }
 
 impl ProtocolName {
@@ -22,6 +32,10 @@ impl ProtocolName {
         match self {
             ProtocolName::Lattice => "lattice",
             ProtocolName::Paper => "paper",
+            ProtocolName::TokenPlain => "token-plain",
+            ProtocolName::Token32 => "token-32",
+            ProtocolName::Token128 => "token-128",
+            ProtocolName::TokenUnlimited => "token-unlimited",
         }
     }
 }
@@ -49,6 +63,14 @@ pub struct Sweep {
     pub reset_probability: Option<Range>,
     /// Required with `reset_probability`.
     pub reset_interval_ms: Option<u64>,
+    /// The three faults at once: a level from 0 to 1 that scales `combined_loss`,
+    /// `combined_dead_link_p` and `combined_reset_probability` (all required with it).
+    pub combined: Option<Range>,
+    pub combined_loss: Option<f64>,
+    pub combined_dead_link_p: Option<f64>,
+    pub combined_reset_probability: Option<f64>,
+    /// Reset check interval of the combined axis (default: `reset_interval_ms`, else 1 s).
+    pub combined_reset_interval_ms: Option<u64>,
 }
 
 /// The campaign file as written.
@@ -178,16 +200,21 @@ fn reject_overridden(raw: &toml::Table) -> Result<(), SpecError> {
 
 impl Sweep {
     fn check(&self) -> Result<(), SpecError> {
-        if self.loss.is_none() && self.dead_link_p.is_none() && self.reset_probability.is_none() {
+        if self.loss.is_none()
+            && self.dead_link_p.is_none()
+            && self.reset_probability.is_none()
+            && self.combined.is_none()
+        {
             return Err(error(
                 "sweep",
-                "no axis to sweep: give loss, dead_link_p or reset_probability",
+                "no axis to sweep: give loss, dead_link_p, reset_probability or combined",
             ));
         }
         let axes = [
             ("sweep.loss", &self.loss),
             ("sweep.dead_link_p", &self.dead_link_p),
             ("sweep.reset_probability", &self.reset_probability),
+            ("sweep.combined", &self.combined),
         ];
         for (field, range) in axes {
             if let Some(r) = range {
@@ -196,6 +223,7 @@ impl Sweep {
         }
         probability("sweep.dead_background_loss", self.dead_background_loss)?;
         probability("sweep.dead_loss", self.dead_loss)?;
+        self.check_combined()?;
         match (&self.reset_probability, self.reset_interval_ms) {
             (Some(_), None) => Err(error(
                 "sweep.reset_interval_ms",
@@ -206,6 +234,34 @@ impl Sweep {
                 "sweep.reset_interval_ms",
                 "given without reset_probability",
             )),
+            _ => Ok(()),
+        }
+    }
+}
+
+impl Sweep {
+    fn check_combined(&self) -> Result<(), SpecError> {
+        let parts = [
+            ("sweep.combined_loss", self.combined_loss),
+            ("sweep.combined_dead_link_p", self.combined_dead_link_p),
+            (
+                "sweep.combined_reset_probability",
+                self.combined_reset_probability,
+            ),
+        ];
+        for (field, value) in parts {
+            match (self.combined.is_some(), value) {
+                (true, None) => return Err(error(field, "required with combined")),
+                (false, Some(_)) => return Err(error(field, "given without combined")),
+                _ => probability(field, value)?,
+            }
+        }
+        match (self.combined.is_some(), self.combined_reset_interval_ms) {
+            (false, Some(_)) => Err(error(
+                "sweep.combined_reset_interval_ms",
+                "given without combined",
+            )),
+            (_, Some(0)) => Err(error("sweep.combined_reset_interval_ms", "must be above 0")),
             _ => Ok(()),
         }
     }

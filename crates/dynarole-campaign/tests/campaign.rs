@@ -39,20 +39,40 @@ fn sorted_rows(out: &Path) -> Vec<String> {
 fn one_row_per_run_with_the_columns() {
     let dir = tempfile::tempdir().expect("temp dir");
     let done = campaign(dir.path(), None, false);
-    // 3 loss levels + 1 dead-link level + 1 reset level, 2 protocols, 2 seeds.
-    assert_eq!(done.total, 20);
-    assert_eq!(done.ran, 20);
+    // 3 loss levels + 1 dead-link level + 1 reset level + 1 combined level, 3 protocols,
+    // 2 seeds.
+    assert_eq!(done.total, 36);
+    assert_eq!(done.ran, 36);
     let text = std::fs::read_to_string(dir.path().join("runs.csv")).expect("runs.csv");
     let header = text.lines().next().expect("a header");
     assert_eq!(header, COLUMNS.join(","));
     let rows = sorted_rows(dir.path());
-    assert_eq!(rows.len(), 20);
+    assert_eq!(rows.len(), 36);
     for (i, row) in rows.iter().enumerate() {
         assert_eq!(row.split(',').count(), COLUMNS.len(), "{row}");
         assert!(row.starts_with(&format!("{i},")), "{row}");
     }
     assert!(rows.iter().any(|r| r.contains(",success,")));
     assert!(dir.path().join("summary.csv").is_file());
+    // The combined level 0.5 scales every fault: loss 0.2, dead links 0.05, resets 0.01.
+    let combined: Vec<&String> = rows.iter().filter(|r| r.contains(",combined,")).collect();
+    assert_eq!(combined.len(), 6);
+    for row in combined {
+        let field = |name: &str| {
+            let k = COLUMNS.iter().position(|c| *c == name).expect("column");
+            row.split(',').nth(k).unwrap_or_default().to_string()
+        };
+        assert_eq!(field("value"), "0.5", "{row}");
+        assert_eq!(field("loss"), "0.2", "{row}");
+        assert_eq!(field("dead_link_p"), "0.05", "{row}");
+        assert_eq!(field("reset_probability"), "0.01", "{row}");
+        assert_eq!(field("reset_interval_ms"), "1000", "{row}");
+    }
+    let protocols: Vec<String> = rows
+        .iter()
+        .filter_map(|r| r.split(',').nth(3).map(str::to_string))
+        .collect();
+    assert!(protocols.iter().any(|p| p == "token-32"));
 }
 
 #[test]
@@ -70,7 +90,7 @@ fn a_resumed_campaign_gives_the_same_rows() {
     let second = campaign(parts.path(), Some(5), false);
     assert_eq!((second.already, second.ran), (6, 5));
     let third = campaign(parts.path(), None, false);
-    assert_eq!((third.already, third.ran), (11, 9));
+    assert_eq!((third.already, third.ran), (11, 25));
     assert_eq!(sorted_rows(parts.path()), sorted_rows(whole.path()));
     let again = campaign(parts.path(), None, false);
     assert_eq!(again.ran, 0);
@@ -95,6 +115,7 @@ fn plots_are_written() {
         "success-loss",
         "success-dead_link_p",
         "success-reset_probability",
+        "success-combined",
         "completion-loss",
         "packets-loss",
     ] {
@@ -137,6 +158,16 @@ fn errors_name_the_field() {
     assert!(parse_error(&beyond).starts_with("sweep.loss:"));
     let both = format!("{MINIMAL}[scenario]\ntimeout_ms = 5\n[sweep]\nloss = {{ from = 0.0, to = 0.0, step = 1.0 }}\n");
     assert!(parse_error(&both).starts_with("scenario.timeout_ms:"));
+    let half_combined =
+        format!("{MINIMAL}[sweep]\ncombined = {{ from = 0.0, to = 1.0, step = 0.5 }}\ncombined_loss = 0.4\n");
+    assert!(parse_error(&half_combined).starts_with("sweep.combined_dead_link_p:"));
+    let token = MINIMAL.replace("\"lattice\"", "\"token-7\"");
+    let token = format!("{token}[sweep]\nloss = {{ from = 0.0, to = 0.0, step = 1.0 }}\n");
+    assert!(
+        parse_error(&token).contains("token-7"),
+        "{}",
+        parse_error(&token)
+    );
 }
 
 #[test]

@@ -3,7 +3,9 @@
 
 use crate::load::{self, Failure, PluginArgs};
 use crate::render;
-use dynarole_codegen::{generate_c, generate_nesc, CompileOptions, PaperMerge, Protocol};
+use dynarole_codegen::{
+    generate_c, generate_nesc, CompileOptions, PaperMerge, Protocol, TokenRetries,
+};
 use dynarole_core::{Diagnostic, DiagnosticKind};
 use std::path::Path;
 use std::process::ExitCode;
@@ -22,6 +24,24 @@ pub enum ProtocolArg {
     Lattice,
     /// The paper's protocol, faithfully (for reproduction and comparison).
     Paper,
+    /// The token-passing baseline the paper replaced: one token, routed explicitly from
+    /// module to module (needs --from: routes are computed on the configuration).
+    Token,
+}
+
+/// `--token-retries`: `plain` (each hop sends once, no acknowledgement), a number of tries
+/// per hop (acknowledged), or `unlimited`.
+pub fn parse_token_retries(text: &str) -> Result<TokenRetries, String> {
+    match text {
+        "plain" => Ok(TokenRetries::Plain),
+        "unlimited" => Ok(TokenRetries::Unlimited),
+        n => match n.parse::<u16>() {
+            Ok(tries) if tries >= 1 => Ok(TokenRetries::Tries(tries)),
+            _ => Err(format!(
+                "expected `plain`, `unlimited` or a number of tries from 1 to 65535, found `{n}`"
+            )),
+        },
+    }
 }
 
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
@@ -51,6 +71,10 @@ pub struct ProtocolOptions {
     /// Lattice protocol: the modules have no non-volatile storage (weaker reset guarantee).
     #[arg(long)]
     pub no_nv: bool,
+    /// Token protocol: `plain` (sent once per hop), tries per hop (acknowledged; the
+    /// original experiments used 32 and 128) or `unlimited`.
+    #[arg(long, value_name = "TRIES", value_parser = parse_token_retries, default_value = "32")]
+    pub token_retries: TokenRetries,
 }
 
 impl ProtocolOptions {
@@ -60,6 +84,7 @@ impl ProtocolOptions {
             protocol: match self.protocol {
                 ProtocolArg::Lattice => Protocol::Lattice,
                 ProtocolArg::Paper => Protocol::Paper,
+                ProtocolArg::Token => Protocol::Token,
             },
             merge: match self.merge {
                 MergeArg::Printed => PaperMerge::Printed,
@@ -70,6 +95,8 @@ impl ProtocolOptions {
             restart_pending: self.restart_pending,
             epochs,
             no_nv: self.no_nv,
+            token_retries: self.token_retries,
+            routes: None,
             name,
         }
     }
@@ -82,6 +109,8 @@ pub struct CompileArgs<'a> {
     pub target: Target,
     pub options: &'a ProtocolOptions,
     pub epochs: u16,
+    /// Token protocol: the configuration its routes are computed on.
+    pub from: Option<&'a Path>,
     pub out_dir: &'a Path,
     pub plugins: &'a PluginArgs,
 }
@@ -112,7 +141,11 @@ pub fn run(args: &CompileArgs) -> Result<ExitCode, Failure> {
                 return Ok(ExitCode::from(1));
             }
         };
-        let options = args.options.compile_options(args.epochs, names.join(" + "));
+        let mut options = args.options.compile_options(args.epochs, names.join(" + "));
+        if let Err(diagnostics) = add_token_routes(&mut options, program, &plans, args.from)? {
+            render::diagnostics(&display, source, &diagnostics);
+            return Ok(ExitCode::from(1));
+        }
         let generate = match args.target {
             Target::C => generate_c,
             Target::Nesc => generate_nesc,
@@ -133,9 +166,9 @@ pub fn run(args: &CompileArgs) -> Result<ExitCode, Failure> {
                 .map_err(|e| Failure::Input(format!("cannot write {}: {e}", path.display())))?;
         }
         println!(
-            "compiled {} ({:?} protocol): {} statements, {} modules/roles, window {}, packet {} bytes, program id {} -> {}",
+            "compiled {} ({} protocol): {} statements, {} modules/roles, window {}, packet {} bytes, program id {} -> {}",
             options.name,
-            args.options.protocol,
+            options.protocol.name(),
             ir.statements.len(),
             ir.addresses.len(),
             ir.window,
@@ -145,4 +178,29 @@ pub fn run(args: &CompileArgs) -> Result<ExitCode, Failure> {
         );
         Ok(ExitCode::SUCCESS)
     })
+}
+
+/// Token protocol: computes its routes on the configuration `from` (required) into
+/// `options`; other protocols need nothing. The inner error is the statement that cannot be
+/// routed.
+pub fn add_token_routes(
+    options: &mut CompileOptions,
+    program: &dynarole_core::Program,
+    plans: &[dynarole_core::expand::Plan],
+    from: Option<&Path>,
+) -> Result<Result<(), Vec<Diagnostic>>, Failure> {
+    if options.protocol != Protocol::Token {
+        return Ok(Ok(()));
+    }
+    let Some(from) = from else {
+        return Err(Failure::Usage(
+            "--protocol token needs --from CONFIG: its hand-over routes are computed on the configuration".into(),
+        ));
+    };
+    let start = crate::world::read_configuration(from)?;
+    Ok(
+        dynarole_sim::token_routes(program, plans, &start).map(|routes| {
+            options.routes = Some(routes);
+        }),
+    )
 }

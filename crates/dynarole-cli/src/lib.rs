@@ -57,6 +57,9 @@ enum Command {
         /// Lattice protocol: how many times the whole sequence runs (0: forever).
         #[arg(long, default_value_t = 1)]
         epochs: u16,
+        /// Token protocol: the configuration its hand-over routes are computed on.
+        #[arg(long, value_name = "CONFIG")]
+        from: Option<PathBuf>,
         /// The directory to write.
         #[arg(short = 'o', long = "output", value_name = "DIR")]
         out_dir: PathBuf,
@@ -221,6 +224,7 @@ pub fn main() -> ExitCode {
             target,
             options,
             epochs,
+            from,
             out_dir,
             plugins,
         } => compile::run(&compile::CompileArgs {
@@ -229,6 +233,7 @@ pub fn main() -> ExitCode {
             target,
             options: &options,
             epochs,
+            from: from.as_deref(),
             out_dir: &out_dir,
             plugins: &plugins,
         }),

@@ -1,10 +1,11 @@
 //! `dynarole simulate`: the generated C on every module, over lossy infrared links, with the
 //! faults of a scenario; exit 0 on success, 3 when the goal was not reached.
 
-use crate::compile::{ProtocolArg, ProtocolOptions};
+use crate::compile::{add_token_routes, ProtocolArg, ProtocolOptions};
 use crate::load::{self, Failure, PluginArgs};
 use crate::render;
 use crate::world::read_configuration;
+use clap::ValueEnum;
 use dynarole_sim::{Report, Run, Scenario, SimError, Simulator};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -39,7 +40,12 @@ pub fn run(args: &SimulateArgs) -> Result<ExitCode, Failure> {
         let scenario = scenario(args)?;
         let start = read_configuration(args.from)?;
         let expect = args.expect.map(|p| read_configuration(p)).transpose()?;
-        let options = args.options.compile_options(1, args.sequences.join(" + "));
+        let mut options = args.options.compile_options(1, args.sequences.join(" + "));
+        let routed = add_token_routes(&mut options, program, &plans, Some(args.from))?;
+        if let Err(diagnostics) = routed {
+            render::diagnostics(&display, source, &diagnostics);
+            return Ok(ExitCode::from(1));
+        }
         let simulator = match Simulator::new(program, &plans, &options) {
             Ok(s) => s,
             Err(SimError::Diagnostic(d)) => {
@@ -148,11 +154,7 @@ fn replay_command(args: &SimulateArgs, seed: u64) -> String {
     if let Some(e) = args.expect {
         parts.push(format!("--expect {}", quote(&e.display().to_string())));
     }
-    let protocol = match args.options.protocol {
-        ProtocolArg::Lattice => "lattice",
-        ProtocolArg::Paper => "paper",
-    };
-    parts.push(format!("--protocol {protocol}"));
+    parts.extend(protocol_flags(args.options));
     if let Some(s) = args.scenario {
         parts.push(format!("--scenario {}", quote(&s.display().to_string())));
     }
@@ -164,6 +166,37 @@ fn replay_command(args: &SimulateArgs, seed: u64) -> String {
     }
     parts.push(format!("--seed {seed}"));
     parts.join(" ")
+}
+
+/// The flags that select `options`' protocol and its variant.
+fn protocol_flags(options: &ProtocolOptions) -> Vec<String> {
+    let mut flags = Vec::new();
+    match options.protocol {
+        ProtocolArg::Lattice => {
+            flags.push("--protocol lattice".into());
+            if options.no_nv {
+                flags.push("--no-nv".into());
+            }
+        }
+        ProtocolArg::Paper => {
+            flags.push("--protocol paper".into());
+            let merge = options.merge.to_possible_value();
+            if let Some(merge) = merge {
+                flags.push(format!("--merge {}", merge.get_name()));
+            }
+            if options.single_step_handover {
+                flags.push("--single-step-handover".into());
+            }
+            if options.restart_pending {
+                flags.push("--restart-pending".into());
+            }
+        }
+        ProtocolArg::Token => {
+            flags.push("--protocol token".into());
+            flags.push(format!("--token-retries {}", options.token_retries.name()));
+        }
+    }
+    flags
 }
 
 fn quote(s: &str) -> String {

@@ -399,6 +399,81 @@ fn compile_writes_a_self_contained_directory_for_each_protocol() {
 }
 
 #[test]
+fn compile_token_needs_a_configuration_and_names_unroutable_statements() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli-compile-token");
+    let _ = std::fs::remove_dir_all(&dir);
+    let dir_arg = dir.to_str().expect("path");
+    let args = [
+        "compile",
+        "examples/atron/eight2car.dr",
+        "--protocol",
+        "token",
+        "-o",
+        dir_arg,
+    ];
+    let without = dynarole(&args);
+    assert_eq!(without.status.code(), Some(2));
+    assert!(
+        text(&without.stderr).contains("--from"),
+        "{}",
+        text(&without.stderr)
+    );
+    let with: Vec<&str> = args
+        .iter()
+        .copied()
+        .chain([
+            "--from",
+            "examples/atron/eight.json",
+            "--token-retries",
+            "plain",
+        ])
+        .collect();
+    let out = dynarole(&with);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert!(
+        text(&out.stdout).contains("token protocol"),
+        "{}",
+        text(&out.stdout)
+    );
+    let program = std::fs::read_to_string(dir.join("dr_program.c")).expect("dr_program.c");
+    assert!(program.contains("0u, /* reliable: acknowledged hops (plain) */"));
+    assert!(dir.join("dr_token.c").is_file());
+    // Two modules with no latched chain between them: the hand-over is named at its line.
+    let apart = scratch(
+        "token_apart.dr",
+        "robot atron;\nsequence s {\n    M0.Connector[0].retract();\n    M0.Connector[4].retract();\n    M6.Connector[2].retract();\n}\n",
+    );
+    let cut = dynarole(&[
+        "compile",
+        apart.to_str().expect("path"),
+        "--protocol",
+        "token",
+        "--from",
+        "examples/atron/eight.json",
+        "-o",
+        dir_arg,
+    ]);
+    let stderr = text(&cut.stderr);
+    assert_eq!(cut.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("token_apart.dr:5:5"), "{stderr}");
+    assert!(
+        stderr.contains("no chain of latched modules joins M0 to M6"),
+        "{stderr}"
+    );
+    let bad = dynarole(&[
+        "compile",
+        "examples/atron/eight2car.dr",
+        "--protocol",
+        "token",
+        "--token-retries",
+        "0",
+        "-o",
+        dir_arg,
+    ]);
+    assert_eq!(bad.status.code(), Some(2));
+}
+
+#[test]
 fn compile_refuses_what_the_paper_protocol_cannot_run() {
     let path = scratch("nested_compile.dr", "robot atron;\nsequence s {\n    { M0.Connector[0].retract(); M0.Connector[0].extend(); } & M3.Connector[4].retract();\n}\n");
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli-compile-refused");

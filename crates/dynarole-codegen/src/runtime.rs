@@ -42,3 +42,19 @@ pub const PAPER: [(&str, &str); 3] = [
         include_str!("../../../runtime/paper/dr_paper_describe.c"),
     ),
 ];
+
+/// The token-passing baseline (describe file as above).
+pub const TOKEN: [(&str, &str); 3] = [
+    (
+        "dr_token.h",
+        include_str!("../../../runtime/token/dr_token.h"),
+    ),
+    (
+        "dr_token.c",
+        include_str!("../../../runtime/token/dr_token.c"),
+    ),
+    (
+        "dr_token_describe.c",
+        include_str!("../../../runtime/token/dr_token_describe.c"),
+    ),
+];

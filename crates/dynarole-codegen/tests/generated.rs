@@ -2,7 +2,9 @@
 //! Fig. 5, a strict-warnings build of the output directory, and the harness running all seven
 //! modules of eight2car over a perfect network for both protocols.
 
-use dynarole_codegen::{generate_c, CompileOptions, Generated, PaperMerge, Protocol};
+use dynarole_codegen::{
+    generate_c, CompileOptions, Generated, Protocol, TokenRetries, TokenRoutes,
+};
 use dynarole_core::{analyze, parse, RobotRegistry};
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -12,12 +14,8 @@ const FIG5: &str = include_str!("../../../examples/atron/fig5.dr");
 fn options(protocol: Protocol) -> CompileOptions {
     CompileOptions {
         protocol,
-        merge: PaperMerge::CPort,
-        single_step_handover: false,
-        restart_pending: false,
-        epochs: 1,
-        no_nv: false,
         name: "eight2car".into(),
+        ..CompileOptions::default()
     }
 }
 
@@ -199,6 +197,47 @@ fn both_protocols_run_eight2car_in_dependency_order() {
             "{name}: each operation starts once"
         );
     }
+}
+
+/// The token baseline's tables, with routes given by hand (the simulator computes real ones
+/// from a configuration): a snapshot, and the directory builds on its own.
+#[test]
+fn token_tables_carry_holders_and_routes() {
+    let source = "robot atron;\nsequence s {\n    M0.Connector[0].retract();\n    M3.Connector[4].retract();\n    M3.Joint.rotateFromToBy(0, 108, true, 150);\n    M0.Connector[0].extend();\n}\n";
+    let routes = TokenRoutes {
+        holders: vec![0, 3, 3, 0],
+        routes: vec![vec![], vec![(0, 4), (1, 7)], vec![], vec![(3, 6), (1, 3)]],
+    };
+    let options = CompileOptions {
+        protocol: Protocol::Token,
+        token_retries: TokenRetries::Tries(32),
+        routes: Some(routes),
+        ..options(Protocol::Token)
+    };
+    let generated = compile(source, "s", &options);
+    let program = file(&generated, "dr_program.c");
+    assert!(program.contains("{ 0u, 4u }, { 1u, 7u }, /* into 1 */"));
+    assert!(program.contains("1u, /* reliable: acknowledged hops (32) */\n    32u"));
+    insta::assert_snapshot!(
+        "token_program_c",
+        format!("{source}\n----- dr_program.c (token) -----\n{program}")
+    );
+    let dir = out_dir("token");
+    write(&generated, &dir);
+    builds_alone(&dir);
+    // Without routes the token protocol is refused, naming what is missing.
+    let parsed = parse(source);
+    let (program, _) = analyze(&parsed.file, &RobotRegistry::builtin());
+    let program = program.expect("checks");
+    let ir = program
+        .lower(&[program.expand("s").expect("exists")])
+        .expect("fits");
+    let error = generate_c(&ir, &program.robot, &options_without_routes()).expect_err("refused");
+    assert!(error.message.contains("--from"), "{}", error.message);
+}
+
+fn options_without_routes() -> CompileOptions {
+    options(Protocol::Token)
 }
 
 #[test]

@@ -16,7 +16,7 @@
 //! (`examples/atron/eight.json`, checked first). Only the corner module (0, 0) has an ID (0,
 //! named `M0`): the others have none, so `dr_hal_id` answers 0xFFFF for them.
 
-use dynarole_codegen::{CompileOptions, PaperMerge, Protocol};
+use dynarole_codegen::{CompileOptions, Protocol};
 use dynarole_core::expand::Plan;
 use dynarole_core::{analyze, parse, Program, RobotRegistry};
 use dynarole_replay::RobotWorld;
@@ -166,12 +166,8 @@ fn check_against_eight() {
 fn simulator(program: &Program, plan: &Plan) -> Simulator {
     let options = CompileOptions {
         protocol: Protocol::Lattice,
-        merge: PaperMerge::CPort,
-        single_step_handover: false,
-        restart_pending: false,
-        epochs: 1,
-        no_nv: false,
         name: "scale".into(),
+        ..CompileOptions::default()
     };
     Simulator::new(program, std::slice::from_ref(plan), &options).expect("compiles")
 }

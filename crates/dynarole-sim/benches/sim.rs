@@ -8,7 +8,7 @@
 //! `cargo bench -p dynarole-sim --bench sim`
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use dynarole_codegen::{CompileOptions, PaperMerge, Protocol};
+use dynarole_codegen::{CompileOptions, Protocol};
 use dynarole_core::{analyze, parse, RobotRegistry};
 use dynarole_sim::{Preset, Run, Scenario, Simulator};
 use dynarole_world::Configuration;
@@ -30,12 +30,8 @@ fn simulator(protocol: Protocol) -> Simulator {
     let plans = vec![program.expand("eight2car").expect("eight2car")];
     let options = CompileOptions {
         protocol,
-        merge: PaperMerge::CPort,
-        single_step_handover: false,
-        restart_pending: false,
-        epochs: 1,
-        no_nv: false,
         name: "bench".into(),
+        ..CompileOptions::default()
     };
     Simulator::new(&program, &plans, &options).expect("compiles")
 }
@@ -52,10 +48,7 @@ fn scenario(preset: Preset, loss: f64) -> Scenario {
 }
 
 fn name(protocol: Protocol) -> &'static str {
-    match protocol {
-        Protocol::Lattice => "lattice",
-        Protocol::Paper => "paper",
-    }
+    protocol.name()
 }
 
 /// Runs SEEDS seeds and prints one line of figures.

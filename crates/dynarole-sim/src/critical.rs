@@ -97,7 +97,7 @@ pub fn critical_path(seq: &Sequence, timing: &Timing) -> CriticalPath {
 #[cfg(test)]
 mod tests {
     use crate::{Simulator, Timing};
-    use dynarole_codegen::{CompileOptions, PaperMerge, Protocol};
+    use dynarole_codegen::{CompileOptions, Protocol};
     use dynarole_core::{analyze, parse, RobotRegistry};
 
     fn simulator(source: &str) -> Simulator {
@@ -107,12 +107,8 @@ mod tests {
         let plans = vec![program.expand("s").expect("sequence s")];
         let options = CompileOptions {
             protocol: Protocol::Lattice,
-            merge: PaperMerge::CPort,
-            single_step_handover: false,
-            restart_pending: false,
-            epochs: 1,
-            no_nv: false,
             name: "critical".into(),
+            ..CompileOptions::default()
         };
         Simulator::new(&program, &plans, &options).expect("compiles")
     }

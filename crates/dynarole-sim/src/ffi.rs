@@ -26,6 +26,7 @@ pub struct Callbacks {
     leds: extern "C" fn(*mut c_void, u8),
     nv_read: extern "C" fn(*mut c_void, u16, *mut u8, u8),
     nv_write: extern "C" fn(*mut c_void, u16, *const u8, u8),
+    send: extern "C" fn(*mut c_void, u8, *const u8, u8),
 }
 
 pub static CALLBACKS: Callbacks = Callbacks {
@@ -41,6 +42,7 @@ pub static CALLBACKS: Callbacks = Callbacks {
     leds,
     nv_read,
     nv_write,
+    send,
 };
 
 thread_local! {
@@ -116,6 +118,11 @@ extern "C" fn random(p: *mut c_void) -> u16 {
 extern "C" fn broadcast(p: *mut c_void, data: *const u8, len: u8) {
     let data = bytes(data, len);
     with_state(p, (), |s, m| s.broadcast(m, data));
+}
+
+extern "C" fn send(p: *mut c_void, channel: u8, data: *const u8, len: u8) {
+    let data = bytes(data, len);
+    with_state(p, (), |s, m| s.send_on(m, channel, data));
 }
 
 extern "C" fn op_start(p: *mut c_void, address: u8, op: u8, index: u8, args: *const i16, n: u8) {

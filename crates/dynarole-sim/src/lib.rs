@@ -16,6 +16,7 @@ mod ffi;
 mod network;
 mod ops;
 mod report;
+mod routes;
 mod scenario;
 mod sequence;
 mod state;
@@ -23,6 +24,7 @@ mod state;
 pub use build::cache_root;
 pub use critical::CriticalPath;
 pub use report::{Counters, ModuleReport, Refusal, Report, Violation};
+pub use routes::token_routes;
 pub use scenario::{
     Block, JointModel, Network, Power, Preset, RandomResets, Reset, Scenario, ScenarioError, Timing,
 };
@@ -224,10 +226,7 @@ impl Simulator {
             success: false,
             failures: Vec::new(),
             seed: run.seed,
-            protocol: match self.protocol {
-                Protocol::Lattice => "lattice".into(),
-                Protocol::Paper => "paper".into(),
-            },
+            protocol: self.protocol.name().into(),
             preset: state.preset.name().into(),
             completion_ms: state.first_finished.map(ms),
             all_finished_ms,

@@ -90,6 +90,25 @@ impl State {
         }
     }
 
+    /// `dr_hal_send`: one transmission on one channel, if anything listens there.
+    pub fn send_on(&mut self, m: usize, channel: u8, bytes: &[u8]) {
+        if !self.modules[m].powered {
+            return;
+        }
+        let from = Port {
+            module: m,
+            connector: channel,
+        };
+        let Some(to) = self.view().link_target(from) else {
+            return;
+        };
+        let queue = self.send_queue(channel);
+        match self.reserve(m, queue, bytes.len()) {
+            Some((start, end)) => self.send(from, to, start, end, bytes),
+            None => self.counters.overflow += 1,
+        }
+    }
+
     /// Where module `m`'s broadcasts go: (sending connector, receiving connector), by
     /// connector. Cached in `links` until the world changes.
     fn link_targets(&self, m: usize) -> Vec<(Port, Port)> {

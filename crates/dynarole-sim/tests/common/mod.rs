@@ -1,7 +1,7 @@
 //! Shared by the simulator's tests: compile a sequence from source and run it.
 #![allow(dead_code)]
 
-use dynarole_codegen::{CompileOptions, PaperMerge, Protocol};
+use dynarole_codegen::{CompileOptions, Protocol};
 use dynarole_core::{analyze, parse, RobotRegistry};
 use dynarole_sim::{Report, Run, Scenario, Simulator};
 use dynarole_world::Configuration;
@@ -13,12 +13,8 @@ pub const CAR: &str = include_str!("../../../../examples/atron/car.json");
 pub fn options(protocol: Protocol) -> CompileOptions {
     CompileOptions {
         protocol,
-        merge: PaperMerge::CPort,
-        single_step_handover: false,
-        restart_pending: false,
-        epochs: 1,
-        no_nv: false,
         name: "test".into(),
+        ..CompileOptions::default()
     }
 }
 
