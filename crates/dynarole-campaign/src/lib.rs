@@ -10,6 +10,7 @@ mod plot;
 mod results;
 mod spec;
 mod stats;
+mod tables;
 
 pub use plan::{Axis, Faults, PlannedRun};
 pub use plot::rasterise_svg;
@@ -129,7 +130,13 @@ pub fn run(options: &Options) -> Result<Done, Error> {
     rows.extend(new);
     rows.sort_by_key(|r| r.run);
     let summaries = summarise(&rows);
-    let mut files = vec![csv_path, write_summary(&summaries, &options.out_dir)?];
+    let tables = options.out_dir.join("summary.md");
+    std::fs::write(&tables, tables::markdown(&summaries)).map_err(|e| Error::io(&tables, e))?;
+    let mut files = vec![
+        csv_path,
+        write_summary(&summaries, &options.out_dir)?,
+        tables,
+    ];
     if options.plots {
         files.extend(plot::write_all(&summaries, &options.out_dir)?);
     }

@@ -9,11 +9,13 @@ use plotters::prelude::*;
 use std::path::{Path, PathBuf};
 
 const SIZE: (u32, u32) = (800, 520);
-const COLOURS: [RGBColor; 4] = [
+const COLOURS: [RGBColor; 6] = [
     RGBColor(31, 119, 180),
     RGBColor(230, 120, 20),
     RGBColor(44, 160, 44),
     RGBColor(200, 40, 40),
+    RGBColor(148, 103, 189),
+    RGBColor(120, 120, 120),
 ];
 
 /// A point of a line: x, y, and an optional interval (low, high) of y.
