@@ -1,5 +1,6 @@
 //! Back-ends of the dynarole compiler: from the IR (`dynarole_core::lower::Ir`) to a
-//! self-contained directory of portable C (runtime included) for either protocol.
+//! self-contained directory of portable C (runtime included) for either protocol, and to a
+//! Promela model of it for the spin model checker.
 //!
 //! **Architecture invariant**: every back-end is generated from the same IR, so the C that
 //! runs on the modules and the models that check it cannot drift apart.
@@ -8,6 +9,11 @@ mod c;
 mod nesc;
 mod paper;
 mod predicate;
+mod promela;
 mod runtime;
 
 pub use c::{generate_c, generate_nesc, CompileOptions, Generated, PaperMerge, Protocol};
+pub use promela::{
+    generate_promela, Fault, Model, ModelOptions, Topology, TopologyLink, TopologyModule,
+    MAX_MODEL_MODULES, MAX_MODEL_WINDOW,
+};

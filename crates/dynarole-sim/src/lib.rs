@@ -19,6 +19,7 @@ mod report;
 mod scenario;
 mod sequence;
 mod state;
+mod topology;
 
 pub use build::cache_root;
 pub use critical::CriticalPath;
@@ -26,6 +27,7 @@ pub use report::{Counters, ModuleReport, Refusal, Report, Violation};
 pub use scenario::{
     Block, JointModel, Network, Power, Preset, RandomResets, Reset, Scenario, ScenarioError, Timing,
 };
+pub use topology::{communication_graph, CommGraph};
 
 use build::Loaded;
 use dynarole_codegen::{generate_c, CompileOptions, Protocol};
