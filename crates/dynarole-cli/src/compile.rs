@@ -16,6 +16,9 @@ pub enum Target {
     C,
     /// The same C wrapped in a TinyOS 2 component (DynaRoleC.nc, DynaRoleP.nc).
     Nesc,
+    /// A Promela model for spin (`model.pml`) on the configuration given with --from; see
+    /// `dynarole verify`.
+    Promela,
 }
 
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
@@ -109,13 +112,35 @@ pub struct CompileArgs<'a> {
     pub target: Target,
     pub options: &'a ProtocolOptions,
     pub epochs: u16,
-    /// Token protocol: the configuration its routes are computed on.
-    pub from: Option<&'a Path>,
     pub out_dir: &'a Path,
+    /// The start configuration: `--target promela` and the token protocol need it.
+    pub from: Option<&'a Path>,
+    pub model: &'a crate::verify::ModelArgs,
     pub plugins: &'a PluginArgs,
 }
 
 pub fn run(args: &CompileArgs) -> Result<ExitCode, Failure> {
+    if let Target::Promela = args.target {
+        let Some(from) = args.from else {
+            return Err(Failure::Usage(
+                "--target promela needs --from CONFIG (the model is of a robot's communication graph)".into(),
+            ));
+        };
+        return load::with_program(args.file, args.plugins, |program, source| {
+            let display = args.file.display().to_string();
+            let request = crate::verify::Request {
+                program,
+                source,
+                display: &display,
+                sequences: args.sequences,
+                from,
+                options: args.options,
+                model: args.model,
+                epochs: args.epochs,
+            };
+            crate::verify::write_model(&request, args.out_dir)
+        });
+    }
     load::with_program(args.file, args.plugins, |program, source| {
         let display = args.file.display().to_string();
         let names = load::sequence_names(program, args.sequences);
@@ -147,7 +172,7 @@ pub fn run(args: &CompileArgs) -> Result<ExitCode, Failure> {
             return Ok(ExitCode::from(1));
         }
         let generate = match args.target {
-            Target::C => generate_c,
+            Target::C | Target::Promela => generate_c,
             Target::Nesc => generate_nesc,
         };
         let generated = match generate(&ir, &program.robot, &options) {

@@ -5,6 +5,7 @@
 pub mod campaign;
 pub mod check;
 pub mod compile;
+pub mod counterexample;
 pub mod fmt;
 pub mod load;
 pub mod render;
@@ -12,6 +13,8 @@ pub mod replay;
 pub mod reverse;
 pub mod show;
 pub mod simulate;
+pub mod spin;
+pub mod verify;
 pub mod world;
 
 use clap::{Parser, Subcommand};
@@ -57,12 +60,54 @@ enum Command {
         /// Lattice protocol: how many times the whole sequence runs (0: forever).
         #[arg(long, default_value_t = 1)]
         epochs: u16,
-        /// Token protocol: the configuration its hand-over routes are computed on.
-        #[arg(long, value_name = "CONFIG")]
-        from: Option<PathBuf>,
         /// The directory to write.
         #[arg(short = 'o', long = "output", value_name = "DIR")]
         out_dir: PathBuf,
+        /// The configuration the sequence starts from: required by `--target promela` (whose
+        /// model uses its communication graph) and `--protocol token` (whose hand-over routes
+        /// are computed on it).
+        #[arg(long, value_name = "CONFIG")]
+        from: Option<PathBuf>,
+        #[command(flatten)]
+        model: verify::ModelArgs,
+        #[command(flatten)]
+        plugins: load::PluginArgs,
+    },
+    /// Model-check a compiled sequence on a configuration with spin: S1, S2, S3 and L under
+    /// the stated bounds (exit 0 verified, 1 violated, 3 inconclusive).
+    Verify {
+        file: PathBuf,
+        /// Sequence to check; repeat to run several in turn (default: the first in the file).
+        #[arg(long = "sequence", value_name = "NAME")]
+        sequences: Vec<String>,
+        /// The configuration to start from (JSON): modules, roles and who hears whom.
+        #[arg(long, value_name = "CONFIG")]
+        from: PathBuf,
+        #[command(flatten)]
+        options: compile::ProtocolOptions,
+        #[command(flatten)]
+        model: verify::ModelArgs,
+        /// Lattice protocol: how many times the whole sequence runs.
+        #[arg(long, default_value_t = 1)]
+        epochs: u16,
+        /// Memory for each search (MB); beyond it the search falls back to bitstate hashing.
+        #[arg(long, default_value_t = 4096, value_name = "MB")]
+        memory: u64,
+        /// Time for each search (seconds); beyond it the search falls back to bitstate hashing.
+        #[arg(long, default_value_t = 600, value_name = "SECONDS")]
+        time_limit: u64,
+        /// Use bitstate hashing from the start (a partial search, never a proof).
+        #[arg(long)]
+        bitstate: bool,
+        /// Check S1, S2 and S3 only (not L).
+        #[arg(long)]
+        safety_only: bool,
+        /// Keep the model, spin's files and the trail in DIR.
+        #[arg(long, value_name = "DIR")]
+        keep: Option<PathBuf>,
+        /// Check a deliberately broken lattice protocol (tests of the checker).
+        #[arg(long, value_enum, hide = true)]
+        fault: Option<verify::FaultArg>,
         #[command(flatten)]
         plugins: load::PluginArgs,
     },
@@ -224,8 +269,9 @@ pub fn main() -> ExitCode {
             target,
             options,
             epochs,
-            from,
             out_dir,
+            from,
+            model,
             plugins,
         } => compile::run(&compile::CompileArgs {
             file: &file,
@@ -233,8 +279,38 @@ pub fn main() -> ExitCode {
             target,
             options: &options,
             epochs,
-            from: from.as_deref(),
             out_dir: &out_dir,
+            from: from.as_deref(),
+            model: &model,
+            plugins: &plugins,
+        }),
+        Command::Verify {
+            file,
+            sequences,
+            from,
+            options,
+            model,
+            epochs,
+            memory,
+            time_limit,
+            bitstate,
+            safety_only,
+            keep,
+            fault,
+            plugins,
+        } => verify::run(&verify::VerifyArgs {
+            file: &file,
+            sequences: &sequences,
+            from: &from,
+            options: &options,
+            model: &model,
+            epochs,
+            memory_mb: memory,
+            time_s: time_limit,
+            bitstate,
+            safety_only,
+            keep: keep.as_deref(),
+            fault,
             plugins: &plugins,
         }),
         Command::Show { config, output } => show::run(&config, &output),

@@ -180,7 +180,7 @@ fn protocol_header(protocol: Protocol) -> &'static str {
 }
 
 /// The most parallel statements that can be pending at once: those of one parallel group.
-fn pending_slots(ir: &Ir) -> Result<usize, LimitError> {
+pub(crate) fn pending_slots(ir: &Ir) -> Result<usize, LimitError> {
     let mut most = 0usize;
     let mut run = 0usize;
     for unit in ir.paper_layout()? {

@@ -1,5 +1,6 @@
 //! Back-ends of the dynarole compiler: from the IR (`dynarole_core::lower::Ir`) to a
-//! self-contained directory of portable C (runtime included) for each protocol.
+//! self-contained directory of portable C (runtime included) for each protocol, and to a
+//! Promela model of it (lattice and paper protocols) for the spin model checker.
 //!
 //! **Architecture invariant**: every back-end is generated from the same IR, so the C that
 //! runs on the modules and the models that check it cannot drift apart.
@@ -8,8 +9,13 @@ mod c;
 mod nesc;
 mod paper;
 mod predicate;
+mod promela;
 mod runtime;
 mod token;
 
 pub use c::{generate_c, generate_nesc, CompileOptions, Generated, PaperMerge, Protocol};
+pub use promela::{
+    generate_promela, Fault, Model, ModelOptions, Topology, TopologyLink, TopologyModule,
+    MAX_MODEL_MODULES, MAX_MODEL_WINDOW,
+};
 pub use token::{TokenRetries, TokenRoutes};

@@ -20,6 +20,7 @@ mod routes;
 mod scenario;
 mod sequence;
 mod state;
+mod topology;
 
 pub use build::cache_root;
 pub use critical::CriticalPath;
@@ -28,6 +29,7 @@ pub use routes::token_routes;
 pub use scenario::{
     Block, JointModel, Network, Power, Preset, RandomResets, Reset, Scenario, ScenarioError, Timing,
 };
+pub use topology::{communication_graph, CommGraph};
 
 use build::Loaded;
 use dynarole_codegen::{generate_c, CompileOptions, Protocol};

@@ -1,0 +1,500 @@
+//! `dynarole verify`: model-checks a compiled sequence on a configuration with spin (S1, S2,
+//! S3 and L under stated bounds) and reports a counterexample in the source's terms; also
+//! the model itself for `dynarole compile --target promela`.
+
+use crate::compile::{ProtocolArg, ProtocolOptions};
+use crate::counterexample::{explain, parse_events, Context};
+use crate::load::{self, Failure, PluginArgs};
+use crate::render;
+use crate::spin::{self, Check, Limits, PanResult};
+use crate::world::{prepare, read_configuration};
+use dynarole_codegen::{
+    generate_promela, Fault, Model, ModelOptions, Protocol, Topology, TopologyLink, TopologyModule,
+};
+use dynarole_core::check::Label;
+use dynarole_core::lower::Ir;
+use dynarole_core::{Diagnostic, DiagnosticKind, Program};
+use dynarole_sim::{communication_graph, CommGraph};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+/// The bounds of the environment, shared by `verify` and `compile --target promela`.
+#[derive(Clone, Debug, clap::Args)]
+pub struct ModelArgs {
+    /// Module resets, at most, in a run (any module, at any moment, mid-operation included).
+    #[arg(long, default_value_t = 0, value_name = "N")]
+    pub resets: u8,
+    /// Only this module may reset (its name in the configuration); may be repeated.
+    #[arg(long = "reset-only", value_name = "MODULE")]
+    pub reset_only: Vec<String>,
+    /// Packets that can be in flight at once and be delivered late (again and again, so also
+    /// duplicated and reordered). Losses are not bounded: any packet may be lost.
+    #[arg(long, default_value_t = 1, value_name = "K")]
+    pub late: u8,
+}
+
+/// A deliberately broken lattice protocol (for the tests of the checker itself).
+#[derive(Clone, Copy, Debug, clap::ValueEnum)]
+pub enum FaultArg {
+    /// The join drops the other copy's done bit of the lowest incomplete statement.
+    JoinDropsDone,
+    /// The join raises the low-water mark without re-basing the bits.
+    JoinNoRebase,
+}
+
+/// What `verify` was asked to do.
+pub struct VerifyArgs<'a> {
+    pub file: &'a Path,
+    pub sequences: &'a [String],
+    pub from: &'a Path,
+    pub options: &'a ProtocolOptions,
+    pub model: &'a ModelArgs,
+    pub epochs: u16,
+    pub memory_mb: u64,
+    pub time_s: u64,
+    pub bitstate: bool,
+    pub safety_only: bool,
+    pub keep: Option<&'a Path>,
+    pub fault: Option<FaultArg>,
+    pub plugins: &'a PluginArgs,
+}
+
+/// A model and what it was made from.
+pub struct Built {
+    pub ir: Ir,
+    pub model: Model,
+    pub topology: Topology,
+    pub graph: CommGraph,
+    pub name: String,
+}
+
+/// What a model is made from: a checked source, its sequences, a configuration, options.
+pub struct Request<'a> {
+    pub program: &'a Program<'a>,
+    pub source: &'a str,
+    pub display: &'a str,
+    pub sequences: &'a [String],
+    pub from: &'a Path,
+    pub options: &'a ProtocolOptions,
+    pub model: &'a ModelArgs,
+    pub epochs: u16,
+}
+
+/// Expands, lowers and models the sequences on the configuration. `Err(code)` inside: the
+/// problem was rendered as a diagnostic of the source.
+pub fn build(req: &Request, fault: Option<FaultArg>) -> Result<Result<Built, ExitCode>, Failure> {
+    let Request {
+        program,
+        source,
+        display,
+        sequences,
+        from,
+        options,
+        model,
+        epochs,
+    } = *req;
+    let names = load::sequence_names(program, sequences);
+    let config = read_configuration(from)?;
+    let prepared = match prepare(program, &names, config)? {
+        Ok(p) => p,
+        Err(diagnostics) => {
+            render::diagnostics(display, source, &diagnostics);
+            return Ok(Err(ExitCode::from(1)));
+        }
+    };
+    if let ProtocolArg::Paper = options.protocol {
+        for plan in &prepared.plans {
+            if let Err(d) = plan.flatten_for_paper() {
+                render::diagnostics(display, source, &[d]);
+                return Ok(Err(ExitCode::from(1)));
+            }
+        }
+    }
+    let limit_error = |e: dynarole_core::lower::LimitError| {
+        Diagnostic::new(DiagnosticKind::TargetLimit { message: e.message }, e.span)
+    };
+    let ir = match program.lower(&prepared.plans) {
+        Ok(ir) => ir,
+        Err(e) => {
+            render::diagnostics(display, source, &[limit_error(e)]);
+            return Ok(Err(ExitCode::from(1)));
+        }
+    };
+    let graph = communication_graph(
+        program,
+        &prepared.plans,
+        prepared.world.clone(),
+        &prepared.assignment,
+    );
+    let topology = topology(&ir, &graph, &prepared.assignment)?;
+    let name = names.join(" + ");
+    let mut reset_modules = Vec::new();
+    for wanted in &model.reset_only {
+        match graph.names.iter().position(|n| n == wanted) {
+            Some(k) => reset_modules.push(k),
+            None => {
+                return Err(Failure::Usage(format!(
+                    "--reset-only {wanted}: no module of that name in {}",
+                    from.display()
+                )))
+            }
+        }
+    }
+    let model_options = ModelOptions {
+        compile: options.compile_options(epochs, name.clone()),
+        resets: model.resets,
+        reset_modules,
+        late: model.late,
+        fault: fault.map(|f| match f {
+            FaultArg::JoinDropsDone => Fault::JoinDropsDone,
+            FaultArg::JoinNoRebase => Fault::JoinNoRebase,
+        }),
+    };
+    if model_options.compile.protocol != Protocol::Lattice && fault.is_some() {
+        return Err(Failure::Usage(
+            "the broken variants exist for the lattice protocol only".into(),
+        ));
+    }
+    let model = match generate_promela(&ir, &topology, &model_options) {
+        Ok(m) => m,
+        Err(e) => {
+            render::diagnostics(display, source, &[limit_error(e)]);
+            return Ok(Err(ExitCode::from(1)));
+        }
+    };
+    Ok(Ok(Built {
+        ir,
+        model,
+        topology,
+        graph,
+        name,
+    }))
+}
+
+/// The model's view of the robot: every module of the configuration with the address of the
+/// label assigned to it, and its links (fair when they exist throughout).
+fn topology(
+    ir: &Ir,
+    graph: &CommGraph,
+    assignment: &dynarole_replay::Assignment,
+) -> Result<Topology, Failure> {
+    let mut modules = Vec::new();
+    for name in &graph.names {
+        let labels: Vec<&Label> = assignment
+            .iter()
+            .filter(|(_, module)| *module == name)
+            .map(|(label, _)| label)
+            .collect();
+        let addresses: Vec<u8> = labels
+            .iter()
+            .filter_map(|l| ir.addresses.iter().find(|a| a.label == **l))
+            .map(|a| a.number)
+            .collect();
+        if addresses.len() > 1 {
+            return Err(Failure::Input(format!(
+                "module {name} has several roles; the model needs one address per module"
+            )));
+        }
+        modules.push(TopologyModule {
+            name: name.clone(),
+            address: addresses.first().copied(),
+        });
+    }
+    // A link surely exists in stage k (statements 0..k done, k not) when it exists in every
+    // configuration from the one after the first k statements to the one after the group
+    // (up to the next `;`) that statement k belongs to; in the last stage, in the final one.
+    let n = ir.statements.len();
+    let group_end = |k: usize| -> usize {
+        (k..n)
+            .find(|&j| ir.statements[j].separator == dynarole_core::ast::SeparatorKind::Sequential)
+            .map_or(n, |j| j + 1)
+    };
+    let all: std::collections::BTreeSet<(usize, usize)> =
+        graph.always.union(&graph.sometimes).copied().collect();
+    let links = all
+        .into_iter()
+        .map(|(from, to)| {
+            let fair_stages = (0..=n)
+                .filter(|&k| {
+                    let last = if k == n { n } else { group_end(k) };
+                    (k..=last).all(|t| graph.stages.get(t).is_some_and(|s| s.contains(&(from, to))))
+                })
+                .collect();
+            TopologyLink {
+                from,
+                to,
+                fair_stages,
+            }
+        })
+        .collect();
+    Ok(Topology { modules, links })
+}
+
+pub fn run(args: &VerifyArgs) -> Result<ExitCode, Failure> {
+    if let ProtocolArg::Token = args.options.protocol {
+        return Err(Failure::Usage(
+            "verify models the lattice and paper protocols; the token baseline is not modelled"
+                .into(),
+        ));
+    }
+    load::with_program(args.file, args.plugins, |program, source| {
+        let display = args.file.display().to_string();
+        let request = Request {
+            program,
+            source,
+            display: &display,
+            sequences: args.sequences,
+            from: args.from,
+            options: args.options,
+            model: args.model,
+            epochs: args.epochs,
+        };
+        let built = match build(&request, args.fault)? {
+            Ok(b) => b,
+            Err(code) => return Ok(code),
+        };
+        spin::check_tools()?;
+        let dir = match args.keep {
+            Some(d) => d.to_path_buf(),
+            None => scratch_dir(),
+        };
+        std::fs::create_dir_all(&dir)
+            .map_err(|e| Failure::Input(format!("cannot create {}: {e}", dir.display())))?;
+        let result = verify_in(&dir, args, &built, &display, source);
+        if args.keep.is_none() {
+            let _ = std::fs::remove_dir_all(&dir);
+        }
+        result
+    })
+}
+
+fn scratch_dir() -> PathBuf {
+    let nanos = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.subsec_nanos());
+    std::env::temp_dir().join(format!("dynarole-verify-{}-{nanos}", std::process::id()))
+}
+
+/// Whether a property was proved, refuted, or neither.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Verdict {
+    Verified,
+    Violated,
+    Inconclusive,
+}
+
+fn verify_in(
+    dir: &Path,
+    args: &VerifyArgs,
+    built: &Built,
+    display: &str,
+    source: &str,
+) -> Result<ExitCode, Failure> {
+    let path = dir.join("model.pml");
+    std::fs::write(&path, &built.model.text)
+        .map_err(|e| Failure::Input(format!("cannot write {}: {e}", path.display())))?;
+    print_header(args, built);
+    let limits = Limits {
+        memory_mb: args.memory_mb,
+        time_s: args.time_s,
+        bitstate: args.bitstate,
+        shortest: false,
+    };
+    let mut verdicts = Vec::new();
+    let checks: &[(Check, &str)] = if args.safety_only {
+        &[(Check::Safety, "S1, S2, S3 (safety)")]
+    } else {
+        &[
+            (Check::Safety, "S1, S2, S3 (safety)"),
+            (Check::Liveness, "L (finishes, weak fairness)"),
+        ]
+    };
+    for &(check, label) in checks {
+        let mut result = spin::run_check(dir, check, limits)?;
+        let mut fell_back = false;
+        if result.errors == 0 && !limits.bitstate && (result.out_of_memory || result.timed_out) {
+            println!(
+                "  {label}: the state space is too large for an exhaustive search ({}); trying a bitstate search",
+                describe(&result)
+            );
+            let bitstate = Limits {
+                bitstate: true,
+                ..limits
+            };
+            result = spin::run_check(dir, check, bitstate)?;
+            fell_back = true;
+        }
+        let verdict = if result.errors > 0 {
+            Verdict::Violated
+        } else if result.complete() {
+            Verdict::Verified
+        } else {
+            Verdict::Inconclusive
+        };
+        let word = match verdict {
+            Verdict::Verified => "verified",
+            Verdict::Violated => "VIOLATED",
+            Verdict::Inconclusive => {
+                if fell_back || result.bitstate {
+                    "no violation found (NOT a proof)"
+                } else {
+                    "not finished (NOT a proof)"
+                }
+            }
+        };
+        println!("  {label}: {word} — {}", describe(&result));
+        verdicts.push(verdict);
+        if verdict == Verdict::Violated {
+            if check == Check::Safety && !limits.bitstate {
+                // The first depth-first trail is rarely the shortest: search again, shortening
+                // it iteratively (keeping the first trail if that runs out of memory).
+                let trail = dir.join("model.pml.trail");
+                let kept = dir.join("dfs.trail");
+                let _ = std::fs::rename(&trail, &kept);
+                let bfs = Limits {
+                    shortest: true,
+                    ..limits
+                };
+                let again = spin::run_check(dir, check, bfs)?;
+                if again.errors == 0 || !trail.exists() {
+                    let _ = std::fs::rename(&kept, &trail);
+                }
+            }
+            let output = spin::replay_trail(dir, check)?;
+            let events = parse_events(&output);
+            let cx = Context {
+                ir: &built.ir,
+                module_names: &built.model.module_names,
+                paper_states: &built.model.paper_states,
+                path: display,
+                source,
+            };
+            println!();
+            print!("{}", explain(&events, &cx));
+            break;
+        }
+    }
+    let code = if verdicts.contains(&Verdict::Violated) {
+        println!("result: violated");
+        1
+    } else if verdicts.iter().all(|v| *v == Verdict::Verified) {
+        println!("result: verified");
+        0
+    } else {
+        println!("result: inconclusive (the search did not cover every state; see above)");
+        3
+    };
+    Ok(ExitCode::from(code))
+}
+
+/// `exhaustive, 1234 states, depth 56, 0.10 s` and what limited the search.
+fn describe(r: &PanResult) -> String {
+    let mut parts = vec![
+        if r.bitstate {
+            "bitstate (partial)".to_string()
+        } else {
+            "exhaustive".to_string()
+        },
+        format!("{} states", r.states),
+        format!("depth {}", r.depth),
+        format!("{:.2} s", r.seconds),
+    ];
+    if r.memory_mb > 0.0 {
+        parts.push(format!("{:.0} MB", r.memory_mb));
+    }
+    if r.out_of_memory {
+        parts.push("out of memory".into());
+    }
+    if r.timed_out {
+        parts.push("time limit reached".into());
+    }
+    if r.depth_limited {
+        parts.push("depth limit reached".into());
+    }
+    parts.join(", ")
+}
+
+fn print_header(args: &VerifyArgs, built: &Built) {
+    let protocol = match args.options.protocol {
+        ProtocolArg::Lattice => {
+            if args.options.no_nv {
+                "lattice protocol without NV".to_string()
+            } else {
+                "lattice protocol".to_string()
+            }
+        }
+        ProtocolArg::Paper => format!(
+            "paper protocol, {:?} merge{}{}",
+            args.options.merge,
+            if args.options.single_step_handover {
+                ", single-step handover"
+            } else {
+                ""
+            },
+            if args.options.restart_pending {
+                ", pending restart"
+            } else {
+                ""
+            }
+        )
+        .replace("CPort", "c-port")
+        .replace("Java", "java")
+        .replace("Printed", "printed"),
+        ProtocolArg::Token => "token baseline".to_string(),
+    };
+    let stages = built.ir.statements.len() + 1;
+    let throughout = built
+        .topology
+        .links
+        .iter()
+        .filter(|l| l.fair_stages.len() == stages)
+        .count();
+    println!(
+        "verify {} on {} ({protocol}): {} statements, {} modules, {} links ({} throughout, {} part of the time)",
+        built.name,
+        args.from.display(),
+        built.ir.statements.len(),
+        built.topology.modules.len(),
+        built.topology.links.len(),
+        throughout,
+        built.topology.links.len() - throughout
+    );
+    let epochs = match args.options.protocol {
+        ProtocolArg::Lattice => format!("{} run(s) of the sequence", args.epochs.max(1)),
+        ProtocolArg::Paper | ProtocolArg::Token => "one run".to_string(),
+    };
+    let who = if args.model.reset_only.is_empty() {
+        String::new()
+    } else {
+        format!(" (of {} only)", args.model.reset_only.join(", "))
+    };
+    println!(
+        "bounds: at most {} reset(s){who}; at most {} packet(s) in flight delivered late (and again); any packet may be lost; {epochs}; operations never fail",
+        args.model.resets, args.model.late
+    );
+    if args.fault.is_some() {
+        println!("note: a deliberately broken variant of the protocol is checked (--fault)");
+    }
+}
+
+/// `dynarole compile --target promela`: writes DIR/model.pml.
+pub fn write_model(req: &Request, out_dir: &Path) -> Result<ExitCode, Failure> {
+    let built = match build(req, None)? {
+        Ok(b) => b,
+        Err(code) => return Ok(code),
+    };
+    std::fs::create_dir_all(out_dir)
+        .map_err(|e| Failure::Input(format!("cannot create {}: {e}", out_dir.display())))?;
+    let path = out_dir.join("model.pml");
+    std::fs::write(&path, &built.model.text)
+        .map_err(|e| Failure::Input(format!("cannot write {}: {e}", path.display())))?;
+    println!(
+        "model of {}: {} statements, {} modules, {} links -> {}",
+        built.name,
+        built.ir.statements.len(),
+        built.topology.modules.len(),
+        built.topology.links.len(),
+        path.display()
+    );
+    Ok(ExitCode::SUCCESS)
+}
