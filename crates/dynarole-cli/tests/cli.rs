@@ -1,19 +1,10 @@
 //! The `dynarole` binary end to end: exit codes, output, and files it writes.
 
+mod common;
+
+use common::{dynarole, repo_root, text};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-
-fn dynarole(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_dynarole"))
-        .args(args)
-        .current_dir(repo_root())
-        .output()
-        .expect("the dynarole binary runs")
-}
-
-fn repo_root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
 
 /// `dynarole replay FILE --sequence S... --from FROM --expect EXPECT`.
 fn replay(file: &str, sequences: &[&str], from: &str, expect: &str) -> Output {
@@ -22,10 +13,6 @@ fn replay(file: &str, sequences: &[&str], from: &str, expect: &str) -> Output {
         args.extend(["--sequence", sequence]);
     }
     dynarole(&args)
-}
-
-fn text(bytes: &[u8]) -> String {
-    String::from_utf8_lossy(bytes).into_owned()
 }
 
 fn scratch(name: &str, contents: &str) -> PathBuf {

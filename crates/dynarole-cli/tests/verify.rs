@@ -2,24 +2,10 @@
 //! `scripts/test` installs it), and the translation of a counterexample back to the source.
 
 use dynarole_cli::counterexample::{explain, parse_events, Context};
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
-fn dynarole(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_dynarole"))
-        .args(args)
-        .current_dir(repo_root())
-        .output()
-        .expect("the dynarole binary runs")
-}
-
-fn repo_root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn text(bytes: &[u8]) -> String {
-    String::from_utf8_lossy(bytes).into_owned()
-}
+use common::{dynarole, repo_root, text};
+use std::path::Path;
 
 const LINE: &str = "examples/verify/line3.json";
 
