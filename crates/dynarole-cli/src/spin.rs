@@ -37,6 +37,8 @@ pub struct PanResult {
     pub depth_limited: bool,
     pub timed_out: bool,
     pub bitstate: bool,
+    /// pan printed its statistics (a search that ran, whatever it found).
+    pub reported: bool,
     /// The first line of pan's error report, e.g. `pan:1: assertion violated false (at depth 17)`.
     pub error_line: Option<String>,
 }
@@ -176,6 +178,14 @@ pub fn run_check(dir: &Path, check: Check, limits: Limits) -> Result<PanResult, 
     }
     let text = std::fs::read_to_string(dir.join("pan.log")).unwrap_or_default();
     let mut result = parse_pan(&text);
+    if !timed_out && !result.reported && !result.out_of_memory {
+        let first: Vec<&str> = text.lines().take(5).collect();
+        return Err(Failure::Input(format!(
+            "pan stopped without a result in {}:\n{}",
+            dir.display(),
+            first.join("\n")
+        )));
+    }
     result.timed_out = timed_out;
     result.bitstate = limits.bitstate;
     if timed_out {
@@ -207,6 +217,7 @@ pub fn parse_pan(text: &str) -> PanResult {
             continue;
         }
         if let Some(rest) = t.strip_prefix("State-vector") {
+            r.reported = true;
             if let Some(d) = rest.split("depth reached").nth(1) {
                 r.depth = number(d.trim_start());
             }

@@ -9,7 +9,8 @@ use crate::render;
 use crate::spin::{self, Check, Limits, PanResult};
 use crate::world::{prepare, read_configuration};
 use dynarole_codegen::{
-    generate_promela, Fault, Model, ModelOptions, Protocol, Topology, TopologyLink, TopologyModule,
+    generate_compositional, generate_promela, liveness_graph, Fault, LivenessGraph, Model,
+    ModelOptions, Protocol, Topology, TopologyLink, TopologyModule,
 };
 use dynarole_core::check::Label;
 use dynarole_core::lower::Ir;
@@ -31,7 +32,24 @@ pub struct ModelArgs {
     /// duplicated and reordered). Losses are not bounded: any packet may be lost.
     #[arg(long, default_value_t = 1, value_name = "K")]
     pub late: u8,
+    /// How to model the robot: `full` (every module's logic and every link), `compositional`
+    /// (lattice only: one model per module, every packet any state the robot has reached;
+    /// scales to large robots), `auto` (compositional for the lattice protocol on more than
+    /// three modules).
+    #[arg(long, value_enum, default_value_t = Method::Auto)]
+    pub method: Method,
 }
+
+/// How the robot is modelled (see docs/verification.md).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Method {
+    Auto,
+    Full,
+    Compositional,
+}
+
+/// Modules above which `auto` chooses the compositional model for the lattice protocol.
+const AUTO_FULL_MODULES: usize = 3;
 
 /// A deliberately broken lattice protocol (for the tests of the checker itself).
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
@@ -62,10 +80,20 @@ pub struct VerifyArgs<'a> {
 /// A model and what it was made from.
 pub struct Built {
     pub ir: Ir,
-    pub model: Model,
+    pub models: Models,
     pub topology: Topology,
     pub graph: CommGraph,
     pub name: String,
+}
+
+/// The full model, or one compositional model per module.
+pub enum Models {
+    Full(Model),
+    Compositional {
+        /// One per module of the topology, in its order.
+        per_module: Vec<Model>,
+        liveness: LivenessGraph,
+    },
 }
 
 /// What a model is made from: a checked source, its sequences, a configuration, options.
@@ -155,7 +183,7 @@ pub fn build(req: &Request, fault: Option<FaultArg>) -> Result<Result<Built, Exi
             "the broken variants exist for the lattice protocol only".into(),
         ));
     }
-    let model = match generate_promela(&ir, &topology, &model_options) {
+    let models = match generate(&ir, &topology, &model_options, model.method) {
         Ok(m) => m,
         Err(e) => {
             render::diagnostics(display, source, &[limit_error(e)]);
@@ -164,11 +192,52 @@ pub fn build(req: &Request, fault: Option<FaultArg>) -> Result<Result<Built, Exi
     };
     Ok(Ok(Built {
         ir,
-        model,
+        models,
         topology,
         graph,
         name,
     }))
+}
+
+/// Whether the compositional model is used: asked for, or `auto` on a lattice robot of more
+/// than AUTO_FULL_MODULES modules (one run, NV, no broken variant).
+fn compositional(options: &ModelOptions, modules: usize, method: Method) -> bool {
+    let o = &options.compile;
+    match method {
+        Method::Full => false,
+        Method::Compositional => true,
+        Method::Auto => {
+            o.protocol == Protocol::Lattice
+                && !o.no_nv
+                && o.epochs == 1
+                && options.fault.is_none()
+                && modules > AUTO_FULL_MODULES
+        }
+    }
+}
+
+fn generate(
+    ir: &Ir,
+    topology: &Topology,
+    options: &ModelOptions,
+    method: Method,
+) -> Result<Models, dynarole_core::lower::LimitError> {
+    if !compositional(options, topology.modules.len(), method) {
+        return generate_promela(ir, topology, options).map(Models::Full);
+    }
+    // Late packets are subsumed: every packet is any state the robot has already reached.
+    let options = ModelOptions {
+        late: 0,
+        ..options.clone()
+    };
+    let liveness = liveness_graph(ir, topology);
+    let per_module = (0..topology.modules.len())
+        .map(|k| generate_compositional(ir, topology, &options, k, &liveness))
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(Models::Compositional {
+        per_module,
+        liveness,
+    })
 }
 
 /// The model's view of the robot: every module of the configuration with the address of the
@@ -290,31 +359,148 @@ fn verify_in(
     display: &str,
     source: &str,
 ) -> Result<ExitCode, Failure> {
-    let path = dir.join("model.pml");
-    std::fs::write(&path, &built.model.text)
-        .map_err(|e| Failure::Input(format!("cannot write {}: {e}", path.display())))?;
     print_header(args, built);
+    let explain_with = Explain {
+        ir: &built.ir,
+        display,
+        source,
+    };
+    let verdicts = match &built.models {
+        Models::Full(model) => {
+            let checks = if args.safety_only {
+                vec![Check::Safety]
+            } else {
+                vec![Check::Safety, Check::Liveness]
+            };
+            check_model(dir, args, model, &checks, "", &explain_with)?
+        }
+        Models::Compositional {
+            per_module,
+            liveness,
+        } => check_each_module(dir, args, built, per_module, liveness, &explain_with)?,
+    };
+    let code = if verdicts.contains(&Verdict::Violated) {
+        println!("result: violated");
+        1
+    } else if verdicts.iter().all(|v| *v == Verdict::Verified) {
+        println!("result: verified");
+        0
+    } else {
+        println!("result: inconclusive (the search did not cover every state; see above)");
+        3
+    };
+    Ok(ExitCode::from(code))
+}
+
+/// What a counterexample is explained with.
+struct Explain<'a> {
+    ir: &'a Ir,
+    display: &'a str,
+    source: &'a str,
+}
+
+/// The compositional method: the modules one at a time (each model in its own directory),
+/// stopping at the first violation; L only where the links that surely exist carry what it
+/// needs.
+fn check_each_module(
+    dir: &Path,
+    args: &VerifyArgs,
+    built: &Built,
+    per_module: &[Model],
+    liveness: &LivenessGraph,
+    explain_with: &Explain,
+) -> Result<Vec<Verdict>, Failure> {
+    println!("method: compositional, one model per module (its own logic; every other module reduced to its start rule; every packet any dependency-closed state the robot has reached: any loss, delay, duplication, reordering, on any topology)");
+    let mut verdicts = Vec::new();
+    let mut checks = vec![Check::Safety];
+    if !args.safety_only {
+        let stuck = liveness.stuck_statements();
+        let deaf = liveness.deaf_modules();
+        if stuck.is_empty() && deaf.is_empty() {
+            println!("  links for L: in every stage, the dependencies of the next statement reach its module, and at the end every module is reached, over links that surely exist");
+            checks.push(Check::Liveness);
+        } else {
+            verdicts.push(Verdict::Inconclusive);
+            println!(
+                "  L: not established (NOT checked): {}",
+                unreached(built, &stuck, &deaf)
+            );
+        }
+    }
+    for (k, model) in per_module.iter().enumerate() {
+        let name = &built.topology.modules[k].name;
+        let sub = dir.join(format!("module-{k}"));
+        std::fs::create_dir_all(&sub)
+            .map_err(|e| Failure::Input(format!("cannot create {}: {e}", sub.display())))?;
+        let found = check_model(&sub, args, model, &checks, name, explain_with)?;
+        let violated = found.contains(&Verdict::Violated);
+        verdicts.extend(found);
+        if violated {
+            println!("note: the compositional model over-approximates the network, so a violation may be spurious; check it with --method full");
+            break;
+        }
+    }
+    Ok(verdicts)
+}
+
+/// Why L cannot be established from the links that surely exist.
+fn unreached(built: &Built, stuck: &[usize], deaf: &[usize]) -> String {
+    let mut parts = Vec::new();
+    for &s in stuck {
+        parts.push(format!(
+            "in stage {s}, what #{s} `{}` waits for cannot be shown to reach its module",
+            built.ir.statements[s].text
+        ));
+    }
+    if !deaf.is_empty() {
+        let names: Vec<&str> = deaf
+            .iter()
+            .map(|&m| built.topology.modules[m].name.as_str())
+            .collect();
+        parts.push(format!(
+            "in the final configuration, {} cannot be shown to hear every module that ran statements",
+            names.join(", ")
+        ));
+    }
+    parts.join("; ")
+}
+
+/// Runs the checks on one model in `dir` (falling back to bitstate when the exhaustive search
+/// does not fit), prints a line per check, explains the first violation and stops there.
+fn check_model(
+    dir: &Path,
+    args: &VerifyArgs,
+    model: &Model,
+    checks: &[Check],
+    who: &str,
+    explain_with: &Explain,
+) -> Result<Vec<Verdict>, Failure> {
+    let path = dir.join("model.pml");
+    std::fs::write(&path, &model.text)
+        .map_err(|e| Failure::Input(format!("cannot write {}: {e}", path.display())))?;
     let limits = Limits {
         memory_mb: args.memory_mb,
         time_s: args.time_s,
         bitstate: args.bitstate,
         shortest: false,
     };
-    let mut verdicts = Vec::new();
-    let checks: &[(Check, &str)] = if args.safety_only {
-        &[(Check::Safety, "S1, S2, S3 (safety)")]
+    let who = if who.is_empty() {
+        String::new()
     } else {
-        &[
-            (Check::Safety, "S1, S2, S3 (safety)"),
-            (Check::Liveness, "L (finishes, weak fairness)"),
-        ]
+        format!("{who}: ")
     };
-    for &(check, label) in checks {
+    let mut verdicts = Vec::new();
+    for &check in checks {
+        let label = match (check, who.is_empty()) {
+            (Check::Safety, true) => "S1, S2, S3 (safety)",
+            (Check::Safety, false) => "S1, S2, S3, G1-G4 (safety)",
+            (Check::Liveness, _) => "L (finishes, weak fairness)",
+        };
         let mut result = spin::run_check(dir, check, limits)?;
         let mut fell_back = false;
         if result.errors == 0 && !limits.bitstate && (result.out_of_memory || result.timed_out) {
             println!(
-                "  {label}: the state space is too large for an exhaustive search ({}); trying a bitstate search",
+                "  {who}{label}: the state space is too large for an exhaustive search ({}); trying a bitstate search",
                 describe(&result)
             );
             let bitstate = Limits {
@@ -342,49 +528,52 @@ fn verify_in(
                 }
             }
         };
-        println!("  {label}: {word} — {}", describe(&result));
+        println!("  {who}{label}: {word} — {}", describe(&result));
         verdicts.push(verdict);
         if verdict == Verdict::Violated {
-            if check == Check::Safety && !limits.bitstate {
-                // The first depth-first trail is rarely the shortest: search again, shortening
-                // it iteratively (keeping the first trail if that runs out of memory).
-                let trail = dir.join("model.pml.trail");
-                let kept = dir.join("dfs.trail");
-                let _ = std::fs::rename(&trail, &kept);
-                let bfs = Limits {
-                    shortest: true,
-                    ..limits
-                };
-                let again = spin::run_check(dir, check, bfs)?;
-                if again.errors == 0 || !trail.exists() {
-                    let _ = std::fs::rename(&kept, &trail);
-                }
-            }
-            let output = spin::replay_trail(dir, check)?;
-            let events = parse_events(&output);
-            let cx = Context {
-                ir: &built.ir,
-                module_names: &built.model.module_names,
-                paper_states: &built.model.paper_states,
-                path: display,
-                source,
-            };
-            println!();
-            print!("{}", explain(&events, &cx));
+            explain_violation(dir, check, limits, model, explain_with)?;
             break;
         }
     }
-    let code = if verdicts.contains(&Verdict::Violated) {
-        println!("result: violated");
-        1
-    } else if verdicts.iter().all(|v| *v == Verdict::Verified) {
-        println!("result: verified");
-        0
-    } else {
-        println!("result: inconclusive (the search did not cover every state; see above)");
-        3
+    Ok(verdicts)
+}
+
+/// Replays the trail of a violation (shortened first, for safety) and prints it in the
+/// source's terms.
+fn explain_violation(
+    dir: &Path,
+    check: Check,
+    limits: Limits,
+    model: &Model,
+    explain_with: &Explain,
+) -> Result<(), Failure> {
+    if check == Check::Safety && !limits.bitstate {
+        // The first depth-first trail is rarely the shortest: search again, shortening
+        // it iteratively (keeping the first trail if that runs out of memory).
+        let trail = dir.join("model.pml.trail");
+        let kept = dir.join("dfs.trail");
+        let _ = std::fs::rename(&trail, &kept);
+        let bfs = Limits {
+            shortest: true,
+            ..limits
+        };
+        let again = spin::run_check(dir, check, bfs)?;
+        if again.errors == 0 || !trail.exists() {
+            let _ = std::fs::rename(&kept, &trail);
+        }
+    }
+    let output = spin::replay_trail(dir, check)?;
+    let events = parse_events(&output);
+    let cx = Context {
+        ir: explain_with.ir,
+        module_names: &model.module_names,
+        paper_states: &model.paper_states,
+        path: explain_with.display,
+        source: explain_with.source,
     };
-    Ok(ExitCode::from(code))
+    println!();
+    print!("{}", explain(&events, &cx));
+    Ok(())
 }
 
 /// `exhaustive, 1234 states, depth 56, 0.10 s` and what limited the search.
@@ -468,16 +657,26 @@ fn print_header(args: &VerifyArgs, built: &Built) {
     } else {
         format!(" (of {} only)", args.model.reset_only.join(", "))
     };
+    let late = match built.models {
+        Models::Full(_) => format!(
+            "at most {} packet(s) in flight delivered late (and again)",
+            args.model.late
+        ),
+        Models::Compositional { .. } => {
+            "any number of packets delivered late (and again)".to_string()
+        }
+    };
     println!(
-        "bounds: at most {} reset(s){who}; at most {} packet(s) in flight delivered late (and again); any packet may be lost; {epochs}; operations never fail",
-        args.model.resets, args.model.late
+        "bounds: at most {} reset(s){who}; {late}; any packet may be lost; {epochs}; operations never fail",
+        args.model.resets
     );
     if args.fault.is_some() {
         println!("note: a deliberately broken variant of the protocol is checked (--fault)");
     }
 }
 
-/// `dynarole compile --target promela`: writes DIR/model.pml.
+/// `dynarole compile --target promela`: writes DIR/model.pml (the compositional method:
+/// DIR/model-MODULE.pml for each module).
 pub fn write_model(req: &Request, out_dir: &Path) -> Result<ExitCode, Failure> {
     let built = match build(req, None)? {
         Ok(b) => b,
@@ -485,16 +684,33 @@ pub fn write_model(req: &Request, out_dir: &Path) -> Result<ExitCode, Failure> {
     };
     std::fs::create_dir_all(out_dir)
         .map_err(|e| Failure::Input(format!("cannot create {}: {e}", out_dir.display())))?;
-    let path = out_dir.join("model.pml");
-    std::fs::write(&path, &built.model.text)
-        .map_err(|e| Failure::Input(format!("cannot write {}: {e}", path.display())))?;
+    let files: Vec<(PathBuf, &Model)> = match &built.models {
+        Models::Full(model) => vec![(out_dir.join("model.pml"), model)],
+        Models::Compositional { per_module, .. } => per_module
+            .iter()
+            .zip(&built.topology.modules)
+            .map(|(model, m)| (out_dir.join(format!("model-{}.pml", m.name)), model))
+            .collect(),
+    };
+    for (path, model) in &files {
+        std::fs::write(path, &model.text)
+            .map_err(|e| Failure::Input(format!("cannot write {}: {e}", path.display())))?;
+    }
+    let what = match built.models {
+        Models::Full(_) => "model",
+        Models::Compositional { .. } => "compositional models",
+    };
     println!(
-        "model of {}: {} statements, {} modules, {} links -> {}",
+        "{what} of {}: {} statements, {} modules, {} links -> {}",
         built.name,
         built.ir.statements.len(),
         built.topology.modules.len(),
         built.topology.links.len(),
-        path.display()
+        files
+            .iter()
+            .map(|(p, _)| p.display().to_string())
+            .collect::<Vec<_>>()
+            .join(", ")
     );
     Ok(ExitCode::SUCCESS)
 }

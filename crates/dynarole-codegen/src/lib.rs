@@ -15,7 +15,7 @@ mod token;
 
 pub use c::{generate_c, generate_nesc, CompileOptions, Generated, PaperMerge, Protocol};
 pub use promela::{
-    generate_promela, Fault, Model, ModelOptions, Topology, TopologyLink, TopologyModule,
-    MAX_MODEL_MODULES, MAX_MODEL_WINDOW,
+    generate_compositional, generate_promela, liveness_graph, Fault, LivenessGraph, Model,
+    ModelOptions, Topology, TopologyLink, TopologyModule, MAX_MODEL_MODULES, MAX_MODEL_WINDOW,
 };
 pub use token::{TokenRetries, TokenRoutes};

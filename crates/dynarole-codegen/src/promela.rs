@@ -19,10 +19,14 @@
 //! **API boundary**: the caller passes the communication graph ([`Topology`]); this crate
 //! knows nothing of geometry.
 
+#[path = "promela/compositional.rs"]
+mod compositional;
 #[path = "promela/lattice.rs"]
 mod lattice;
 #[path = "promela/paper.rs"]
 mod paper;
+
+pub use compositional::{liveness_graph, LivenessGraph};
 
 use crate::c::{pending_slots, CompileOptions, Protocol};
 use dynarole_core::lower::{Ir, LimitError};
@@ -95,12 +99,8 @@ pub struct Model {
     pub paper_states: Vec<(u8, Vec<usize>)>,
 }
 
-/// Writes the Promela model of `ir` on `topology`.
-pub fn generate_promela(
-    ir: &Ir,
-    topology: &Topology,
-    options: &ModelOptions,
-) -> Result<Model, LimitError> {
+/// The limits every model shares.
+fn validate(ir: &Ir, topology: &Topology, options: &ModelOptions) -> Result<(), LimitError> {
     let span = ir.statements.first().map_or(Span::default(), |s| s.span);
     let limit = |message: String| LimitError { message, span };
     if options.compile.protocol == Protocol::Token {
@@ -139,10 +139,23 @@ pub fn generate_promela(
             )));
         }
     }
+    Ok(())
+}
+
+/// Writes the Promela model of `ir` on `topology`.
+pub fn generate_promela(
+    ir: &Ir,
+    topology: &Topology,
+    options: &ModelOptions,
+) -> Result<Model, LimitError> {
+    validate(ir, topology, options)?;
+    let span = ir.statements.first().map_or(Span::default(), |s| s.span);
+    let limit = |message: String| LimitError { message, span };
     let g = Gen {
         ir,
         topology,
         options,
+        checked: None,
     };
     let mut out = String::new();
     g.header(&mut out);
@@ -162,11 +175,68 @@ pub fn generate_promela(
     })
 }
 
+/// Writes the compositional model of `ir` in which module `checked` (an index into
+/// `topology.modules`) runs the lattice protocol's logic and every other module is abstract
+/// (see `promela/compositional.rs`). `graph` says where the links carry what L needs.
+pub fn generate_compositional(
+    ir: &Ir,
+    topology: &Topology,
+    options: &ModelOptions,
+    checked: usize,
+    graph: &LivenessGraph,
+) -> Result<Model, LimitError> {
+    validate(ir, topology, options)?;
+    let span = ir.statements.first().map_or(Span::default(), |s| s.span);
+    let limit = |message: String| LimitError { message, span };
+    let o = &options.compile;
+    if o.protocol != Protocol::Lattice || o.no_nv {
+        return Err(limit(
+            "the compositional model is for the lattice protocol with NV storage".into(),
+        ));
+    }
+    if o.epochs != 1 {
+        return Err(limit(
+            "the compositional model checks one run of the sequence (--epochs 1)".into(),
+        ));
+    }
+    if options.late > 0 {
+        return Err(limit(
+            "the compositional model has no late-packet slots (every packet may be any earlier state)".into(),
+        ));
+    }
+    let mut addresses: Vec<u8> = topology.modules.iter().filter_map(|m| m.address).collect();
+    addresses.sort_unstable();
+    if addresses.windows(2).any(|w| w[0] == w[1]) {
+        return Err(limit(
+            "the compositional model needs one module per address".into(),
+        ));
+    }
+    if checked >= topology.modules.len() {
+        return Err(limit(format!("no module {checked} in the configuration")));
+    }
+    let g = Gen {
+        ir,
+        topology,
+        options,
+        checked: Some(checked),
+    };
+    let mut out = String::new();
+    g.header(&mut out);
+    compositional::write(&g, &mut out, checked, graph);
+    Ok(Model {
+        text: out,
+        module_names: topology.modules.iter().map(|m| m.name.clone()).collect(),
+        paper_states: Vec::new(),
+    })
+}
+
 /// Shared by both protocols' writers.
 pub(crate) struct Gen<'a> {
     pub ir: &'a Ir,
     pub topology: &'a Topology,
     pub options: &'a ModelOptions,
+    /// The compositional model: the module whose logic is checked (the others are abstract).
+    pub checked: Option<usize>,
 }
 
 impl Gen<'_> {
@@ -429,28 +499,7 @@ impl Gen<'_> {
                 l.from, l.to, l.from, l.to, l.from, l.to, l.from, l.to
             );
         }
-        for k in 0..self.m() {
-            let mine = self.statements_of(k);
-            if mine.is_empty() {
-                continue;
-            }
-            let _ = writeln!(
-                out,
-                "/* Module {k}'s actuators: a started operation finishes after an unknown time. */\nproctype actuator_{k}() {{\n    do"
-            );
-            for s in mine {
-                let epoch = if self.epochs() > 1 {
-                    "p_epoch[S]".replace('S', &s.to_string())
-                } else {
-                    "0".into()
-                };
-                let _ = writeln!(
-                    out,
-                    "    :: d_step {{ p_run[{s}] -> p_run[{s}] = 0; g_done[{epoch} * N_STATEMENTS + {s}] = 1; printf(\"@done {k} {s}\\n\"); advance_stage() }}"
-                );
-            }
-            out.push_str("    od\n}\n\n");
-        }
+        self.actuators(out);
         if self.options.resets > 0 {
             out.push_str("/* Resets: at most RESETS, of any module, at any moment between two of its steps (in the\n * middle of an operation too); the process may also stop resetting at any time. */\nproctype resets() {\n    byte left = RESETS;\n    do\n");
             for k in 0..self.m() {
@@ -496,6 +545,33 @@ impl Gen<'_> {
             out.push_str("        run late();\n");
         }
         out.push_str("    }\n}\n");
+    }
+
+    /// One process per module with statements: a started operation finishes after an
+    /// unknown time.
+    pub fn actuators(&self, out: &mut String) {
+        for k in 0..self.m() {
+            let mine = self.statements_of(k);
+            if mine.is_empty() {
+                continue;
+            }
+            let _ = writeln!(
+                out,
+                "/* Module {k}'s actuators: a started operation finishes after an unknown time. */\nproctype actuator_{k}() {{\n    do"
+            );
+            for s in mine {
+                let epoch = if self.epochs() > 1 {
+                    "p_epoch[S]".replace('S', &s.to_string())
+                } else {
+                    "0".into()
+                };
+                let _ = writeln!(
+                    out,
+                    "    :: d_step {{ p_run[{s}] -> p_run[{s}] = 0; g_done[{epoch} * N_STATEMENTS + {s}] = 1; printf(\"@done {k} {s}\\n\"); advance_stage() }}"
+                );
+            }
+            out.push_str("    od\n}\n\n");
+        }
     }
 
     /// With the lattice's no-NV rules, assumption (a) of runtime/lattice/README.md: a module

@@ -96,6 +96,12 @@ pub(crate) fn write(g: &Gen, out: &mut String) {
     } else {
         "/* persist(): not observable without resets (no NV in the model) */"
     };
+    // The compositional model: what the module marks done, the truth records.
+    let record = if g.checked.is_some() {
+        "record(m, running[m]);"
+    } else {
+        ""
+    };
     let may_start = if no_nv {
         "running[m] == NONE && unheard[m] == 0 && unechoed[m] == NONE"
     } else {
@@ -103,7 +109,7 @@ pub(crate) fn write(g: &Gen, out: &mut String) {
     };
     let _ = writeln!(
         out,
-        "/* dr_module_step(m): poll the running operation (a completion from an older epoch is\n * dropped; a completion sets the done bit, normalises, persists), then start the next\n * statement if nothing runs here. The broadcast is the links' business. */\ninline step(m) {{\n    if\n    :: running[m] != NONE && !p_run[running[m]] ->\n        if\n        :: running_epoch[m] != epoch[m] ->\n            running[m] = NONE\n        :: else ->\n            t_i = running[m] - low[m];\n            if\n            :: running[m] >= low[m] && t_i < W -> done[m] = done[m] | (1 << t_i)\n            :: else -> skip\n            fi;\n            normalise(m);\n            {on_done}\n            printf(\"@complete %d %d\\n\", m, running[m]);\n            running[m] = NONE\n        fi\n    :: else -> skip\n    fi;\n    if\n    :: {may_start} -> start_next(m)\n    :: else -> skip\n    fi;\n    end_check(m)\n}}\n"
+        "/* dr_module_step(m): poll the running operation (a completion from an older epoch is\n * dropped; a completion sets the done bit, normalises, persists), then start the next\n * statement if nothing runs here. The broadcast is the links' business. */\ninline step(m) {{\n    if\n    :: running[m] != NONE && !p_run[running[m]] ->\n        if\n        :: running_epoch[m] != epoch[m] ->\n            running[m] = NONE\n        :: else ->\n            t_i = running[m] - low[m];\n            if\n            :: running[m] >= low[m] && t_i < W -> done[m] = done[m] | (1 << t_i)\n            :: else -> skip\n            fi;\n            normalise(m);\n            {on_done}\n            printf(\"@complete %d %d\\n\", m, running[m]);\n            {record}\n            running[m] = NONE\n        fi\n    :: else -> skip\n    fi;\n    if\n    :: {may_start} -> start_next(m)\n    :: else -> skip\n    fi;\n    end_check(m)\n}}\n"
     );
 
     // dr_module_receive
