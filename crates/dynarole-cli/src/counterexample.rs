@@ -31,6 +31,17 @@ pub enum Event {
         to: usize,
         fields: Vec<i64>,
     },
+    /// Compositional model: module m heard a packet holding this state (from any neighbour,
+    /// sent at any earlier time).
+    Hear {
+        m: usize,
+        fields: Vec<i64>,
+    },
+    /// Compositional model: module m marked statement s done (the robot now knows it).
+    Record {
+        m: usize,
+        s: usize,
+    },
     /// A copy of `from`'s state for `to` held in flight (slot), to be delivered later.
     Capture {
         slot: usize,
@@ -96,6 +107,15 @@ pub fn parse_events(output: &str) -> Vec<Event> {
                     .filter_map(|w| w.parse().ok())
                     .collect(),
             },
+            "hear" => Event::Hear {
+                m: n(0),
+                fields: words
+                    .iter()
+                    .skip(1)
+                    .filter_map(|w| w.parse().ok())
+                    .collect(),
+            },
+            "record" => Event::Record { m: n(0), s: n(1) },
             "capture" => Event::Capture {
                 slot: n(0),
                 from: n(1),
@@ -273,6 +293,7 @@ pub fn explain(events: &[Event], cx: &Context) -> String {
                     cx.module(*m),
                     cx.statement(*s)
                 ),
+                "G1" | "G2" | "G3" | "G4" => guarantee_headline(property, cx.module(*m), *s),
                 _ => {
                     let open: Vec<usize> = (0..cx.ir.statements.len())
                         .filter(|s| !physically_done.contains(s))
@@ -344,6 +365,39 @@ pub fn explain(events: &[Event], cx: &Context) -> String {
                 cx.module(*m)
             )),
             Event::Complete { m, s } => Some(format!("{} sees #{s} complete", cx.module(*m))),
+            Event::Hear { m, fields } => {
+                let after = match events.get(index + 1) {
+                    Some(Event::Copy { m: k, fields }) if k == m => {
+                        consumed.insert(index + 1);
+                        Some(fields.clone())
+                    }
+                    _ => None,
+                };
+                let now = after
+                    .filter(|a| copies.get(m) != Some(a))
+                    .map_or(String::new(), |a| {
+                        let text = format!("; {} now holds {}", cx.module(*m), cx.copy(&a));
+                        copies.insert(*m, a);
+                        text
+                    });
+                Some(format!(
+                    "{} hears a packet (some neighbour's, sent at some earlier time): {}{now}",
+                    cx.module(*m),
+                    cx.copy(fields)
+                ))
+            }
+            // The checked module's own recording follows its `Complete`; another module's is
+            // its completion.
+            Event::Record { m, s } => {
+                let own = index > 0
+                    && matches!(events[index - 1], Event::Complete { m: k, s: t } if k == *m && t == *s);
+                (!own).then(|| {
+                    format!(
+                        "{} sees #{s} complete (its copy holds it now)",
+                        cx.module(*m)
+                    )
+                })
+            }
             Event::Deliver { from, to, fields } => {
                 let was_late = std::mem::take(&mut late);
                 // What the receiver holds after it (the next event is its copy).
@@ -417,6 +471,19 @@ pub fn explain(events: &[Event], cx: &Context) -> String {
         );
     }
     out
+}
+
+/// The headline of a broken guarantee of the compositional model.
+fn guarantee_headline(property: &str, module: &str, s: usize) -> String {
+    let what = match property {
+        "G1" => format!("its copy holds #{s} done, which no module has recorded"),
+        "G2" => format!("its copy holds #{s} done but not everything #{s} waits for"),
+        "G3" => format!("its copy lost #{s}, which it completed itself"),
+        _ => format!(
+            "#{s} was marked done before it was physically done, or before what it waits for was"
+        ),
+    };
+    format!("{property} violated (a guarantee of the compositional model): {module}: {what}")
 }
 
 /// Whether the next use of `slot` in `rest` is a late delivery (not a new capture).

@@ -153,7 +153,7 @@ pub(crate) fn write(g: &Gen, out: &mut String, c: usize, graph: &LivenessGraph) 
     );
     let _ = writeln!(
         out,
-        "/* Module {c}: dr_module_step, one call per step; then its guarantees. */\nproctype module_{c}() {{\n    do\n    :: d_step {{ step({c}); guarantee({c}); print_copy({c}) }}\n    od\n}}\n"
+        "/* Module {c}: dr_module_step, one call per step; then its guarantees. */\nproctype module_{c}() {{\n    do\n    :: d_step {{ step({c}); print_copy({c}); guarantee({c}) }}\n    od\n}}\n"
     );
     news(g, out, c);
     fair_news(g, out, c, graph);
@@ -217,12 +217,12 @@ fn guarantee(g: &Gen, out: &mut String) {
 
 /// `hear(...)`: module c receives a state; its parameters are the state's fields.
 fn hear_inline(c: usize) -> String {
-    format!("inline hear(e, l, d) {{\n    in_epoch = e;\n    in_low = l;\n    in_done = d;\n    printf(\"@hear {c} %d %d %d\\n\", e, l, d);\n    join({c});\n    end_check({c});\n    guarantee({c});\n    print_copy({c})\n}}\n\n")
+    format!("inline hear(e, l, d) {{\n    in_epoch = e;\n    in_low = l;\n    in_done = d;\n    printf(\"@hear {c} %d %d %d\\n\", e, l, d);\n    join({c});\n    end_check({c});\n    print_copy({c});\n    guarantee({c})\n}}\n\n")
 }
 
 /// Any dependency-closed state below T, as the join of the states `↓s`, s in T.
 fn news(g: &Gen, out: &mut String, c: usize) {
-    out.push_str("/* Module c hears a packet holding the state (e, l, d) (dr_module_receive, then its\n * guarantees). */\n");
+    out.push_str("/* The checked module hears a packet holding the state (e, l, d) (dr_module_receive, then\n * its guarantees). */\n");
     out.push_str(&hear_inline(c));
     out.push_str("/* Any packet: any state below T that is closed under dependencies, i.e. the join of some\n * states ↓s (s and all it waits for, transitively) with s in T. Delivered one ↓s at a time,\n * in any order, any number of times, or never: losses, delays, duplicates, any topology. */\nproctype news() {\n    do\n");
     let mut seen = BTreeSet::new();
@@ -240,7 +240,7 @@ fn news(g: &Gen, out: &mut String, c: usize) {
 
 /// With LIVENESS: what the links that surely exist carry to module c, eventually.
 fn fair_news(g: &Gen, out: &mut String, c: usize, graph: &LivenessGraph) {
-    out.push_str("#ifdef LIVENESS\n/* What the links that surely exist carry to module c, eventually (weak fairness): the\n * dependencies of its next statements in the stages where every module that runs one of them\n * reaches c, and the end when every module that runs statements reaches c at the end. */\nproctype fair_news() {\n    do\n");
+    out.push_str("#ifdef LIVENESS\n/* What the links that surely exist carry to the checked module, eventually (weak fairness): the\n * dependencies of its next statements in the stages where every module that runs one of them\n * reaches it, and the end when every module that runs statements reaches it at the end. */\nproctype fair_news() {\n    do\n");
     for s in g.statements_of(c) {
         let waits = g.ir.statements[s].waits_for();
         if waits.is_empty() {
@@ -338,7 +338,7 @@ fn resets(g: &Gen, out: &mut String, c: usize) {
         if k == c {
             let _ = writeln!(
                 out,
-                "    :: left > 0 -> d_step {{ left--; printf(\"@reset {k}\\n\"); reset({k}); guarantee({k}) }}"
+                "    :: left > 0 -> d_step {{ left--; printf(\"@reset {k}\\n\"); reset({k}); print_copy({k}); guarantee({k}) }}"
             );
         } else if !g.statements_of(k).is_empty() {
             let _ = writeln!(

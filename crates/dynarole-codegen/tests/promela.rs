@@ -1,0 +1,129 @@
+//! The Promela back-end on its own: snapshots of the full and the compositional model of
+//! protocol.md's `A & B; C;` on three modules in a line, where the links for L are found or
+//! missed, and what the compositional model refuses. (Running spin on them is
+//! `dynarole-cli`'s `tests/verify.rs`.)
+
+use dynarole_codegen::{
+    generate_compositional, generate_promela, liveness_graph, CompileOptions, ModelOptions,
+    Protocol, Topology, TopologyLink, TopologyModule,
+};
+use dynarole_core::lower::Ir;
+use dynarole_core::{analyze, parse, RobotRegistry};
+
+const AB_C: &str = include_str!("../../../examples/verify/ab_c.dr");
+
+fn ir() -> Ir {
+    let parsed = parse(AB_C);
+    let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
+    let program = program.unwrap_or_else(|| panic!("{diagnostics:?}"));
+    let plan = program.expand("ab_c").expect("sequence exists");
+    program.lower(&[plan]).expect("fits")
+}
+
+/// M0 - M1 - M2 in a line; each link both ways, in the stages given (4 stages: 0..=3).
+fn line(stages: &[usize]) -> Topology {
+    let modules = (0..3u8)
+        .map(|k| TopologyModule {
+            name: format!("M{k}"),
+            address: Some(k),
+        })
+        .collect();
+    let links = [(0, 1), (1, 0), (1, 2), (2, 1)]
+        .into_iter()
+        .map(|(from, to)| TopologyLink {
+            from,
+            to,
+            fair_stages: stages.to_vec(),
+        })
+        .collect();
+    Topology { modules, links }
+}
+
+fn options(protocol: Protocol, late: u8) -> ModelOptions {
+    ModelOptions {
+        compile: CompileOptions {
+            protocol,
+            name: "ab_c".into(),
+            ..CompileOptions::default()
+        },
+        resets: 1,
+        reset_modules: Vec::new(),
+        late,
+        fault: None,
+    }
+}
+
+#[test]
+fn full_model_of_ab_c() {
+    let model = generate_promela(&ir(), &line(&[0, 1, 2, 3]), &options(Protocol::Lattice, 1))
+        .expect("models");
+    assert_eq!(model.module_names, ["M0", "M1", "M2"]);
+    insta::assert_snapshot!(
+        "full_lattice_ab_c",
+        format!(
+            "{AB_C}\n----- model.pml (full, lattice, 1 reset, 1 late) -----\n{}",
+            model.text
+        )
+    );
+}
+
+#[test]
+fn compositional_model_of_ab_c_checks_one_module() {
+    let ir = ir();
+    let topology = line(&[0, 1, 2, 3]);
+    let graph = liveness_graph(&ir, &topology);
+    let model = generate_compositional(&ir, &topology, &options(Protocol::Lattice, 0), 1, &graph)
+        .expect("models");
+    // Only M1 runs the protocol's logic; M0 and M2 are reduced to their start rule.
+    assert!(model.text.contains("proctype module_1()"));
+    assert!(!model.text.contains("proctype module_0()"));
+    assert!(model.text.contains("proctype env_0()") && model.text.contains("proctype env_2()"));
+    // ↓#2 is {0, 1, 2}: the whole prefix, low 3.
+    assert!(model.text.contains("t_rec[2] -> hear(0, 3, 0)"));
+    insta::assert_snapshot!(
+        "compositional_lattice_ab_c_m1",
+        format!(
+            "{AB_C}\n----- model-M1.pml (compositional, lattice, 1 reset) -----\n{}",
+            model.text
+        )
+    );
+}
+
+#[test]
+fn links_that_always_exist_carry_everything_l_needs() {
+    let graph = liveness_graph(&ir(), &line(&[0, 1, 2, 3]));
+    assert!(graph.stuck_statements().is_empty());
+    assert!(graph.deaf_modules().is_empty());
+    // #2 on M2 waits for #0 (M0) and #1 (M1): carried in every stage.
+    assert_eq!(graph.statement_stages[2], [0, 1, 2, 3]);
+}
+
+#[test]
+fn links_missing_in_a_stage_leave_l_unestablished() {
+    // The links exist only in stages 0 and 1: #2 (stage 2) cannot hear what it waits for, and
+    // nobody can be shown to hear the end (stage 3).
+    let graph = liveness_graph(&ir(), &line(&[0, 1]));
+    assert_eq!(graph.stuck_statements(), [2]);
+    assert_eq!(graph.deaf_modules(), [0, 1, 2]);
+}
+
+#[test]
+fn compositional_model_is_for_the_lattice_protocol_with_nv_and_without_late_slots() {
+    let ir = ir();
+    let topology = line(&[0, 1, 2, 3]);
+    let graph = liveness_graph(&ir, &topology);
+    let paper = generate_compositional(&ir, &topology, &options(Protocol::Paper, 0), 0, &graph);
+    assert!(paper
+        .unwrap_err()
+        .message
+        .contains("lattice protocol with NV"));
+    let mut no_nv = options(Protocol::Lattice, 0);
+    no_nv.compile.no_nv = true;
+    let refused = generate_compositional(&ir, &topology, &no_nv, 0, &graph);
+    assert!(refused
+        .unwrap_err()
+        .message
+        .contains("lattice protocol with NV"));
+    let late = generate_compositional(&ir, &topology, &options(Protocol::Lattice, 1), 0, &graph);
+    assert!(late.unwrap_err().message.contains("late-packet"));
+}
