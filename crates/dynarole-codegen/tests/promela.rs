@@ -114,16 +114,16 @@ fn compositional_model_is_for_the_lattice_protocol_with_nv_and_without_late_slot
     let graph = liveness_graph(&ir, &topology);
     let paper = generate_compositional(&ir, &topology, &options(Protocol::Paper, 0), 0, &graph);
     assert!(paper
-        .unwrap_err()
+        .expect_err("refused")
         .message
         .contains("lattice protocol with NV"));
     let mut no_nv = options(Protocol::Lattice, 0);
     no_nv.compile.no_nv = true;
     let refused = generate_compositional(&ir, &topology, &no_nv, 0, &graph);
     assert!(refused
-        .unwrap_err()
+        .expect_err("refused")
         .message
         .contains("lattice protocol with NV"));
     let late = generate_compositional(&ir, &topology, &options(Protocol::Lattice, 1), 0, &graph);
-    assert!(late.unwrap_err().message.contains("late-packet"));
+    assert!(late.expect_err("refused").message.contains("late-packet"));
 }
