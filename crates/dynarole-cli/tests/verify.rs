@@ -338,3 +338,47 @@ fn compile_to_promela_writes_one_compositional_model_per_module() {
         assert!(model.contains("inline guarantee(m)"), "{module}");
     }
 }
+
+#[test]
+fn the_liveness_check_fails_when_the_end_is_never_surely_carried() {
+    // M0's model without the fair delivery of the end: only the unfair `news` can tell M0,
+    // so a run in which it never does is fair, and L must fail.
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("compositional-no-end");
+    let out = dynarole(&[
+        "compile",
+        AB_C,
+        "--target",
+        "promela",
+        "--from",
+        LINE,
+        "--method",
+        "compositional",
+        "-o",
+        dir.to_str().expect("utf-8 path"),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let model = std::fs::read_to_string(dir.join("model-M0.pml")).expect("model");
+    let fair_end = "    :: d_step { t_end && epoch[0] < N_EPOCHS -> hear(1, 0, 0) } /* the end */";
+    assert!(model.contains(fair_end), "{model}");
+    let check = dir.join("no-end");
+    std::fs::create_dir_all(&check).expect("dir");
+    std::fs::write(
+        check.join("model.pml"),
+        model.replace(fair_end, "    :: false -> skip"),
+    )
+    .expect("write");
+    let limits = dynarole_cli::spin::Limits {
+        memory_mb: 1024,
+        time_s: 300,
+        bitstate: false,
+        shortest: false,
+    };
+    let result = dynarole_cli::spin::run_check(&check, dynarole_cli::spin::Check::Liveness, limits)
+        .expect("pan runs");
+    assert!(result.errors > 0, "{result:?}");
+    // The unchanged model proves L.
+    std::fs::write(check.join("model.pml"), &model).expect("write");
+    let result = dynarole_cli::spin::run_check(&check, dynarole_cli::spin::Check::Liveness, limits)
+        .expect("pan runs");
+    assert!(result.errors == 0 && result.complete(), "{result:?}");
+}
