@@ -499,7 +499,7 @@ impl Gen<'_> {
                 l.from, l.to, l.from, l.to, l.from, l.to, l.from, l.to
             );
         }
-        self.actuators(out);
+        self.actuators(out, |_| true);
         if self.options.resets > 0 {
             out.push_str("/* Resets: at most RESETS, of any module, at any moment between two of its steps (in the\n * middle of an operation too); the process may also stop resetting at any time. */\nproctype resets() {\n    byte left = RESETS;\n    do\n");
             for k in 0..self.m() {
@@ -547,10 +547,10 @@ impl Gen<'_> {
         out.push_str("    }\n}\n");
     }
 
-    /// One process per module with statements: a started operation finishes after an
-    /// unknown time.
-    pub fn actuators(&self, out: &mut String) {
-        for k in 0..self.m() {
+    /// One process per module with statements (the modules in `which`): a started operation
+    /// finishes after an unknown time.
+    pub fn actuators(&self, out: &mut String, which: impl Fn(usize) -> bool) {
+        for k in (0..self.m()).filter(|&k| which(k)) {
             let mine = self.statements_of(k);
             if mine.is_empty() {
                 continue;
@@ -560,18 +560,20 @@ impl Gen<'_> {
                 "/* Module {k}'s actuators: a started operation finishes after an unknown time. */\nproctype actuator_{k}() {{\n    do"
             );
             for s in mine {
-                let epoch = if self.epochs() > 1 {
-                    "p_epoch[S]".replace('S', &s.to_string())
-                } else {
-                    "0".into()
-                };
-                let _ = writeln!(
-                    out,
-                    "    :: d_step {{ p_run[{s}] -> p_run[{s}] = 0; g_done[{epoch} * N_STATEMENTS + {s}] = 1; printf(\"@done {k} {s}\\n\"); advance_stage() }}"
-                );
+                let _ = writeln!(out, "{}", self.finish_branch(k, s));
             }
             out.push_str("    od\n}\n\n");
         }
+    }
+
+    /// The `do` branch in which module k's operation of statement s finishes (physically).
+    pub fn finish_branch(&self, k: usize, s: usize) -> String {
+        let epoch = if self.epochs() > 1 {
+            format!("p_epoch[{s}]")
+        } else {
+            "0".into()
+        };
+        format!("    :: d_step {{ p_run[{s}] -> p_run[{s}] = 0; g_done[{epoch} * N_STATEMENTS + {s}] = 1; printf(\"@done {k} {s}\\n\"); advance_stage() }}")
     }
 
     /// With the lattice's no-NV rules, assumption (a) of runtime/lattice/README.md: a module

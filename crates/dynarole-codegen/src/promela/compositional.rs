@@ -158,7 +158,7 @@ pub(crate) fn write(g: &Gen, out: &mut String, c: usize, graph: &LivenessGraph) 
     news(g, out, c);
     fair_news(g, out, c, graph);
     environment(g, out, c, graph);
-    g.actuators(out);
+    g.actuators(out, |k| k == c);
     resets(g, out, c);
     let _ = writeln!(
         out,
@@ -170,9 +170,9 @@ pub(crate) fn write(g: &Gen, out: &mut String, c: usize, graph: &LivenessGraph) 
         if k != c && !g.statements_of(k).is_empty() {
             let _ = writeln!(out, "        run env_{k}();");
         }
-        if !g.statements_of(k).is_empty() {
-            let _ = writeln!(out, "        run actuator_{k}();");
-        }
+    }
+    if !g.statements_of(c).is_empty() {
+        let _ = writeln!(out, "        run actuator_{c}();");
     }
     if g.options.resets > 0 {
         out.push_str("        run resets();\n");
@@ -299,7 +299,7 @@ fn environment(g: &Gen, out: &mut String, c: usize, graph: &LivenessGraph) {
         }
         let _ = writeln!(
             out,
-            "/* Module {k} ({}), abstracted: it starts one of its statements that is not in T and\n * whose dependencies are all in T (its copy is below T and keeps its own completions),\n * and records it in T once the operation is done. With LIVENESS, a start is fair only in\n * the stages where the links that surely exist carry the dependencies to it. */\nproctype env_{k}() {{\n    do",
+            "/* Module {k} ({}), abstracted: it starts one of its statements that is not in T and\n * whose dependencies are all in T (its copy is below T and keeps its own completions),\n * the operation finishes after an unknown time (its actuator: one process with the module,\n * as only one of the three kinds of step is enabled at a time, which keeps weak fairness\n * per process exact), and it records the statement in T. With LIVENESS, a start is fair\n * only in the stages where the links that surely exist carry the dependencies to it. */\nproctype env_{k}() {{\n    do",
             g.topology.modules[k].name
         );
         for &s in &mine {
@@ -310,6 +310,9 @@ fn environment(g: &Gen, out: &mut String, c: usize, graph: &LivenessGraph) {
                 start(k, s)
             );
             let _ = writeln!(radio, "    :: d_step {{ {} }}", start(k, s));
+        }
+        for &s in &mine {
+            let _ = writeln!(out, "{}", g.finish_branch(k, s));
         }
         let _ = writeln!(
             out,
