@@ -183,6 +183,14 @@ pub fn build(req: &Request, fault: Option<FaultArg>) -> Result<Result<Built, Exi
             "the broken variants exist for the lattice protocol only".into(),
         ));
     }
+    let o = &model_options.compile;
+    if model.method == Method::Compositional
+        && (o.protocol != Protocol::Lattice || o.no_nv || o.epochs != 1)
+    {
+        return Err(Failure::Usage(
+            "--method compositional models the lattice protocol with NV storage and one run (--epochs 1); use --method full".into(),
+        ));
+    }
     let models = match generate(&ir, &topology, &model_options, model.method) {
         Ok(m) => m,
         Err(e) => {

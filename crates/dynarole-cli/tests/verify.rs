@@ -382,3 +382,16 @@ fn the_liveness_check_fails_when_the_end_is_never_surely_carried() {
         .expect("pan runs");
     assert!(result.errors == 0 && result.complete(), "{result:?}");
 }
+
+#[test]
+fn the_compositional_method_refuses_what_it_does_not_model() {
+    for extra in [
+        &["--protocol", "paper"][..],
+        &["--no-nv"][..],
+        &["--epochs", "2"][..],
+    ] {
+        let (code, out) = verify(AB_C, &[&["--method", "compositional"][..], extra].concat());
+        assert_eq!(code, Some(2), "{extra:?}: {out}");
+        assert!(out.contains("use --method full"), "{extra:?}: {out}");
+    }
+}
