@@ -343,18 +343,7 @@ impl Gen<'_> {
             out,
             "/* The address of module m (the role predicates on the configuration). */\n#define ADDR(m) {addr}"
         );
-        let st_addr = {
-            let n = self.n();
-            let mut expr = self.ir.statements[n - 1].address.to_string();
-            for k in (0..n - 1).rev() {
-                expr = format!("(s == {k} -> {} : {expr})", self.ir.statements[k].address);
-            }
-            expr
-        };
-        let _ = writeln!(
-            out,
-            "/* The address of statement s (dr_statement_t.address). */\n#define ST_ADDR(s) {st_addr}\n"
-        );
+        self.tables(out);
         let finished = match self.options.compile.protocol {
             Protocol::Lattice => "(epoch[m] >= N_EPOCHS)",
             Protocol::Paper | Protocol::Token => "(g_state[m] == 254)",
@@ -364,6 +353,82 @@ impl Gen<'_> {
             "/* dr_module_finished(m): the module knows the end. */\n#define FINISHED(m) {finished}\n"
         );
         self.ghosts(out);
+    }
+
+    /// The statement lists the tables hold: (name, what, one list per statement).
+    fn table_lists(&self) -> [(&'static str, &'static str, Vec<Vec<usize>>); 3] {
+        let of = |f: &dyn Fn(&dynarole_core::lower::IrStatement) -> Vec<u16>| -> Vec<Vec<usize>> {
+            self.ir
+                .statements
+                .iter()
+                .map(|st| f(st).into_iter().map(usize::from).collect())
+                .collect()
+        };
+        [
+            (
+                "deps",
+                "the IR's dependencies (IrStatement::deps)",
+                of(&|st| st.deps.clone()),
+            ),
+            (
+                "dependents",
+                "the statements that depend on it, transitively",
+                dependents(self.ir),
+            ),
+            (
+                "waits",
+                "what it waits for (dr_program_deps: deps and the module's previous statement)",
+                of(&|st| st.waits_for()),
+            ),
+        ]
+    }
+
+    /// The statement tables, as hidden (constant, not part of the state) arrays filled once at
+    /// the start ([`Gen::table_steps`]): each statement's address, and three lists per statement
+    /// (its dependencies, its transitive dependents, what it waits for). Loops over them keep
+    /// the verifier's code small whatever the number of statements.
+    fn tables(&self, out: &mut String) {
+        out.push_str("/* The address of statement s (dr_statement_t.address). */\nhidden byte st_addr[N_STATEMENTS];\n#define ST_ADDR(s) st_addr[s]\n");
+        for (name, what, lists) in &self.table_lists() {
+            let total: usize = lists.iter().map(Vec::len).sum();
+            let _ = writeln!(
+                out,
+                "/* Statement s's {what}: {name}_list[{name}_first[s] .. {name}_first[s + 1]). */\nhidden short {name}_first[N_STATEMENTS + 1];\nhidden byte {name}_list[{}];",
+                total.max(1)
+            );
+        }
+        out.push('\n');
+    }
+
+    /// `init`'s first steps: the tables filled, in `d_step`s of at most 100 assignments
+    /// (spin limits the length of a `d_step` and of an inline).
+    pub fn table_steps(&self) -> String {
+        let fill = self.table_fill();
+        let lines: Vec<&str> = fill.lines().collect();
+        lines
+            .chunks(100)
+            .map(|chunk| format!("    d_step {{\n{}\n    }};\n", chunk.join("\n")))
+            .collect()
+    }
+
+    /// The assignments that fill the tables.
+    fn table_fill(&self) -> String {
+        let mut fill = String::new();
+        for (k, st) in self.ir.statements.iter().enumerate() {
+            let _ = writeln!(fill, "        st_addr[{k}] = {};", st.address);
+        }
+        for (name, _, lists) in &self.table_lists() {
+            let mut at = 0;
+            for (k, list) in lists.iter().enumerate() {
+                let _ = writeln!(fill, "        {name}_first[{k}] = {at};");
+                for d in list {
+                    let _ = writeln!(fill, "        {name}_list[{at}] = {d};");
+                    at += 1;
+                }
+            }
+            let _ = writeln!(fill, "        {name}_first[{}] = {at};", self.n());
+        }
+        fill
     }
 
     /// Ghost state and the S1-S3 checks (the simulator's, `dynarole-sim` `ops.rs`).
@@ -386,42 +451,18 @@ impl Gen<'_> {
         }
         out.push_str("bit declared[N_MODULES];                /* the module declared the end */\n");
         out.push_str("#ifdef LIVENESS\nbyte stage;  /* statements 0..stage-1 physically done (epoch 0), stage not */\n#endif\n");
-        out.push_str("hidden byte t_ok;\nhidden int t_i, t_j, t_k, t_s;\n\n");
+        out.push_str("hidden byte t_ok;\nhidden int t_i, t_j, t_k, t_s, t_x, t_y;\n\n");
         // S1: the IR's dependencies (what the sequence means), physically done.
         out.push_str("/* S1 (ops.rs check_dependencies): every dependency of s is physically done in epoch e\n * (and, for e > 0, the whole previous epoch). Sets t_ok. */\n");
-        out.push_str("inline deps_physically_done(s, e) {\n    t_ok = 1;\n    if\n");
-        for (i, st) in self.ir.statements.iter().enumerate() {
-            if st.deps.is_empty() {
-                continue;
-            }
-            let deps: Vec<String> = st
-                .deps
-                .iter()
-                .map(|d| format!("g_done[e * N_STATEMENTS + {d}]"))
-                .collect();
-            let _ = writeln!(out, "    :: s == {i} -> t_ok = ({})", deps.join(" && "));
-            let _ = i;
-        }
-        out.push_str("    :: else -> skip\n    fi;\n");
+        out.push_str("inline deps_physically_done(s, e) {\n    t_ok = 1;\n    t_x = deps_first[s];\n    do\n    :: t_x < deps_first[s + 1] -> t_ok = t_ok && g_done[e * N_STATEMENTS + deps_list[t_x]]; t_x++\n    :: else -> break\n    od;\n");
         if self.epochs() > 1 {
             out.push_str("    t_j = 0;\n    do\n    :: e > 0 && t_j < N_STATEMENTS -> t_ok = t_ok && g_done[(e - 1) * N_STATEMENTS + t_j]; t_j++\n    :: else -> break\n    od\n");
         }
         out.push_str("}\n\n");
         // S2: transitive dependents through the IR's deps (sequence.rs `dependents`).
-        let dependents = dependents(self.ir);
         out.push_str("/* S2 (ops.rs check_not_overtaken): no statement that depends on s (transitively) has\n * started in epoch e, and nothing of a later epoch has. Sets t_ok. */\n");
-        out.push_str("inline none_overtaken(s, e) {\n    t_ok = 1;\n    if\n");
-        for (i, deps) in dependents.iter().enumerate() {
-            if deps.is_empty() {
-                continue;
-            }
-            let started: Vec<String> = deps
-                .iter()
-                .map(|t| format!("!g_started[e * N_STATEMENTS + {t}]"))
-                .collect();
-            let _ = writeln!(out, "    :: s == {i} -> t_ok = ({})", started.join(" && "));
-        }
-        out.push_str("    :: else -> skip\n    fi;\n");
+        out.push_str("inline none_overtaken(s, e) {\n    t_ok = 1;\n    t_x = dependents_first[s];\n    do\n    :: t_x < dependents_first[s + 1] -> t_ok = t_ok && !g_started[e * N_STATEMENTS + dependents_list[t_x]]; t_x++\n    :: else -> break\n    od;\n");
+
         if self.epochs() > 1 {
             out.push_str("    t_j = (e + 1) * N_STATEMENTS;\n    do\n    :: t_j < N_EPOCHS * N_STATEMENTS -> t_ok = t_ok && !g_started[t_j]; t_j++\n    :: else -> break\n    od\n");
         }
@@ -525,7 +566,11 @@ impl Gen<'_> {
             "/* L: eventually every module knows the end, for good. */\nltl finishes {{ <> [] ({}) }}\n",
             finished.join(" && ")
         );
-        out.push_str("init {\n    d_step { initialise() };\n    atomic {\n");
+        let _ = write!(
+            out,
+            "init {{\n{}    d_step {{ initialise() }};\n    atomic {{\n",
+            self.table_steps()
+        );
         for k in 0..self.m() {
             let _ = writeln!(out, "        run module_{k}();");
         }

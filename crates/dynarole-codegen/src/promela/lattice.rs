@@ -33,16 +33,7 @@ pub(crate) fn write(g: &Gen, out: &mut String) {
     // dr_program_deps: every statement's waits_for(), checked on module m's copy.
     out.push_str("/* dr_shared_is_done(&m's copy, d) */\n#define IS_DONE(m, d) ((d) < low[m] || ((d) - low[m] < W && ((done[m] >> ((d) - low[m])) & 1)))\n");
     out.push_str("/* dr_shared_is_done(&in, d) */\n#define IN_IS_DONE(d) ((d) < in_low || ((d) - in_low < W && ((in_done >> ((d) - in_low)) & 1)))\n\n");
-    out.push_str("/* The deps loop of start_next: every statement s waits for (dr_program_deps) is done in\n * module m's copy. Sets t_ok. */\ninline deps_done(m, s) {\n    t_ok = 1;\n    if\n");
-    for (i, s) in g.ir.statements.iter().enumerate() {
-        let waits = s.waits_for();
-        if waits.is_empty() {
-            continue;
-        }
-        let all: Vec<String> = waits.iter().map(|d| format!("IS_DONE(m, {d})")).collect();
-        let _ = writeln!(out, "    :: s == {i} -> t_ok = ({})", all.join(" && "));
-    }
-    out.push_str("    :: else -> skip\n    fi\n}\n\n");
+    out.push_str("/* The deps loop of start_next: every statement s waits for (dr_program_deps) is done in\n * module m's copy. Sets t_ok. */\ninline deps_done(m, s) {\n    t_ok = 1;\n    t_y = waits_first[s];\n    do\n    :: t_y < waits_first[s + 1] -> t_ok = t_ok && IS_DONE(m, waits_list[t_y]); t_y++\n    :: else -> break\n    od;\n    skip\n}\n\n");
 
     // shift, trim, normalise, join: dr_lattice.c.
     out.push_str("/* shift(): re-base a set k statements higher (bits below the new base dropped). */\n#define SHIFT(x, k) ((k) >= W -> 0 : (((x) >> (k)) & WMASK))\n\n");
