@@ -90,6 +90,14 @@ pub fn parse_events(output: &str) -> Vec<Event> {
         let kind = words.next().unwrap_or("");
         let words: Vec<&str> = words.collect();
         let n = |k: usize| -> usize { words.get(k).and_then(|w| w.parse().ok()).unwrap_or(0) };
+        // The numbers from word k on (a copy of the shared state).
+        let fields = |k: usize| -> Vec<i64> {
+            words
+                .iter()
+                .skip(k)
+                .filter_map(|w| w.parse().ok())
+                .collect()
+        };
         let event = match kind {
             "issue" => Event::Issue {
                 m: n(0),
@@ -101,19 +109,11 @@ pub fn parse_events(output: &str) -> Vec<Event> {
             "deliver" => Event::Deliver {
                 from: n(0),
                 to: n(1),
-                fields: words
-                    .iter()
-                    .skip(2)
-                    .filter_map(|w| w.parse().ok())
-                    .collect(),
+                fields: fields(2),
             },
             "hear" => Event::Hear {
                 m: n(0),
-                fields: words
-                    .iter()
-                    .skip(1)
-                    .filter_map(|w| w.parse().ok())
-                    .collect(),
+                fields: fields(1),
             },
             "record" => Event::Record { m: n(0), s: n(1) },
             "capture" => Event::Capture {
@@ -128,11 +128,7 @@ pub fn parse_events(output: &str) -> Vec<Event> {
             },
             "copy" => Event::Copy {
                 m: n(0),
-                fields: words
-                    .iter()
-                    .skip(1)
-                    .filter_map(|w| w.parse().ok())
-                    .collect(),
+                fields: fields(1),
             },
             "reset" => Event::Reset { m: n(0) },
             "end" => Event::End { m: n(0) },

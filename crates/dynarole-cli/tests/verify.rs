@@ -316,9 +316,9 @@ fn eight2car_is_proved_safe_with_a_reset_module_by_module() {
     );
 }
 
-#[test]
-fn compile_to_promela_writes_one_compositional_model_per_module() {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("promela-compositional");
+/// `compile --target promela --method compositional` of `ab_c` into a fresh test directory.
+fn compositional_models(name: &str) -> std::path::PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
     let out = dynarole(&[
         "compile",
         AB_C,
@@ -332,6 +332,12 @@ fn compile_to_promela_writes_one_compositional_model_per_module() {
         dir.to_str().expect("utf-8 path"),
     ]);
     assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    dir
+}
+
+#[test]
+fn compile_to_promela_writes_one_compositional_model_per_module() {
+    let dir = compositional_models("promela-compositional");
     for module in ["M0", "M1", "M2"] {
         let model = std::fs::read_to_string(dir.join(format!("model-{module}.pml")))
             .expect("one model per module");
@@ -343,20 +349,7 @@ fn compile_to_promela_writes_one_compositional_model_per_module() {
 fn the_liveness_check_fails_when_the_end_is_never_surely_carried() {
     // M0's model without the fair delivery of the end: only the unfair `news` can tell M0,
     // so a run in which it never does is fair, and L must fail.
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("compositional-no-end");
-    let out = dynarole(&[
-        "compile",
-        AB_C,
-        "--target",
-        "promela",
-        "--from",
-        LINE,
-        "--method",
-        "compositional",
-        "-o",
-        dir.to_str().expect("utf-8 path"),
-    ]);
-    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let dir = compositional_models("compositional-no-end");
     let model = std::fs::read_to_string(dir.join("model-M0.pml")).expect("model");
     let fair_end = "    :: d_step { t_end && epoch[0] < N_EPOCHS -> hear(1, 0, 0) } /* the end */";
     assert!(model.contains(fair_end), "{model}");
