@@ -7,12 +7,15 @@ use dynarole_core::{analyze, parse, Diagnostic};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-#[derive(Clone, Copy, Debug, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum Protocol {
     /// The paper's protocol: one pending set, no nested blocks.
     Paper,
     /// dynarole's own protocol (runs every sequence the language accepts).
     Lattice,
+    /// The token-passing baseline: with --from, every hand-over must have a chain of latched
+    /// modules to travel on.
+    Token,
 }
 
 /// `--from CONFIG [--sequence NAME...]`: run the sequences on a configuration too.
@@ -60,7 +63,9 @@ pub fn check_one(
     let (program, mut diagnostics) = analyze(&parsed.file, &registry);
     diagnostics.extend(parsed.diagnostics);
     if let (Some(program), Some(on)) = (&program, on) {
-        diagnostics.extend(on_configuration(program, on)?);
+        diagnostics.extend(on_configuration(program, on, protocol)?);
+    } else if protocol == Protocol::Token && program.is_some() {
+        eprintln!("note: {}: the token baseline's hand-over routes are checked only on a configuration (--from CONFIG)", path.display());
     }
     if let Some(program) = program {
         diagnostics.extend(target_limits(&program, protocol));
@@ -73,9 +78,10 @@ pub fn check_one(
 fn on_configuration(
     program: &dynarole_core::Program,
     on: &OnConfiguration,
+    protocol: Protocol,
 ) -> Result<Vec<Diagnostic>, Failure> {
     let config = crate::world::read_configuration(on.path)?;
-    let prepared = match crate::world::prepare(program, on.sequences, config)? {
+    let prepared = match crate::world::prepare(program, on.sequences, config.clone())? {
         Ok(prepared) => prepared,
         Err(errors) => return Ok(errors),
     };
@@ -86,6 +92,11 @@ fn on_configuration(
         &prepared.assignment,
     );
     let mut diagnostics = replay.diagnostics;
+    if protocol == Protocol::Token && !has_errors(&diagnostics) {
+        if let Err(unroutable) = dynarole_sim::token_routes(program, &prepared.plans, &config) {
+            diagnostics.extend(unroutable);
+        }
+    }
     diagnostics.extend(dynarole_replay::check_independence(
         program,
         &prepared.plans,
@@ -110,7 +121,7 @@ fn target_limits(program: &dynarole_core::Program, protocol: Protocol) -> Vec<Di
             .lower(std::slice::from_ref(&plan))
             .and_then(|ir| match protocol {
                 Protocol::Paper => ir.paper_layout().map(|_| ()),
-                Protocol::Lattice => Ok(()),
+                Protocol::Lattice | Protocol::Token => Ok(()),
             });
         if let Err(e) = layout {
             out.push(Diagnostic::new(

@@ -1,4 +1,4 @@
-//! Golden cases: every `.dr` file in `tests/golden/` is checked (for both protocols), and
+//! Golden cases: every `.dr` file in `tests/golden/` is checked (for the three protocols), and
 //! when it has no errors also formatted and reversed; all output goes into one snapshot.
 
 use codespan_reporting::term::termcolor::NoColor;
@@ -35,12 +35,25 @@ fn golden_output(path: &Path, source: &str, codes: &mut BTreeSet<DiagnosticCode>
     let lattice =
         check_one(path, source, &plugins, Protocol::Lattice, on.as_ref()).unwrap_or_default();
     let paper = check_one(path, source, &plugins, Protocol::Paper, on.as_ref()).unwrap_or_default();
-    codes.extend(lattice.iter().chain(&paper).map(Diagnostic::code));
+    let token = check_one(path, source, &plugins, Protocol::Token, on.as_ref()).unwrap_or_default();
+    codes.extend(
+        lattice
+            .iter()
+            .chain(&paper)
+            .chain(&token)
+            .map(Diagnostic::code),
+    );
     out.push_str(&section("check", &render(&name, source, &lattice)));
     if paper != lattice {
         out.push_str(&section(
             "check --protocol paper",
             &render(&name, source, &paper),
+        ));
+    }
+    if token != lattice {
+        out.push_str(&section(
+            "check --protocol token",
+            &render(&name, source, &token),
         ));
     }
     if has_errors(&lattice) {

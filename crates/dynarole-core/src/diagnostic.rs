@@ -211,6 +211,10 @@ pub enum DiagnosticKind {
     NotSupportedByPaperProtocol {
         reason: String,
     },
+    /// The token baseline cannot route a hand-over on the configuration.
+    TokenRoute {
+        message: String,
+    },
 }
 
 impl Diagnostic {
@@ -417,6 +421,10 @@ impl Diagnostic {
                 .title("the sequence exceeds a limit of the generated code")
                 .label(message.clone())
                 .hint("compile fewer sequences at once (the paper protocol numbers states in one byte), or renumber the modules (IDs at most 253)"),
+            K::TokenRoute { message } => d
+                .title("the token baseline cannot run this sequence on this configuration")
+                .label(message.clone())
+                .hint("the token travels over latched connectors only: keep the modules of consecutive statements joined, or use the lattice protocol (the default), which needs no route"),
             K::NotSupportedByPaperProtocol { reason } => d
                 .title("not supported by the paper protocol")
                 .label(reason.clone())

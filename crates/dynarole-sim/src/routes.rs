@@ -14,7 +14,7 @@ use dynarole_world::{Configuration, Port};
 use std::collections::VecDeque;
 
 /// Where each statement of `plans` (run in turn) runs on `start`, and the route its token
-/// takes. Fails at the statement concerned when a module has no usable ID, the model refuses
+/// takes. Fails (`token-route`) at the statement concerned when a module has no usable ID, the model refuses
 /// a statement, or no chain of latched modules joins two consecutive statements' modules.
 pub fn token_routes(
     program: &Program,
@@ -24,7 +24,7 @@ pub fn token_routes(
     let assignment = assign_modules(program, plans, start)?;
     let limit = |message: String, span: Span| {
         vec![Diagnostic::new(
-            DiagnosticKind::TargetLimit { message },
+            DiagnosticKind::TokenRoute { message },
             span,
         )]
     };
