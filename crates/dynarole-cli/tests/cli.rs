@@ -49,7 +49,7 @@ fn usage_errors_exit_2() {
     assert_eq!(dynarole(&["check"]).status.code(), Some(2));
     assert_eq!(dynarole(&["frobnicate"]).status.code(), Some(2));
     assert_eq!(
-        dynarole(&["check", "--protocol", "token", "x.dr"])
+        dynarole(&["check", "--protocol", "semaphore", "x.dr"])
             .status
             .code(),
         Some(2)
