@@ -111,7 +111,13 @@ pub fn run_check(dir: &Path, check: Check, limits: Limits) -> Result<PanResult, 
     spin.args(["-a", "model.pml"]);
     run_to_file(&mut spin, dir, "spin.log", "spin -a")?;
     let mut cc = Command::new("cc");
-    cc.args(["-O2", "-w", "-o", "pan", "pan.c", "-DVECTORSZ=8192"]);
+    // Measured on eight2car's models: -O1 halves the compile time and runs a safety search
+    // as fast as -O2; the liveness search (weak fairness) runs twice as fast with -O2.
+    let optimise = match check {
+        Check::Safety => "-O1",
+        Check::Liveness => "-O2",
+    };
+    cc.args([optimise, "-w", "-o", "pan", "pan.c", "-DVECTORSZ=8192"]);
     cc.arg(format!("-DMEMLIM={}", limits.memory_mb));
     match check {
         Check::Safety => {
