@@ -31,7 +31,6 @@ pub use compositional::{liveness_graph, LivenessGraph};
 use crate::c::{pending_slots, CompileOptions, Protocol};
 use dynarole_core::lower::{Ir, LimitError};
 use dynarole_core::span::Span;
-use std::collections::BTreeSet;
 use std::fmt::Write;
 
 /// Largest lattice window the model encodes (the done bits are one Promela `int`).
@@ -373,7 +372,7 @@ impl Gen<'_> {
             (
                 "dependents",
                 "the statements that depend on it, transitively",
-                dependents(self.ir),
+                self.ir.dependents(),
             ),
             (
                 "waits",
@@ -660,21 +659,6 @@ impl Gen<'_> {
         }
         out.push_str("    od\n}\n\n");
     }
-}
-
-/// Transitive dependents through `deps` (the same as the simulator's `sequence.rs`).
-fn dependents(ir: &Ir) -> Vec<Vec<usize>> {
-    let n = ir.statements.len();
-    let mut out: Vec<BTreeSet<usize>> = vec![BTreeSet::new(); n];
-    for s in (0..n).rev() {
-        let mine: Vec<usize> = std::iter::once(s).chain(out[s].iter().copied()).collect();
-        for d in &ir.statements[s].deps {
-            if let Some(set) = out.get_mut(usize::from(*d)) {
-                set.extend(mine.iter().copied());
-            }
-        }
-    }
-    out.into_iter().map(|s| s.into_iter().collect()).collect()
 }
 
 /// `(stage >= 0 && stage <= 3 || stage == 7)` for the stages given; `false` for none.

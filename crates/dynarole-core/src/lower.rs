@@ -322,6 +322,23 @@ impl IrStatement {
 }
 
 impl Ir {
+    /// For each statement, every statement that depends on it through `deps`, transitively
+    /// (what the sequence means; the checkers' S2). Dependencies always point backwards, so
+    /// one pass from the end suffices.
+    pub fn dependents(&self) -> Vec<Vec<usize>> {
+        let n = self.statements.len();
+        let mut out: Vec<BTreeSet<usize>> = vec![BTreeSet::new(); n];
+        for s in (0..n).rev() {
+            let mine: Vec<usize> = std::iter::once(s).chain(out[s].iter().copied()).collect();
+            for d in &self.statements[s].deps {
+                if let Some(set) = out.get_mut(usize::from(*d)) {
+                    set.extend(mine.iter().copied());
+                }
+            }
+        }
+        out.into_iter().map(|s| s.into_iter().collect()).collect()
+    }
+
     /// The state layout of the paper's compiler. The plan must already be flat (see
     /// `Plan::flatten_for_paper`).
     pub fn paper_layout(&self) -> Result<Vec<PaperUnit>, LimitError> {

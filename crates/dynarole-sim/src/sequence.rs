@@ -8,7 +8,6 @@ use dynarole_core::robot::Value;
 use dynarole_core::RobotApi;
 use dynarole_replay::RobotWorld;
 use dynarole_world::{AtronConfiguration, MtranConfiguration, Port};
-use std::collections::BTreeSet;
 
 /// The physical kind of an operation (for its duration and the links it breaks).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -40,7 +39,7 @@ impl Sequence {
                 None => OpKind::Other,
             })
             .collect();
-        let dependents = dependents(&ir);
+        let dependents = ir.dependents();
         Sequence {
             robot,
             ir,
@@ -124,22 +123,6 @@ fn kind(part: &str, op: &str) -> OpKind {
         ("Joint", _) => OpKind::Turn,
         _ => OpKind::Other,
     }
-}
-
-/// Transitive dependents through `deps` (what the sequence means). Dependencies always point
-/// backwards, so one pass from the end suffices.
-fn dependents(ir: &Ir) -> Vec<Vec<usize>> {
-    let n = ir.statements.len();
-    let mut out: Vec<BTreeSet<usize>> = vec![BTreeSet::new(); n];
-    for s in (0..n).rev() {
-        let mine: Vec<usize> = std::iter::once(s).chain(out[s].iter().copied()).collect();
-        for d in &ir.statements[s].deps {
-            if let Some(set) = out.get_mut(usize::from(*d)) {
-                set.extend(mine.iter().copied());
-            }
-        }
-    }
-    out.into_iter().map(|s| s.into_iter().collect()).collect()
 }
 
 /// The configuration of either robot, borrowed, with the queries the simulator needs.
