@@ -362,13 +362,7 @@ pub fn explain(events: &[Event], cx: &Context) -> String {
             )),
             Event::Complete { m, s } => Some(format!("{} sees #{s} complete", cx.module(*m))),
             Event::Hear { m, fields } => {
-                let after = match events.get(index + 1) {
-                    Some(Event::Copy { m: k, fields }) if k == m => {
-                        consumed.insert(index + 1);
-                        Some(fields.clone())
-                    }
-                    _ => None,
-                };
+                let after = copy_after(events, index, *m, &mut consumed);
                 let now = after
                     .filter(|a| copies.get(m) != Some(a))
                     .map_or(String::new(), |a| {
@@ -397,13 +391,7 @@ pub fn explain(events: &[Event], cx: &Context) -> String {
             Event::Deliver { from, to, fields } => {
                 let was_late = std::mem::take(&mut late);
                 // What the receiver holds after it (the next event is its copy).
-                let after = match events.get(index + 1) {
-                    Some(Event::Copy { m, fields }) if m == to => {
-                        consumed.insert(index + 1);
-                        Some(fields.clone())
-                    }
-                    _ => None,
-                };
+                let after = copy_after(events, index, *to, &mut consumed);
                 let changed = after.as_ref().filter(|a| copies.get(to) != Some(*a));
                 let now = changed.map_or(String::new(), |a| {
                     format!("; {} now holds {}", cx.module(*to), cx.copy(a))
@@ -467,6 +455,23 @@ pub fn explain(events: &[Event], cx: &Context) -> String {
         );
     }
     out
+}
+
+/// Module m's copy right after the event at `index` (the model prints it next), marked as
+/// told so that it is not a step of its own.
+fn copy_after(
+    events: &[Event],
+    index: usize,
+    m: usize,
+    consumed: &mut std::collections::BTreeSet<usize>,
+) -> Option<Vec<i64>> {
+    match events.get(index + 1) {
+        Some(Event::Copy { m: k, fields }) if *k == m => {
+            consumed.insert(index + 1);
+            Some(fields.clone())
+        }
+        _ => None,
+    }
 }
 
 /// The headline of a broken guarantee of the compositional model.
