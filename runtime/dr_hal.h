@@ -31,10 +31,14 @@ void dr_hal_broadcast(struct dr_module *m, const uint8_t *bytes, uint8_t len);
 void dr_hal_send(struct dr_module *m, uint8_t channel, const uint8_t *bytes, uint8_t len);
 /* Incoming packets are handed to dr_module_receive() (dr_module.h) by the platform. */
 
-/* Starts a robot operation: `op` is the plugin's operation code (generated dr_program.h),
- * `index` the part index (connector or joint; 0 if the part has none), `args` its arguments.
+/* Starts the robot operation of statement `statement` (its number in the generated program,
+ * as in dr_meta.c): `op` is the plugin's operation code (generated dr_program.h), `index` the
+ * part index (connector or joint; 0 if the part has none), `args` its arguments. The statement
+ * number lets a platform log or check exactly which statement runs (the simulator's S1-S3
+ * checks rest on it); the operation is fully described by (op, index, args).
  * Operations are idempotent: re-issuing one that already took effect completes at once. */
-void dr_hal_op_start(struct dr_module *m, uint8_t op, uint8_t index, const int16_t *args);
+void dr_hal_op_start(struct dr_module *m, uint16_t statement, uint8_t op, uint8_t index,
+                     const int16_t *args);
 /* Whether the started operations are still running, all done, or one failed. */
 enum dr_op_status dr_hal_op_status(struct dr_module *m);
 

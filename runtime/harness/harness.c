@@ -96,19 +96,21 @@ static uint32_t duration_ms(uint8_t op)
     return 500u + 250u * (uint32_t)op;
 }
 
-void dr_hal_op_start(struct dr_module *m, uint8_t op, uint8_t index, const int16_t *args)
+void dr_hal_op_start(struct dr_module *m, uint16_t statement, uint8_t op, uint8_t index,
+                     const int16_t *args)
 {
     platform_t *p = platform_of(m);
-    uint16_t s;
+    uint16_t s = statement;
     uint8_t d;
     (void)args;
-    for (s = 0; s < dr_meta_n_statements; s++) {
-        if (!started[s] && dr_meta_address[s] == m->address && dr_meta_op[s] == op &&
-            dr_meta_index[s] == index) {
-            break;
-        }
+    if (s >= dr_meta_n_statements || dr_meta_address[s] != m->address || dr_meta_op[s] != op ||
+        dr_meta_index[s] != index) {
+        violations++;
+        printf("%7lu ms  VIOLATION: module %u started statement %u, which is not its operation\n",
+               (unsigned long)now_ms, (unsigned)m->address, (unsigned)s);
+        return;
     }
-    if (s == dr_meta_n_statements) {
+    if (started[s]) {
         reissues++;
         return;
     }

@@ -257,7 +257,7 @@ static dr_channels_t connected(dr_module_t *m)
 static void issue(dr_module_t *m)
 {
     const dr_statement_t *st = &m->program->statements[m->running];
-    dr_hal_op_start(m, st->op, st->index, st->args);
+    dr_hal_op_start(m, m->running, st->op, st->index, st->args);
 }
 
 /* Starts this module's first statement in the window that is not done and whose

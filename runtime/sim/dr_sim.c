@@ -17,8 +17,8 @@ struct dr_sim_callbacks {
     uint32_t (*now_ms)(void *platform);
     uint16_t (*random)(void *platform);
     void (*broadcast)(void *platform, const uint8_t *bytes, uint8_t len);
-    void (*op_start)(void *platform, uint8_t address, uint8_t op, uint8_t index,
-                     const int16_t *args, uint8_t n_args);
+    void (*op_start)(void *platform, uint8_t address, uint16_t statement, uint8_t op,
+                     uint8_t index, const int16_t *args, uint8_t n_args);
     uint8_t (*op_status)(void *platform);
     uint16_t (*id)(void *platform);
     uint8_t (*connected)(void *platform, uint8_t connector);
@@ -117,10 +117,12 @@ void dr_hal_send(struct dr_module *m, uint8_t channel, const uint8_t *bytes, uin
     }
 }
 
-void dr_hal_op_start(struct dr_module *m, uint8_t op, uint8_t index, const int16_t *args)
+void dr_hal_op_start(struct dr_module *m, uint16_t statement, uint8_t op, uint8_t index,
+                     const int16_t *args)
 {
     if (host) {
-        host->op_start(platform_of(m), m->address, op, index, args, (uint8_t)DR_CONF_MAX_ARGS);
+        host->op_start(platform_of(m), m->address, statement, op, index, args,
+                       (uint8_t)DR_CONF_MAX_ARGS);
     }
 }
 

@@ -146,7 +146,7 @@ static void run_held(dr_module_t *m)
     }
     s = &m->program->statements[m->holding];
     if (!m->running) {
-        dr_hal_op_start(m, s->op, s->index, s->args);
+        dr_hal_op_start(m, m->holding, s->op, s->index, s->args);
         m->running = 1;
         return;
     }

@@ -64,7 +64,7 @@ fn start(ir: &Ir, i: usize) -> String {
     let s = &ir.statements[i];
     let (part, op) = &ir.operations[usize::from(s.op)];
     format!(
-        "        dr_hal_op_start(m, DR_OP_{}_{}, {}u, dr_args_{i});\n",
+        "        dr_hal_op_start(m, {i}u, DR_OP_{}_{}, {}u, dr_args_{i});\n",
         part.to_uppercase(),
         op.to_uppercase(),
         s.index

@@ -5,6 +5,7 @@
 //! boundary: each callback runs under `catch_unwind`, answers a neutral value when anything
 //! goes wrong, and flags it so the engine stops the run with an error.
 
+use crate::ops::OpCall;
 use crate::state::State;
 use std::cell::{Cell, RefCell};
 use std::ffi::c_void;
@@ -17,7 +18,7 @@ pub struct Callbacks {
     now_ms: extern "C" fn(*mut c_void) -> u32,
     random: extern "C" fn(*mut c_void) -> u16,
     broadcast: extern "C" fn(*mut c_void, *const u8, u8),
-    op_start: extern "C" fn(*mut c_void, u8, u8, u8, *const i16, u8),
+    op_start: extern "C" fn(*mut c_void, u8, u16, u8, u8, *const i16, u8),
     op_status: extern "C" fn(*mut c_void) -> u8,
     id: extern "C" fn(*mut c_void) -> u16,
     connected: extern "C" fn(*mut c_void, u8) -> u8,
@@ -125,14 +126,29 @@ extern "C" fn send(p: *mut c_void, channel: u8, data: *const u8, len: u8) {
     with_state(p, (), |s, m| s.send_on(m, channel, data));
 }
 
-extern "C" fn op_start(p: *mut c_void, address: u8, op: u8, index: u8, args: *const i16, n: u8) {
+extern "C" fn op_start(
+    p: *mut c_void,
+    address: u8,
+    statement: u16,
+    op: u8,
+    index: u8,
+    args: *const i16,
+    n: u8,
+) {
     let args: &[i16] = if args.is_null() {
         &[]
     } else {
         // SAFETY: dr_sim.c passes the statement's DR_CONF_MAX_ARGS arguments.
         unsafe { std::slice::from_raw_parts(args, usize::from(n)) }
     };
-    with_state(p, (), |s, m| s.op_start(m, address, op, index, args));
+    let call = OpCall {
+        address,
+        statement,
+        op,
+        index,
+        args,
+    };
+    with_state(p, (), |s, m| s.op_start(m, &call));
 }
 
 extern "C" fn op_status(p: *mut c_void) -> u8 {

@@ -1,5 +1,6 @@
-//! Robot operations: which statement a module's `dr_hal_op_start` is, how long it takes,
-//! what the world says when it completes, and the checks S1, S2 and S3.
+//! Robot operations: how a module's `dr_hal_op_start` of a statement relates to what already
+//! happened to it, how long it takes, what the world says when it completes, and the checks
+//! S1, S2 and S3.
 
 use crate::report::{Refusal, Violation};
 use crate::sequence::{OpKind, View};
@@ -19,22 +20,44 @@ enum Call {
     Reissue(usize),
 }
 
+/// One call of `dr_hal_op_start`: the statement the module's runtime says it runs (never
+/// guessed from the operation: sequences repeat operations, a reverse repeats every one) and
+/// the operation it asks the hardware for.
+pub struct OpCall<'a> {
+    /// The address the module's runtime has (its role).
+    pub address: u8,
+    pub statement: u16,
+    pub op: u8,
+    pub index: u8,
+    /// The arguments, padded with zeros to `DR_CONF_MAX_ARGS`.
+    pub args: &'a [i16],
+}
+
 const DONE: u8 = 1;
 const RUNNING: u8 = 0;
 const FAILED: u8 = 2;
 
 impl State {
-    /// `dr_hal_op_start` of module `m` (whose runtime says it has `address`).
-    pub fn op_start(&mut self, m: usize, address: u8, op: u8, index: u8, args: &[i16]) {
+    /// `dr_hal_op_start` of module `m`.
+    pub fn op_start(&mut self, m: usize, request: &OpCall) {
         if !self.modules[m].powered {
             return;
         }
-        let Some(call) = self.classify(address, op, index, args) else {
+        let Some(call) = self.classify(request) else {
             self.counters.ops_unknown += 1;
             self.clear_finished_waits(m);
             self.modules[m].failed = true;
             if self.tracing() {
-                let detail = format!("address {address} op {op} index {index} args {args:?}");
+                let OpCall {
+                    address,
+                    statement,
+                    op,
+                    index,
+                    args,
+                } = request;
+                let detail = format!(
+                    "statement {statement} is not address {address} op {op} index {index} args {args:?}"
+                );
                 self.log(Some(m), "unknown-op", detail);
             }
             return;
@@ -84,24 +107,23 @@ impl State {
         }
     }
 
-    fn classify(&self, address: u8, op: u8, index: u8, args: &[i16]) -> Option<Call> {
-        let candidates: Vec<usize> = (0..self.seq.len())
-            .filter(|s| self.seq.matches(*s, address, op, index, args))
-            .collect();
-        let phys = |s: &&usize| &self.phys[**s];
-        if let Some(s) = candidates.iter().find(|s| phys(s).running.is_some()) {
-            return Some(Call::Resume(*s));
-        }
-        if let Some(s) = candidates
-            .iter()
-            .find(|s| phys(s).started.is_some() && phys(s).done.is_none())
-        {
-            return Some(Call::Retry(*s));
-        }
-        if let Some(s) = candidates.iter().find(|s| phys(s).started.is_none()) {
-            return Some(Call::First(*s));
-        }
-        candidates.last().map(|s| Call::Reissue(*s))
+    /// What the named statement's history makes this call; `None` when the statement does not
+    /// exist or is not the operation the module asked for (generated code and IR disagree).
+    fn classify(&self, request: &OpCall) -> Option<Call> {
+        let s = usize::from(request.statement);
+        let matches = self
+            .seq
+            .matches(s, request.address, request.op, request.index, request.args);
+        let phys = self.phys.get(s).filter(|_| matches)?;
+        Some(if phys.running.is_some() {
+            Call::Resume(s)
+        } else if phys.started.is_none() {
+            Call::First(s)
+        } else if phys.done.is_none() {
+            Call::Retry(s)
+        } else {
+            Call::Reissue(s)
+        })
     }
 
     /// A new batch of operations starts once every earlier one has finished.

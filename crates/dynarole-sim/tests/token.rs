@@ -145,3 +145,32 @@ fn first_start_ms(report: &Report, k: usize) -> u64 {
         .and_then(|l| l.get(0..12)?.trim().parse::<f64>().ok())
         .map_or(0, |ms| ms as u64)
 }
+
+#[test]
+fn the_token_baseline_names_the_statement_it_holds() {
+    // Every operation the simulator attributes to a module is the statement whose token the
+    // module's runtime holds (`tok<N>` in its state), also across a reset.
+    let mut scenario = Scenario::default();
+    scenario.reset.push(dynarole_sim::Reset {
+        module: "M3".into(),
+        at_ms: 5_000,
+    });
+    let report = token_run(TokenRetries::Tries(32), &scenario, 3);
+    let trace = report.trace.as_deref().unwrap_or_default();
+    let mut starts = 0;
+    for line in trace.lines() {
+        let event = line.get(20..30).map(str::trim);
+        if !matches!(event, Some("start" | "resume" | "retry" | "reissue")) {
+            continue;
+        }
+        let state = line.get(31..59).unwrap_or("");
+        let number = line
+            .get(60..)
+            .and_then(|d| d.strip_prefix('#'))
+            .and_then(|d| d.split(' ').next());
+        let expected = format!("tok{}", number.unwrap_or("?"));
+        assert!(state.split_whitespace().any(|f| f == expected), "{line}");
+        starts += 1;
+    }
+    assert!(starts >= 25, "{}", report.summary());
+}

@@ -108,11 +108,12 @@ void dr_hal_broadcast(struct dr_module *m, const uint8_t *bytes, uint8_t len)
     }
 }
 
-void dr_hal_op_start(struct dr_module *m, uint8_t op, uint8_t index, const int16_t *args)
+void dr_hal_op_start(struct dr_module *m, uint16_t statement, uint8_t op, uint8_t index,
+                     const int16_t *args)
 {
     sim_node_t *n = node_of(m);
     const dr_program_t *p = sim.program;
-    uint16_t s = (uint16_t)args[0];
+    uint16_t s = statement;
     uint16_t r = m->running_epoch;
     uint16_t t;
     uint16_t d;
@@ -122,6 +123,9 @@ void dr_hal_op_start(struct dr_module *m, uint8_t op, uint8_t index, const int16
     if (s >= p->n_statements || m->running != s) {
         violation("op of an unknown statement", r, s);
         return;
+    }
+    if ((uint16_t)args[0] != s) { /* the test programs carry their number as argument 0 */
+        violation("op start names another statement than its arguments", r, s);
     }
     if (p->statements[s].address != n->address) {
         violation("op started on the wrong module", r, s);

@@ -107,10 +107,12 @@ void dr_hal_broadcast(struct dr_module *m, const uint8_t *bytes, uint8_t len)
     f->packet_len = len;
 }
 
-void dr_hal_op_start(struct dr_module *m, uint8_t op, uint8_t index, const int16_t *args)
+void dr_hal_op_start(struct dr_module *m, uint16_t statement, uint8_t op, uint8_t index,
+                     const int16_t *args)
 {
     fake_t *f = fake(m);
     uint8_t i;
+    f->statement = statement;
     f->op = op;
     f->index = index;
     for (i = 0; i < DR_CONF_MAX_ARGS; i++) {

@@ -24,7 +24,8 @@ typedef struct {
     uint32_t now_ms;
     uint8_t leds;
     enum dr_op_status status;          /* of the last started operation */
-    uint8_t op;                        /* last started operation, its part and arguments */
+    uint16_t statement;                /* last started statement, its operation, part, arguments */
+    uint8_t op;
     uint8_t index;
     int16_t args[DR_CONF_MAX_ARGS];
     uint16_t n_starts;                 /* operations started since the test began */

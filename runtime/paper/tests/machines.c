@@ -15,15 +15,16 @@ static uint8_t done(dr_module_t *m)
     return (uint8_t)(dr_hal_op_status(m) == DR_OP_DONE);
 }
 
-static void op(dr_module_t *m, uint8_t code, uint8_t index, int16_t a0, int16_t a1, int16_t a2,
-               int16_t a3)
+/* `statement`: the statement's number in the sequence (what a generated machine passes). */
+static void op(dr_module_t *m, uint16_t statement, uint8_t code, uint8_t index, int16_t a0,
+               int16_t a1, int16_t a2, int16_t a3)
 {
     int16_t args[DR_CONF_MAX_ARGS] = {0};
     args[0] = a0;
     args[1] = a1;
     args[2] = a2;
     args[3] = a3;
-    dr_hal_op_start(m, code, index, args);
+    dr_hal_op_start(m, statement, code, index, args);
 }
 
 /* Leaving state s (by break or fall-through): record Fig. 4's view for the golden test. */
@@ -42,7 +43,7 @@ static void eight2car_step(dr_module_t *m)
         /* fall-through */
     case 1: /* M0 */
         dr_paper_add_pending(m, 1);
-        op(m, OP_RETRACT, 0, 0, 0, 0, 0);
+        op(m, 0u, OP_RETRACT, 0, 0, 0, 0, 0);
         m->local_state = 2;
         after(m, 1);
         break;
@@ -60,7 +61,7 @@ static void eight2car_step(dr_module_t *m)
         after(m, 3);
         break;
     case 4: /* M3 */
-        op(m, OP_RETRACT, 4, 0, 0, 0, 0);
+        op(m, 1u, OP_RETRACT, 4, 0, 0, 0, 0);
         m->local_state = 5;
         after(m, 4);
         break;
@@ -75,7 +76,7 @@ static void eight2car_step(dr_module_t *m)
         after(m, 5);
         /* fall-through */
     case 6: /* M3, sequential (e.9; Fig. 2's addPendingState(6) is not generated) */
-        op(m, OP_ROTATE, 0, 0, 324, 0, 150);
+        op(m, 2u, OP_ROTATE, 0, 0, 324, 0, 150);
         m->local_state = 7;
         after(m, 6);
         break;
@@ -88,7 +89,7 @@ static void eight2car_step(dr_module_t *m)
         after(m, 7);
         break;
     case 8: /* M4 */
-        op(m, OP_ROTATE, 0, 0, 108, 1, 150);
+        op(m, 3u, OP_ROTATE, 0, 0, 108, 1, 150);
         m->local_state = 9;
         after(m, 8);
         break;
@@ -101,7 +102,7 @@ static void eight2car_step(dr_module_t *m)
         /* fall-through */
     case 10: /* M4 */
         dr_paper_add_pending(m, 10);
-        op(m, OP_EXTEND, 0, 0, 0, 0, 0);
+        op(m, 4u, OP_EXTEND, 0, 0, 0, 0, 0);
         m->local_state = 11;
         after(m, 10);
         break;
@@ -120,7 +121,7 @@ static void eight2car_step(dr_module_t *m)
         break;
     case 13: /* M1 */
         dr_paper_add_pending(m, 13);
-        op(m, OP_ROTATE, 0, 0, 324, 0, 150);
+        op(m, 5u, OP_ROTATE, 0, 0, 324, 0, 150);
         m->local_state = 14;
         after(m, 13);
         break;
@@ -138,7 +139,7 @@ static void eight2car_step(dr_module_t *m)
         after(m, 15);
         break;
     case 16: /* M6 */
-        op(m, OP_RETRACT, 2, 0, 0, 0, 0);
+        op(m, 6u, OP_RETRACT, 2, 0, 0, 0, 0);
         m->local_state = 17;
         after(m, 16);
         break;
@@ -176,7 +177,7 @@ static void ab_c_step(dr_module_t *m)
         /* fall-through */
     case 1: /* module 0: A & (state S) */
         dr_paper_add_pending(m, 1);
-        op(m, OP_A, 0, 0, 0, 0, 0);
+        op(m, 0u, OP_A, 0, 0, 0, 0, 0);
         m->local_state = 2;
         break;
     case 2: /* S+1: transfer */
@@ -191,7 +192,7 @@ static void ab_c_step(dr_module_t *m)
         m->local_state = DR_STATE_IDLE;
         break;
     case 4: /* module 1: B; */
-        op(m, OP_B, 0, 0, 0, 0, 0);
+        op(m, 1u, OP_B, 0, 0, 0, 0, 0);
         m->local_state = 5;
         break;
     case 5:
@@ -202,7 +203,7 @@ static void ab_c_step(dr_module_t *m)
         m->local_state = DR_STATE_IDLE;
         break;
     case 6: /* module 2: C; */
-        op(m, OP_C, 0, 0, 0, 0, 0);
+        op(m, 2u, OP_C, 0, 0, 0, 0, 0);
         m->local_state = 7;
         break;
     case 7:
@@ -235,7 +236,7 @@ static void z_ab_c_step(dr_module_t *m)
         m->local_state = 1;
         /* fall-through */
     case 1: /* module 1: Z; */
-        op(m, OP_Z, 0, 0, 0, 0, 0);
+        op(m, 0u, OP_Z, 0, 0, 0, 0, 0);
         m->local_state = 2;
         break;
     case 2:
@@ -247,7 +248,7 @@ static void z_ab_c_step(dr_module_t *m)
         break;
     case 3: /* module 0: A & */
         dr_paper_add_pending(m, 3);
-        op(m, OP_A, 0, 0, 0, 0, 0);
+        op(m, 1u, OP_A, 0, 0, 0, 0, 0);
         m->local_state = 4;
         break;
     case 4:
@@ -262,7 +263,7 @@ static void z_ab_c_step(dr_module_t *m)
         m->local_state = DR_STATE_IDLE;
         break;
     case 6: /* module 1: B; */
-        op(m, OP_B, 0, 0, 0, 0, 0);
+        op(m, 2u, OP_B, 0, 0, 0, 0, 0);
         m->local_state = 7;
         break;
     case 7:
@@ -273,7 +274,7 @@ static void z_ab_c_step(dr_module_t *m)
         m->local_state = DR_STATE_IDLE;
         break;
     case 8: /* module 2: C; */
-        op(m, OP_C, 0, 0, 0, 0, 0);
+        op(m, 3u, OP_C, 0, 0, 0, 0, 0);
         m->local_state = 9;
         break;
     case 9:

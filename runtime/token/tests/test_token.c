@@ -124,9 +124,15 @@ void dr_hal_broadcast(struct dr_module *m, const uint8_t *bytes, uint8_t len)
     dr_hal_send(m, LEFT, bytes, len);
 }
 
-void dr_hal_op_start(struct dr_module *m, uint8_t op, uint8_t index, const int16_t *args)
+void dr_hal_op_start(struct dr_module *m, uint16_t statement, uint8_t op, uint8_t index,
+                     const int16_t *args)
 {
     node_t *n = node_of(m);
+    if (statement != m->holding) {
+        fprintf(stderr, "op_start names statement %u, the module holds %u\n", (unsigned)statement,
+                (unsigned)m->holding);
+        failures++;
+    }
     (void)index;
     (void)args;
     n->op_active = 1;
