@@ -43,6 +43,19 @@
 #define DR_CONF_MAX_PACKET 48
 #endif
 
+/* Bytes of the keyed authentication tag on every packet (dr_packet.h): 0 (no tag, the
+ * default), or 4 or 8 for a build with a key (`dynarole compile --key` sets it). */
+#ifndef DR_CONF_PACKET_TAG
+#define DR_CONF_PACKET_TAG 0
+#endif
+
+/* The robot (or swarm) identity every packet carries; packets of another robot are dropped.
+ * Set at compile time (`dynarole compile --robot-id`, in dr_program_conf.h) or at flash time
+ * (-DDR_ROBOT_ID=N). */
+#ifndef DR_ROBOT_ID
+#define DR_ROBOT_ID 0u
+#endif
+
 /* Connectors (infrared channels) per module. */
 #ifndef DR_CONF_CHANNELS
 #define DR_CONF_CHANNELS 8

@@ -1,40 +1,68 @@
-/* dr_packet.h - framing shared by every protocol: a magic/version byte, the program id, a
- * kind byte, the payload and a CRC-16, so that malformed or foreign packets are recognised
- * and dropped, never trusted.
+/* dr_packet.h - framing shared by every protocol: a magic/version byte, the frame's length,
+ * the robot it belongs to, the program it was sent by, a kind byte, the payload, an optional
+ * keyed authentication tag and a CRC-16, so that malformed packets, packets of another robot
+ * (a second robot in infrared range) and packets of another program are recognised and
+ * dropped, never trusted.
  *
- * Frame: [DR_PACKET_MAGIC] [program id] [kind] [payload ...] [crc hi] [crc lo]
- * The CRC (CCITT, polynomial 0x1021, initial 0xFFFF) covers every byte before it. */
+ * Frame: [DR_PACKET_MAGIC] [length] [robot hi] [robot lo] [fingerprint, 4 bytes, big endian]
+ *        [kind] [payload ...] [tag, DR_CONF_PACKET_TAG bytes] [crc hi] [crc lo]
+ * `length` is the whole frame's length, so a frame with bytes appended or cut is malformed.
+ * The tag (SipHash-2-4 under the 128-bit key dr_packet_key, truncated) covers every byte
+ * before it; the CRC (CCITT, polynomial 0x1021, initial 0xFFFF) covers every byte before it.
+ * The CRC catches noise; only the tag resists a sender that means harm (it does not stop a
+ * replay of a recorded packet). */
 #ifndef DR_PACKET_H
 #define DR_PACKET_H
 
 #include <stdint.h>
 
+#include "dr_conf.h"
+
 /* High nibble: 0xD ("dynarole"); low nibble: format version. */
-#define DR_PACKET_MAGIC 0xD1u
-#define DR_PACKET_OVERHEAD 5u
+#define DR_PACKET_MAGIC 0xD2u
+/* Bytes before the payload. */
+#define DR_PACKET_HEADER 9u
+#define DR_PACKET_OVERHEAD (DR_PACKET_HEADER + DR_CONF_PACKET_TAG + 2u)
 
 /* Packet kinds. */
 #define DR_PACKET_LATTICE_STATE 1u
 #define DR_PACKET_PAPER_STATE 2u
 #define DR_PACKET_TOKEN 3u
 
+/* Who a packet belongs to: the robot (or swarm) identity, set at compile time (`dynarole
+ * compile --robot-id`) or at flash time (-DDR_ROBOT_ID=N), and the fingerprint of the
+ * program (generated: a hash of the compiled sequence). */
+typedef struct {
+    uint16_t robot;
+    uint32_t fingerprint;
+} dr_identity_t;
+
 enum dr_packet_result {
     DR_PACKET_OK = 0,
-    DR_PACKET_MALFORMED = 1, /* wrong length, magic or checksum */
-    DR_PACKET_FOREIGN = 2    /* well formed, but another program or kind */
+    DR_PACKET_MALFORMED = 1, /* wrong length, magic, checksum or authentication tag */
+    DR_PACKET_FOREIGN = 2    /* well formed, but another robot, program or kind */
 };
+
+#if DR_CONF_PACKET_TAG > 0
+/* The shared key of a keyed build (generated into dr_program.c by `dynarole compile --key`). */
+extern const uint8_t dr_packet_key[16];
+/* SipHash-2-4 of `len` bytes under `key` (the tag is its first DR_CONF_PACKET_TAG bytes,
+ * least significant first). Cost: O(len), about 2 rounds per 8 bytes. */
+uint64_t dr_siphash24(const uint8_t key[16], const uint8_t *in, uint8_t len);
+#endif
 
 /* CRC-16/CCITT-FALSE of `len` bytes. Cost: O(len). */
 uint16_t dr_crc16(const uint8_t *bytes, uint8_t len);
 
 /* Writes a frame around `payload` into `out` (capacity `cap`); returns the frame length, or
- * 0 when it does not fit. */
-uint8_t dr_packet_frame(uint8_t *out, uint8_t cap, uint8_t program_id, uint8_t kind,
+ * 0 when it does not fit. `payload` may point into `out` at DR_PACKET_HEADER (encoded in
+ * place). Cost: O(length), plus the tag's O(length) when keyed. */
+uint8_t dr_packet_frame(uint8_t *out, uint8_t cap, const dr_identity_t *from, uint8_t kind,
                         const uint8_t *payload, uint8_t payload_len);
 
-/* Checks a received frame. On DR_PACKET_OK, *payload points into `in` and *payload_len is set.
- * Precondition: in != 0 when len > 0. */
-enum dr_packet_result dr_packet_unframe(const uint8_t *in, uint8_t len, uint8_t program_id,
+/* Checks a received frame against this module's identity. On DR_PACKET_OK, *payload points
+ * into `in` and *payload_len is set. Precondition: in != 0 when len > 0. Cost: as framing. */
+enum dr_packet_result dr_packet_unframe(const uint8_t *in, uint8_t len, const dr_identity_t *self,
                                         uint8_t kind, const uint8_t **payload,
                                         uint8_t *payload_len);
 

@@ -27,7 +27,7 @@
 #define PAYLOAD ((uint8_t)(4u + 2u * NBYTES))
 #define FRAME ((uint8_t)(PAYLOAD + DR_PACKET_OVERHEAD))
 /* NV record: program id, address, payload, CRC-16 (big-endian) over the bytes before it. */
-#define RECORD ((uint8_t)(2u + PAYLOAD + 2u))
+#define RECORD ((uint8_t)(5u + PAYLOAD + 2u))
 #define TOP_EPOCH 0xFFFFu
 
 /* Compile-time checks of the configuration (a negative array size fails the build). */
@@ -188,15 +188,31 @@ static void broadcast(dr_module_t *m, uint32_t now)
     uint8_t frame[FRAME];
     uint8_t len;
     /* Encoded in place: dr_packet_frame then copies each payload byte onto itself. */
-    (void)dr_shared_encode(&m->shared, frame + 3, PAYLOAD);
-    len = dr_packet_frame(frame, FRAME, m->program->program_id, DR_PACKET_LATTICE_STATE,
-                          frame + 3, PAYLOAD);
+    (void)dr_shared_encode(&m->shared, frame + DR_PACKET_HEADER, PAYLOAD);
+    len = dr_packet_frame(frame, FRAME, &m->identity, DR_PACKET_LATTICE_STATE,
+                          frame + DR_PACKET_HEADER, PAYLOAD);
     dr_hal_broadcast(m, frame, len);
     m->packets_sent++;
     m->next_broadcast_ms = now + DR_CONF_BROADCAST_MS;
 #if DR_CONF_BROADCAST_JITTER_MS > 0
     m->next_broadcast_ms += (uint32_t)(dr_hal_random(m) % (DR_CONF_BROADCAST_JITTER_MS + 1u));
 #endif
+}
+
+/* The NV record starts with the program's fingerprint (big endian): a module flashed with
+ * another program ignores the record the old one left. */
+static void put_fingerprint(uint8_t *rec, uint32_t fingerprint)
+{
+    uint8_t i;
+    for (i = 0; i < 4u; i++) {
+        rec[i] = (uint8_t)(fingerprint >> (24u - 8u * i));
+    }
+}
+
+static uint32_t get_fingerprint(const uint8_t *rec)
+{
+    return ((uint32_t)rec[0] << 24) | ((uint32_t)rec[1] << 16) | ((uint32_t)rec[2] << 8) |
+           (uint32_t)rec[3];
 }
 
 /* Writes the address and the state twice (copy A, then copy B), so that a reset during a
@@ -207,9 +223,9 @@ static void persist(dr_module_t *m)
     uint8_t rec[RECORD];
     uint16_t crc;
     uint8_t copy;
-    rec[0] = m->program->program_id;
-    rec[1] = m->address;
-    (void)dr_shared_encode(&m->shared, rec + 2, PAYLOAD);
+    put_fingerprint(rec, m->program->fingerprint);
+    rec[4] = m->address;
+    (void)dr_shared_encode(&m->shared, rec + 5, PAYLOAD);
     crc = dr_crc16(rec, (uint8_t)(RECORD - 2u));
     rec[RECORD - 2u] = (uint8_t)(crc >> 8);
     rec[RECORD - 1u] = (uint8_t)(crc & 0xFFu);
@@ -230,11 +246,11 @@ static uint8_t restore(dr_module_t *m)
     for (copy = 0; copy < 2u; copy++) {
         dr_hal_nv_read(m, (uint16_t)(DR_CONF_LATTICE_NV_ADDR + copy * RECORD), rec, RECORD);
         crc = dr_crc16(rec, (uint8_t)(RECORD - 2u));
-        if (rec[0] == m->program->program_id && rec[RECORD - 2u] == (uint8_t)(crc >> 8) &&
-            rec[RECORD - 1u] == (uint8_t)(crc & 0xFFu) &&
-            dr_shared_decode(&s, rec + 2, PAYLOAD, m->program->n_statements)) {
+        if (get_fingerprint(rec) == m->program->fingerprint &&
+            rec[RECORD - 2u] == (uint8_t)(crc >> 8) && rec[RECORD - 1u] == (uint8_t)(crc & 0xFFu) &&
+            dr_shared_decode(&s, rec + 5, PAYLOAD, m->program->n_statements)) {
             dr_shared_join(&m->shared, &s, m->program->n_statements);
-            m->address = rec[1];
+            m->address = rec[4];
             found = 1;
         }
     }
@@ -310,6 +326,8 @@ void dr_module_init(dr_module_t *m, const dr_program_t *program, void *platform)
     }
     m->platform = platform;
     m->program = program;
+    m->identity.robot = DR_ROBOT_ID;
+    m->identity.fingerprint = program->fingerprint;
     m->shared.epoch = 0;
     m->shared.low = 0;
     for (i = 0; i < NBYTES; i++) {
@@ -388,7 +406,7 @@ void dr_module_receive(dr_module_t *m, uint8_t channel, const uint8_t *bytes, ui
     dr_shared_t in;
     enum dr_packet_result r;
     m->packets_received++;
-    r = dr_packet_unframe(bytes, len, p->program_id, DR_PACKET_LATTICE_STATE, &payload,
+    r = dr_packet_unframe(bytes, len, &m->identity, DR_PACKET_LATTICE_STATE, &payload,
                           &payload_len);
     if (r == DR_PACKET_FOREIGN) {
         m->packets_foreign++;

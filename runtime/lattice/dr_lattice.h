@@ -10,6 +10,7 @@
 #include <stdint.h>
 #include "dr_conf.h"
 #include "dr_hal.h"
+#include "dr_packet.h"
 
 /* Returned by a program's address_of when no role, or several, match this module. */
 #define DR_NO_ADDRESS 0xFFu
@@ -37,7 +38,7 @@ typedef struct {
 
 /* A compiled sequence (generated, constant). */
 typedef struct {
-    uint8_t program_id;                /* packets with another id are foreign */
+    uint32_t fingerprint;              /* packets of another program are foreign */
     uint16_t n_statements;
     const dr_statement_t *statements;
     const uint16_t *deps;
@@ -68,6 +69,7 @@ typedef struct {
 typedef struct dr_module {
     void *platform;                    /* the platform's own data; the runtime never reads it */
     const dr_program_t *program;
+    dr_identity_t identity;            /* DR_ROBOT_ID and the program's fingerprint */
     uint8_t address;
     dr_shared_t shared;
     uint16_t running;                  /* statement being executed here, or DR_NONE */

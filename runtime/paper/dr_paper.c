@@ -201,7 +201,7 @@ void dr_module_receive(dr_module_t *m, uint8_t channel, const uint8_t *bytes, ui
 
     (void)channel;
     m->packets_received++;
-    r = dr_packet_unframe(bytes, len, m->program->program_id, DR_PACKET_PAPER_STATE, &payload,
+    r = dr_packet_unframe(bytes, len, &m->identity, DR_PACKET_PAPER_STATE, &payload,
                           &payload_len);
     if (r == DR_PACKET_MALFORMED || (r == DR_PACKET_OK && payload_len != PAYLOAD_LEN)) {
         m->packets_malformed++;
@@ -246,7 +246,7 @@ static void broadcast(dr_module_t *m, uint32_t now_ms)
     for (i = 0; i < N_PENDING; i++) {
         payload[3u + i] = m->global.pending[i];
     }
-    len = dr_packet_frame(frame, FRAME_LEN, m->program->program_id, DR_PACKET_PAPER_STATE,
+    len = dr_packet_frame(frame, FRAME_LEN, &m->identity, DR_PACKET_PAPER_STATE,
                           payload, PAYLOAD_LEN);
     if (len != 0u) {
         dr_hal_broadcast(m, frame, len);
@@ -315,6 +315,8 @@ void dr_module_init(dr_module_t *m, const dr_paper_program_t *program, void *pla
         m->resets = 0;
     }
     m->platform = platform;
+    m->identity.robot = DR_ROBOT_ID;
+    m->identity.fingerprint = program->fingerprint;
     start(m);
 }
 

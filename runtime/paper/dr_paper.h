@@ -10,6 +10,7 @@
 #include <stdint.h>
 #include "dr_conf.h"
 #include "dr_hal.h"
+#include "dr_packet.h"
 
 #define DR_NO_ADDRESS 0xFFu
 #define DR_MANY_ADDRESSES 0xFEu
@@ -26,7 +27,7 @@ enum dr_paper_merge {
 };
 
 typedef struct {
-    uint8_t program_id;
+    uint32_t fingerprint;           /* packets of another program are foreign */
     uint8_t first_address;       /* the module of the first statement, which starts the run */
     uint8_t (*address_of)(struct dr_module *m);
     void (*step)(struct dr_module *m);               /* one step of the generated switch */
@@ -42,6 +43,7 @@ typedef struct {
 typedef struct dr_module {
     void *platform;
     const dr_paper_program_t *program;
+    dr_identity_t identity;         /* DR_ROBOT_ID and the program's fingerprint */
     uint8_t address;
     enum dr_paper_merge merge;
     uint8_t single_step_handover;   /* option: add pending and transfer as one step */

@@ -87,6 +87,23 @@ uint8_t dr_sim_address(void *m)
     return ((const dr_module_t *)m)->address;
 }
 
+/* `in`, a frame a module of this program broadcast, as a second robot `robot` running the
+ * same program sends it (the scenario's `foreign` packets): same program, same payload, the
+ * other robot's identity (and, in a keyed build, the shared key's tag). Returns the frame's
+ * length in `out`, 0 when `in` is not a whole frame or does not fit. */
+uint8_t dr_sim_restamp(const uint8_t *in, uint8_t len, uint16_t robot, uint8_t *out, uint8_t cap)
+{
+    dr_identity_t other;
+    if (len < DR_PACKET_OVERHEAD || in[1] != len) {
+        return 0;
+    }
+    other.robot = robot;
+    other.fingerprint = ((uint32_t)in[4] << 24) | ((uint32_t)in[5] << 16) |
+                        ((uint32_t)in[6] << 8) | (uint32_t)in[7];
+    return dr_packet_frame(out, cap, &other, in[8], in + DR_PACKET_HEADER,
+                           (uint8_t)(len - DR_PACKET_OVERHEAD));
+}
+
 /* The protocol state of a module, as text (dr_module_describe of its runtime). */
 uint8_t dr_sim_describe(void *m, char *out, uint8_t cap)
 {

@@ -37,7 +37,7 @@ static uint16_t get16(const uint8_t *at)
 static void send_payload(dr_module_t *m, uint8_t channel, const uint8_t *payload, uint8_t len)
 {
     uint8_t frame[FRAME];
-    uint8_t n = dr_packet_frame(frame, FRAME, m->program->program_id, DR_PACKET_TOKEN, payload,
+    uint8_t n = dr_packet_frame(frame, FRAME, &m->identity, DR_PACKET_TOKEN, payload,
                                 len);
     if (channel >= DR_CONF_CHANNELS) {
         dr_hal_broadcast(m, frame, n);
@@ -126,6 +126,8 @@ void dr_module_init(dr_module_t *m, const dr_token_program_t *program, void *pla
     }
     m->platform = platform;
     m->program = program;
+    m->identity.robot = DR_ROBOT_ID;
+    m->identity.fingerprint = program->fingerprint;
     m->resets = resets;
     m->address = program->address_of(m);
     m->id = dr_hal_id(m);
@@ -284,7 +286,7 @@ void dr_module_receive(dr_module_t *m, uint8_t channel, const uint8_t *bytes, ui
     uint8_t payload_len;
     enum dr_packet_result r;
     m->packets_received++;
-    r = dr_packet_unframe(bytes, len, m->program->program_id, DR_PACKET_TOKEN, &payload,
+    r = dr_packet_unframe(bytes, len, &m->identity, DR_PACKET_TOKEN, &payload,
                           &payload_len);
     if (r == DR_PACKET_FOREIGN) {
         m->packets_foreign++;

@@ -25,6 +25,7 @@
 #include <stdint.h>
 #include "dr_conf.h"
 #include "dr_hal.h"
+#include "dr_packet.h"
 
 /* Returned by a program's address_of when no role, or several, match this module. */
 #define DR_NO_ADDRESS 0xFFu
@@ -70,7 +71,7 @@ typedef struct {
 
 /* A compiled sequence (generated, constant). */
 typedef struct {
-    uint8_t program_id;                /* packets with another id are foreign */
+    uint32_t fingerprint;              /* packets of another program are foreign */
     uint16_t n_statements;
     const dr_token_statement_t *statements;
     const dr_token_hop_t *hops;
@@ -99,6 +100,7 @@ typedef struct {
 typedef struct dr_module {
     void *platform;                    /* the platform's own data; the runtime never reads it */
     const dr_token_program_t *program;
+    dr_identity_t identity;            /* DR_ROBOT_ID and the program's fingerprint */
     uint8_t address;
     uint16_t id;
     uint16_t holding;                  /* statement whose token this module holds, or DR_NONE */

@@ -146,5 +146,6 @@ pub fn compile_options(campaign: &CampaignFile, protocol: ProtocolName) -> Compi
         token_retries,
         routes: None,
         name: campaign.sequences.join(" + "),
+        ..CompileOptions::default()
     }
 }

@@ -78,6 +78,32 @@ pub struct ProtocolOptions {
     /// original experiments used 32 and 128) or `unlimited`.
     #[arg(long, value_name = "TRIES", value_parser = parse_token_retries, default_value = "32")]
     pub token_retries: TokenRetries,
+    /// The robot (or swarm) identity every packet carries: modules drop packets of another
+    /// robot in range (a build can override it at flash time with -DDR_ROBOT_ID=N).
+    #[arg(long, value_name = "ID", default_value_t = 0)]
+    pub robot_id: u16,
+    /// A shared 128-bit key, as 32 hexadecimal digits: every packet then carries a 4-byte
+    /// authentication tag (SipHash-2-4) and modules drop packets without a valid one.
+    #[arg(long, value_name = "HEX", value_parser = parse_key)]
+    pub key: Option<[u8; 16]>,
+}
+
+/// `--key`: exactly 32 hexadecimal digits (16 bytes).
+pub fn parse_key(text: &str) -> Result<[u8; 16], String> {
+    let digits = text.as_bytes();
+    let expected = "expected 32 hexadecimal digits (a 128-bit key)";
+    if digits.len() != 32 {
+        return Err(format!("{expected}, found {} characters", digits.len()));
+    }
+    if let Some(bad) = text.chars().find(|c| !c.is_ascii_hexdigit()) {
+        return Err(format!("{expected}, found `{bad}`"));
+    }
+    let mut key = [0u8; 16];
+    for (byte, pair) in key.iter_mut().zip(digits.chunks(2)) {
+        let pair = std::str::from_utf8(pair).map_err(|_| expected.to_string())?;
+        *byte = u8::from_str_radix(pair, 16).map_err(|_| format!("{expected}, found `{pair}`"))?;
+    }
+    Ok(key)
 }
 
 impl ProtocolOptions {
@@ -101,6 +127,8 @@ impl ProtocolOptions {
             token_retries: self.token_retries,
             routes: None,
             name,
+            robot_id: self.robot_id,
+            key: self.key,
         }
     }
 }
@@ -191,14 +219,15 @@ pub fn run(args: &CompileArgs) -> Result<ExitCode, Failure> {
                 .map_err(|e| Failure::Input(format!("cannot write {}: {e}", path.display())))?;
         }
         println!(
-            "compiled {} ({} protocol): {} statements, {} modules/roles, window {}, packet {} bytes, program id {} -> {}",
+            "compiled {} ({} protocol): {} statements, {} modules/roles, window {}, packet {} bytes, fingerprint {:08x}, robot {} -> {}",
             options.name,
             options.protocol.name(),
             ir.statements.len(),
             ir.addresses.len(),
             ir.window,
             generated.packet_bytes,
-            generated.program_id,
+            generated.fingerprint,
+            options.robot_id,
             args.out_dir.display()
         );
         Ok(ExitCode::SUCCESS)

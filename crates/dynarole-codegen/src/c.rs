@@ -60,6 +60,11 @@ pub struct CompileOptions {
     pub routes: Option<TokenRoutes>,
     /// Name of the compiled sequence(s), for comments.
     pub name: String,
+    /// The robot (or swarm) identity every packet carries (`DR_ROBOT_ID`, which a build can
+    /// still override at flash time).
+    pub robot_id: u16,
+    /// The shared key of keyed builds: every packet then carries an authentication tag.
+    pub key: Option<[u8; 16]>,
 }
 
 impl Default for CompileOptions {
@@ -76,6 +81,8 @@ impl Default for CompileOptions {
             token_retries: TokenRetries::Tries(32),
             routes: None,
             name: String::new(),
+            robot_id: 0,
+            key: None,
         }
     }
 }
@@ -86,34 +93,52 @@ pub struct Generated {
     pub files: Vec<(String, String)>,
     /// Bytes of one state packet on the wire, framing included.
     pub packet_bytes: usize,
-    pub program_id: u8,
+    /// What every packet says of its program (`DR_PROGRAM_FINGERPRINT`).
+    pub fingerprint: u32,
 }
 
 /// Pending slots of the paper protocol's packets: the original's 5, widened when a parallel
 /// group has more parallel statements than that (as the original's rotation experiments did).
 const PAPER_MIN_PENDING_SLOTS: usize = 5;
-const PACKET_OVERHEAD: usize = 5;
+/// Framing of every packet (runtime/dr_packet.h): 9 header bytes and a CRC-16.
+const PACKET_OVERHEAD: usize = 11;
+/// Bytes of the authentication tag of keyed builds: forging one takes about 2^31 tries, years
+/// on an infrared channel of tens of packets a second, for 4 bytes more per packet.
+pub const PACKET_TAG_BYTES: usize = 4;
+/// The runtime's default receive buffer (`DR_CONF_MAX_PACKET`), raised when a frame needs more.
+const DEFAULT_MAX_PACKET: usize = 48;
 
 pub fn generate_c(
     ir: &Ir,
     robot: &RobotApi,
     options: &CompileOptions,
 ) -> Result<Generated, LimitError> {
-    let program_id = program_id(ir);
     let pending_slots = match options.protocol {
         Protocol::Lattice | Protocol::Token => 0,
         Protocol::Paper => pending_slots(ir)?,
     };
     // Token: the largest packet, a safe token's hand-over (acknowledgements have 2 bytes).
     let (machine, packet_payload) = match options.protocol {
-        Protocol::Lattice => (lattice_tables(ir, options, program_id), 4 + ir.window / 4),
-        Protocol::Paper => (paper_machine(ir, options, program_id)?, 3 + pending_slots),
-        Protocol::Token => (token_tables(ir, options, program_id)?, 8),
+        Protocol::Lattice => (lattice_tables(ir, options), 4 + ir.window / 4),
+        Protocol::Paper => (paper_machine(ir, options)?, 3 + pending_slots),
+        Protocol::Token => (token_tables(ir, options)?, 8),
     };
+    let tag = if options.key.is_some() {
+        PACKET_TAG_BYTES
+    } else {
+        0
+    };
+    let packet_bytes = packet_payload + PACKET_OVERHEAD + tag;
+    if packet_bytes > usize::from(u8::MAX) {
+        return Err(LimitError {
+            message: "a packet longer than 255 bytes (the window is too wide)".into(),
+            span: ir.statements.first().map(|s| s.span).unwrap_or_default(),
+        });
+    }
     let mut files = vec![
         (
             "dr_program_conf.h".to_string(),
-            program_conf(ir, options, pending_slots),
+            program_conf(ir, options, pending_slots, packet_bytes),
         ),
         ("dr_program.h".to_string(), program_header(ir, options)),
         (
@@ -136,10 +161,12 @@ pub fn generate_c(
         files.push((name.to_string(), text.to_string()));
     }
     files.sort();
+    let fingerprint = fingerprint(&files);
+    stamp_identity(&mut files, fingerprint, options);
     Ok(Generated {
         files,
-        packet_bytes: packet_payload + PACKET_OVERHEAD,
-        program_id,
+        packet_bytes,
+        fingerprint,
     })
 }
 
@@ -155,20 +182,48 @@ pub fn generate_nesc(
     Ok(generated)
 }
 
-/// FNV-1a of the statements, folded to a byte: modules running another program ignore ours.
-fn program_id(ir: &Ir) -> u8 {
+/// FNV-1a (32 bits) of every generated file, the runtime's included: two programs that differ
+/// in anything the modules run (a statement, an argument, a dependency, an option, the runtime)
+/// get different fingerprints, so their modules ignore each other's packets. The identity and
+/// the key are stamped in afterwards and are not part of it (the key must not leak through it).
+fn fingerprint(files: &[(String, String)]) -> u32 {
     let mut hash: u32 = 0x811c_9dc5;
-    for s in &ir.statements {
-        for byte in s
-            .text
-            .bytes()
-            .chain(s.deps.iter().flat_map(|d| d.to_le_bytes()))
-        {
+    for (name, text) in files {
+        for byte in name.bytes().chain([0]).chain(text.bytes()).chain([0]) {
             hash ^= u32::from(byte);
             hash = hash.wrapping_mul(0x0100_0193);
         }
     }
-    hash.to_le_bytes().iter().fold(0u8, |acc, b| acc ^ b)
+    hash
+}
+
+/// Writes the fingerprint, the robot identity and the key (when keyed) into the program's
+/// configuration header and source.
+fn stamp_identity(files: &mut [(String, String)], fingerprint: u32, options: &CompileOptions) {
+    for (name, text) in files.iter_mut() {
+        if name == "dr_program_conf.h" {
+            let mut identity = format!(
+                "/* Packet identity (runtime/dr_packet.h): the program's fingerprint; the robot's\n * identity (override at flash time with -DDR_ROBOT_ID=N). */\n#define DR_PROGRAM_FINGERPRINT 0x{fingerprint:08X}UL\n#ifndef DR_ROBOT_ID\n#define DR_ROBOT_ID {}u\n#endif\n",
+                options.robot_id
+            );
+            if options.key.is_some() {
+                let _ = writeln!(
+                    identity,
+                    "/* Keyed build: every packet carries an authentication tag. */\n#define DR_CONF_PACKET_TAG {PACKET_TAG_BYTES}"
+                );
+            }
+            *text = text.replace(CONF_END, &format!("{identity}\n{CONF_END}"));
+        } else if name == "dr_program.c" {
+            if let Some(key) = options.key {
+                let bytes: Vec<String> = key.iter().map(|b| format!("0x{b:02X}u")).collect();
+                let _ = write!(
+                    text,
+                    "\n/* The shared packet key (keep this file private). */\nconst uint8_t dr_packet_key[16] = {{ {} }};\n",
+                    bytes.join(", ")
+                );
+            }
+        }
+    }
 }
 
 fn protocol_header(protocol: Protocol) -> &'static str {
@@ -194,7 +249,15 @@ pub(crate) fn pending_slots(ir: &Ir) -> Result<usize, LimitError> {
     Ok(most.max(PAPER_MIN_PENDING_SLOTS))
 }
 
-fn program_conf(ir: &Ir, options: &CompileOptions, pending_slots: usize) -> String {
+/// The last line of `dr_program_conf.h` (the identity is stamped in before it).
+const CONF_END: &str = "#endif /* DR_PROGRAM_CONF_H */\n";
+
+fn program_conf(
+    ir: &Ir,
+    options: &CompileOptions,
+    pending_slots: usize,
+    packet_bytes: usize,
+) -> String {
     let mut out = String::from(
         "/* dr_program_conf.h - sizes this compiled sequence needs (generated by dynarole). */\n",
     );
@@ -209,7 +272,11 @@ fn program_conf(ir: &Ir, options: &CompileOptions, pending_slots: usize) -> Stri
     if options.protocol == Protocol::Paper {
         let _ = writeln!(out, "#define DR_CONF_MAX_PENDING {pending_slots}");
     }
-    out.push_str("\n#endif /* DR_PROGRAM_CONF_H */\n");
+    if packet_bytes > DEFAULT_MAX_PACKET {
+        let _ = writeln!(out, "#define DR_CONF_MAX_PACKET {packet_bytes}");
+    }
+    out.push('\n');
+    out.push_str(CONF_END);
     out
 }
 
@@ -285,7 +352,7 @@ fn roles(ir: &Ir, robot: &RobotApi) -> String {
     out
 }
 
-fn lattice_tables(ir: &Ir, options: &CompileOptions, program_id: u8) -> String {
+fn lattice_tables(ir: &Ir, options: &CompileOptions) -> String {
     let mut out = String::from("static const uint16_t dr_program_deps[] = {\n");
     let mut first = Vec::new();
     let mut count = 0usize;
@@ -321,7 +388,7 @@ fn lattice_tables(ir: &Ir, options: &CompileOptions, program_id: u8) -> String {
     out.push_str("};\n\n");
     let _ = writeln!(
         out,
-        "const dr_program_t dr_program = {{\n    {program_id}u, /* program id */\n    {}u, /* statements */\n    dr_program_statements,\n    dr_program_deps,\n    {}u, /* epochs (0: forever) */\n    dr_program_address_of,\n    {} /* options */\n}};\n",
+        "const dr_program_t dr_program = {{\n    DR_PROGRAM_FINGERPRINT,\n    {}u, /* statements */\n    dr_program_statements,\n    dr_program_deps,\n    {}u, /* epochs (0: forever) */\n    dr_program_address_of,\n    {} /* options */\n}};\n",
         ir.statements.len(),
         options.epochs,
         if options.no_nv { "DR_PROGRAM_NO_NV" } else { "0u" }

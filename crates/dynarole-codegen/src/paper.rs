@@ -5,11 +5,7 @@ use crate::c::{CompileOptions, PaperMerge};
 use dynarole_core::lower::{Ir, LimitError, PaperUnit, PaperUnitKind};
 use std::fmt::Write;
 
-pub fn paper_machine(
-    ir: &Ir,
-    options: &CompileOptions,
-    program_id: u8,
-) -> Result<String, LimitError> {
+pub fn paper_machine(ir: &Ir, options: &CompileOptions) -> Result<String, LimitError> {
     let units = ir.paper_layout()?;
     let mut out = args_tables(ir);
     out.push_str(
@@ -34,7 +30,7 @@ pub fn paper_machine(
     };
     let _ = writeln!(
         out,
-        "const dr_paper_program_t dr_program = {{\n    {program_id}u, /* program id */\n    {first_address}u, /* module of the first statement */\n    dr_program_address_of,\n    dr_program_step,\n    dr_program_responsible\n}};\n"
+        "const dr_paper_program_t dr_program = {{\n    DR_PROGRAM_FINGERPRINT,\n    {first_address}u, /* module of the first statement */\n    dr_program_address_of,\n    dr_program_step,\n    dr_program_responsible\n}};\n"
     );
     let _ = writeln!(
         out,

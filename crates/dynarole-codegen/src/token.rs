@@ -40,11 +40,7 @@ pub struct TokenRoutes {
 }
 
 /// `dr_program.c`'s tables and program for the token runtime.
-pub fn token_tables(
-    ir: &Ir,
-    options: &CompileOptions,
-    program_id: u8,
-) -> Result<String, LimitError> {
+pub fn token_tables(ir: &Ir, options: &CompileOptions) -> Result<String, LimitError> {
     let first_span = ir.statements.first().map(|s| s.span).unwrap_or_default();
     let limit = |message: &str| LimitError {
         message: message.into(),
@@ -105,7 +101,7 @@ pub fn token_tables(
     out.push_str("};\n\n");
     let _ = writeln!(
         out,
-        "const dr_token_program_t dr_program = {{\n    {program_id}u, /* program id */\n    {}u, /* statements */\n    dr_program_statements,\n    dr_program_hops,\n    dr_program_address_of,\n    {reliable}u, /* reliable: acknowledged hops ({}) */\n    {tries}u /* tries per message (0: unlimited) */\n}};\n",
+        "const dr_token_program_t dr_program = {{\n    DR_PROGRAM_FINGERPRINT,\n    {}u, /* statements */\n    dr_program_statements,\n    dr_program_hops,\n    dr_program_address_of,\n    {reliable}u, /* reliable: acknowledged hops ({}) */\n    {tries}u /* tries per message (0: unlimited) */\n}};\n",
         ir.statements.len(),
         options.token_retries.name(),
     );

@@ -63,8 +63,8 @@ fn paper_machine_for_fig5_has_the_states_of_fig2() {
 fn lattice_tables_for_fig5() {
     let generated = compile(FIG5, "eight2car", &options(Protocol::Lattice));
     assert_eq!(
-        generated.packet_bytes, 11,
-        "5 framing + 4 (epoch, low) + 2 x window/8"
+        generated.packet_bytes, 17,
+        "11 framing + 4 (epoch, low) + 2 x window/8"
     );
     let text = format!(
         "{FIG5}\n----- dr_program_conf.h -----\n{}\n----- dr_program.c (lattice) -----\n{}",
@@ -287,5 +287,48 @@ fn paper_pending_slots_widen_for_wide_parallel_groups() {
     );
     let generated = compile(&source, "wide", &options(Protocol::Paper));
     assert!(file(&generated, "dr_program_conf.h").contains("#define DR_CONF_MAX_PENDING 7"));
-    assert_eq!(generated.packet_bytes, 5 + 3 + 7);
+    assert_eq!(generated.packet_bytes, 11 + 3 + 7);
+}
+
+#[test]
+fn the_fingerprint_tells_programs_apart_that_differ_in_one_speed() {
+    // Once a one-byte id, equal for eight2car and eight2car with one turn's speed changed.
+    let options = options(Protocol::Lattice);
+    let original = compile(FIG5, "eight2car", &options);
+    let slower = FIG5.replacen("324, false, 150)", "324, false, 151)", 1);
+    assert_ne!(slower, FIG5, "the test must change a speed");
+    let changed = compile(&slower, "eight2car", &options);
+    assert_ne!(original.fingerprint, changed.fingerprint);
+    for generated in [&original, &changed] {
+        let conf = file(generated, "dr_program_conf.h");
+        let define = format!(
+            "#define DR_PROGRAM_FINGERPRINT 0x{:08X}UL",
+            generated.fingerprint
+        );
+        assert!(conf.contains(&define), "{conf}");
+    }
+    // The same input gives the same fingerprint (it is part of the build's identity).
+    assert_eq!(
+        compile(FIG5, "eight2car", &options).fingerprint,
+        original.fingerprint
+    );
+}
+
+#[test]
+fn robot_identity_and_key_are_stamped_in_and_the_key_adds_its_tag() {
+    let plain = compile(FIG5, "eight2car", &options(Protocol::Lattice));
+    let keyed_options = CompileOptions {
+        robot_id: 513,
+        key: Some([0xA5; 16]),
+        ..options(Protocol::Lattice)
+    };
+    let keyed = compile(FIG5, "eight2car", &keyed_options);
+    assert_eq!(keyed.packet_bytes, plain.packet_bytes + 4);
+    // Identity and key are not part of the fingerprint (the key must not leak through it).
+    assert_eq!(keyed.fingerprint, plain.fingerprint);
+    let conf = file(&keyed, "dr_program_conf.h");
+    assert!(conf.contains("#define DR_ROBOT_ID 513u"), "{conf}");
+    assert!(conf.contains("#define DR_CONF_PACKET_TAG 4"), "{conf}");
+    assert!(file(&keyed, "dr_program.c").contains("dr_packet_key[16] = { 0xA5u"));
+    assert!(!file(&plain, "dr_program.c").contains("dr_packet_key"));
 }

@@ -23,6 +23,8 @@ pub type StepFn = unsafe extern "C" fn(*mut c_void);
 pub type ReceiveFn = unsafe extern "C" fn(*mut c_void, u8, *const u8, u8);
 pub type QueryFn = unsafe extern "C" fn(*mut c_void) -> u8;
 pub type DescribeFn = unsafe extern "C" fn(*mut c_void, *mut u8, u8) -> u8;
+/// `dr_sim_restamp(in, len, robot, out, cap)`: a frame under another robot's identity.
+pub type RestampFn = unsafe extern "C" fn(*const u8, u8, u16, *mut u8, u8) -> u8;
 type SizeFn = unsafe extern "C" fn() -> u32;
 type RegisterFn = unsafe extern "C" fn(*const ffi::Callbacks);
 
@@ -36,6 +38,7 @@ pub struct Entry {
     pub address: QueryFn,
     /// `dr_sim_describe`: the protocol state as text (`dr_module_describe`).
     pub describe: DescribeFn,
+    pub restamp: RestampFn,
     pub module_size: usize,
 }
 
@@ -189,6 +192,7 @@ fn load(path: &Path) -> Result<(libloading::Library, Entry), String> {
         finished: symbol(&lib, "dr_sim_finished")?,
         address: symbol(&lib, "dr_sim_address")?,
         describe: symbol(&lib, "dr_sim_describe")?,
+        restamp: symbol(&lib, "dr_sim_restamp")?,
         module_size: module_size as usize,
     };
     Ok((lib, entry))

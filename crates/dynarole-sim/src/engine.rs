@@ -64,6 +64,17 @@ impl Contexts {
         unsafe { (self.entry.receive)(ctx, packet.to.connector, packet.bytes.as_ptr(), len) }
     }
 
+    /// `frame` as the scenario's second robot `robot` sends it; `None` when it is not a frame.
+    fn restamp(&self, frame: &[u8], robot: u16) -> Option<Vec<u8>> {
+        let len = u8::try_from(frame.len()).ok()?;
+        let mut out = vec![0u8; usize::from(u8::MAX)];
+        // SAFETY: `len` readable bytes in, `out` has room for the 255 bytes it may write.
+        let written =
+            unsafe { (self.entry.restamp)(frame.as_ptr(), len, robot, out.as_mut_ptr(), u8::MAX) };
+        out.truncate(usize::from(written));
+        (written > 0).then_some(out)
+    }
+
     /// What reads the modules' protocol state for the trace; valid while `self` lives.
     fn describer(&mut self) -> Describer {
         let n = self.buffers.len();
@@ -191,6 +202,24 @@ fn dispatch(state: &Rc<RefCell<State>>, contexts: &mut Contexts, event: Event) {
         Event::Reset { module } => {
             if state.borrow_mut().reset(module) {
                 init(state, contexts, module);
+            }
+        }
+        Event::Foreign { entry } => {
+            let packet = state.borrow_mut().foreign_packet(entry);
+            if let Some((to, frame, robot)) = packet {
+                if let Some(bytes) = contexts.restamp(&frame, robot) {
+                    let packet = Packet {
+                        id: 0,
+                        from: to,
+                        to,
+                        start: 0,
+                        end: 0,
+                        bytes,
+                    };
+                    if state.borrow().modules[to.module].powered {
+                        contexts.receive(&packet);
+                    }
+                }
             }
         }
         Event::ResetCheck { module } => {

@@ -27,7 +27,8 @@ pub use critical::CriticalPath;
 pub use report::{Counters, ModuleReport, Refusal, Report, Violation};
 pub use routes::token_routes;
 pub use scenario::{
-    Block, JointModel, Network, Power, Preset, RandomResets, Reset, Scenario, ScenarioError, Timing,
+    Block, Foreign, JointModel, Network, Power, Preset, RandomResets, Reset, Scenario,
+    ScenarioError, Timing,
 };
 pub use topology::{communication_graph, CommGraph};
 
@@ -176,15 +177,46 @@ impl Simulator {
             .map_err(|e| SimError::Input(format!("scenario: {e}")))?;
         let preset = run.scenario.network.preset;
         let library = self.library(preset)?;
-        let state = State::new(
+        let foreign_frames = if run.scenario.foreign.is_empty() {
+            Vec::new()
+        } else {
+            self.other_robots_frames(run, library.entry)?
+        };
+        let mut state = State::new(
             Arc::clone(&self.sequence),
             world,
             run.scenario.clone(),
             run.seed,
             run.trace,
         );
+        state.foreign_frames = foreign_frames;
         let finished = engine::run(library.entry, state).map_err(SimError::Build)?;
         Ok(self.report(run, finished))
+    }
+
+    /// The second robot of `Scenario::foreign`: the same program from the same start, run
+    /// without faults (same network preset and timing), and the last frame each of its
+    /// modules broadcast (the end, once it finished).
+    fn other_robots_frames(
+        &self,
+        run: &Run,
+        entry: build::Entry,
+    ) -> Result<Vec<Option<Vec<u8>>>, SimError> {
+        let world =
+            RobotWorld::new(run.start.clone(), &self.sequence.robot).map_err(SimError::Input)?;
+        let scenario = Scenario {
+            timeout_ms: run.scenario.timeout_ms,
+            network: Network {
+                preset: run.scenario.network.preset,
+                ..Network::default()
+            },
+            timing: run.scenario.timing.clone(),
+            ..Scenario::default()
+        };
+        let mut state = State::new(Arc::clone(&self.sequence), world, scenario, run.seed, false);
+        state.last_frames = Some(vec![None; state.n_modules()]);
+        let finished = engine::run(entry, state).map_err(SimError::Build)?;
+        Ok(finished.state.last_frames.unwrap_or_default())
     }
 
     fn report(&self, run: &Run, finished: engine::Finished) -> Report {

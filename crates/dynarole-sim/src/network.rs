@@ -61,6 +61,11 @@ impl State {
             return;
         }
         self.counters.broadcasts += 1;
+        if let Some(frames) = self.last_frames.as_mut() {
+            if let Some(slot) = frames.get_mut(m) {
+                *slot = Some(bytes.to_vec());
+            }
+        }
         let targets = match self.links.get_mut(m).and_then(Option::take) {
             Some(targets) => targets,
             None => self.link_targets(m),

@@ -31,6 +31,8 @@ pub struct Counters {
     pub ops_unknown: u64,
     pub resets: u64,
     pub power_cycles: u64,
+    /// Packets of another robot injected by the scenario (`foreign`).
+    pub foreign: u64,
 }
 
 impl Counters {

@@ -125,6 +125,29 @@ pub struct Block {
     pub to_ms: u64,
 }
 
+/// A second robot running the same program in infrared range of one module: from `from_ms`
+/// to `to_ms`, every `interval_ms`, `module` hears on `connector` what the other robot's
+/// module of the same name broadcast last in a fault-free run of its own (the end, once it
+/// has finished), sent under the other robot's identity `robot`.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Foreign {
+    pub module: String,
+    pub connector: u8,
+    pub robot: u16,
+    pub from_ms: u64,
+    pub to_ms: u64,
+    #[serde(default = "foreign_interval_ms")]
+    pub interval_ms: u64,
+}
+
+fn foreign_interval_ms() -> u64 {
+    100
+}
+
+/// Most packets one `[[foreign]]` entry may inject (bounds the work of any scenario).
+pub const MAX_FOREIGN_PACKETS: u64 = 1_000_000;
+
 /// Spontaneous resets as in the original experiments: module k checks every
 /// `interval_ms + k * 1000 / 7` ms and resets with probability `probability`.
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
@@ -147,6 +170,7 @@ pub struct Scenario {
     pub power: Vec<Power>,
     pub block: Vec<Block>,
     pub random_resets: Option<RandomResets>,
+    pub foreign: Vec<Foreign>,
 }
 
 impl Default for Scenario {
@@ -160,6 +184,7 @@ impl Default for Scenario {
             power: Vec::new(),
             block: Vec::new(),
             random_resets: None,
+            foreign: Vec::new(),
         }
     }
 }
@@ -239,6 +264,24 @@ impl Scenario {
                 return Err(error(format!("block[{i}].to_ms"), "must be after from_ms"));
             }
         }
+        for (i, f) in self.foreign.iter().enumerate() {
+            if f.to_ms <= f.from_ms {
+                return Err(error(
+                    format!("foreign[{i}].to_ms"),
+                    "must be after from_ms",
+                ));
+            }
+            if f.interval_ms == 0 {
+                return Err(error(
+                    format!("foreign[{i}].interval_ms"),
+                    "must be above 0",
+                ));
+            }
+            if (f.to_ms - f.from_ms) / f.interval_ms > MAX_FOREIGN_PACKETS {
+                let message = format!("more than {MAX_FOREIGN_PACKETS} packets: widen interval_ms");
+                return Err(error(format!("foreign[{i}]"), message));
+            }
+        }
         if let Some(r) = &self.random_resets {
             probability("random_resets.probability", r.probability)?;
             if r.interval_ms == 0 {
@@ -270,13 +313,27 @@ impl Scenario {
                 return Err(unknown(format!("power[{i}].module"), &p.module));
             }
         }
-        for (i, b) in self.block.iter().enumerate() {
-            if !exists(&b.module) {
-                return Err(unknown(format!("block[{i}].module"), &b.module));
+        let ports = self
+            .block
+            .iter()
+            .map(|b| ("block", &b.module, b.connector))
+            .chain(
+                self.foreign
+                    .iter()
+                    .map(|f| ("foreign", &f.module, f.connector)),
+            );
+        for (i, (table, module, connector)) in ports.enumerate() {
+            let i = if table == "block" {
+                i
+            } else {
+                i - self.block.len()
+            };
+            if !exists(module) {
+                return Err(unknown(format!("{table}[{i}].module"), module));
             }
-            if b.connector >= connectors {
+            if connector >= connectors {
                 let message = format!("a module has connectors 0 to {}", connectors - 1);
-                return Err(error(format!("block[{i}].connector"), message));
+                return Err(error(format!("{table}[{i}].connector"), message));
             }
         }
         Ok(())

@@ -39,13 +39,30 @@ pub struct Packet {
 
 #[derive(Clone, Debug)]
 pub enum Event {
-    PowerOn { module: usize },
-    PowerOff { module: usize },
-    Step { module: usize, generation: u64 },
-    OpDone { attempt: u64 },
+    PowerOn {
+        module: usize,
+    },
+    PowerOff {
+        module: usize,
+    },
+    Step {
+        module: usize,
+        generation: u64,
+    },
+    OpDone {
+        attempt: u64,
+    },
     Arrival(Box<Packet>),
-    Reset { module: usize },
-    ResetCheck { module: usize },
+    Reset {
+        module: usize,
+    },
+    ResetCheck {
+        module: usize,
+    },
+    /// The next packet of the scenario's `foreign[entry]`.
+    Foreign {
+        entry: usize,
+    },
 }
 
 /// An event at a time; ties are broken by the order of scheduling.
@@ -159,6 +176,11 @@ pub struct State {
     /// only when there is a trace).
     pub describer: Option<Describer>,
     pub first_finished: Option<u64>,
+    /// The last frame each module broadcast, when the run records them (the fault-free run
+    /// that stands for a second robot, `Scenario::foreign`).
+    pub last_frames: Option<Vec<Option<Vec<u8>>>>,
+    /// What the second robot's modules broadcast last (from that run), by module.
+    pub foreign_frames: Vec<Option<Vec<u8>>>,
     /// Modules that have declared the end (`finished_at` set), so that `all_finished`, asked
     /// after every event, does not walk every module.
     finished: usize,
@@ -237,6 +259,8 @@ impl State {
             trace: trace.then(String::new),
             describer: None,
             first_finished: None,
+            last_frames: None,
+            foreign_frames: Vec::new(),
             finished: 0,
         };
         state.schedule_start(&mut setup);
@@ -276,9 +300,40 @@ impl State {
                 ));
             }
         }
+        for (entry, f) in self.scenario.foreign.iter().enumerate() {
+            faults.push((f.from_ms * 1000, Event::Foreign { entry }));
+        }
         for (at, event) in faults {
             self.schedule(at, event);
         }
+    }
+
+    /// `foreign[entry]`'s packet now: the receiving port, the other robot's frame and its
+    /// identity; the next one is scheduled. `None` when the other robot's module sent nothing.
+    pub fn foreign_packet(&mut self, entry: usize) -> Option<(Port, Vec<u8>, u16)> {
+        let f = self.scenario.foreign.get(entry)?.clone();
+        let next = self.now + f.interval_ms * 1000;
+        if next < f.to_ms * 1000 {
+            self.schedule(next, Event::Foreign { entry });
+        }
+        let module = self.view().index(&f.module)?;
+        let frame = self.foreign_frames.get(module)?.clone()?;
+        self.counters.foreign += 1;
+        let port = Port {
+            module,
+            connector: f.connector,
+        };
+        if self.tracing() {
+            let detail = format!(
+                "robot {} -> {}.C{} ({} bytes)",
+                f.robot,
+                f.module,
+                f.connector,
+                frame.len()
+            );
+            self.log(Some(module), "foreign", detail);
+        }
+        Some((port, frame, f.robot))
     }
 
     pub fn n_modules(&self) -> usize {

@@ -339,3 +339,55 @@ fn operation_durations_vary_when_asked_and_stay_reproducible() {
     let bad = Scenario::from_toml_str("[timing]\nvariation = 1.5\n").map(|_| ());
     assert!(bad.is_err_and(|e| e.to_string().starts_with("timing.variation")));
 }
+
+/// A scenario in which M0 hears, from power-on, what a second robot's M0 running the same
+/// program broadcasts once that robot has finished (the end), under robot identity `robot`.
+fn finished_twin_in_range(robot: u16) -> Scenario {
+    let mut scenario = ussr();
+    scenario.foreign.push(dynarole_sim::Foreign {
+        module: "M0".into(),
+        connector: 0,
+        robot,
+        from_ms: 0,
+        to_ms: 20_000,
+        interval_ms: 100,
+    });
+    scenario
+}
+
+#[test]
+fn packets_of_another_robot_running_the_same_program_are_ignored() {
+    let report = eight2car(Protocol::Lattice, &finished_twin_in_range(1), 1);
+    assert_success(&report);
+    assert!(report.counters.foreign >= 100, "{}", report.summary());
+    let trace = report.trace.as_deref().unwrap_or_default();
+    assert!(
+        trace.contains("robot 1 -> M0.C0"),
+        "the trace shows the injections"
+    );
+}
+
+#[test]
+fn the_same_packets_under_this_robots_identity_would_end_the_run_early() {
+    // What the robot identity protects against: the other robot's "end", taken as ours, makes
+    // the modules stop before the reconfiguration is done (robot 0 is this robot's identity).
+    for protocol in [Protocol::Lattice, Protocol::Paper] {
+        let report = eight2car(protocol, &finished_twin_in_range(0), 1);
+        assert!(!report.success, "{}", report.summary());
+        assert!(
+            report.statements_done < report.statements,
+            "{}",
+            report.summary()
+        );
+    }
+}
+
+#[test]
+fn foreign_packets_are_checked_like_the_other_faults() {
+    let text = "[[foreign]]\nmodule = \"M0\"\nconnector = 0\nrobot = 1\nfrom_ms = 10\nto_ms = 5\n";
+    let error = Scenario::from_toml_str(text).expect_err("to_ms before from_ms");
+    assert_eq!(error.field, "foreign[0].to_ms");
+    let text = "[[foreign]]\nmodule = \"M0\"\nconnector = 0\nrobot = 1\nfrom_ms = 0\nto_ms = 100000000\ninterval_ms = 1\n";
+    let error = Scenario::from_toml_str(text).expect_err("too many packets");
+    assert_eq!(error.field, "foreign[0]");
+}

@@ -15,15 +15,23 @@ static const dr_program_t program = { 0x5Au, N_STMT, statements, no_deps, 3u, si
                                       0u };
 
 /* A frame of `payload` with any header bytes and a correct CRC. */
-static uint8_t frame_raw(uint8_t *out, uint8_t magic, uint8_t id, uint8_t kind,
-                         const uint8_t *payload, uint8_t len)
+/* A frame written byte by byte (not through dr_packet_frame), so that each header field can
+ * be wrong on its own while the length and CRC stay valid. */
+static uint8_t frame_raw(uint8_t *out, uint8_t magic, uint16_t robot, uint32_t fingerprint,
+                         uint8_t kind, const uint8_t *payload, uint8_t len)
 {
     uint16_t crc;
     uint8_t total = (uint8_t)(len + DR_PACKET_OVERHEAD);
     out[0] = magic;
-    out[1] = id;
-    out[2] = kind;
-    memcpy(out + 3, payload, len);
+    out[1] = total;
+    out[2] = (uint8_t)(robot >> 8);
+    out[3] = (uint8_t)robot;
+    out[4] = (uint8_t)(fingerprint >> 24);
+    out[5] = (uint8_t)(fingerprint >> 16);
+    out[6] = (uint8_t)(fingerprint >> 8);
+    out[7] = (uint8_t)fingerprint;
+    out[8] = kind;
+    memcpy(out + DR_PACKET_HEADER, payload, len);
     crc = dr_crc16(out, (uint8_t)(total - 2u));
     out[total - 2u] = (uint8_t)(crc >> 8);
     out[total - 1u] = (uint8_t)(crc & 0xFFu);
@@ -83,12 +91,12 @@ void test_packets(void)
     CHECK(!dr_shared_decode(&d, payload, len, 7u));
 
     /* A valid packet is received and joined. */
-    flen = dr_packet_frame(frame, sizeof frame, program.program_id, DR_PACKET_LATTICE_STATE,
+    flen = dr_packet_frame(frame, sizeof frame, &m->identity, DR_PACKET_LATTICE_STATE,
                            payload, len);
     CHECK_EQ(flen, FRAME_LEN);
     state_with(&s, 1u, 2u, 0x01u, 0x03u); /* epoch 1, statements 0-2 done, 3 started */
     len = dr_shared_encode(&s, payload, sizeof payload);
-    flen = dr_packet_frame(frame, sizeof frame, program.program_id, DR_PACKET_LATTICE_STATE,
+    flen = dr_packet_frame(frame, sizeof frame, &m->identity, DR_PACKET_LATTICE_STATE,
                            payload, len);
     dr_module_receive(m, 0, frame, flen);
     CHECK_EQ(m->packets_received, 1);
@@ -114,34 +122,48 @@ void test_packets(void)
     CHECK_EQ(m->packets_malformed - before, flen);
     /* Wrong magic, with a valid CRC: malformed. */
     before = m->packets_malformed;
-    dr_module_receive(m, 0, bad, frame_raw(bad, 0xD2u, program.program_id,
+    dr_module_receive(m, 0, bad, frame_raw(bad, 0xD1u, DR_ROBOT_ID, program.fingerprint,
                                             DR_PACKET_LATTICE_STATE, payload, len));
     CHECK_EQ(m->packets_malformed - before, 1);
-    /* Another program, or another kind: foreign. */
-    dr_module_receive(m, 0, bad, frame_raw(bad, DR_PACKET_MAGIC, 0x5Bu,
+    /* A valid frame with a byte appended (zero or not): malformed. */
+    flen = frame_raw(bad, DR_PACKET_MAGIC, DR_ROBOT_ID, program.fingerprint,
+                     DR_PACKET_LATTICE_STATE, payload, len);
+    bad[flen] = 0u;
+    dr_module_receive(m, 0, bad, (uint8_t)(flen + 1u));
+    CHECK_EQ(m->packets_malformed - before, 2);
+    flen = FRAME_LEN;
+    /* Another robot, another program (even one differing only in the fingerprint's top
+     * byte), or another kind: foreign. */
+    dr_module_receive(m, 0, bad, frame_raw(bad, DR_PACKET_MAGIC, (uint16_t)(DR_ROBOT_ID + 1u),
+                                            program.fingerprint, DR_PACKET_LATTICE_STATE,
+                                            payload, len));
+    dr_module_receive(m, 0, bad, frame_raw(bad, DR_PACKET_MAGIC, DR_ROBOT_ID,
+                                            program.fingerprint ^ 0x01000000UL,
                                             DR_PACKET_LATTICE_STATE, payload, len));
-    dr_module_receive(m, 0, bad, frame_raw(bad, DR_PACKET_MAGIC, program.program_id,
+    dr_module_receive(m, 0, bad, frame_raw(bad, DR_PACKET_MAGIC, DR_ROBOT_ID, 0x5Bu,
+                                            DR_PACKET_LATTICE_STATE, payload, len));
+    dr_module_receive(m, 0, bad, frame_raw(bad, DR_PACKET_MAGIC, DR_ROBOT_ID, program.fingerprint,
                                             DR_PACKET_PAPER_STATE, payload, len));
-    CHECK_EQ(m->packets_foreign, 2);
+    CHECK_EQ(m->packets_foreign, 4);
     /* Valid frame, wrong payload size: malformed. */
     before = m->packets_malformed;
-    dr_module_receive(m, 0, bad, frame_raw(bad, DR_PACKET_MAGIC, program.program_id,
+    dr_module_receive(m, 0, bad, frame_raw(bad, DR_PACKET_MAGIC, DR_ROBOT_ID, program.fingerprint,
                                             DR_PACKET_LATTICE_STATE, payload,
                                             (uint8_t)(len - 1u)));
     /* Valid frame, low > n_statements: malformed. */
     state_with(&s, 1u, (uint16_t)(N_STMT + 1u), 0u, 0u);
     (void)dr_shared_encode(&s, payload, sizeof payload);
-    dr_module_receive(m, 0, bad, frame_raw(bad, DR_PACKET_MAGIC, program.program_id,
+    dr_module_receive(m, 0, bad, frame_raw(bad, DR_PACKET_MAGIC, DR_ROBOT_ID, program.fingerprint,
                                             DR_PACKET_LATTICE_STATE, payload, len));
     /* Valid frame, a bit for a statement that does not exist: malformed. */
     state_with(&s, 1u, (uint16_t)(N_STMT - 1u), 0u, 0x02u);
     (void)dr_shared_encode(&s, payload, sizeof payload);
-    dr_module_receive(m, 0, bad, frame_raw(bad, DR_PACKET_MAGIC, program.program_id,
+    dr_module_receive(m, 0, bad, frame_raw(bad, DR_PACKET_MAGIC, DR_ROBOT_ID, program.fingerprint,
                                             DR_PACKET_LATTICE_STATE, payload, len));
     /* Valid frame, an epoch beyond the end (3 epochs: 3 is the end, 4 cannot exist). */
     state_with(&s, 4u, 0u, 0u, 0u);
     (void)dr_shared_encode(&s, payload, sizeof payload);
-    dr_module_receive(m, 0, bad, frame_raw(bad, DR_PACKET_MAGIC, program.program_id,
+    dr_module_receive(m, 0, bad, frame_raw(bad, DR_PACKET_MAGIC, DR_ROBOT_ID, program.fingerprint,
                                             DR_PACKET_LATTICE_STATE, payload, len));
     CHECK_EQ(m->packets_malformed - before, 4);
     /* None of that changed the state. */
@@ -150,10 +172,10 @@ void test_packets(void)
     /* The end itself is accepted and is final. */
     state_with(&s, 3u, 0u, 0u, 0u);
     (void)dr_shared_encode(&s, payload, sizeof payload);
-    dr_module_receive(m, 0, bad, frame_raw(bad, DR_PACKET_MAGIC, program.program_id,
+    dr_module_receive(m, 0, bad, frame_raw(bad, DR_PACKET_MAGIC, DR_ROBOT_ID, program.fingerprint,
                                             DR_PACKET_LATTICE_STATE, payload, len));
     CHECK(dr_module_finished(m));
-    CHECK_EQ(m->packets_received, 8u * flen + flen + 1u + 1u + 2u + 4u + 1u);
+    CHECK_EQ(m->packets_received, 8u * flen + flen + 1u + 1u + 1u + 4u + 4u + 1u);
 
     /* A module with no address sends its state but starts nothing. */
     sim.time += 1000u;

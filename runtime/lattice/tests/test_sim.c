@@ -84,7 +84,7 @@ static void generate(uint16_t n, uint8_t modules, uint16_t epochs)
         prev_start = start;
         prev_end = s;
     }
-    g_prog.program_id = (uint8_t)(0x40u + n);
+    g_prog.fingerprint = 0x40u + n;
     g_prog.n_statements = n;
     g_prog.statements = g_st;
     g_prog.deps = g_deps;
@@ -382,7 +382,8 @@ static void test_old_epoch_completion(void)
     memset(&s, 0, sizeof s);
     s.epoch = 1;
     len = dr_shared_encode(&s, payload, sizeof payload);
-    len = dr_packet_frame(frame, sizeof frame, p.program_id, DR_PACKET_LATTICE_STATE, payload, len);
+    len = dr_packet_frame(frame, sizeof frame, &m->identity, DR_PACKET_LATTICE_STATE, payload,
+                          len);
     dr_module_receive(m, 0, frame, len);
     CHECK_EQ(m->shared.epoch, 1);
     CHECK_EQ(m->running, 0); /* still waiting for the operation it started */
@@ -437,7 +438,7 @@ static void test_window_too_small(void)
             sim_statement(&g_st[s], (uint8_t)(s % 4u), s, 0, 0);
         }
     }
-    g_prog.program_id = 0x99u;
+    g_prog.fingerprint = 0x99u;
     g_prog.n_statements = n;
     g_prog.statements = g_st;
     g_prog.deps = g_deps;
@@ -812,7 +813,7 @@ static void test_no_nv_limits(void)
     stale = &sim.nodes[0].inbox[sim.nodes[0].n_inbox++];
     stale->at = sim.time;
     stale->from = 1;
-    stale->len = dr_packet_frame(stale->bytes, sizeof stale->bytes, ab.program_id,
+    stale->len = dr_packet_frame(stale->bytes, sizeof stale->bytes, &sim.nodes[0].mod.identity,
                                  DR_PACKET_LATTICE_STATE, payload,
                                  dr_shared_encode(&old, payload, sizeof payload));
     CHECK(sim_run(60000u));

@@ -4,7 +4,7 @@
 #include "machines.h"
 #include "dr_packet.h"
 
-#define FRAME 13u /* 5 bytes of framing + 3 + DR_CONF_MAX_PENDING (5) */
+#define FRAME 19u /* 11 bytes of framing (9 header, 2 CRC) + 3 + DR_CONF_MAX_PENDING (5) */
 
 static void deliver_bytes(world_t *w, uint8_t to, const uint8_t *bytes, uint8_t len)
 {
@@ -27,17 +27,22 @@ static void test_layout_and_round_trip(void)
     CHECK_EQ(w.fake[0].packet_len, FRAME);
     CHECK_EQ(w.mod[0].packets_sent, 1);
     CHECK_EQ(f[0], DR_PACKET_MAGIC);
-    CHECK_EQ(f[1], 42);                    /* program id */
-    CHECK_EQ(f[2], DR_PACKET_PAPER_STATE);
-    CHECK_EQ(f[3], 0);                     /* alternate flag */
-    CHECK_EQ(f[4], 7);                     /* global state */
-    CHECK_EQ(f[5], 3);                     /* recipient */
-    CHECK_EQ(f[6], 1);                     /* pending slots as they are */
-    CHECK_EQ(f[7], 0);
-    CHECK_EQ(f[8], 6);
-    CHECK_EQ(f[9], 0);
-    CHECK_EQ(f[10], 0);
-    CHECK_EQ((f[11] << 8) | f[12], dr_crc16(f, 11));
+    CHECK_EQ(f[1], FRAME);                 /* the frame's length */
+    CHECK_EQ((f[2] << 8) | f[3], DR_ROBOT_ID);
+    CHECK_EQ(f[4], 0);                     /* program fingerprint, big endian */
+    CHECK_EQ(f[5], 0);
+    CHECK_EQ(f[6], 0);
+    CHECK_EQ(f[7], 42);
+    CHECK_EQ(f[8], DR_PACKET_PAPER_STATE);
+    CHECK_EQ(f[9], 0);                     /* alternate flag */
+    CHECK_EQ(f[10], 7);                    /* global state */
+    CHECK_EQ(f[11], 3);                    /* recipient */
+    CHECK_EQ(f[12], 1);                    /* pending slots as they are */
+    CHECK_EQ(f[13], 0);
+    CHECK_EQ(f[14], 6);
+    CHECK_EQ(f[15], 0);
+    CHECK_EQ(f[16], 0);
+    CHECK_EQ((f[17] << 8) | f[18], dr_crc16(f, 17));
 
     world_deliver(&w, 0, 1);
     CHECK_TRIPLE(&w.mod[1].global, 7, 3, p16, 2);
@@ -48,8 +53,8 @@ static void test_layout_and_round_trip(void)
      * without an address (DR_NO_ADDRESS is 255 too) */
     dr_paper_send_state(&w.mod[0], DR_STATE_END, DR_ADDRESS_ALL);
     world_step(&w, 0);
-    CHECK_EQ(w.fake[0].packet[4], 254);
-    CHECK_EQ(w.fake[0].packet[5], 255);
+    CHECK_EQ(w.fake[0].packet[10], 254);
+    CHECK_EQ(w.fake[0].packet[11], 255);
     w.mod[1].address = DR_NO_ADDRESS;
     world_deliver(&w, 0, 1);
     CHECK(dr_module_finished(&w.mod[1]));
@@ -68,7 +73,15 @@ static void test_rejections(void)
     uint8_t bit;
     uint32_t n_bad = 0;
     dr_paper_global_t before;
+    dr_identity_t ours;
+    dr_identity_t other_program;
+    dr_identity_t other_robot;
     world_init(&w, 2, &eight2car_program, DR_MERGE_C_PORT, 0, 0);
+    ours = w.mod[1].identity;
+    other_program = ours;
+    other_program.fingerprint ^= 0x00010000UL;
+    other_robot = ours;
+    other_robot.robot = (uint16_t)(ours.robot + 7u);
     w.mod[0].mailbox = DR_STATE_IDLE;
     w.mod[0].global.state = 9;
     w.mod[0].global.address = 4;
@@ -96,25 +109,29 @@ static void test_rejections(void)
     deliver_bytes(&w, 1, good, 4);                   /* shorter than any frame */
     n_bad += 4;
     /* a well-formed frame whose payload has the wrong size (another N) */
-    memcpy(payload, good + 3, 8);
-    len = dr_packet_frame(bad, sizeof bad, 42, DR_PACKET_PAPER_STATE, payload, 7);
+    memcpy(payload, good + DR_PACKET_HEADER, 8);
+    len = dr_packet_frame(bad, sizeof bad, &ours, DR_PACKET_PAPER_STATE, payload, 7);
     deliver_bytes(&w, 1, bad, len);
     n_bad++;
     CHECK_EQ(w.mod[1].packets_malformed, n_bad);
     CHECK_EQ(w.mod[1].packets_foreign, 0);
 
-    /* foreign: another program, another kind, the other alternate-sequence flag */
-    len = dr_packet_frame(bad, sizeof bad, 43, DR_PACKET_PAPER_STATE, good + 3, 8);
+    /* foreign: another program, another robot running this one, another kind, the other alternate-sequence flag */
+    len = dr_packet_frame(bad, sizeof bad, &other_program, DR_PACKET_PAPER_STATE,
+                          good + DR_PACKET_HEADER, 8);
     deliver_bytes(&w, 1, bad, len);
-    len = dr_packet_frame(bad, sizeof bad, 42, DR_PACKET_LATTICE_STATE, good + 3, 8);
+    len = dr_packet_frame(bad, sizeof bad, &other_robot, DR_PACKET_PAPER_STATE,
+                          good + DR_PACKET_HEADER, 8);
     deliver_bytes(&w, 1, bad, len);
-    memcpy(payload, good + 3, 8);
+    len = dr_packet_frame(bad, sizeof bad, &ours, DR_PACKET_LATTICE_STATE, good + DR_PACKET_HEADER, 8);
+    deliver_bytes(&w, 1, bad, len);
+    memcpy(payload, good + DR_PACKET_HEADER, 8);
     payload[0] = 1;
-    len = dr_packet_frame(bad, sizeof bad, 42, DR_PACKET_PAPER_STATE, payload, 8);
+    len = dr_packet_frame(bad, sizeof bad, &ours, DR_PACKET_PAPER_STATE, payload, 8);
     deliver_bytes(&w, 1, bad, len);
-    CHECK_EQ(w.mod[1].packets_foreign, 3);
+    CHECK_EQ(w.mod[1].packets_foreign, 4);
     CHECK_EQ(w.mod[1].packets_malformed, n_bad);
-    CHECK_EQ(w.mod[1].packets_received, n_bad + 3u);
+    CHECK_EQ(w.mod[1].packets_received, n_bad + 4u);
 
     /* none of them changed anything */
     CHECK_TRIPLE(&w.mod[1].global, before.state, before.address, before.pending, 0);
@@ -122,7 +139,7 @@ static void test_rejections(void)
 
     /* the good one still goes through */
     deliver_bytes(&w, 1, good, good_len);
-    CHECK_TRIPLE(&w.mod[1].global, 9, 4, good + 6, 1);
+    CHECK_TRIPLE(&w.mod[1].global, 9, 4, good + DR_PACKET_HEADER + 3, 1);
 }
 
 int main(void)

@@ -219,7 +219,7 @@ static const dr_token_statement_t statements[] = {
 static dr_token_program_t make_program(uint8_t reliable, uint16_t max_tries)
 {
     dr_token_program_t p;
-    p.program_id = 42;
+    p.fingerprint = 42;
     p.n_statements = 5;
     p.statements = statements;
     p.hops = hops;
@@ -424,15 +424,26 @@ static void test_bad_packets(void)
     uint8_t frame[DR_CONF_MAX_PACKET];
     uint8_t payload[8] = { 0, 0, 1, 0, 13, 7, 0, 11 };
     uint8_t len;
+    dr_identity_t ours;
+    dr_identity_t other_program;
+    dr_identity_t other_robot;
     world_start(&safe, 0, 0, 1);
-    len = dr_packet_frame(frame, sizeof frame, 43, DR_PACKET_TOKEN, payload, 8);
+    ours = nodes[3].mod.identity;
+    other_program = ours;
+    other_program.fingerprint ^= 0x80000000UL;
+    other_robot = ours;
+    other_robot.robot = (uint16_t)(ours.robot + 1u);
+    len = dr_packet_frame(frame, sizeof frame, &other_program, DR_PACKET_TOKEN, payload, 8);
     dr_module_receive(&nodes[3].mod, LEFT, frame, len);
     CHECK_EQ(nodes[3].mod.packets_foreign, 1);
-    len = dr_packet_frame(frame, sizeof frame, 42, DR_PACKET_TOKEN, payload, 7);
+    len = dr_packet_frame(frame, sizeof frame, &other_robot, DR_PACKET_TOKEN, payload, 8);
+    dr_module_receive(&nodes[3].mod, LEFT, frame, len);
+    CHECK_EQ(nodes[3].mod.packets_foreign, 2);
+    len = dr_packet_frame(frame, sizeof frame, &ours, DR_PACKET_TOKEN, payload, 7);
     dr_module_receive(&nodes[3].mod, LEFT, frame, len);
     CHECK_EQ(nodes[3].mod.packets_malformed, 1);
     payload[2] = 99; /* no such statement */
-    len = dr_packet_frame(frame, sizeof frame, 42, DR_PACKET_TOKEN, payload, 8);
+    len = dr_packet_frame(frame, sizeof frame, &ours, DR_PACKET_TOKEN, payload, 8);
     dr_module_receive(&nodes[3].mod, LEFT, frame, len);
     CHECK_EQ(nodes[3].mod.packets_malformed, 2);
     frame[4] ^= 1u;
