@@ -32,6 +32,10 @@ const ATRON_RADIUS: f64 = 0.36;
 const MTRAN_HALF_BLOCK: f64 = 0.36;
 /// A module stays visible however far apart the robot is spread.
 const MIN_RADIUS_PX: f64 = 4.0;
+/// A module drawn smaller than this radius (pixels) has its name beside it rather than on it.
+const SMALL_BODY_PX: f64 = 14.0;
+/// Size of the modules' names.
+const LABEL_PT: i32 = 15;
 /// Above this many module bodies the view search (quadratic in them) is skipped.
 const MAX_BODIES_FOR_VIEW_SEARCH: usize = 200;
 /// The preferred view, used when several separate the modules equally well.
@@ -376,8 +380,16 @@ fn draw_picture<'a>(
     for latch in &scene.latches {
         draw_connector_numbers(root, latch, scene.radius, layout)?;
     }
+    let r = layout.radius_px(scene.radius);
     for body in &scene.bodies {
-        halo_text(root, &body.name, ipx(layout.px(body.centre)), 15)?;
+        let (x, y) = layout.px(body.centre);
+        // A module too small to hold its name has it beside it.
+        let at = if r >= SMALL_BODY_PX {
+            (x, y)
+        } else {
+            (x + r + 4.0 + label_half_width(&body.name, LABEL_PT), y)
+        };
+        halo_text(root, &body.name, ipx(at), LABEL_PT)?;
     }
     let title = format!(
         "{} ({}, {} modules)",
@@ -566,14 +578,17 @@ fn draw_connector_numbers<'a>(
     layout: &Layout,
 ) -> DrawResult<'a> {
     let spots = rim_spots(layout, latch.ends.map(|(p, _)| p), radius);
+    // Badges shrink with the modules, down to a size where a digit still reads.
+    let badge = (layout.radius_px(radius) * 0.25).clamp(5.0, 8.0);
     for (k, spot) in spots.into_iter().enumerate() {
         let spot = ipx(spot);
-        root.draw(&Circle::new(spot, 8, WHITE.filled()))?;
-        root.draw(&Circle::new(spot, 8, LATCH.stroke_width(1)))?;
+        let size = badge.round() as i32;
+        root.draw(&Circle::new(spot, size, WHITE.filled()))?;
+        root.draw(&Circle::new(spot, size, LATCH.stroke_width(1)))?;
         root.draw(&Text::new(
             latch.ends[k].1.to_string(),
             spot,
-            ("sans-serif", 13)
+            ("sans-serif", badge * 1.6)
                 .into_font()
                 .color(&BLACK)
                 .pos(Pos::new(HPos::Center, VPos::Center)),
@@ -582,9 +597,14 @@ fn draw_connector_numbers<'a>(
     Ok(())
 }
 
+/// Roughly half the width of `text` in pixels, with a little room.
+fn label_half_width(text: &str, size: i32) -> f64 {
+    f64::from(i32::try_from(text.chars().count()).unwrap_or(0) * size * 3 / 10 + 3)
+}
+
 /// Text centred at `at` on a white patch, readable over any colour.
 fn halo_text<'a>(root: &Area<'a>, text: &str, at: (i32, i32), size: i32) -> DrawResult<'a> {
-    let half_width = i32::try_from(text.chars().count()).unwrap_or(0) * size * 3 / 10 + 3;
+    let half_width = label_half_width(text, size).round() as i32;
     let half_height = size * 6 / 10;
     root.draw(&Rectangle::new(
         [
