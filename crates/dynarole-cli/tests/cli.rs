@@ -290,26 +290,96 @@ fn check_from_reports_the_order_dependent_group_of_fig5() {
     assert!(stderr.contains("fig5.dr:19:5"), "{stderr}");
 }
 
+/// The picture of a shipped configuration.
+fn show_svg(file: &str) -> String {
+    let text_json = std::fs::read_to_string(repo_root().join(file)).expect("configuration");
+    let config = dynarole_world::Configuration::from_json_str(&text_json).expect("valid");
+    dynarole_cli::show::render_svg(&config).expect("drawn")
+}
+
+/// Centre and radius of every module outline (the unfilled circles larger than a badge).
+fn module_outlines(svg: &str) -> Vec<(f64, f64, f64)> {
+    let attribute = |element: &str, name: &str| -> f64 {
+        let start = element.find(&format!(" {name}=\"")).expect("attribute") + name.len() + 3;
+        let rest = &element[start..];
+        rest[..rest.find('"').expect("closing quote")]
+            .parse()
+            .expect("number")
+    };
+    svg.lines()
+        .filter(|l| l.starts_with("<circle") && l.contains("fill=\"none\""))
+        .map(|l| (attribute(l, "cx"), attribute(l, "cy"), attribute(l, "r")))
+        .filter(|c| c.2 > 8.0)
+        .collect()
+}
+
 #[test]
 fn show_draws_every_module_and_latch_of_the_eight() {
-    let text_json =
-        std::fs::read_to_string(repo_root().join("examples/atron/eight.json")).expect("eight.json");
-    let config = dynarole_world::Configuration::from_json_str(&text_json).expect("valid");
-    let svg = dynarole_cli::show::render_svg(&config).expect("drawn");
-    // Two circles per module (disc and outline), one dot per latch; one name per module.
-    assert_eq!(svg.matches("<circle").count(), 7 * 2 + 8);
+    let svg = show_svg("examples/atron/eight.json");
+    assert_eq!(module_outlines(&svg).len(), 7, "one disc per module");
     assert_eq!(
         svg.matches("<polygon").count(),
         7,
         "one south half per module"
     );
+    // Two numbered badges (a white disc and its outline) per latch.
+    assert_eq!(svg.matches(r#" r="8" "#).count(), 8 * 2 * 2);
     for name in ["M0", "M1", "M2", "M3", "M4", "M5", "M6"] {
         assert!(
             svg.contains(&format!("\n{name}\n</text>")),
             "{name} is labelled"
         );
     }
+    assert_eq!(svg, show_svg("examples/atron/eight.json"), "deterministic");
     insta::assert_snapshot!("eight_svg", svg);
+}
+
+#[test]
+fn show_chooses_a_view_where_no_module_hides_another() {
+    for file in [
+        "examples/atron/car.json",
+        "examples/atron/eight.json",
+        "examples/atron/snake.json",
+    ] {
+        let discs = module_outlines(&show_svg(file));
+        assert_eq!(discs.len(), 7, "{file}");
+        for (i, a) in discs.iter().enumerate() {
+            for b in &discs[i + 1..] {
+                let apart = (a.0 - b.0).hypot(a.1 - b.1);
+                assert!(apart >= a.2 + b.2, "{file}: discs {a:?} and {b:?} overlap");
+            }
+        }
+    }
+}
+
+#[test]
+fn show_keeps_far_apart_modules_on_a_bounded_canvas() {
+    let far = scratch(
+        "far.json",
+        r#"{"name": "far", "robot": "ATRON", "modules": [
+            {"name": "A", "id": 0, "position": [0, 0, 0], "orientation": "NS", "joint": 0},
+            {"name": "B", "id": 1, "position": [50000, 0, 50000], "orientation": "NS", "joint": 0}
+        ], "connections": []}"#,
+    );
+    let png = scratch("far.png", "");
+    let started = std::time::Instant::now();
+    let out = dynarole(&[
+        "show",
+        far.to_str().expect("path"),
+        "-o",
+        png.to_str().expect("path"),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert!(started.elapsed().as_secs() < 60, "a small picture is quick");
+    let bytes = std::fs::read(&png).expect("png written");
+    let size =
+        |at: usize| u32::from_be_bytes([bytes[at], bytes[at + 1], bytes[at + 2], bytes[at + 3]]);
+    assert!(
+        size(16) <= 1400 && size(20) <= 1000,
+        "{}x{}",
+        size(16),
+        size(20)
+    );
 }
 
 #[test]
