@@ -9,17 +9,15 @@
 #define DR_CONF_LATTICE_NV_ADDR 0
 #endif
 
-/* DR_PROGRAM_NO_NV: after a (re)start a module waits to hear from every connected neighbour,
- * but gives up on those still silent at its DR_CONF_LATTICE_FRESH_PERIODS-th periodic
- * broadcast (the first one is at the restart), i.e. after (periods - 1) x (BROADCAST_MS +
- * 0..JITTER_MS) ms: 900 ms with the defaults (10 periods of 100 ms, no jitter). So a module
- * with no connected neighbour starts at once, and one next to a dead or mute neighbour starts
- * after the bound. The consequence: a live neighbour whose packets were all lost meanwhile
- * (probability about loss^(periods - 1)) is not heard, and if it alone held a completion of
- * this module, that operation may be re-issued after its successors started (S2 lost). */
-#ifndef DR_CONF_LATTICE_FRESH_PERIODS
-#define DR_CONF_LATTICE_FRESH_PERIODS 10
-#endif
+/* DR_PROGRAM_NO_NV: after a (re)start a module acts only once it has heard a packet from every
+ * neighbour connected at that moment, however long that takes. There is no time-out: a
+ * module that gave up on a silent neighbour (links blocked, neighbour powered off) would
+ * act on the bottom state, i.e. re-issue operations that the neighbours know are done and
+ * that later statements may have undone. Waiting is the only answer that is never wrong;
+ * dr_module_describe shows it (`hear<channels>`). One exception keeps a module from waiting
+ * for a neighbour it can no longer hear: a channel that is no longer connected (its own
+ * retract, under way at the reset, completed; or the neighbour's) is forgotten, but only
+ * once some neighbour has been heard, so a module never acts on the bottom state alone. */
 
 #define W ((uint16_t)DR_CONF_WINDOW)
 #define NBYTES ((uint8_t)(DR_CONF_WINDOW / 8))
@@ -35,9 +33,7 @@ typedef char dr_lattice_check_window[(DR_CONF_WINDOW % 8 == 0 && DR_CONF_WINDOW 
                                       DR_CONF_WINDOW <= 1000) ? 1 : -1];
 typedef char dr_lattice_check_packet[(4 + DR_CONF_WINDOW / 4 + DR_PACKET_OVERHEAD <=
                                       DR_CONF_MAX_PACKET) ? 1 : -1];
-typedef char dr_lattice_check_channels[(DR_CONF_CHANNELS >= 1 && DR_CONF_CHANNELS <= 32 &&
-                                        DR_CONF_LATTICE_FRESH_PERIODS >= 1 &&
-                                        DR_CONF_LATTICE_FRESH_PERIODS <= 255) ? 1 : -1];
+typedef char dr_lattice_check_channels[(DR_CONF_CHANNELS >= 1 && DR_CONF_CHANNELS <= 32) ? 1 : -1];
 
 static uint8_t bit(const uint8_t *set, uint16_t i)
 {
@@ -337,11 +333,11 @@ void dr_module_init(dr_module_t *m, const dr_program_t *program, void *platform)
     dr_shared_normalise(&m->shared, program->n_statements);
     m->unechoed = DR_NONE;
     m->unheard = 0;
+    m->heard = 0;
     if (program->options & DR_PROGRAM_NO_NV) {
-        /* Rule 1: act only once every neighbour connected now has been heard (or the bound). */
+        /* Rule 1: act only once every neighbour connected now has been heard. */
         m->address = program->address_of(m);
         m->unheard = connected(m);
-        m->wait = DR_CONF_LATTICE_FRESH_PERIODS;
     } else if (!restore(m)) {
         m->address = program->address_of(m);
         persist(m);
@@ -353,7 +349,8 @@ void dr_module_init(dr_module_t *m, const dr_program_t *program, void *platform)
 }
 
 /* Cost: O(W * deps) plus, on a completion, an NV write (with DR_PROGRAM_NO_NV: a scan of the
- * channels instead); at most one packet sent. */
+ * channels instead, and one at each step while a neighbour is still awaited after another
+ * was heard); at most one packet sent. */
 void dr_module_step(dr_module_t *m)
 {
     uint32_t now = dr_hal_now_ms(m);
@@ -386,8 +383,8 @@ void dr_module_step(dr_module_t *m)
             }
         }
     }
-    if (due && m->unheard != 0u && --m->wait == 0u) {
-        m->unheard = 0; /* the bound: give up on the neighbours still silent */
+    if (m->unheard != 0u && m->heard) {
+        m->unheard = (dr_channels_t)(m->unheard & connected(m)); /* unlatched meanwhile */
     }
     if (m->running == DR_NONE && m->unheard == 0u && m->unechoed == DR_NONE) {
         changed = (uint8_t)(changed | start_next(m));
@@ -419,6 +416,7 @@ void dr_module_receive(dr_module_t *m, uint8_t channel, const uint8_t *bytes, ui
         if (channel < DR_CONF_CHANNELS) {
             m->unheard = (dr_channels_t)(m->unheard & ~((dr_channels_t)1 << channel));
         }
+        m->heard = 1;
         if (in.epoch > m->running_epoch ||
             (in.epoch == m->running_epoch && dr_shared_is_done(&in, m->unechoed))) {
             m->unechoed = DR_NONE; /* (is_done of DR_NONE is 0) */

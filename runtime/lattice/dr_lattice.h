@@ -19,8 +19,9 @@
 /* Bits of dr_program_t.options (0: the default behaviour).
  * DR_PROGRAM_NO_NV: the hardware has no non-volatile storage; the runtime never reads or writes
  * it. After a (re)start a module acts only once it has heard a packet from every neighbour
- * connected at that moment (or after DR_CONF_LATTICE_FRESH_PERIODS broadcast periods), and it
- * starts nothing while its own last completion has not been echoed back by a neighbour.
+ * connected at that moment and still connected (it waits as long as one stays silent, and
+ * forgets one that unlatched only once it has heard another), and it starts nothing while
+ * its own last completion has not been echoed back by a neighbour.
  * Survives one reset at a time, not two close together (README.md, "Without NV"). */
 #define DR_PROGRAM_NO_NV 0x01u
 
@@ -78,7 +79,7 @@ typedef struct dr_module {
     uint16_t unechoed;                 /* own completion (its epoch: running_epoch) that no
                                           neighbour has sent back yet, or DR_NONE */
     dr_channels_t unheard;             /* channels connected at the (re)start, not heard yet */
-    uint8_t wait;                      /* periodic broadcasts left before giving up on them */
+    uint8_t heard;                     /* a state packet arrived since the (re)start */
     uint32_t next_broadcast_ms;
     /* counters, for reports */
     uint32_t packets_sent;
@@ -107,9 +108,12 @@ uint8_t dr_module_finished(const dr_module_t *m);
 /* A short description of the module's protocol state, for traces and debugging:
  * `e<epoch> low<low> done<window> run<statement>`, decimal except `done`, the completed set
  * of the window as a hexadecimal number (bit i: statement low + i; no leading zeros), and
- * `run-` when nothing runs here; e.g. "e0 low3 done5 run4". Writes at most `cap` bytes
- * including the terminating NUL (a shorter prefix when it does not fit; nothing when cap is
- * 0) and returns the length without the NUL. No printf, no allocation. Cost: O(W/4). */
+ * `run-` when nothing runs here; e.g. "e0 low3 done5 run4". With DR_PROGRAM_NO_NV, what the
+ * module waits for follows: ` hear<channels>` (hexadecimal, bit c = channel c) while a
+ * neighbour connected at the restart has not been heard, ` echo<statement>` while its own
+ * completion has not been sent back; e.g. "e0 low0 done0 run- hear11". Writes at most `cap`
+ * bytes including the terminating NUL (a shorter prefix when it does not fit; nothing when
+ * cap is 0) and returns the length without the NUL. No printf, no allocation. Cost: O(W/4). */
 uint8_t dr_module_describe(const dr_module_t *m, char *out, uint8_t cap);
 
 /* The semilattice (exported for tests and for the model checker's reference):

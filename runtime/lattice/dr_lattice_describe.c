@@ -5,10 +5,24 @@
 
 #define W ((uint16_t)DR_CONF_WINDOW)
 
+static const char hex[] = "0123456789abcdef";
+
+/* Appends v in hexadecimal, without leading zeros. Cost: O(8). */
+static void text_hex(char *out, uint8_t cap, uint8_t *n, uint32_t v)
+{
+    uint8_t digits = 1;
+    while (digits < 8u && (v >> (4u * digits)) != 0u) {
+        digits++;
+    }
+    while (digits > 0u) {
+        digits--;
+        dr_text_char(out, cap, n, hex[(v >> (4u * digits)) & 0x0Fu]);
+    }
+}
+
 /* Cost: O(W/4). */
 uint8_t dr_module_describe(const dr_module_t *m, char *out, uint8_t cap)
 {
-    static const char hex[] = "0123456789abcdef";
     uint8_t n = 0;
     uint8_t leading = 1;
     uint8_t nibble;
@@ -34,6 +48,15 @@ uint8_t dr_module_describe(const dr_module_t *m, char *out, uint8_t cap)
         dr_text_char(out, cap, &n, '-');
     } else {
         dr_text_decimal(out, cap, &n, m->running);
+    }
+    /* DR_PROGRAM_NO_NV: what the module waits for before it may start anything. */
+    if (m->unheard != 0u) {
+        dr_text_str(out, cap, &n, " hear");
+        text_hex(out, cap, &n, (uint32_t)m->unheard);
+    }
+    if (m->unechoed != DR_NONE) {
+        dr_text_str(out, cap, &n, " echo");
+        dr_text_decimal(out, cap, &n, m->unechoed);
     }
     out[n] = '\0';
     return n;

@@ -247,6 +247,9 @@ impl State {
         match self.seq.kinds[s] {
             OpKind::Extend => timing.extend_ms,
             OpKind::Retract => timing.retract_ms,
+            // A turn to the angle the joint already has (re-issued after it completed, or
+            // written with a `from` that is not the joint's angle) moves nothing.
+            OpKind::Turn if self.already_there(m, s) => 0,
             OpKind::Turn => {
                 let view = self.view();
                 let current = view.joint(m, 0).unwrap_or(0);

@@ -356,7 +356,7 @@ void sim_reset(uint8_t i)
     n->mod.next_broadcast_ms = 0xA5A5A5A5u;
     n->mod.unechoed = 0xA5A5u;
     n->mod.unheard = (dr_channels_t)0xA5A5A5A5u;
-    n->mod.wait = 0xA5u;
+    n->mod.heard = 0xA5u;
     dr_module_init(&n->mod, sim.program, n);
 }
 

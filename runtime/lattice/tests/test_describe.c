@@ -53,6 +53,7 @@ void test_describe(void)
 
     memset(&m, 0, sizeof m);
     m.running = DR_NONE;
+    m.unechoed = DR_NONE;
     check_text(&m, "e0 low0 done0 run-");
     check_bounded(&m, "e0 low0 done0 run-");
 
@@ -97,4 +98,24 @@ void test_describe(void)
     memset(m.shared.done, 0, sizeof m.shared.done);
     memset(m.shared.started, 0xFF, sizeof m.shared.started);
     check_text(&m, "e1 low0 done0 run-");
+
+    /* DR_PROGRAM_NO_NV: the channels not heard since the restart (hexadecimal), and the own
+     * completion not echoed yet */
+    m.unheard = (dr_channels_t)0x11u;
+    check_text(&m, "e1 low0 done0 run- hear11");
+    check_bounded(&m, "e1 low0 done0 run- hear11");
+    m.unheard = (dr_channels_t)1u;
+    m.unechoed = 7u;
+    check_text(&m, "e1 low0 done0 run- hear1 echo7");
+    m.unheard = 0;
+    check_text(&m, "e1 low0 done0 run- echo7");
+    check_bounded(&m, "e1 low0 done0 run- echo7");
+    /* every channel of the widest set */
+    m.unheard = (dr_channels_t)~(dr_channels_t)0;
+    m.unechoed = DR_NONE;
+    strcpy(want, "e1 low0 done0 run- hear");
+    for (k = 0; k < sizeof(dr_channels_t) * 2u; k++) {
+        strcat(want, "f");
+    }
+    check_text(&m, want);
 }
