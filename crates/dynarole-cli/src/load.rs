@@ -97,16 +97,50 @@ pub fn with_program(
     }
 }
 
-/// The named sequences, or the first one the file declares when none is named.
-pub fn sequence_names(program: &dynarole_core::Program, sequences: &[String]) -> Vec<String> {
-    if !sequences.is_empty() {
-        return sequences.to_vec();
+/// The sequences a command runs: the named ones, or the first one the file declares when none
+/// is named. Every command that runs sequences (`check --from`, `compile`, `replay`,
+/// `simulate`, `verify`) decides here, so they agree on the default and on the errors.
+pub fn select_sequences(
+    program: &dynarole_core::Program,
+    display: &str,
+    wanted: &[String],
+) -> Result<Vec<String>, Failure> {
+    let declared = declared_sequences(program);
+    let Some(first) = declared.first() else {
+        return Err(Failure::Input(format!(
+            "{display} declares no sequence, so there is nothing to run; add `sequence NAME {{ ... }}`"
+        )));
+    };
+    if wanted.is_empty() {
+        return Ok(vec![first.to_string()]);
     }
+    if let Some(unknown) = wanted.iter().find(|w| !declared.contains(&w.as_str())) {
+        return Err(unknown_sequence(program, display, unknown));
+    }
+    Ok(wanted.to_vec())
+}
+
+/// `no sequence `x` in FILE; did you mean `y`? sequences in FILE: a, b` (bad input, exit 1:
+/// the name on the command line is well formed but the file has no such sequence).
+pub fn unknown_sequence(program: &dynarole_core::Program, display: &str, name: &str) -> Failure {
+    let declared = declared_sequences(program);
+    let mut message = format!("no sequence `{name}` in {display}");
+    match dynarole_core::suggest::closest(name, declared.iter().copied()) {
+        Some(close) => message.push_str(&format!("; did you mean `{close}`? ")),
+        None => message.push_str("; "),
+    }
+    if declared.is_empty() {
+        message.push_str(&format!("{display} declares no sequence"));
+    } else {
+        message.push_str(&format!("sequences in {display}: {}", declared.join(", ")));
+    }
+    Failure::Input(message)
+}
+
+fn declared_sequences<'p>(program: &'p dynarole_core::Program) -> Vec<&'p str> {
     program
         .file
         .sequences()
-        .next()
-        .map(|d| d.name.name.clone())
-        .into_iter()
+        .map(|d| d.name.name.as_str())
         .collect()
 }
