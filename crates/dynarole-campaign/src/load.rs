@@ -13,6 +13,8 @@ use std::path::Path;
 /// The files a campaign reads, parsed (the program borrows the syntax tree from here).
 pub struct Sources {
     pub path: std::path::PathBuf,
+    /// The campaign file's text (errors found later point into it).
+    pub text: String,
     pub campaign: CampaignFile,
     pub source: String,
     pub file: dynarole_core::ast::SourceFile,
@@ -41,7 +43,8 @@ pub fn sources(path: &Path) -> Result<Sources, Error> {
     let dir = path.parent().unwrap_or(Path::new("."));
     let campaign = CampaignFile::parse(&text, dir).map_err(|e| Error::Spec {
         path: path.to_path_buf(),
-        error: e,
+        text: text.clone(),
+        error: Box::new(e),
     })?;
     let source = read(&campaign.file)?;
     let parsed = dynarole_core::parse(&source);
@@ -49,6 +52,7 @@ pub fn sources(path: &Path) -> Result<Sources, Error> {
     let expect = campaign.expect.as_deref().map(configuration).transpose()?;
     Ok(Sources {
         path: path.to_path_buf(),
+        text,
         campaign,
         source,
         file: parsed.file,
@@ -118,7 +122,12 @@ fn program(sources: &Sources) -> Result<Program<'_>, Error> {
 }
 
 fn plugin(path: &Path) -> Result<RobotApi, Error> {
-    RobotApi::from_toml(&read(path)?).map_err(|e| Error::Input(format!("{}: {e}", path.display())))
+    let text = read(path)?;
+    RobotApi::from_toml(&text).map_err(|error| Error::Spec {
+        path: path.to_path_buf(),
+        text,
+        error: Box::new(error),
+    })
 }
 
 /// The back-end's options for `protocol` and the campaign's `[options]`.

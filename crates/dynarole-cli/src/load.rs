@@ -1,6 +1,7 @@
 //! Reading inputs: source files and robot plugins, with errors that name the file.
 
 use dynarole_core::robot::RobotApi;
+use dynarole_core::toml_error::TomlError;
 use dynarole_core::RobotRegistry;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -12,19 +13,28 @@ pub enum Failure {
     Input(String),
     /// Bad usage (exit 2).
     Usage(String),
+    /// A TOML file (plugin, scenario, campaign) with an error (exit 1), shown with its snippet.
+    Toml {
+        path: String,
+        text: String,
+        error: Box<TomlError>,
+    },
 }
 
 impl Failure {
     pub fn exit_code(&self) -> ExitCode {
         match self {
-            Failure::Input(_) => ExitCode::from(1),
+            Failure::Input(_) | Failure::Toml { .. } => ExitCode::from(1),
             Failure::Usage(_) => ExitCode::from(2),
         }
     }
 
-    pub fn message(&self) -> &str {
-        match self {
-            Failure::Input(m) | Failure::Usage(m) => m,
+    /// The failure of the TOML file at `path`, whose text is `text`.
+    pub fn toml(path: &Path, text: String, error: TomlError) -> Failure {
+        Failure::Toml {
+            path: path.display().to_string(),
+            error: Box::new(error.locate(&text)),
+            text,
         }
     }
 }
@@ -64,7 +74,7 @@ pub fn registry(
 
 fn load_plugin(path: &Path) -> Result<RobotApi, Failure> {
     let text = read_source(path)?;
-    RobotApi::from_toml(&text).map_err(|e| Failure::Input(format!("{}: {e}", path.display())))
+    RobotApi::from_toml(&text).map_err(|e| Failure::toml(path, text.clone(), e))
 }
 
 /// The name in the file's first `robot NAME;`, if any.

@@ -84,8 +84,7 @@ fn scenario(args: &SimulateArgs) -> Result<Scenario, Failure> {
     let mut scenario = match args.scenario {
         Some(path) => {
             let text = load::read_source(path)?;
-            Scenario::from_toml_str(&text)
-                .map_err(|e| Failure::Input(format!("{}: {e}", path.display())))?
+            Scenario::from_toml_str(&text).map_err(|e| Failure::toml(path, text.clone(), e))?
         }
         None => Scenario::default(),
     };

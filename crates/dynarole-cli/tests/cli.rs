@@ -127,9 +127,12 @@ fn a_broken_plugin_names_the_field() {
     assert_eq!(out.status.code(), Some(1));
     let stderr = text(&out.stderr);
     assert!(
-        stderr.contains("broken.robot.toml: field `part[0].count`: expected 1 to 255, found 300"),
+        stderr.contains("error: field `part[0].count`: expected 1 to 255, found 300"),
         "{stderr}"
     );
+    // The file, line and column of the value, and a caret under it.
+    assert!(stderr.contains("broken.robot.toml:4:9"), "{stderr}");
+    assert!(stderr.contains("count = 300\n  │         ^^^"), "{stderr}");
 }
 
 #[test]

@@ -20,6 +20,7 @@ pub mod reverse;
 pub mod robot;
 pub mod span;
 pub mod suggest;
+pub mod toml_error;
 
 pub use check::{analyze, Program};
 pub use diagnostic::{Diagnostic, DiagnosticKind, Severity};
