@@ -2,7 +2,7 @@
 //! campaign's plugins, and a `NAME.robot.toml` beside the source), the sequences'
 //! plans and the configurations.
 
-use crate::spec::{CampaignFile, Merge, ProtocolName};
+use crate::spec::{CampaignFile, Merge, ProtocolName, SpecError};
 use crate::Error;
 use dynarole_codegen::{CompileOptions, PaperMerge, Protocol, TokenRetries};
 use dynarole_core::expand::Plan;
@@ -67,14 +67,10 @@ pub fn inputs(sources: &Sources) -> Result<Inputs<'_>, Error> {
     let campaign = &sources.campaign;
     let program = program(sources)?;
     let mut plans = Vec::new();
-    for name in &campaign.sequences {
-        let plan = program.expand(name).ok_or_else(|| {
-            Error::Input(format!(
-                "{}: sequences: no sequence named `{name}` in {}",
-                sources.path.display(),
-                campaign.file.display()
-            ))
-        })?;
+    for (i, name) in campaign.sequences.iter().enumerate() {
+        let plan = program
+            .expand(name)
+            .ok_or_else(|| unknown_sequence(sources, &program, i, name))?;
         plans.push(plan);
     }
     Ok(Inputs {
@@ -85,6 +81,31 @@ pub fn inputs(sources: &Sources) -> Result<Inputs<'_>, Error> {
         start: &sources.start,
         expect: sources.expect.as_ref(),
     })
+}
+
+/// `sequences[i]` names no sequence of the program: the closest name and the program's list.
+fn unknown_sequence(sources: &Sources, program: &Program, i: usize, name: &str) -> Error {
+    let file = sources.campaign.file.display();
+    let declared: Vec<&str> = program
+        .file
+        .sequences()
+        .map(|d| d.name.name.as_str())
+        .collect();
+    let mut hint = match dynarole_core::suggest::closest(name, declared.iter().copied()) {
+        Some(close) => format!("did you mean `{close}`? "),
+        None => String::new(),
+    };
+    hint.push_str(&format!("sequences in {file}: {}", declared.join(", ")));
+    let mut error = SpecError::new(
+        format!("sequences[{i}]"),
+        format!("no sequence `{name}` in {file}"),
+    );
+    error.hint = Some(hint);
+    Error::Spec {
+        path: sources.path.clone(),
+        error: Box::new(error.locate(&sources.text)),
+        text: sources.text.clone(),
+    }
 }
 
 fn configuration(path: &Path) -> Result<Configuration, Error> {
