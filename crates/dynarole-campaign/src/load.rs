@@ -91,8 +91,8 @@ fn unknown_sequence(sources: &Sources, program: &Program, i: usize, name: &str) 
         .sequences()
         .map(|d| d.name.name.as_str())
         .collect();
-    let mut hint = match dynarole_core::suggest::closest(name, declared.iter().copied()) {
-        Some(close) => format!("did you mean `{close}`? "),
+    let mut hint = match dynarole_core::suggest::did_you_mean(name, declared.iter().copied()) {
+        Some(hint) => format!("{hint} "),
         None => String::new(),
     };
     hint.push_str(&format!("sequences in {file}: {}", declared.join(", ")));

@@ -135,8 +135,8 @@ pub fn select_sequences(
 pub fn unknown_sequence(program: &dynarole_core::Program, display: &str, name: &str) -> Failure {
     let declared = declared_sequences(program);
     let mut message = format!("no sequence `{name}` in {display}");
-    match dynarole_core::suggest::closest(name, declared.iter().copied()) {
-        Some(close) => message.push_str(&format!("; did you mean `{close}`? ")),
+    match dynarole_core::suggest::did_you_mean(name, declared.iter().copied()) {
+        Some(hint) => message.push_str(&format!("; {hint} ")),
         None => message.push_str("; "),
     }
     if declared.is_empty() {

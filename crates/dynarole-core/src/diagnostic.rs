@@ -297,8 +297,8 @@ impl Diagnostic {
                 .label("no API plugin has this name")
                 .hint(format!(
                     "{}known robots: {}; describe another robot in `{name}.robot.toml` beside the file, or pass it with `--plugin FILE`",
-                    crate::suggest::closest(name, known.iter().map(String::as_str))
-                        .map_or_else(String::new, |close| format!("did you mean `{close}`? ")),
+                    crate::suggest::did_you_mean(name, known.iter().map(String::as_str))
+                        .map_or_else(String::new, |hint| format!("{hint} ")),
                     known.join(", ")
                 )),
             K::DuplicateDefinition { name, what, first } => d

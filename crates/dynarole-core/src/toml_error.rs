@@ -88,8 +88,7 @@ fn unknown_name_hint(message: &str) -> Option<String> {
     let quoted: Vec<&str> = message.split('`').skip(1).step_by(2).collect();
     let (unknown, candidates) = quoted.split_first()?;
     // The message already lists the candidates; the hint only adds a likely typo's fix.
-    crate::suggest::closest(unknown, candidates.iter().copied())
-        .map(|close| format!("did you mean `{close}`?"))
+    crate::suggest::did_you_mean(unknown, candidates.iter().copied())
 }
 
 /// One step of a field path: `name` or `[index]`.
