@@ -25,10 +25,12 @@ use std::time::Instant;
 /// Why a campaign could not run (runs that fail their goal are results, not errors).
 #[derive(Debug)]
 pub enum Error {
-    /// The campaign file is wrong (the error names the field).
+    /// A TOML file (the campaign file, or a robot plugin it loads) is wrong: the error names
+    /// the field and its span in `text`.
     Spec {
         path: PathBuf,
-        error: SpecError,
+        text: String,
+        error: Box<SpecError>,
     },
     /// The `.dr` file has errors, or a sequence cannot be compiled for a protocol.
     Diagnostics {
@@ -56,7 +58,7 @@ impl Error {
 impl std::fmt::Display for Error {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            Error::Spec { path, error } => write!(f, "{}: {error}", path.display()),
+            Error::Spec { path, error, .. } => write!(f, "{}: {error}", path.display()),
             Error::Diagnostics { path, .. } => {
                 write!(f, "{}: the program has errors", path.display())
             }
@@ -108,7 +110,8 @@ pub fn run(options: &Options) -> Result<Done, Error> {
     let inputs = load::inputs(&sources)?;
     let planned = plan::plan(inputs.campaign).map_err(|error| Error::Spec {
         path: options.campaign.clone(),
-        error,
+        error: Box::new(error.locate(&sources.text)),
+        text: sources.text.clone(),
     })?;
     std::fs::create_dir_all(&options.out_dir).map_err(|e| Error::io(&options.out_dir, e))?;
     let csv_path = options.out_dir.join("runs.csv");

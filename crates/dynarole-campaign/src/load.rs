@@ -2,7 +2,7 @@
 //! campaign's plugins, and a `NAME.robot.toml` beside the source), the sequences'
 //! plans and the configurations.
 
-use crate::spec::{CampaignFile, Merge, ProtocolName};
+use crate::spec::{CampaignFile, Merge, ProtocolName, SpecError};
 use crate::Error;
 use dynarole_codegen::{CompileOptions, PaperMerge, Protocol, TokenRetries};
 use dynarole_core::expand::Plan;
@@ -13,6 +13,8 @@ use std::path::Path;
 /// The files a campaign reads, parsed (the program borrows the syntax tree from here).
 pub struct Sources {
     pub path: std::path::PathBuf,
+    /// The campaign file's text (errors found later point into it).
+    pub text: String,
     pub campaign: CampaignFile,
     pub source: String,
     pub file: dynarole_core::ast::SourceFile,
@@ -41,7 +43,8 @@ pub fn sources(path: &Path) -> Result<Sources, Error> {
     let dir = path.parent().unwrap_or(Path::new("."));
     let campaign = CampaignFile::parse(&text, dir).map_err(|e| Error::Spec {
         path: path.to_path_buf(),
-        error: e,
+        text: text.clone(),
+        error: Box::new(e),
     })?;
     let source = read(&campaign.file)?;
     let parsed = dynarole_core::parse(&source);
@@ -49,6 +52,7 @@ pub fn sources(path: &Path) -> Result<Sources, Error> {
     let expect = campaign.expect.as_deref().map(configuration).transpose()?;
     Ok(Sources {
         path: path.to_path_buf(),
+        text,
         campaign,
         source,
         file: parsed.file,
@@ -63,14 +67,10 @@ pub fn inputs(sources: &Sources) -> Result<Inputs<'_>, Error> {
     let campaign = &sources.campaign;
     let program = program(sources)?;
     let mut plans = Vec::new();
-    for name in &campaign.sequences {
-        let plan = program.expand(name).ok_or_else(|| {
-            Error::Input(format!(
-                "{}: sequences: no sequence named `{name}` in {}",
-                sources.path.display(),
-                campaign.file.display()
-            ))
-        })?;
+    for (i, name) in campaign.sequences.iter().enumerate() {
+        let plan = program
+            .expand(name)
+            .ok_or_else(|| unknown_sequence(sources, &program, i, name))?;
         plans.push(plan);
     }
     Ok(Inputs {
@@ -81,6 +81,31 @@ pub fn inputs(sources: &Sources) -> Result<Inputs<'_>, Error> {
         start: &sources.start,
         expect: sources.expect.as_ref(),
     })
+}
+
+/// `sequences[i]` names no sequence of the program: the closest name and the program's list.
+fn unknown_sequence(sources: &Sources, program: &Program, i: usize, name: &str) -> Error {
+    let file = sources.campaign.file.display();
+    let declared: Vec<&str> = program
+        .file
+        .sequences()
+        .map(|d| d.name.name.as_str())
+        .collect();
+    let mut hint = match dynarole_core::suggest::did_you_mean(name, declared.iter().copied()) {
+        Some(hint) => format!("{hint} "),
+        None => String::new(),
+    };
+    hint.push_str(&format!("sequences in {file}: {}", declared.join(", ")));
+    let mut error = SpecError::new(
+        format!("sequences[{i}]"),
+        format!("no sequence `{name}` in {file}"),
+    );
+    error.hint = Some(hint);
+    Error::Spec {
+        path: sources.path.clone(),
+        error: Box::new(error.locate(&sources.text)),
+        text: sources.text.clone(),
+    }
 }
 
 fn configuration(path: &Path) -> Result<Configuration, Error> {
@@ -118,7 +143,12 @@ fn program(sources: &Sources) -> Result<Program<'_>, Error> {
 }
 
 fn plugin(path: &Path) -> Result<RobotApi, Error> {
-    RobotApi::from_toml(&read(path)?).map_err(|e| Error::Input(format!("{}: {e}", path.display())))
+    let text = read(path)?;
+    RobotApi::from_toml(&text).map_err(|error| Error::Spec {
+        path: path.to_path_buf(),
+        text,
+        error: Box::new(error),
+    })
 }
 
 /// The back-end's options for `protocol` and the campaign's `[options]`.

@@ -97,45 +97,29 @@ pub struct CampaignFile {
     pub sweep: Sweep,
 }
 
-/// An error in the campaign file, naming the field.
-#[derive(Debug, Clone, PartialEq)]
-pub struct SpecError {
-    pub field: String,
-    pub message: String,
-}
-
-impl std::fmt::Display for SpecError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        if self.field.is_empty() {
-            f.write_str(&self.message)
-        } else {
-            write!(f, "{}: {}", self.field, self.message)
-        }
-    }
-}
+/// An error in the campaign file: the field, the message, where in the text.
+pub type SpecError = dynarole_core::toml_error::TomlError;
 
 fn error(field: &str, message: impl Into<String>) -> SpecError {
-    SpecError {
-        field: field.into(),
-        message: message.into(),
-    }
+    SpecError::new(field, message)
 }
 
 impl CampaignFile {
     /// Parses and checks a campaign; relative paths are made relative to `dir` (the
     /// campaign file's directory).
+    /// Errors carry the span of their field in `text`.
     pub fn parse(text: &str, dir: &Path) -> Result<CampaignFile, SpecError> {
-        let raw: toml::Table = toml::from_str(text).map_err(|e| error("", one_line(&e)))?;
-        reject_overridden(&raw)?;
+        let raw: toml::Table = toml::from_str(text).map_err(|e| SpecError::from_de(&e))?;
+        reject_overridden(&raw).map_err(|e| e.locate(text))?;
         let mut campaign: CampaignFile =
-            toml::from_str(text).map_err(|e| error("", one_line(&e)))?;
+            toml::from_str(text).map_err(|e| SpecError::from_de(&e))?;
         if let Some(preset) = campaign.preset {
             campaign.scenario.network.preset = preset;
         }
         if let Some(timeout) = campaign.timeout_ms {
             campaign.scenario.timeout_ms = timeout;
         }
-        campaign.check()?;
+        campaign.check().map_err(|e| e.locate(text))?;
         campaign.resolve_paths(dir);
         Ok(campaign)
     }
@@ -156,9 +140,7 @@ impl CampaignFile {
         if self.seeds == 0 {
             return Err(error("seeds", "must be above 0"));
         }
-        self.scenario
-            .check()
-            .map_err(|e| error("scenario", e.to_string()))?;
+        self.scenario.check().map_err(|e| e.nested_in("scenario"))?;
         self.sweep.check()
     }
 
@@ -301,15 +283,6 @@ impl Range {
         }
         Ok(values)
     }
-}
-
-/// toml's message names the key and the line; keep it on one line.
-fn one_line(e: &toml::de::Error) -> String {
-    e.to_string()
-        .lines()
-        .filter(|l| !l.trim().is_empty())
-        .collect::<Vec<_>>()
-        .join(" ")
 }
 
 /// The paper protocol's merge function (`dynarole simulate --merge`).

@@ -131,7 +131,8 @@ fn plots_are_written() {
 fn parse_error(text: &str) -> String {
     match CampaignFile::parse(text, Path::new(".")) {
         Ok(_) => panic!("accepted: {text}"),
-        Err(e) => e.to_string(),
+        // The field first, as the CLI's title says it.
+        Err(e) => format!("{}: {}", e.field, e.message),
     }
 }
 

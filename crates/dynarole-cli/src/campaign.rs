@@ -44,6 +44,7 @@ pub fn run(args: &CampaignArgs) -> Result<ExitCode, Failure> {
             render::diagnostics(&path.display().to_string(), &source, &diagnostics);
             Ok(ExitCode::from(1))
         }
+        Err(Error::Spec { path, text, error }) => Err(Failure::toml(&path, text, *error)),
         Err(e) => Err(Failure::Input(e.to_string())),
     }
 }

@@ -63,7 +63,7 @@ pub fn check_one(
     let (program, mut diagnostics) = analyze(&parsed.file, &registry);
     diagnostics.extend(parsed.diagnostics);
     if let (Some(program), Some(on)) = (&program, on) {
-        diagnostics.extend(on_configuration(program, on, protocol)?);
+        diagnostics.extend(on_configuration(program, path, on, protocol)?);
     } else if protocol == Protocol::Token && program.is_some() {
         eprintln!("note: {}: the token baseline's hand-over routes are checked only on a configuration (--from CONFIG)", path.display());
     }
@@ -77,11 +77,17 @@ pub fn check_one(
 
 fn on_configuration(
     program: &dynarole_core::Program,
+    path: &Path,
     on: &OnConfiguration,
     protocol: Protocol,
 ) -> Result<Vec<Diagnostic>, Failure> {
     let config = crate::world::read_configuration(on.path)?;
-    let prepared = match crate::world::prepare(program, on.sequences, config.clone())? {
+    let prepared = match crate::world::prepare(
+        program,
+        &path.display().to_string(),
+        on.sequences,
+        config.clone(),
+    )? {
         Ok(prepared) => prepared,
         Err(errors) => return Ok(errors),
     };

@@ -171,18 +171,14 @@ pub fn run(args: &CompileArgs) -> Result<ExitCode, Failure> {
     }
     load::with_program(args.file, args.plugins, |program, source| {
         let display = args.file.display().to_string();
-        let names = load::sequence_names(program, args.sequences);
-        let mut plans = Vec::new();
-        for name in &names {
-            let plan = program
-                .expand(name)
-                .ok_or_else(|| Failure::Input(format!("{display}: no sequence named `{name}`")))?;
+        let names = load::select_sequences(program, &display, args.sequences)?;
+        let plans = crate::world::plans(program, &display, &names)?;
+        for plan in &plans {
             if let (ProtocolArg::Paper, Err(d)) = (args.options.protocol, plan.flatten_for_paper())
             {
                 render::diagnostics(&display, source, &[d]);
                 return Ok(ExitCode::from(1));
             }
-            plans.push(plan);
         }
         let limit_error = |e: dynarole_core::lower::LimitError| {
             Diagnostic::new(DiagnosticKind::TargetLimit { message: e.message }, e.span)

@@ -1,6 +1,7 @@
 //! `dynarole fmt`: rewrite files in the canonical layout, or check that they are.
 
-use crate::load::{self, Failure};
+use crate::check::{check_one, Protocol};
+use crate::load::{self, Failure, PluginArgs};
 use crate::render;
 use dynarole_core::diagnostic::has_errors;
 use dynarole_core::format::format_file;
@@ -8,7 +9,10 @@ use dynarole_core::parse;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-pub fn run(files: &[PathBuf], check_only: bool) -> Result<ExitCode, Failure> {
+/// Formats (or with `check_only`, checks the layout of) every file that `check` accepts; a
+/// file `check` rejects is left alone and its errors reported, so the two commands agree on
+/// what a valid file is.
+pub fn run(files: &[PathBuf], check_only: bool, plugins: &PluginArgs) -> Result<ExitCode, Failure> {
     if files.is_empty() {
         return Err(Failure::Usage(
             "no files given: `dynarole fmt [--check] FILE...`".into(),
@@ -17,13 +21,14 @@ pub fn run(files: &[PathBuf], check_only: bool) -> Result<ExitCode, Failure> {
     let mut failed = false;
     for path in files {
         let source = load::read_source(path)?;
-        let parsed = parse(&source);
-        if has_errors(&parsed.diagnostics) {
+        let diagnostics = check_one(path, &source, plugins, Protocol::Lattice, None)?;
+        if has_errors(&diagnostics) {
             // Formatting a broken tree would drop the broken parts: refuse instead.
-            render::diagnostics(&path.display().to_string(), &source, &parsed.diagnostics);
+            render::diagnostics(&path.display().to_string(), &source, &diagnostics);
             failed = true;
             continue;
         }
+        let parsed = parse(&source);
         let formatted = format_file(&parsed.file, &source);
         if formatted == source {
             continue;

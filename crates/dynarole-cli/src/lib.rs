@@ -180,6 +180,8 @@ enum Command {
         /// Change nothing; exit 1 if a file is not formatted.
         #[arg(long)]
         check: bool,
+        #[command(flatten)]
+        plugins: load::PluginArgs,
     },
     /// Print the reverse of SEQUENCE as a complete `.dr` file that `check` accepts.
     Reverse {
@@ -262,7 +264,11 @@ pub fn main() -> ExitCode {
             jobs,
             no_plots,
         }),
-        Command::Fmt { files, check } => fmt::run(&files, check),
+        Command::Fmt {
+            files,
+            check,
+            plugins,
+        } => fmt::run(&files, check, &plugins),
         Command::Compile {
             file,
             sequences,

@@ -1,6 +1,7 @@
 //! Reading inputs: source files and robot plugins, with errors that name the file.
 
 use dynarole_core::robot::RobotApi;
+use dynarole_core::toml_error::TomlError;
 use dynarole_core::RobotRegistry;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -12,19 +13,28 @@ pub enum Failure {
     Input(String),
     /// Bad usage (exit 2).
     Usage(String),
+    /// A TOML file (plugin, scenario, campaign) with an error (exit 1), shown with its snippet.
+    Toml {
+        path: String,
+        text: String,
+        error: Box<TomlError>,
+    },
 }
 
 impl Failure {
     pub fn exit_code(&self) -> ExitCode {
         match self {
-            Failure::Input(_) => ExitCode::from(1),
+            Failure::Input(_) | Failure::Toml { .. } => ExitCode::from(1),
             Failure::Usage(_) => ExitCode::from(2),
         }
     }
 
-    pub fn message(&self) -> &str {
-        match self {
-            Failure::Input(m) | Failure::Usage(m) => m,
+    /// The failure of the TOML file at `path`, whose text is `text`.
+    pub fn toml(path: &Path, text: String, error: TomlError) -> Failure {
+        Failure::Toml {
+            path: path.display().to_string(),
+            error: Box::new(error.locate(&text)),
+            text,
         }
     }
 }
@@ -64,7 +74,7 @@ pub fn registry(
 
 fn load_plugin(path: &Path) -> Result<RobotApi, Failure> {
     let text = read_source(path)?;
-    RobotApi::from_toml(&text).map_err(|e| Failure::Input(format!("{}: {e}", path.display())))
+    RobotApi::from_toml(&text).map_err(|e| Failure::toml(path, text.clone(), e))
 }
 
 /// The name in the file's first `robot NAME;`, if any.
@@ -97,16 +107,50 @@ pub fn with_program(
     }
 }
 
-/// The named sequences, or the first one the file declares when none is named.
-pub fn sequence_names(program: &dynarole_core::Program, sequences: &[String]) -> Vec<String> {
-    if !sequences.is_empty() {
-        return sequences.to_vec();
+/// The sequences a command runs: the named ones, or the first one the file declares when none
+/// is named. Every command that runs sequences (`check --from`, `compile`, `replay`,
+/// `simulate`, `verify`) decides here, so they agree on the default and on the errors.
+pub fn select_sequences(
+    program: &dynarole_core::Program,
+    display: &str,
+    wanted: &[String],
+) -> Result<Vec<String>, Failure> {
+    let declared = declared_sequences(program);
+    let Some(first) = declared.first() else {
+        return Err(Failure::Input(format!(
+            "{display} declares no sequence, so there is nothing to run; add `sequence NAME {{ ... }}`"
+        )));
+    };
+    if wanted.is_empty() {
+        return Ok(vec![first.to_string()]);
     }
+    if let Some(unknown) = wanted.iter().find(|w| !declared.contains(&w.as_str())) {
+        return Err(unknown_sequence(program, display, unknown));
+    }
+    Ok(wanted.to_vec())
+}
+
+/// `no sequence `x` in FILE; did you mean `y`? sequences in FILE: a, b` (bad input, exit 1:
+/// the name on the command line is well formed but the file has no such sequence).
+pub fn unknown_sequence(program: &dynarole_core::Program, display: &str, name: &str) -> Failure {
+    let declared = declared_sequences(program);
+    let mut message = format!("no sequence `{name}` in {display}");
+    match dynarole_core::suggest::did_you_mean(name, declared.iter().copied()) {
+        Some(hint) => message.push_str(&format!("; {hint} ")),
+        None => message.push_str("; "),
+    }
+    if declared.is_empty() {
+        message.push_str(&format!("{display} declares no sequence"));
+    } else {
+        message.push_str(&format!("sequences in {display}: {}", declared.join(", ")));
+    }
+    Failure::Input(message)
+}
+
+fn declared_sequences<'p>(program: &'p dynarole_core::Program) -> Vec<&'p str> {
     program
         .file
         .sequences()
-        .next()
-        .map(|d| d.name.name.clone())
-        .into_iter()
+        .map(|d| d.name.name.as_str())
         .collect()
 }

@@ -7,6 +7,7 @@ use codespan_reporting::term::{
     self,
     termcolor::{ColorChoice, StandardStream, WriteColor},
 };
+use dynarole_core::toml_error::TomlError;
 use dynarole_core::{Diagnostic, Severity};
 use std::io::IsTerminal;
 
@@ -63,5 +64,48 @@ fn to_report(diagnostic: &Diagnostic) -> Report<()> {
 }
 
 pub fn failure(failure: &Failure) {
-    eprintln!("error: {}", failure.message());
+    match failure {
+        Failure::Input(message) | Failure::Usage(message) => eprintln!("error: {message}"),
+        Failure::Toml { path, text, error } => {
+            let writer = StandardStream::stderr(color_choice());
+            write_toml_error(&mut writer.lock(), path, text, error);
+        }
+    }
+}
+
+/// Writes an error of the TOML file `path` like a `.dr` diagnostic: file, line and column, the
+/// snippet with a caret under the field's value, and the hint; with no span, the file and field.
+pub fn write_toml_error(out: &mut dyn WriteColor, path: &str, text: &str, error: &TomlError) {
+    let file = SimpleFile::new(path, text);
+    let span = error
+        .span
+        .clone()
+        .filter(|s| s.start <= s.end && text.get(s.clone()).is_some())
+        .map(|s| {
+            // A missing value's span runs to the next line; the caret belongs on this one.
+            let trimmed = text[s.clone()].trim_end();
+            s.start..s.start + trimmed.len()
+        });
+    let report = match span {
+        Some(span) => Report::error()
+            .with_message(error.to_string())
+            .with_labels(vec![Label::primary((), span)]),
+        None => Report::error().with_message(format!("{path}: {error}")),
+    };
+    let notes = error
+        .hint
+        .as_ref()
+        .map(|h| vec![format!("hint: {h}")])
+        .unwrap_or_default();
+    if term::emit(
+        out,
+        &term::Config::default(),
+        &file,
+        &report.with_notes(notes),
+    )
+    .is_err()
+    {
+        // Nothing better to report to than the plain message.
+        let _ = writeln!(out, "error: {path}: {error}");
+    }
 }

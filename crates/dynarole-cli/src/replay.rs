@@ -22,7 +22,7 @@ pub fn run(args: &ReplayArgs) -> Result<ExitCode, Failure> {
     load::with_program(args.file, args.plugins, |program, source| {
         let display = args.file.display().to_string();
         let start = read_configuration(args.from)?;
-        let prepared = match prepare(program, args.sequences, start)? {
+        let prepared = match prepare(program, &display, args.sequences, start)? {
             Ok(prepared) => prepared,
             Err(errors) => {
                 render::diagnostics(&display, source, &errors);
@@ -38,7 +38,7 @@ pub fn run(args: &ReplayArgs) -> Result<ExitCode, Failure> {
         render::diagnostics(&display, source, &result.diagnostics);
         println!(
             "replayed {} from {}: {} statements, {} rejected, {} warnings",
-            args.sequences.join(", "),
+            prepared.names.join(", "),
             args.from.display(),
             result.n_statements,
             result.n_rejected,

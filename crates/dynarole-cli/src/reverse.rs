@@ -28,11 +28,7 @@ fn reverse_in(
 ) -> Result<ExitCode, Failure> {
     let new_name = name.map_or_else(|| program.reverse_name(sequence), str::to_string);
     let reversed = match program.reverse_sequence(sequence, &new_name) {
-        None => {
-            return Err(Failure::Input(format!(
-                "{display}: no sequence named `{sequence}`"
-            )))
-        }
+        None => return Err(load::unknown_sequence(program, display, sequence)),
         Some(Err(errors)) => {
             render::diagnostics(display, source, &errors);
             return Ok(ExitCode::from(1));

@@ -30,17 +30,12 @@ pub struct SimulateArgs<'a> {
 pub fn run(args: &SimulateArgs) -> Result<ExitCode, Failure> {
     load::with_program(args.file, args.plugins, |program, source| {
         let display = args.file.display().to_string();
-        let mut plans = Vec::new();
-        for name in args.sequences {
-            let plan = program
-                .expand(name)
-                .ok_or_else(|| Failure::Input(format!("{display}: no sequence named `{name}`")))?;
-            plans.push(plan);
-        }
+        let names = load::select_sequences(program, &display, args.sequences)?;
+        let plans = crate::world::plans(program, &display, &names)?;
         let scenario = scenario(args)?;
         let start = read_configuration(args.from)?;
         let expect = args.expect.map(|p| read_configuration(p)).transpose()?;
-        let mut options = args.options.compile_options(1, args.sequences.join(" + "));
+        let mut options = args.options.compile_options(1, names.join(" + "));
         let routed = add_token_routes(&mut options, program, &plans, Some(args.from))?;
         if let Err(diagnostics) = routed {
             render::diagnostics(&display, source, &diagnostics);
@@ -89,8 +84,7 @@ fn scenario(args: &SimulateArgs) -> Result<Scenario, Failure> {
     let mut scenario = match args.scenario {
         Some(path) => {
             let text = load::read_source(path)?;
-            Scenario::from_toml_str(&text)
-                .map_err(|e| Failure::Input(format!("{}: {e}", path.display())))?
+            Scenario::from_toml_str(&text).map_err(|e| Failure::toml(path, text.clone(), e))?
         }
         None => Scenario::default(),
     };

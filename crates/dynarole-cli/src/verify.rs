@@ -121,9 +121,8 @@ pub fn build(req: &Request, fault: Option<FaultArg>) -> Result<Result<Built, Exi
         model,
         epochs,
     } = *req;
-    let names = load::sequence_names(program, sequences);
     let config = read_configuration(from)?;
-    let prepared = match prepare(program, &names, config)? {
+    let prepared = match prepare(program, display, sequences, config)? {
         Ok(p) => p,
         Err(diagnostics) => {
             render::diagnostics(display, source, &diagnostics);
@@ -155,7 +154,7 @@ pub fn build(req: &Request, fault: Option<FaultArg>) -> Result<Result<Built, Exi
         &prepared.assignment,
     );
     let topology = topology(&ir, &graph, &prepared.assignment)?;
-    let name = names.join(" + ");
+    let name = prepared.names.join(" + ");
     let mut reset_modules = Vec::new();
     for wanted in &model.reset_only {
         match graph.names.iter().position(|n| n == wanted) {

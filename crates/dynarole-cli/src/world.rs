@@ -11,8 +11,8 @@ use std::path::Path;
 /// `--sequence NAME... --from CONFIG [--expect CONFIG]`, shared by `replay` and `simulate`.
 #[derive(clap::Args, Clone, Debug)]
 pub struct RunArgs {
-    /// Sequence to run; repeat to run several in turn.
-    #[arg(long = "sequence", value_name = "NAME", required = true)]
+    /// Sequence to run; repeat to run several in turn (default: the first in the file).
+    #[arg(long = "sequence", value_name = "NAME")]
     pub sequences: Vec<String>,
     /// The configuration to start from (JSON).
     #[arg(long, value_name = "CONFIG")]
@@ -24,6 +24,8 @@ pub struct RunArgs {
 
 /// Everything needed to run `plans` on the model.
 pub struct Prepared {
+    /// The sequences run, in turn (the named ones, or the file's first).
+    pub names: Vec<String>,
     pub plans: Vec<Plan>,
     pub assignment: Assignment,
     pub world: RobotWorld,
@@ -36,28 +38,36 @@ pub fn read_configuration(path: &Path) -> Result<Configuration, Failure> {
         .map_err(|e| Failure::Input(format!("{}: {e}", path.display())))
 }
 
-/// The plans of `sequences` (the first declared sequence when none is named), the modules of
-/// their labels on `config`, and the world to run them in. Label problems come back as
-/// diagnostics of the source file.
+/// The plans of `sequences` (the first declared sequence when none is named) of the source
+/// `display`, the modules of their labels on `config`, and the world to run them in. Label
+/// problems come back as diagnostics of the source file.
 pub fn prepare(
     program: &Program,
+    display: &str,
     sequences: &[String],
     config: Configuration,
 ) -> Result<Result<Prepared, Vec<Diagnostic>>, Failure> {
-    let names = crate::load::sequence_names(program, sequences);
-    let mut plans = Vec::new();
-    for name in &names {
-        let plan = program
-            .expand(name)
-            .ok_or_else(|| Failure::Input(format!("no sequence named `{name}`")))?;
-        plans.push(plan);
-    }
+    let names = load::select_sequences(program, display, sequences)?;
+    let plans = plans(program, display, &names)?;
     let world = RobotWorld::new(config.clone(), &program.robot).map_err(Failure::Input)?;
     Ok(
         assign_modules(program, &plans, &config).map(|assignment| Prepared {
+            names,
             plans,
             assignment,
             world,
         }),
     )
+}
+
+/// The expanded plans of sequences chosen by [`load::select_sequences`].
+pub fn plans(program: &Program, display: &str, names: &[String]) -> Result<Vec<Plan>, Failure> {
+    names
+        .iter()
+        .map(|name| {
+            program
+                .expand(name)
+                .ok_or_else(|| load::unknown_sequence(program, display, name))
+        })
+        .collect()
 }

@@ -83,7 +83,7 @@ fn reverse_prints_a_file_that_checks_and_reverses_back() {
 fn reverse_of_an_unknown_sequence_is_bad_input() {
     let out = dynarole(&["reverse", "examples/atron/eight2car.dr", "nope"]);
     assert_eq!(out.status.code(), Some(1));
-    assert!(text(&out.stderr).contains("no sequence named `nope`"));
+    assert!(text(&out.stderr).contains("no sequence `nope` in examples/atron/eight2car.dr; sequences in examples/atron/eight2car.dr: eight2car, car2eight"));
 }
 
 #[test]
@@ -127,9 +127,12 @@ fn a_broken_plugin_names_the_field() {
     assert_eq!(out.status.code(), Some(1));
     let stderr = text(&out.stderr);
     assert!(
-        stderr.contains("broken.robot.toml: field `part[0].count`: expected 1 to 255, found 300"),
+        stderr.contains("error: field `part[0].count`: expected 1 to 255, found 300"),
         "{stderr}"
     );
+    // The file, line and column of the value, and a caret under it.
+    assert!(stderr.contains("broken.robot.toml:4:9"), "{stderr}");
+    assert!(stderr.contains("count = 300\n  │         ^^^"), "{stderr}");
 }
 
 #[test]
@@ -705,4 +708,28 @@ fn campaign_writes_runs_summary_and_plots_and_resumes() {
     assert!(runs.lines().count() > 3);
     assert!(dir.join("summary.csv").is_file());
     assert!(dir.join("success-loss.svg").is_file() && dir.join("success-loss.png").is_file());
+}
+
+#[test]
+fn simulate_defaults_to_the_first_sequence_like_the_other_commands() {
+    let run = |extra: &[&str]| {
+        let mut args = vec![
+            "simulate",
+            "examples/verify/ab_c.dr",
+            "--from",
+            "examples/verify/line3.json",
+        ];
+        args.extend(extra);
+        let out = dynarole(&args);
+        assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+        // Everything but the wall-time line, which varies from run to run.
+        text(&out.stdout)
+            .lines()
+            .filter(|l| !l.contains("wall time"))
+            .collect::<Vec<_>>()
+            .join("\n")
+    };
+    let default = run(&[]);
+    assert!(default.starts_with("SUCCESS"), "{default}");
+    assert_eq!(default, run(&["--sequence", "ab_c"]));
 }

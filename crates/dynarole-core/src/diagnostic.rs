@@ -296,7 +296,9 @@ impl Diagnostic {
                 .title(format!("unknown robot `{name}`"))
                 .label("no API plugin has this name")
                 .hint(format!(
-                    "built-in robots: {}; describe another robot in `{name}.robot.toml` beside the file, or pass it with `--plugin FILE`",
+                    "{}known robots: {}; describe another robot in `{name}.robot.toml` beside the file, or pass it with `--plugin FILE`",
+                    crate::suggest::did_you_mean(name, known.iter().map(String::as_str))
+                        .map_or_else(String::new, |hint| format!("{hint} ")),
                     known.join(", ")
                 )),
             K::DuplicateDefinition { name, what, first } => d

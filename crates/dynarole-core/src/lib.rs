@@ -19,7 +19,8 @@ pub mod parser;
 pub mod reverse;
 pub mod robot;
 pub mod span;
-mod suggest;
+pub mod suggest;
+pub mod toml_error;
 
 pub use check::{analyze, Program};
 pub use diagnostic::{Diagnostic, DiagnosticKind, Severity};

@@ -12,6 +12,15 @@ pub fn closest<'a>(name: &str, candidates: impl IntoIterator<Item = &'a str>) ->
     best.map(|(_, c)| c.to_string())
 }
 
+/// "did you mean `y`?" when `name` is a likely typo of one of `candidates`: the one wording of
+/// the suggestion for every unknown name (robots, sequences, TOML keys).
+pub fn did_you_mean<'a>(
+    name: &str,
+    candidates: impl IntoIterator<Item = &'a str>,
+) -> Option<String> {
+    closest(name, candidates).map(|close| format!("did you mean `{close}`?"))
+}
+
 /// `MO` or `Ml2` read as `M0` and `M12`: letters that look like digits (OCR and typing slips).
 pub fn module_label_lookalike(name: &str) -> Option<String> {
     let rest = name.strip_prefix('M')?;

@@ -2,7 +2,6 @@
 //! links, the faults-on phase and the timeout). Every field is documented in `SCENARIO.md`.
 
 use serde::{Deserialize, Serialize};
-use std::fmt;
 
 /// How the infrared network and the modules' clocks behave.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize, Default)]
@@ -189,38 +188,19 @@ impl Default for Scenario {
     }
 }
 
-/// A scenario that does not parse or does not make sense; `field` names where.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct ScenarioError {
-    pub field: String,
-    pub message: String,
-}
-
-impl fmt::Display for ScenarioError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        if self.field.is_empty() {
-            f.write_str(&self.message)
-        } else {
-            write!(f, "{}: {}", self.field, self.message)
-        }
-    }
-}
-
-impl std::error::Error for ScenarioError {}
+/// A scenario that does not parse or does not make sense: the field, the message, the span.
+pub type ScenarioError = dynarole_core::toml_error::TomlError;
 
 fn error(field: impl Into<String>, message: impl Into<String>) -> ScenarioError {
-    ScenarioError {
-        field: field.into(),
-        message: message.into(),
-    }
+    ScenarioError::new(field, message)
 }
 
 impl Scenario {
     /// Parses and checks a scenario. Module names are checked later, against the
     /// configuration ([`Scenario::check_modules`]).
     pub fn from_toml_str(text: &str) -> Result<Scenario, ScenarioError> {
-        let scenario: Scenario = toml::from_str(text).map_err(|e| error("", toml_message(&e)))?;
-        scenario.check()?;
+        let scenario: Scenario = toml::from_str(text).map_err(|e| ScenarioError::from_de(&e))?;
+        scenario.check().map_err(|e| e.locate(text))?;
         Ok(scenario)
     }
 
@@ -357,9 +337,4 @@ fn before(field: &str, at: u64, end: u64) -> Result<(), ScenarioError> {
             format!("{at} is not inside the faults-on phase (ends at {end} ms)"),
         ))
     }
-}
-
-/// toml's message names the key (`unknown field `x``) and the line; keep it on one line.
-fn toml_message(e: &toml::de::Error) -> String {
-    e.to_string().lines().collect::<Vec<_>>().join(" ")
 }

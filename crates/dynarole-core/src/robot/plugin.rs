@@ -4,25 +4,8 @@ use super::*;
 use crate::lexer::{lex, Token};
 use serde::Deserialize;
 
-/// A plugin that cannot be used, with the field that is wrong.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct PluginError {
-    /// Dotted path of the field, such as `part[1].operation[0].inverse`; empty for syntax errors.
-    pub field: String,
-    pub message: String,
-}
-
-impl std::fmt::Display for PluginError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        if self.field.is_empty() {
-            write!(f, "{}", self.message)
-        } else {
-            write!(f, "field `{}`: {}", self.field, self.message)
-        }
-    }
-}
-
-impl std::error::Error for PluginError {}
+/// A plugin that cannot be used: the field that is wrong, the message, where in the text.
+pub type PluginError = crate::toml_error::TomlError;
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -74,10 +57,7 @@ struct RawParam {
 }
 
 fn error(field: impl Into<String>, message: impl Into<String>) -> PluginError {
-    PluginError {
-        field: field.into(),
-        message: message.into(),
-    }
+    PluginError::new(field, message)
 }
 
 /// Longest `inverse` text; it is parsed recursively, so its length bounds the depth.
@@ -87,8 +67,13 @@ const MAX_INVERSE_LEN: usize = 500;
 const MAX_COUNT: u32 = 255;
 
 impl RobotApi {
+    /// Reads a plugin; an error carries the span of the field it is about.
     pub fn from_toml(text: &str) -> Result<RobotApi, PluginError> {
-        let raw: RawPlugin = toml::from_str(text).map_err(|e| error("", e.to_string()))?;
+        let raw: RawPlugin = toml::from_str(text).map_err(|e| PluginError::from_de(&e))?;
+        RobotApi::from_raw(raw).map_err(|e| e.locate(text))
+    }
+
+    fn from_raw(raw: RawPlugin) -> Result<RobotApi, PluginError> {
         check_name("name", &raw.name)?;
         let mut parts = Vec::new();
         let mut constants = Vec::new();
