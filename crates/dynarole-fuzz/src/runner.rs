@@ -3,7 +3,7 @@
 
 use crate::corpus::{Corpus, Entry};
 use crate::mutate::{apply, cases, Case};
-use crate::targets::{Context, Mode, Outcome, Target};
+use crate::targets::{Context, Mode, Outcome, Target, EXTREMES};
 use proptest::test_runner::{Config, RngAlgorithm, TestCaseError, TestError, TestRng, TestRunner};
 use std::cell::Cell;
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -140,7 +140,7 @@ pub fn run_mutations(
     };
     let mut runner = TestRunner::new_with_rng(config, rng(settings.seed, target));
     let summary = Cell::new(Summary::default());
-    let strategy = cases(target.vocabulary(), target.extremes(mode));
+    let strategy = cases(target.vocabulary(), EXTREMES);
     let result = runner.run(&strategy, |case| {
         let text = String::from_utf8_lossy(&apply(&case, &corpus.entries)).into_owned();
         let outcome = run_one(target, ctx, &text, mode).map_err(TestCaseError::fail)?;

@@ -10,9 +10,12 @@ use std::path::Path;
 /// Error text allowed on top of what is proportional to the input (a loader may quote the
 /// offending line or name; a diagnostic may quote a token).
 pub const ERROR_BASE_BYTES: usize = 4096;
-/// Diagnostic text allowed per byte of source: every byte may be its own error (an unknown
-/// character), each a title, a label and a hint.
-pub const DIAGNOSTIC_BYTES_PER_INPUT_BYTE: usize = 256;
+/// Diagnostic text allowed per byte of source in [`Mode::Guarded`]: today every unknown
+/// character is its own diagnostic (a title, a label and a hint).
+pub const GUARDED_DIAGNOSTIC_BYTES_PER_INPUT_BYTE: usize = 256;
+/// Diagnostic text allowed per byte of source in [`Mode::Hostile`]: a run of unknown
+/// characters must not flood the output with one diagnostic per byte.
+pub const DIAGNOSTIC_BYTES_PER_INPUT_BYTE: usize = 16;
 /// Campaigns with more seeds than this are parsed but not planned in [`Mode::Guarded`]:
 /// planning allocates one run per seed, and the limit on `seeds` has not landed yet.
 pub const GUARDED_MAX_SEEDS: u64 = 1000;
@@ -78,8 +81,8 @@ impl Context {
     }
 }
 
-/// Numeric extremes substituted into inputs; the first [`MODERATE_COUNT`] fit in 17 bits.
-const EXTREMES: &[&str] = &[
+/// Numeric extremes that blow-ups substitute into inputs.
+pub const EXTREMES: &[&str] = &[
     "0",
     "-1",
     "1",
@@ -250,9 +253,6 @@ const JSON_WORDS: &[&str] = &[
     "\u{e9}",
 ];
 
-/// How many of [`EXTREMES`] fit in 17 bits.
-const MODERATE_COUNT: usize = 16;
-
 impl Target {
     pub const ALL: [Target; 7] = [
         Target::Parse,
@@ -286,20 +286,12 @@ impl Target {
         }
     }
 
-    /// Values that numeric blow-ups substitute.
-    pub fn extremes(self, mode: Mode) -> &'static [&'static str] {
-        match (self, mode) {
-            (Target::Configuration, Mode::Guarded) => &EXTREMES[..MODERATE_COUNT],
-            _ => EXTREMES,
-        }
-    }
-
     /// Runs `text` through the target; `Err` names the property it broke.
     pub fn run(self, ctx: &Context, text: &str, mode: Mode) -> Result<Outcome, String> {
         match self {
-            Target::Parse => front_end(text),
-            Target::Check => check(ctx, text),
-            Target::Format => format(text),
+            Target::Parse => front_end(text, mode),
+            Target::Check => check(ctx, text, mode),
+            Target::Format => format(text, mode),
             Target::Configuration => configuration(text),
             Target::Scenario => loader(text, Scenario::from_toml_str(text).map(|_| ())),
             Target::Campaign => campaign(text, mode),
@@ -308,9 +300,9 @@ impl Target {
     }
 }
 
-fn front_end(text: &str) -> Result<Outcome, String> {
+fn front_end(text: &str, mode: Mode) -> Result<Outcome, String> {
     let parsed = parse(text);
-    well_formed(text, &parsed.diagnostics)?;
+    well_formed(text, &parsed.diagnostics, mode)?;
     Ok(verdict(parsed.diagnostics.is_empty()))
 }
 
@@ -322,11 +314,11 @@ fn verdict(clean: bool) -> Outcome {
     }
 }
 
-fn check(ctx: &Context, text: &str) -> Result<Outcome, String> {
+fn check(ctx: &Context, text: &str, mode: Mode) -> Result<Outcome, String> {
     let parsed = parse(text);
     let (program, mut diagnostics) = analyze(&parsed.file, &ctx.registry);
     diagnostics.extend(parsed.diagnostics.iter().cloned());
-    well_formed(text, &diagnostics)?;
+    well_formed(text, &diagnostics, mode)?;
     let Some(program) = program else {
         return Ok(Outcome::Rejected);
     };
@@ -334,7 +326,7 @@ fn check(ctx: &Context, text: &str) -> Result<Outcome, String> {
         let name = &decl.name.name;
         if let Some(plan) = program.expand(name) {
             if let Err(d) = plan.flatten_for_paper() {
-                well_formed(text, &[d])?;
+                well_formed(text, &[d], mode)?;
             }
             match program.lower(std::slice::from_ref(&plan)) {
                 Ok(ir) => {
@@ -346,15 +338,15 @@ fn check(ctx: &Context, text: &str) -> Result<Outcome, String> {
             }
         }
         if let Some(Err(errors)) = program.reverse_sequence(name, "reversed") {
-            well_formed(text, &errors)?;
+            well_formed(text, &errors, mode)?;
         }
     }
     Ok(verdict(diagnostics.is_empty()))
 }
 
-fn format(text: &str) -> Result<Outcome, String> {
+fn format(text: &str, mode: Mode) -> Result<Outcome, String> {
     let parsed = parse(text);
-    well_formed(text, &parsed.diagnostics)?;
+    well_formed(text, &parsed.diagnostics, mode)?;
     if !parsed.diagnostics.is_empty() {
         return Ok(Outcome::Rejected);
     }
@@ -469,7 +461,7 @@ fn loader<E: std::fmt::Display>(text: &str, result: Result<(), E>) -> Result<Out
 }
 
 /// Diagnostics point inside the source at character boundaries and their text is bounded.
-fn well_formed(text: &str, diagnostics: &[Diagnostic]) -> Result<(), String> {
+fn well_formed(text: &str, diagnostics: &[Diagnostic], mode: Mode) -> Result<(), String> {
     let mut total = 0usize;
     for d in diagnostics {
         let description = d.describe();
@@ -482,7 +474,11 @@ fn well_formed(text: &str, diagnostics: &[Diagnostic]) -> Result<(), String> {
             + description.label.len()
             + description.hint.as_ref().map_or(0, String::len);
     }
-    let limit = ERROR_BASE_BYTES + DIAGNOSTIC_BYTES_PER_INPUT_BYTE * text.len();
+    let per_byte = match mode {
+        Mode::Guarded => GUARDED_DIAGNOSTIC_BYTES_PER_INPUT_BYTE,
+        Mode::Hostile => DIAGNOSTIC_BYTES_PER_INPUT_BYTE,
+    };
+    let limit = ERROR_BASE_BYTES + per_byte * text.len();
     if total > limit {
         return Err(format!(
             "{} diagnostics, {total} bytes of text, for {} bytes of source (limit {limit})",

@@ -73,15 +73,37 @@ fn plugin() {
     fuzz(Target::Plugin);
 }
 
+/// The hostile inputs of `target` (`fuzz/regressions/<target>/`), every path run.
+fn regressions(target: Target) {
+    let dir = corpus::root().join("regressions").join(target.name());
+    let corpus = Corpus::load(&dir).unwrap_or_else(|e| panic!("{e}"));
+    assert!(
+        !corpus.entries.is_empty(),
+        "{}: no regressions",
+        dir.display()
+    );
+    let summary =
+        run_corpus(target, &context(), &corpus, Mode::Hostile).unwrap_or_else(|e| panic!("{e}"));
+    eprintln!("{} regressions: {summary}", target.name());
+}
+
+/// Lines of thousands of unknown characters: one diagnostic each until the lexer merges them.
 #[test]
 #[ignore = "enabled once the limits land"]
-fn hostile_regressions() {
-    let ctx = context();
-    for target in Target::ALL {
-        let dir = corpus::root().join("regressions").join(target.name());
-        let corpus = Corpus::load(&dir).unwrap_or_else(|e| panic!("{e}"));
-        let summary =
-            run_corpus(target, &ctx, &corpus, Mode::Hostile).unwrap_or_else(|e| panic!("{e}"));
-        eprintln!("{} regressions: {summary}", target.name());
-    }
+fn parse_regressions() {
+    regressions(Target::Parse);
+}
+
+/// `seeds = 4294967296`: planned one run per seed before any limit.
+#[test]
+#[ignore = "enabled once the limits land"]
+fn campaign_regressions() {
+    regressions(Target::Campaign);
+}
+
+/// `count = 1000000000`: the loader names every index before checking the count.
+#[test]
+#[ignore = "enabled once the limits land"]
+fn plugin_regressions() {
+    regressions(Target::Plugin);
 }
