@@ -500,3 +500,56 @@ fn span_inside(text: &str, start: u32, end: u32) -> Result<(), String> {
         text.len()
     ))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use dynarole_core::{DiagnosticKind, Span};
+
+    fn unknown(start: u32, end: u32) -> Diagnostic {
+        Diagnostic {
+            kind: DiagnosticKind::UnknownCharacter { found: '@' },
+            span: Span { start, end },
+        }
+    }
+
+    #[test]
+    fn spans_must_be_character_ranges_of_the_source() {
+        let text = "robot \u{e9};";
+        assert!(span_inside(text, 6, 8).is_ok());
+        assert!(span_inside(text, 7, 8).is_err(), "inside a character");
+        assert!(span_inside(text, 3, 2).is_err(), "reversed");
+        assert!(span_inside(text, 0, 100).is_err(), "past the end");
+    }
+
+    #[test]
+    fn diagnostic_floods_break_the_hostile_bound_only() {
+        let text = "@".repeat(3000);
+        let flood: Vec<Diagnostic> = (0..3000).map(|i| unknown(i, i + 1)).collect();
+        assert!(well_formed(&text, &flood, Mode::Guarded).is_ok());
+        assert!(well_formed(&text, &flood, Mode::Hostile).is_err());
+        assert!(well_formed(&text, &[unknown(0, 3000)], Mode::Hostile).is_ok());
+    }
+
+    #[test]
+    fn loader_errors_must_be_bounded_and_say_something() {
+        assert_eq!(loader("x", Ok::<(), String>(())), Ok(Outcome::Accepted));
+        assert_eq!(loader("x", Err("bad")), Ok(Outcome::Rejected));
+        assert!(loader("x", Err("  ")).is_err());
+        assert!(loader("x", Err("e".repeat(ERROR_BASE_BYTES + 2))).is_err());
+    }
+
+    #[test]
+    fn guards_defer_only_what_waits_for_a_limit() {
+        let big = "name = \"g\"\n[[part]]\nname = \"P\"\ncount = 70000\n";
+        let ctx = Context::new(&[]);
+        assert_eq!(
+            Target::Plugin.run(&ctx, big, Mode::Guarded),
+            Ok(Outcome::Deferred)
+        );
+        assert_eq!(
+            Target::Plugin.run(&ctx, big, Mode::Hostile),
+            Ok(Outcome::Rejected)
+        );
+    }
+}
