@@ -76,7 +76,7 @@ static void on_send(fuzz_node_t *node, const uint8_t *bytes, uint8_t len)
         memcpy(queue[n_queue].bytes, bytes, len);
         n_queue++;
     }
-    if (n_saved >= SAVED_FRAMES || (n_sent & (n_sent - 1u)) != 0u) {
+    if (n_saved >= SAVED_FRAMES || (n_sent & (n_sent - 1u)) != 0u || len < 2u) {
         return;
     }
     snprintf(name, sizeof name, "raw-%u", n_saved);

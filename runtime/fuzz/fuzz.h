@@ -15,7 +15,7 @@
 #define FUZZ_NV_BYTES 512u
 /* Records of one input that are run (bounds the work per input). */
 #define FUZZ_MAX_RECORDS 256u
-/* Records kinds: the low two bits of a record's first byte. */
+/* Record kinds: the low two bits of a record's first byte. */
 #define FUZZ_RECORD_RAW 0u    /* [channel] [len] [len bytes]: delivered as they are */
 #define FUZZ_RECORD_SEALED 1u /* [channel] [len] [len bytes]: a CRC-16 appended, then delivered */
 #define FUZZ_RECORD_STEP 2u   /* [ms]: the clock moves on, then one step */

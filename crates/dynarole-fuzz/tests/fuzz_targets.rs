@@ -10,7 +10,8 @@ use std::path::PathBuf;
 const DEFAULT_CASES: u32 = 2000;
 
 fn context() -> Context {
-    let plugins = Corpus::load(&corpus::root().join("corpus/plugin")).unwrap_or_default();
+    let plugins =
+        Corpus::load(&corpus::root().join("corpus/plugin")).unwrap_or_else(|e| panic!("{e}"));
     let texts: Vec<String> = plugins.entries.iter().map(|e| e.text()).collect();
     Context::new(&texts)
 }
