@@ -3,9 +3,9 @@
 //! `fuzz/corpus/<target>/`, then a bounded number of proptest-driven mutations of those files.
 //!
 //! Properties checked on every input: no panic; the result is `Ok` or a well-formed error
-//! (diagnostic spans inside the source and on character boundaries, loader errors naming their
-//! field or quoting TOML's own message); error text bounded in size; round trips (formatting,
-//! configurations written back) give what they started from. Everything runs in process, with
+//! (diagnostic spans inside the source and on character boundaries, loader messages not
+//! empty); error text bounded in size; round trips (formatting, configurations written back)
+//! give what they started from. Everything runs in process, with
 //! fixed seeds, so the same build gives the same cases. See `docs/fuzzing.md`.
 
 pub mod corpus;
