@@ -108,3 +108,24 @@ fn campaign_regressions() {
 fn plugin_regressions() {
     regressions(Target::Plugin);
 }
+
+/// Two runs from one seed see the same cases (the counts of each outcome agree).
+#[test]
+fn one_seed_gives_the_same_cases() {
+    let dir = corpus::root().join("corpus").join(Target::Scenario.name());
+    let corpus = Corpus::load(&dir).unwrap_or_else(|e| panic!("{e}"));
+    let settings = Settings {
+        cases: 300,
+        seed: 3,
+        ..settings()
+    };
+    let ctx = context();
+    let counts = || {
+        let s = run_mutations(Target::Scenario, &ctx, &corpus, &settings, Mode::Guarded)
+            .unwrap_or_else(|e| panic!("{e}"));
+        (s.inputs, s.accepted, s.rejected, s.deferred)
+    };
+    let first = counts();
+    assert_eq!(first.0, 300);
+    assert_eq!(first, counts());
+}
