@@ -12,7 +12,7 @@ mod spec;
 mod stats;
 mod tables;
 
-pub use plan::{Axis, Faults, PlannedRun};
+pub use plan::{plan, Axis, Faults, PlannedRun};
 pub use plot::rasterise_svg;
 pub use results::{Outcome, Row, COLUMNS};
 pub use spec::{CampaignFile, Merge, ProtocolName, ProtocolOptions, Range, SpecError, Sweep};
