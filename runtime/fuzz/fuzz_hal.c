@@ -36,6 +36,9 @@ uint8_t fuzz_seal(uint8_t *bytes, uint8_t len, uint8_t cap)
     if ((unsigned)len + 2u > cap) {
         return len;
     }
+    if (len >= 2u) {
+        bytes[1] = (uint8_t)(len + 2u); /* the frame's length field, as a sender writes it */
+    }
     crc = dr_crc16(bytes, len);
     bytes[len] = (uint8_t)(crc >> 8);
     bytes[len + 1u] = (uint8_t)(crc & 0xFFu);
@@ -83,10 +86,12 @@ void dr_hal_send(struct dr_module *m, uint8_t channel, const uint8_t *bytes, uin
     sent(m, bytes, len);
 }
 
-void dr_hal_op_start(struct dr_module *m, uint8_t op, uint8_t index, const int16_t *args)
+void dr_hal_op_start(struct dr_module *m, uint16_t statement, uint8_t op, uint8_t index,
+                     const int16_t *args)
 {
     (void)op;
     (void)index;
+    (void)statement;
     if (args == NULL) {
         fuzz_fail("an operation started without arguments");
     }
