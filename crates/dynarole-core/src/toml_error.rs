@@ -45,16 +45,23 @@ impl TomlError {
     /// An error of the TOML parser or of the typed reading of its tables, at the place toml
     /// reports, with the closest name as a hint for an unknown key or variant.
     pub fn from_de(e: &toml::de::Error) -> TomlError {
+        // The parser's message may take several lines ("invalid string", "expected ..."), or
+        // none at all (a control character inside a comment).
+        let message = e
+            .message()
+            .lines()
+            .map(str::trim)
+            .filter(|l| !l.is_empty())
+            .collect::<Vec<_>>()
+            .join("; ");
+        let message = if message.is_empty() {
+            "this is not valid TOML here (a control character, or a broken line)".to_string()
+        } else {
+            message
+        };
         TomlError {
             field: String::new(),
-            // The parser's message may take several lines ("invalid string", "expected ...").
-            message: e
-                .message()
-                .lines()
-                .map(str::trim)
-                .filter(|l| !l.is_empty())
-                .collect::<Vec<_>>()
-                .join("; "),
+            message,
             span: e.span(),
             hint: unknown_name_hint(e.message()),
         }
