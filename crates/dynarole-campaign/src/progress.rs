@@ -5,7 +5,7 @@
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::IsTerminal;
 use std::sync::atomic::{AtomicU64, Ordering};
-use std::sync::mpsc::{channel, RecvTimeoutError, Sender};
+use std::sync::mpsc::{channel, Receiver, RecvTimeoutError, Sender};
 use std::sync::Arc;
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
@@ -92,18 +92,8 @@ impl Progress {
             ProgressMode::Lines { every } => {
                 let (stop, stopped) = channel::<()>();
                 progress.stop = Some(stop);
-                // A thread rather than a check on each completion: a line is due even while
-                // one long unit of work is still running. A command that printed progress
-                // ends with a last line; one shorter than the interval prints none.
                 progress.printer = Some(std::thread::spawn(move || {
-                    let mut printed = false;
-                    while let Err(RecvTimeoutError::Timeout) = stopped.recv_timeout(every) {
-                        eprintln!("{}", shared.line());
-                        printed = true;
-                    }
-                    if printed {
-                        eprintln!("{}", shared.line());
-                    }
+                    print_lines(&shared, every, &stopped);
                 }));
             }
         }
@@ -181,6 +171,20 @@ impl Shared {
             self.what,
             duration_text(elapsed)
         )
+    }
+}
+
+/// One line every `every` until `stopped` (a thread rather than a check on each completion:
+/// a line is due even while one long unit of work is still running). A command that printed
+/// progress ends with a last line; one shorter than the interval prints none.
+fn print_lines(shared: &Shared, every: Duration, stopped: &Receiver<()>) {
+    let mut printed = false;
+    while let Err(RecvTimeoutError::Timeout) = stopped.recv_timeout(every) {
+        eprintln!("{}", shared.line());
+        printed = true;
+    }
+    if printed {
+        eprintln!("{}", shared.line());
     }
 }
 

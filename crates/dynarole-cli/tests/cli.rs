@@ -643,9 +643,9 @@ fn campaign_prints_progress_lines_when_stderr_is_not_a_terminal() {
     let _ = std::fs::remove_dir_all(&dir);
     let out = Command::new(env!("CARGO_BIN_EXE_dynarole"))
         .args(["campaign", "examples/campaigns/smoke.toml", "--no-plots"])
-        .args(["--max-runs", "3", "-j", "1", "-o"])
+        .args(["--max-runs", "6", "-j", "1", "-o"])
         .arg(&dir)
-        .env("DYNAROLE_PROGRESS_SECONDS", "0.2")
+        .env("DYNAROLE_PROGRESS_SECONDS", "0.01")
         .current_dir(repo_root())
         .output()
         .expect("dynarole runs");
@@ -653,15 +653,15 @@ fn campaign_prints_progress_lines_when_stderr_is_not_a_terminal() {
     let stderr = text(&out.stderr);
     let lines: Vec<&str> = stderr
         .lines()
-        .filter(|l| l.starts_with("campaign: ") && l.contains(" of 3 runs ("))
+        .filter(|l| l.starts_with("campaign: ") && l.contains(" of 6 runs ("))
         .collect();
-    // A run takes well over 0.2 s: lines while it runs, and one at the end.
+    // A run takes well over 10 ms: lines while they run, and one at the end.
     assert!(lines.len() >= 2, "{stderr}");
     assert!(lines.iter().all(|l| l.contains("runs/s")), "{stderr}");
     assert!(
         lines
             .last()
-            .is_some_and(|l| l.contains("3 of 3 runs (100.0 %)") && l.contains("all done")),
+            .is_some_and(|l| l.contains("6 of 6 runs (100.0 %)") && l.contains("all done")),
         "{stderr}"
     );
     assert!(
