@@ -4,10 +4,10 @@
 
 use crate::load::{compile_options, Inputs};
 use crate::plan::PlannedRun;
+use crate::progress::{Progress, ProgressMode};
 use crate::results::{Row, Sink};
 use crate::Error;
 use dynarole_sim::{Run, SimError, Simulator};
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
 use std::sync::Mutex;
 
@@ -97,35 +97,20 @@ pub fn prepare(inputs: &Inputs) -> Result<(), Error> {
     Ok(())
 }
 
-fn progress_bar(len: u64, visible: bool) -> ProgressBar {
-    let target = if visible {
-        ProgressDrawTarget::stderr()
-    } else {
-        ProgressDrawTarget::hidden()
-    };
-    let bar = ProgressBar::with_draw_target(Some(len), target);
-    if let Ok(style) =
-        ProgressStyle::with_template("{elapsed_precise} [{wide_bar}] {pos}/{len} runs, {eta} left")
-    {
-        bar.set_style(style);
-    }
-    bar
-}
-
-/// Runs `pending` on `jobs` threads (all cores when `None`), appending each row to `sink`;
-/// returns the new rows (in completion order).
+/// Runs `pending` on `jobs` threads (all cores when `None`), appending each row to `sink` and
+/// showing progress on stderr; returns the new rows (in completion order).
 pub fn run_all(
     inputs: &Inputs<'_>,
     pending: &[PlannedRun],
     sink: Sink,
     jobs: Option<usize>,
-    progress: bool,
+    progress: ProgressMode,
 ) -> Result<Vec<Row>, Error> {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(jobs.unwrap_or(0))
         .build()
         .map_err(|e| Error::Sim(format!("cannot start the worker threads: {e}")))?;
-    let bar = progress_bar(pending.len() as u64, progress);
+    let bar = Progress::start(progress, "campaign", pending.len() as u64, "runs");
     let shared = Mutex::new((sink, Vec::with_capacity(pending.len())));
     pool.install(|| {
         pending.par_iter().try_for_each_init(
@@ -135,11 +120,11 @@ pub fn run_all(
                 let mut guard = shared.lock().unwrap_or_else(|e| e.into_inner());
                 guard.0.write(&row)?;
                 guard.1.push(row);
-                bar.inc(1);
+                bar.inc();
                 Ok::<(), Error>(())
             },
         )
     })?;
-    bar.finish_and_clear();
+    bar.finish();
     Ok(shared.into_inner().unwrap_or_else(|e| e.into_inner()).1)
 }

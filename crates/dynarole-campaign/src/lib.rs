@@ -7,6 +7,7 @@ mod exec;
 mod load;
 mod plan;
 mod plot;
+mod progress;
 mod results;
 mod spec;
 mod stats;
@@ -14,6 +15,7 @@ mod tables;
 
 pub use plan::{plan, Axis, Faults, PlannedRun};
 pub use plot::rasterise_svg;
+pub use progress::{Progress, ProgressMode, INTERVAL_VARIABLE};
 pub use results::{Outcome, Row, COLUMNS};
 pub use spec::{CampaignFile, Merge, ProtocolName, ProtocolOptions, Range, SpecError, Sweep};
 pub use stats::{median, summarise, wilson, PointSummary};
@@ -79,8 +81,8 @@ pub struct Options {
     pub max_runs: Option<u64>,
     /// Worker threads (default: one per core).
     pub jobs: Option<usize>,
-    /// Show a progress bar on stderr (it stays hidden when stderr is not a terminal).
-    pub progress: bool,
+    /// Progress on stderr: a bar, periodic lines, or nothing.
+    pub progress: ProgressMode,
     /// Draw the plots (SVG and PNG).
     pub plots: bool,
 }

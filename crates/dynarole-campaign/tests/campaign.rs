@@ -2,7 +2,7 @@
 //! a resumed campaign gives the rows of an uninterrupted one, plots are written, and errors in
 //! the campaign file name their field.
 
-use dynarole_campaign::{run, CampaignFile, Done, Options, COLUMNS};
+use dynarole_campaign::{run, CampaignFile, Done, Options, ProgressMode, COLUMNS};
 use std::path::{Path, PathBuf};
 
 fn smoke() -> PathBuf {
@@ -15,7 +15,7 @@ fn options(out: &Path, max_runs: Option<u64>, plots: bool) -> Options {
         out_dir: out.to_path_buf(),
         max_runs,
         jobs: Some(2),
-        progress: false,
+        progress: ProgressMode::Off,
         plots,
     }
 }

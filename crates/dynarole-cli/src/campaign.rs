@@ -4,8 +4,7 @@
 
 use crate::load::Failure;
 use crate::render;
-use dynarole_campaign::{Done, Error, Options};
-use std::io::IsTerminal;
+use dynarole_campaign::{Done, Error, Options, ProgressMode};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -28,7 +27,7 @@ pub fn run(args: &CampaignArgs) -> Result<ExitCode, Failure> {
         out_dir,
         max_runs: args.max_runs,
         jobs: args.jobs,
-        progress: std::io::stderr().is_terminal(),
+        progress: ProgressMode::for_stderr().map_err(Failure::Usage)?,
         plots: !args.no_plots,
     };
     match dynarole_campaign::run(&options) {
@@ -49,12 +48,12 @@ pub fn run(args: &CampaignArgs) -> Result<ExitCode, Failure> {
     }
 }
 
-/// `NAME-results` in the current directory for `NAME.toml`.
+/// `out/NAME` for `NAME.toml`: generated files stay under `out/`, which git ignores.
 fn default_out_dir(file: &Path) -> PathBuf {
     let stem = file
         .file_stem()
         .map_or("campaign".into(), |s| s.to_string_lossy().into_owned());
-    PathBuf::from(format!("{stem}-results"))
+    Path::new("out").join(stem)
 }
 
 fn print_done(done: &Done) {

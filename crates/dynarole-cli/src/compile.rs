@@ -60,6 +60,7 @@ pub enum MergeArg {
 /// Options of the protocols, shared by `compile` and `simulate`.
 #[derive(Clone, Debug, clap::Args)]
 pub struct ProtocolOptions {
+    /// The protocol that shares the state between the modules.
     #[arg(long, value_enum, default_value_t = ProtocolArg::Lattice)]
     pub protocol: ProtocolArg,
     /// Paper protocol: which of the three historical merge functions to use.

@@ -33,6 +33,8 @@ struct Cli {
 enum Command {
     /// Check `.dr` files: syntax, names, types, reversibility. Exit 1 on any error.
     Check {
+        /// The `.dr` files to check.
+        #[arg(value_name = "FILE")]
         files: Vec<PathBuf>,
         #[command(flatten)]
         plugins: load::PluginArgs,
@@ -49,10 +51,12 @@ enum Command {
     },
     /// Compile sequences to a self-contained directory of C: runtime, state machine, Makefile.
     Compile {
+        /// The `.dr` file holding the sequences.
         file: PathBuf,
         /// Sequence to compile; repeat to run several in turn (default: the first in the file).
         #[arg(long = "sequence", value_name = "NAME")]
         sequences: Vec<String>,
+        /// What to generate: C for the modules, nesC (TinyOS), or the Promela model for spin.
         #[arg(long, value_enum, default_value_t = compile::Target::C)]
         target: compile::Target,
         #[command(flatten)]
@@ -76,6 +80,7 @@ enum Command {
     /// Model-check a compiled sequence on a configuration with spin: S1, S2, S3 and L under
     /// the stated bounds (exit 0 verified, 1 violated, 3 inconclusive).
     Verify {
+        /// The `.dr` file holding the sequences.
         file: PathBuf,
         /// Sequence to check; repeat to run several in turn (default: the first in the file).
         #[arg(long = "sequence", value_name = "NAME")]
@@ -113,6 +118,7 @@ enum Command {
     },
     /// Draw a configuration (JSON) as an SVG or PNG picture.
     Show {
+        /// The configuration to draw (JSON).
         config: PathBuf,
         /// The picture to write: FILE.svg or FILE.png.
         #[arg(short = 'o', long = "output", value_name = "FILE")]
@@ -120,6 +126,7 @@ enum Command {
     },
     /// Run sequences on the kinematic model of the robot (no network) and report the result.
     Replay {
+        /// The `.dr` file holding the sequences.
         file: PathBuf,
         #[command(flatten)]
         run: world::RunArgs,
@@ -132,6 +139,7 @@ enum Command {
     /// Run the generated C on every module over lossy infrared links, with faults (exit 3
     /// when the goal is not reached).
     Simulate {
+        /// The `.dr` file holding the sequences.
         file: PathBuf,
         #[command(flatten)]
         run: world::RunArgs,
@@ -143,6 +151,8 @@ enum Command {
         /// Per-packet loss at the receiving connector (overrides the scenario's).
         #[arg(long, value_name = "P")]
         loss: Option<f64>,
+        /// Seed of every random draw (loss, faults, timing): the same seed and inputs give
+        /// the same run, byte for byte.
         #[arg(long, default_value_t = 0)]
         seed: u64,
         /// Runs with seeds SEED, SEED+1, ...
@@ -160,8 +170,9 @@ enum Command {
     /// Run a sweep of simulations described by a TOML file, in parallel: DIR/runs.csv (one
     /// row per run; an interrupted campaign resumes where it stopped), summary.csv, plots.
     Campaign {
+        /// The campaign file (TOML; see crates/dynarole-campaign/README.md).
         file: PathBuf,
-        /// The output directory (default: NAME-results for NAME.toml).
+        /// The output directory (default: out/NAME for NAME.toml).
         #[arg(short = 'o', long = "output", value_name = "DIR")]
         out_dir: Option<PathBuf>,
         /// Do at most N of the runs not yet recorded, then stop (run again to go on).
@@ -176,6 +187,8 @@ enum Command {
     },
     /// Rewrite `.dr` files in the canonical layout (comments kept).
     Fmt {
+        /// The `.dr` files to format in place.
+        #[arg(value_name = "FILE")]
         files: Vec<PathBuf>,
         /// Change nothing; exit 1 if a file is not formatted.
         #[arg(long)]
@@ -185,7 +198,9 @@ enum Command {
     },
     /// Print the reverse of SEQUENCE as a complete `.dr` file that `check` accepts.
     Reverse {
+        /// The `.dr` file holding the sequence.
         file: PathBuf,
+        /// The sequence to reverse.
         sequence: String,
         /// Name of the reversed sequence (default: the file's `X = reverse SEQUENCE`,
         /// else `b2a` for `a2b`, else `SEQUENCE_reversed`).
@@ -332,6 +347,28 @@ pub fn main() -> ExitCode {
         Err(failure) => {
             render::failure(&failure);
             failure.exit_code()
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Cli;
+    use clap::CommandFactory;
+
+    /// `--help` explains every argument of every subcommand, positional ones included.
+    #[test]
+    fn every_argument_has_help() {
+        let cli = Cli::command();
+        for command in cli.get_subcommands() {
+            for arg in command.get_arguments() {
+                assert!(
+                    arg.get_help().is_some() || arg.get_long_help().is_some(),
+                    "`dynarole {}`: `{}` has no help text",
+                    command.get_name(),
+                    arg.get_id()
+                );
+            }
         }
     }
 }

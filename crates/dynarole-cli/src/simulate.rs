@@ -49,6 +49,9 @@ pub fn run(args: &SimulateArgs) -> Result<ExitCode, Failure> {
             }
             Err(e) => return Err(Failure::Input(e.to_string())),
         };
+        let mode = dynarole_campaign::ProgressMode::for_stderr().map_err(Failure::Usage)?;
+        let progress =
+            dynarole_campaign::Progress::start(mode, "simulate", args.repeat.max(1), "runs");
         let mut failed = 0u64;
         for k in 0..args.repeat.max(1) {
             let seed = args.seed.wrapping_add(k);
@@ -63,12 +66,14 @@ pub fn run(args: &SimulateArgs) -> Result<ExitCode, Failure> {
                 })
                 .map_err(|e| Failure::Input(e.to_string()))?;
             let wall = started.elapsed().as_secs_f64();
-            output(args, &report, wall, k)?;
+            progress.inc();
+            progress.suspend(|| output(args, &report, wall, k))?;
             if !report.success {
                 failed += 1;
-                eprintln!("replay with: {}", replay_command(args, seed));
+                progress.suspend(|| eprintln!("replay with: {}", replay_command(args, seed)));
             }
         }
+        progress.finish();
         if args.repeat > 1 && !args.json {
             println!(
                 "{} of {} runs reached the goal",
@@ -100,7 +105,7 @@ fn scenario(args: &SimulateArgs) -> Result<Scenario, Failure> {
 }
 
 fn output(args: &SimulateArgs, report: &Report, wall: f64, k: u64) -> Result<(), Failure> {
-    if let (Some(path), Some(trace)) = (args.trace, &report.trace) {
+    if let (Some(path), Some(trace)) = (args.trace, report.trace_file()) {
         let path = if args.repeat > 1 {
             PathBuf::from(format!("{}.{k}", path.display()))
         } else {
@@ -115,7 +120,12 @@ fn output(args: &SimulateArgs, report: &Report, wall: f64, k: u64) -> Result<(),
         println!("{text}");
         return Ok(());
     }
-    print!("{}", report.summary());
+    // The checks are explained once, where the first report names them.
+    if k == 0 {
+        print!("{}", report.summary_explained());
+    } else {
+        print!("{}", report.summary());
+    }
     if let Some(d) = &report.difference {
         println!("  difference from the expected configuration:\n{d}");
     }

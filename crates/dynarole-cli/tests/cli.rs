@@ -733,3 +733,101 @@ fn simulate_defaults_to_the_first_sequence_like_the_other_commands() {
     assert!(default.starts_with("SUCCESS"), "{default}");
     assert_eq!(default, run(&["--sequence", "ab_c"]));
 }
+
+#[test]
+fn campaign_prints_progress_lines_when_stderr_is_not_a_terminal() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli-campaign-progress");
+    let _ = std::fs::remove_dir_all(&dir);
+    let out = Command::new(env!("CARGO_BIN_EXE_dynarole"))
+        .args(["campaign", "examples/campaigns/smoke.toml", "--no-plots"])
+        .args(["--max-runs", "6", "-j", "1", "-o"])
+        .arg(&dir)
+        .env("DYNAROLE_PROGRESS_SECONDS", "0.01")
+        .current_dir(repo_root())
+        .output()
+        .expect("dynarole runs");
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let stderr = text(&out.stderr);
+    let lines: Vec<&str> = stderr
+        .lines()
+        .filter(|l| l.starts_with("campaign: ") && l.contains(" of 6 runs ("))
+        .collect();
+    // A run takes well over 10 ms: lines while they run, and one at the end.
+    assert!(lines.len() >= 2, "{stderr}");
+    assert!(lines.iter().all(|l| l.contains("runs/s")), "{stderr}");
+    assert!(
+        lines
+            .last()
+            .is_some_and(|l| l.contains("6 of 6 runs (100.0 %)") && l.contains("all done")),
+        "{stderr}"
+    );
+    assert!(
+        !text(&out.stdout).contains("runs/s"),
+        "progress stays off stdout"
+    );
+}
+
+#[test]
+fn a_bad_progress_interval_is_a_usage_error_naming_the_variable() {
+    let out = Command::new(env!("CARGO_BIN_EXE_dynarole"))
+        .args(["campaign", "examples/campaigns/smoke.toml", "-o"])
+        .arg(Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli-campaign-bad-interval"))
+        .env("DYNAROLE_PROGRESS_SECONDS", "often")
+        .current_dir(repo_root())
+        .output()
+        .expect("dynarole runs");
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        text(&out.stderr).contains("DYNAROLE_PROGRESS_SECONDS=often"),
+        "{}",
+        text(&out.stderr)
+    );
+}
+
+#[test]
+fn simulate_explains_the_checks_once_and_heads_the_trace_with_its_columns() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli-simulate-trace");
+    std::fs::create_dir_all(&dir).expect("dir");
+    let trace = dir.join("run.trace");
+    let trace_arg = trace.to_str().expect("path");
+    let out = dynarole(&[
+        "simulate",
+        "examples/atron/eight2car.dr",
+        "--sequence",
+        "eight2car",
+        "--from",
+        "examples/atron/eight.json",
+        "--expect",
+        "examples/atron/car.json",
+        "--seed",
+        "1",
+        "--repeat",
+        "2",
+        "--trace",
+        trace_arg,
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let stdout = text(&out.stdout);
+    for check in ["S1", "S2", "S3"] {
+        assert_eq!(
+            stdout.matches(&format!("    {check}: no ")).count(),
+            1,
+            "{stdout}"
+        );
+    }
+    let first = std::fs::read_to_string(dir.join("run.trace.0")).expect("trace");
+    let header = first.lines().next().unwrap_or_default();
+    assert!(header.starts_with('#'), "{header}");
+    // The titles stand where the columns of the lines start.
+    let line = first
+        .lines()
+        .find(|l| l.contains(" start "))
+        .expect("a start event");
+    for (title, value) in [("module", "M"), ("event", "start"), ("state", "e0")] {
+        let column = header.find(title).expect("title");
+        assert!(
+            line[column..].starts_with(value),
+            "{title}:\n{header}\n{line}"
+        );
+    }
+}

@@ -336,3 +336,80 @@ fn robot_identity_and_key_are_stamped_in_and_the_key_adds_its_tag() {
     assert!(file(&keyed, "dr_program.c").contains("dr_packet_key[16] = { 0xA5u"));
     assert!(!file(&plain, "dr_program.c").contains("dr_packet_key"));
 }
+
+/// `make` found on the caller's PATH (the tests below change the PATH make runs with).
+fn make_program() -> PathBuf {
+    let path = std::env::var_os("PATH").unwrap_or_default();
+    std::env::split_paths(&path)
+        .map(|d| d.join("make"))
+        .find(|p| p.is_file())
+        .expect("make on PATH")
+}
+
+fn make(dir: &Path, args: &[&str], path: &std::ffi::OsStr) -> std::process::Output {
+    Command::new(make_program())
+        .args(args)
+        .env("PATH", path)
+        .current_dir(dir)
+        .output()
+        .expect("make runs")
+}
+
+#[test]
+fn host_and_mcu_builds_do_not_share_objects() {
+    let dir = out_dir("makefile");
+    write(
+        &compile(FIG5, "eight2car", &options(Protocol::Lattice)),
+        &dir,
+    );
+    let path = std::env::var_os("PATH").unwrap_or_default();
+    let host = make(&dir, &["-s"], &path);
+    assert!(host.status.success(), "{host:?}");
+    assert!(dir.join("build/host/libdynarole.a").is_file());
+    assert!(dir.join("build/host/dr_program.o").is_file());
+    assert!(
+        !dir.join("dr_program.o").exists(),
+        "objects beside the sources"
+    );
+
+    // Without avr-gcc: a clear error naming the package, before anything is built.
+    let empty = dir.join("no-tools");
+    std::fs::create_dir_all(&empty).expect("dir");
+    let missing = make(&dir, &["MCU=atmega128"], empty.as_os_str());
+    let stderr = String::from_utf8_lossy(&missing.stderr);
+    assert!(!missing.status.success());
+    assert!(
+        stderr.contains("avr-gcc not found") && stderr.contains("apt-get install gcc-avr"),
+        "{stderr}"
+    );
+    assert!(!dir.join("build/atmega128").exists());
+
+    // With avr-gcc (a stand-in: `make -n` only prints the commands), after the host build
+    // the MCU build is not "up to date": it compiles every source into its own directory.
+    let tools = dir.join("tools");
+    std::fs::create_dir_all(&tools).expect("dir");
+    for tool in ["avr-gcc", "avr-ar"] {
+        let file = tools.join(tool);
+        std::fs::write(&file, "#!/bin/sh\nexit 1\n").expect("write");
+        use std::os::unix::fs::PermissionsExt;
+        std::fs::set_permissions(&file, std::fs::Permissions::from_mode(0o755)).expect("chmod");
+    }
+    let with_tools =
+        std::env::join_paths(std::iter::once(tools).chain(std::env::split_paths(&path)))
+            .expect("PATH");
+    let avr = make(&dir, &["-n", "MCU=atmega128"], &with_tools);
+    let stdout = String::from_utf8_lossy(&avr.stdout);
+    assert!(avr.status.success(), "{avr:?}");
+    for source in ["dr_packet", "dr_lattice", "dr_program"] {
+        assert!(
+            stdout.contains(&format!(
+                "avr-gcc -std=c99 -Os -mmcu=atmega128 -Wall -Wextra -Werror -c {source}.c -o build/atmega128/{source}.o"
+            )),
+            "{stdout}"
+        );
+    }
+    assert!(
+        stdout.contains("avr-ar rcs build/atmega128/libdynarole.a"),
+        "{stdout}"
+    );
+}

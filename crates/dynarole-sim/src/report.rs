@@ -119,6 +119,23 @@ impl Report {
 
     /// A few lines for people.
     pub fn summary(&self) -> String {
+        self.summary_with(false)
+    }
+
+    /// The summary with one line on each check (S1, S2, S3) under the line that counts
+    /// them: for the first report a reader sees.
+    pub fn summary_explained(&self) -> String {
+        self.summary_with(true)
+    }
+
+    /// The event trace as a file: a header naming the columns and the events, then the lines.
+    pub fn trace_file(&self) -> Option<String> {
+        self.trace
+            .as_ref()
+            .map(|lines| format!("{}{lines}", trace_header()))
+    }
+
+    fn summary_with(&self, explain_checks: bool) -> String {
         let mut out = String::new();
         let verdict = if self.success { "SUCCESS" } else { "FAILURE" };
         let when = self
@@ -151,6 +168,9 @@ impl Report {
             self.count("S2"),
             self.count("S3")
         );
+        if explain_checks {
+            out.push_str(CHECKS_EXPLAINED);
+        }
         for v in &self.violations {
             let _ = writeln!(
                 out,
@@ -241,4 +261,31 @@ impl Report {
             );
         }
     }
+}
+
+/// What S1, S2 and S3 check (docs/simulator.md), one line each.
+const CHECKS_EXPLAINED: &str = concat!(
+    "    S1: no statement started before every statement it depends on was physically done\n",
+    "    S2: no statement re-issued after a statement that depends on it had started\n",
+    "    S3: no module declared the end before every operation was done\n",
+);
+
+/// The trace's header: the column titles, aligned with the lines `State::log` writes (time in
+/// simulated milliseconds, module, event, the module's protocol state, detail), and the events.
+fn trace_header() -> String {
+    format!(
+        "{:<12} {:<6} {:<10} {:<width$} {}\n{}",
+        "#    time ms",
+        "module",
+        "event",
+        "state",
+        "detail",
+        "# time: simulated milliseconds since the start; state: the module's protocol state as its\n\
+         #   runtime describes it (`-`: none yet); detail: the statement, or the packet's link.\n\
+         # events: power-on, power-off, reset, start, resume, retry, reissue, done, interrupt,\n\
+         #   refused, unknown-op, finished (the module declares the end), S1/S2/S3 (a violation),\n\
+         #   timeout; a packet that did not arrive: lost, dead-link, collision, blocked, broken (a\n\
+         #   turn broke the link), off (the receiver was off).\n",
+        width = crate::state::STATE_COLUMN
+    )
 }

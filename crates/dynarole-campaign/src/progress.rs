@@ -1,0 +1,242 @@
+//! Progress of long commands on stderr (stdout stays deterministic): a bar with rate and time
+//! left on a terminal, else one line every few seconds (CI logs), so that no long command is
+//! silent. Shared by `campaign` and `simulate --repeat`.
+
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use std::io::IsTerminal;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::mpsc::{channel, Receiver, RecvTimeoutError, Sender};
+use std::sync::Arc;
+use std::thread::JoinHandle;
+use std::time::{Duration, Instant};
+
+/// Overrides the interval of the one-line progress (seconds; 0 turns it off).
+pub const INTERVAL_VARIABLE: &str = "DYNAROLE_PROGRESS_SECONDS";
+
+/// Seconds between two progress lines when stderr is not a terminal.
+const DEFAULT_INTERVAL_S: u64 = 10;
+
+/// How progress is shown.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ProgressMode {
+    /// Nothing.
+    Off,
+    /// A bar redrawn in place (stderr is a terminal).
+    Bar,
+    /// One line on stderr every `every`.
+    Lines { every: Duration },
+}
+
+impl ProgressMode {
+    /// A bar when stderr is a terminal, else lines every `DYNAROLE_PROGRESS_SECONDS`
+    /// (default 10 s). A value that is not a number of seconds is an error naming it.
+    pub fn for_stderr() -> Result<ProgressMode, String> {
+        if std::io::stderr().is_terminal() {
+            return Ok(ProgressMode::Bar);
+        }
+        let every = match std::env::var(INTERVAL_VARIABLE) {
+            Ok(text) => text
+                .trim()
+                .parse::<f64>()
+                .ok()
+                .and_then(|s| Duration::try_from_secs_f64(s).ok())
+                .ok_or_else(|| {
+                    format!("{INTERVAL_VARIABLE}={text}: expected seconds, 0 or more (0: no progress lines)")
+                })?,
+            Err(_) => Duration::from_secs(DEFAULT_INTERVAL_S),
+        };
+        Ok(if every.is_zero() {
+            ProgressMode::Off
+        } else {
+            ProgressMode::Lines { every }
+        })
+    }
+}
+
+/// Progress of `total` units of work (`what`, e.g. "runs"), counted from any thread.
+pub struct Progress {
+    bar: Option<ProgressBar>,
+    shared: Arc<Shared>,
+    /// Dropped to stop the line printer.
+    stop: Option<Sender<()>>,
+    printer: Option<JoinHandle<()>>,
+}
+
+struct Shared {
+    label: String,
+    what: String,
+    total: u64,
+    done: AtomicU64,
+    started: Instant,
+}
+
+impl Progress {
+    /// Starts showing progress of `label` (the command) over `total` `what`.
+    pub fn start(mode: ProgressMode, label: &str, total: u64, what: &str) -> Progress {
+        let shared = Arc::new(Shared {
+            label: label.to_string(),
+            what: what.to_string(),
+            total,
+            done: AtomicU64::new(0),
+            started: Instant::now(),
+        });
+        let mut progress = Progress {
+            bar: None,
+            shared: Arc::clone(&shared),
+            stop: None,
+            printer: None,
+        };
+        match mode {
+            ProgressMode::Off => {}
+            ProgressMode::Bar => progress.bar = Some(bar(label, total, what)),
+            ProgressMode::Lines { every } => {
+                let (stop, stopped) = channel::<()>();
+                progress.stop = Some(stop);
+                progress.printer = Some(std::thread::spawn(move || {
+                    print_lines(&shared, every, &stopped);
+                }));
+            }
+        }
+        progress
+    }
+
+    /// One more unit done.
+    pub fn inc(&self) {
+        self.shared.done.fetch_add(1, Ordering::Relaxed);
+        if let Some(bar) = &self.bar {
+            bar.inc(1);
+        }
+    }
+
+    /// Runs `f` (which prints) with the bar out of the way.
+    pub fn suspend<R>(&self, f: impl FnOnce() -> R) -> R {
+        match &self.bar {
+            Some(bar) => bar.suspend(f),
+            None => f(),
+        }
+    }
+
+    /// Stops showing progress (the bar is cleared; the lines end with one for the finish).
+    pub fn finish(mut self) {
+        self.stop_now();
+    }
+
+    fn stop_now(&mut self) {
+        if let Some(bar) = self.bar.take() {
+            bar.finish_and_clear();
+        }
+        self.stop = None;
+        if let Some(printer) = self.printer.take() {
+            let _ = printer.join();
+        }
+    }
+}
+
+impl Drop for Progress {
+    fn drop(&mut self) {
+        self.stop_now();
+    }
+}
+
+impl Shared {
+    /// `campaign: 1200 of 198000 runs (0.6 %), 24.1 runs/s, 50 s elapsed, about 2 h 16 min left`
+    fn line(&self) -> String {
+        let done = self.done.load(Ordering::Relaxed);
+        let elapsed = self.started.elapsed().as_secs_f64();
+        let rate = if elapsed > 0.0 {
+            done as f64 / elapsed
+        } else {
+            0.0
+        };
+        let percent = if self.total > 0 {
+            100.0 * done as f64 / self.total as f64
+        } else {
+            100.0
+        };
+        let left = if done >= self.total {
+            "all done".to_string()
+        } else if rate > 0.0 {
+            format!(
+                "about {} left",
+                duration_text(self.total.saturating_sub(done) as f64 / rate)
+            )
+        } else {
+            "time left not known yet".to_string()
+        };
+        format!(
+            "{}: {done} of {} {} ({percent:.1} %), {rate:.1} {}/s, {} elapsed, {left}",
+            self.label,
+            self.total,
+            self.what,
+            self.what,
+            duration_text(elapsed)
+        )
+    }
+}
+
+/// One line every `every` until `stopped` (a thread rather than a check on each completion:
+/// a line is due even while one long unit of work is still running). A command that printed
+/// progress ends with a last line; one shorter than the interval prints none.
+fn print_lines(shared: &Shared, every: Duration, stopped: &Receiver<()>) {
+    let mut printed = false;
+    while let Err(RecvTimeoutError::Timeout) = stopped.recv_timeout(every) {
+        eprintln!("{}", shared.line());
+        printed = true;
+    }
+    if printed {
+        eprintln!("{}", shared.line());
+    }
+}
+
+/// `42 s`, `3 min 5 s`, `2 h 16 min`.
+fn duration_text(seconds: f64) -> String {
+    let s = seconds.round().max(0.0) as u64;
+    match s {
+        0..60 => format!("{s} s"),
+        60..3600 => format!("{} min {} s", s / 60, s % 60),
+        _ => format!("{} h {} min", s / 3600, s % 3600 / 60),
+    }
+}
+
+fn bar(label: &str, total: u64, what: &str) -> ProgressBar {
+    let bar = ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::stderr());
+    let template = format!(
+        "{label}: {{elapsed_precise}} [{{wide_bar}}] {{pos}}/{{len}} {what}, {{per_sec}}, {{eta}} left"
+    );
+    if let Ok(style) = ProgressStyle::with_template(&template) {
+        bar.set_style(style);
+    }
+    // Redrawn every second, so that the elapsed time moves during a long unit of work.
+    bar.enable_steady_tick(Duration::from_secs(1));
+    bar
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn durations_read_naturally() {
+        assert_eq!(duration_text(42.4), "42 s");
+        assert_eq!(duration_text(185.0), "3 min 5 s");
+        assert_eq!(duration_text(8160.0), "2 h 16 min");
+    }
+
+    #[test]
+    fn a_line_gives_count_share_rate_and_time_left() {
+        let shared = Shared {
+            label: "campaign".into(),
+            what: "runs".into(),
+            total: 200,
+            done: AtomicU64::new(50),
+            started: Instant::now() - Duration::from_secs(10),
+        };
+        let line = shared.line();
+        assert!(
+            line.starts_with(
+                "campaign: 50 of 200 runs (25.0 %), 5.0 runs/s, 10 s elapsed, about 30 s left"
+            ),
+            "{line}"
+        );
+    }
+}
