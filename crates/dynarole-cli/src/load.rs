@@ -12,19 +12,26 @@ pub enum Failure {
     Input(String),
     /// Bad usage (exit 2).
     Usage(String),
+    /// A failure of dynarole or of the tools it runs (spin, the C compiler), not a verdict on
+    /// the input (exit 4).
+    Internal(String),
 }
+
+/// The exit code of an internal failure (0-3 are verdicts and usage errors).
+pub const INTERNAL_EXIT: u8 = 4;
 
 impl Failure {
     pub fn exit_code(&self) -> ExitCode {
         match self {
             Failure::Input(_) => ExitCode::from(1),
             Failure::Usage(_) => ExitCode::from(2),
+            Failure::Internal(_) => ExitCode::from(INTERNAL_EXIT),
         }
     }
 
     pub fn message(&self) -> &str {
         match self {
-            Failure::Input(m) | Failure::Usage(m) => m,
+            Failure::Input(m) | Failure::Usage(m) | Failure::Internal(m) => m,
         }
     }
 }

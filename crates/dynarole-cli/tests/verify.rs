@@ -365,14 +365,17 @@ fn the_liveness_check_fails_when_the_end_is_never_surely_carried() {
         time_s: 300,
         bitstate: false,
         shortest: false,
+        depth: None,
     };
-    let result = dynarole_cli::spin::run_check(&check, dynarole_cli::spin::Check::Liveness, limits)
-        .expect("pan runs");
+    let result =
+        dynarole_cli::spin::run_check(&check, dynarole_cli::spin::Check::Liveness, limits, "L")
+            .expect("pan runs");
     assert!(result.errors > 0, "{result:?}");
     // The unchanged model proves L.
     std::fs::write(check.join("model.pml"), &model).expect("write");
-    let result = dynarole_cli::spin::run_check(&check, dynarole_cli::spin::Check::Liveness, limits)
-        .expect("pan runs");
+    let result =
+        dynarole_cli::spin::run_check(&check, dynarole_cli::spin::Check::Liveness, limits, "L")
+            .expect("pan runs");
     assert!(result.errors == 0 && result.complete(), "{result:?}");
 }
 
