@@ -74,7 +74,7 @@ enum Command {
         plugins: load::PluginArgs,
     },
     /// Model-check a compiled sequence on a configuration with spin: S1, S2, S3 and L under
-    /// the stated bounds (exit 0 verified, 1 violated, 3 inconclusive).
+    /// the stated bounds (exit 0 verified, 1 violated, 3 inconclusive, 4 internal error).
     Verify {
         file: PathBuf,
         /// Sequence to check; repeat to run several in turn (default: the first in the file).

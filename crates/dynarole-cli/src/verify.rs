@@ -336,7 +336,7 @@ pub fn run(args: &VerifyArgs) -> Result<ExitCode, Failure> {
             None => scratch_dir(),
         };
         std::fs::create_dir_all(&dir)
-            .map_err(|e| Failure::Input(format!("cannot create {}: {e}", dir.display())))?;
+            .map_err(|e| Failure::Internal(format!("cannot create {}: {e}", dir.display())))?;
         let result = verify_in(&dir, args, &built, &display, source);
         if args.keep.is_none() {
             let _ = std::fs::remove_dir_all(&dir);
@@ -444,7 +444,7 @@ fn check_each_module(
         let name = &built.topology.modules[k].name;
         let sub = dir.join(format!("module-{k}"));
         std::fs::create_dir_all(&sub)
-            .map_err(|e| Failure::Input(format!("cannot create {}: {e}", sub.display())))?;
+            .map_err(|e| Failure::Internal(format!("cannot create {}: {e}", sub.display())))?;
         let how = How {
             who: name,
             bounded_first: false,
@@ -510,7 +510,7 @@ fn check_model(
 ) -> Result<Vec<Verdict>, Failure> {
     let path = dir.join("model.pml");
     std::fs::write(&path, &model.text)
-        .map_err(|e| Failure::Input(format!("cannot write {}: {e}", path.display())))?;
+        .map_err(|e| Failure::Internal(format!("cannot write {}: {e}", path.display())))?;
     let limits = Limits {
         memory_mb: args.memory_mb,
         time_s: args.time_s,
