@@ -236,7 +236,9 @@ impl Progress {
         });
         let message = format!("{}: {}{figures}", self.label, self.phase);
         if let Some(bar) = &self.spinner {
-            bar.set_message(message);
+            if bar.message() != message {
+                bar.set_message(message);
+            }
         } else if self.last_line.elapsed() >= self.interval {
             self.last_line = Instant::now();
             eprintln!(

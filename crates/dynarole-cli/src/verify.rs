@@ -606,19 +606,19 @@ fn bounded_search(
     model: &Model,
     named: &str,
 ) -> Result<Option<(PanResult, Limits)>, Failure> {
-    let mut progress = spin::Progress::new(named);
     let first = Limits {
         depth: Some(0),
         ..limits
     };
-    spin::build(dir, check, first, &mut progress)?;
+    spin::build(dir, check, first, &mut spin::Progress::new(named))?;
     for steps in BOUNDED_STEPS {
         let bounded = Limits {
             depth: Some(model.init_steps as u64 + steps),
             time_s: (limits.time_s / 4).max(1),
             ..limits
         };
-        let result = spin::search(dir, check, bounded, &mut progress)?;
+        // A fresh progress per search: its spinner is gone before the line below is printed.
+        let result = spin::search(dir, check, bounded, &mut spin::Progress::new(named))?;
         let outcome = if result.errors > 0 {
             "a violation"
         } else if result.complete() {
