@@ -48,7 +48,9 @@ pub enum Method {
     Compositional,
 }
 
-/// Modules above which `auto` chooses the compositional model for the lattice protocol.
+/// Modules above which the full model's exhaustive search is not expected to finish: `auto`
+/// then chooses the compositional model for the lattice protocol, and a full model is first
+/// searched within bounds ([`BOUNDED_STEPS`]).
 const AUTO_FULL_MODULES: usize = 3;
 
 /// A deliberately broken lattice protocol (for the tests of the checker itself).
