@@ -94,6 +94,25 @@ fn the_paper_protocols_race_is_found_on_the_papers_own_robot() {
     assert!(!stdout.contains("progress:"), "{stdout}");
 }
 
+/// Without spin, `verify` cannot give a verdict: an error of its own (exit 4), never 1
+/// (violated) or 3 (inconclusive).
+#[test]
+fn a_missing_spin_is_an_internal_failure_not_a_verdict() {
+    let empty = std::env::temp_dir().join(format!("dynarole-no-tools-{}", std::process::id()));
+    std::fs::create_dir_all(&empty).expect("a scratch directory");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_dynarole"))
+        .args(["verify", "examples/verify/ab_c.dr", "--from", LINE])
+        .env("PATH", &empty)
+        .current_dir(repo_root())
+        .output()
+        .expect("the dynarole binary runs");
+    let _ = std::fs::remove_dir_all(&empty);
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(4), "{stderr}");
+    assert!(stderr.contains("error: spin is not installed"), "{stderr}");
+    assert!(!text(&out.stdout).contains("result:"));
+}
+
 #[test]
 fn the_single_step_handover_repairs_the_c_port_but_not_the_java_merge() {
     let args = [
