@@ -201,10 +201,13 @@ pub struct Progress {
 impl Progress {
     /// Progress of the check named `label` (e.g. `M3: S1, S2, S3 (safety)`).
     pub fn new(label: &str) -> Progress {
-        let seconds = std::env::var("DYNAROLE_PROGRESS_SECONDS")
-            .ok()
-            .and_then(|v| v.parse::<u64>().ok())
-            .unwrap_or(PROGRESS_SECONDS);
+        let seconds = match std::env::var("DYNAROLE_PROGRESS_SECONDS") {
+            Err(_) => PROGRESS_SECONDS,
+            Ok(v) => v.parse::<u64>().unwrap_or_else(|_| {
+                eprintln!("warning: DYNAROLE_PROGRESS_SECONDS=`{v}` is not a whole number of seconds; progress every {PROGRESS_SECONDS} s");
+                PROGRESS_SECONDS
+            }),
+        };
         let spinner = std::io::stderr().is_terminal().then(|| {
             let bar = ProgressBar::new_spinner();
             if let Ok(style) = ProgressStyle::with_template("{spinner} {elapsed} {msg}") {
