@@ -44,6 +44,8 @@ pub struct PanResult {
     pub depth_limited: bool,
     pub timed_out: bool,
     pub bitstate: bool,
+    /// The search was bounded in depth (`Limits::depth`).
+    pub bounded: bool,
     /// pan printed its statistics (a search that ran, whatever it found).
     pub reported: bool,
     /// The first line of pan's error report, e.g. `pan:1: assertion violated false (at depth 17)`.
@@ -388,6 +390,7 @@ pub fn search(
     }
     result.timed_out = timed_out;
     result.bitstate = limits.bitstate;
+    result.bounded = limits.depth.is_some();
     if timed_out {
         result.seconds = started.elapsed().as_secs_f64();
     }

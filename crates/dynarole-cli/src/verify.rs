@@ -685,13 +685,18 @@ fn describe(r: &PanResult) -> String {
     let mut parts = vec![
         if r.bitstate {
             "bitstate (partial)".to_string()
-        } else if r.depth_limited {
+        } else if r.depth_limited || (r.bounded && !r.complete()) {
             "bounded (partial)".to_string()
         } else {
             "exhaustive".to_string()
         },
-        format!("{} states", r.states),
-        format!("depth {}", r.depth),
+        // pan reports its figures every million states and at the end: a search stopped
+        // before either has none to give.
+        if r.states == 0 && !r.reported {
+            "states not reported".to_string()
+        } else {
+            format!("{} states, depth {}", r.states, r.depth)
+        },
         format!("{:.2} s", r.seconds),
     ];
     if r.memory_mb > 0.0 {
