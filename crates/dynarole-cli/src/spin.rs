@@ -141,7 +141,7 @@ pub fn tool_failure(tool: Tool, output: &str) -> Failure {
 
 fn log_file(dir: &Path, log: &str) -> Result<(std::fs::File, std::fs::File), Failure> {
     let cannot =
-        |e: std::io::Error| Failure::Input(format!("cannot write in {}: {e}", dir.display()));
+        |e: std::io::Error| Failure::Internal(format!("cannot write in {}: {e}", dir.display()));
     let out = std::fs::File::create(dir.join(log)).map_err(cannot)?;
     let err = out.try_clone().map_err(cannot)?;
     Ok((out, err))
