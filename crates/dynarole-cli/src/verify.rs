@@ -3,7 +3,7 @@
 //! the model itself for `dynarole compile --target promela`.
 
 use crate::compile::{ProtocolArg, ProtocolOptions};
-use crate::counterexample::{explain, parse_events, Context};
+use crate::counterexample::{explain, parse_events, Context, Event};
 use crate::load::{self, Failure, PluginArgs};
 use crate::render;
 use crate::spin::{self, Check, Limits, PanResult};
@@ -668,6 +668,11 @@ fn explain_violation(
     }
     let output = spin::replay_trail(dir, check)?;
     let events = parse_events(&output);
+    // pan reported an assertion violated; a replay that does not reach it is not a
+    // counterexample to tell, and not a verdict either.
+    if check == Check::Safety && !events.iter().any(|e| matches!(e, Event::Violation { .. })) {
+        return Err(spin::tool_failure(spin::Tool::Replay, &output));
+    }
     let cx = Context {
         ir: explain_with.ir,
         module_names: &model.module_names,
