@@ -78,7 +78,7 @@ enum Command {
         plugins: load::PluginArgs,
     },
     /// Model-check a compiled sequence on a configuration with spin: S1, S2, S3 and L under
-    /// the stated bounds (exit 0 verified, 1 violated, 3 inconclusive).
+    /// the stated bounds (exit 0 verified, 1 violated, 3 inconclusive, 4 internal error).
     Verify {
         /// The `.dr` file holding the sequences.
         file: PathBuf,

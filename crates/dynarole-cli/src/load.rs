@@ -19,13 +19,20 @@ pub enum Failure {
         text: String,
         error: Box<TomlError>,
     },
+    /// A failure of dynarole or of the tools it runs (spin, the C compiler), not a verdict on
+    /// the input (exit 4).
+    Internal(String),
 }
+
+/// The exit code of an internal failure (0-3 are verdicts and usage errors).
+pub const INTERNAL_EXIT: u8 = 4;
 
 impl Failure {
     pub fn exit_code(&self) -> ExitCode {
         match self {
             Failure::Input(_) | Failure::Toml { .. } => ExitCode::from(1),
             Failure::Usage(_) => ExitCode::from(2),
+            Failure::Internal(_) => ExitCode::from(INTERNAL_EXIT),
         }
     }
 

@@ -66,6 +66,7 @@ fn to_report(diagnostic: &Diagnostic) -> Report<()> {
 pub fn failure(failure: &Failure) {
     match failure {
         Failure::Input(message) | Failure::Usage(message) => eprintln!("error: {message}"),
+        Failure::Internal(message) => eprintln!("internal error: {message}"),
         Failure::Toml { path, text, error } => {
             let writer = StandardStream::stderr(color_choice());
             write_toml_error(&mut writer.lock(), path, text, error);

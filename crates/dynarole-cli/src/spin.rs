@@ -1,9 +1,12 @@
 //! Running spin on a generated model: generate the verifier (`spin -a`), compile it with a
-//! memory limit, run it with a time limit, read its figures, and replay a counterexample.
+//! memory limit, run it with a time limit (reporting progress on stderr), read its figures,
+//! replay a counterexample, and tell a verdict from a failure of the tools.
 
 use crate::load::Failure;
+use indicatif::{ProgressBar, ProgressStyle};
+use std::io::IsTerminal;
 use std::path::Path;
-use std::process::{Command, Stdio};
+use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
 /// Limits of one search.
@@ -15,6 +18,10 @@ pub struct Limits {
     pub bitstate: bool,
     /// Iterative shortening (`-DREACH`, `pan -i`, safety only): the shortest counterexample.
     pub shortest: bool,
+    /// A bounded search: no run longer than this many steps (`pan -m`, with `-DREACH` so that
+    /// a state met again on a shorter path is searched again: every run within the bound is
+    /// covered).
+    pub depth: Option<u64>,
 }
 
 /// Safety (assertions S1-S3) or liveness (the LTL formula `finishes`, weak fairness).
@@ -37,6 +44,8 @@ pub struct PanResult {
     pub depth_limited: bool,
     pub timed_out: bool,
     pub bitstate: bool,
+    /// The search was bounded in depth (`Limits::depth`).
+    pub bounded: bool,
     /// pan printed its statistics (a search that ran, whatever it found).
     pub reported: bool,
     /// The first line of pan's error report, e.g. `pan:1: assertion violated false (at depth 17)`.
@@ -60,7 +69,7 @@ pub fn check_tools() -> Result<(), Failure> {
         .stderr(Stdio::null())
         .status();
     if spin.is_err() {
-        return Err(Failure::Input(
+        return Err(Failure::Internal(
             "spin is not installed (it is needed to model-check): install it with `sudo apt-get install spin` (Debian, Ubuntu) or from https://spinroot.com, or run ./scripts/test once, which installs it".into(),
         ));
     }
@@ -70,46 +79,217 @@ pub fn check_tools() -> Result<(), Failure> {
         .stderr(Stdio::null())
         .status();
     if cc.is_err() {
-        return Err(Failure::Input(
+        return Err(Failure::Internal(
             "no C compiler `cc` (spin's verifiers are C programs): install gcc or clang".into(),
         ));
     }
     Ok(())
 }
 
-fn run_to_file(cmd: &mut Command, dir: &Path, log: &str, what: &str) -> Result<(), Failure> {
-    let out = std::fs::File::create(dir.join(log))
-        .map_err(|e| Failure::Input(format!("cannot write in {}: {e}", dir.display())))?;
-    let err = out
-        .try_clone()
-        .map_err(|e| Failure::Input(format!("cannot write in {}: {e}", dir.display())))?;
-    let status = cmd
-        .current_dir(dir)
+/// Where an internal failure should be reported, and what to attach.
+const REPORT: &str = "this is a bug in dynarole or a limit of spin it does not handle, not a verdict on the sequence: please report it with the sequence, the configuration and the options, and the files `--keep DIR` writes (model.pml and the logs)";
+
+/// A tool that `verify` runs, for the messages of its failures.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Tool {
+    /// `spin -a`: reads the model and writes the verifier's C.
+    Spin,
+    /// `cc` on spin's `pan.c`.
+    Compiler,
+    /// The verifier, `pan`.
+    Pan,
+    /// `spin -t`: replays a counterexample.
+    Replay,
+}
+
+/// The internal failure of `tool`, from its output: the lines that say what went wrong.
+pub fn tool_failure(tool: Tool, output: &str) -> Failure {
+    let what = match tool {
+        Tool::Spin => "spin rejected the generated model",
+        Tool::Compiler => "the C compiler failed on spin's verifier (pan.c)",
+        Tool::Pan => "spin's verifier (pan) stopped without a result",
+        Tool::Replay => "spin could not replay the counterexample",
+    };
+    let lines: Vec<&str> = output
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty())
+        .collect();
+    // spin: `spin: model.pml:145, Error: d_step sequence too long`; cc: `pan.c:12: error: ...`;
+    // pan: `pan: error, VECTORSZ too small ...`.
+    let said: Vec<&str> = lines
+        .iter()
+        .copied()
+        .filter(|l| {
+            let lower = l.to_ascii_lowercase();
+            lower.contains("error") || lower.starts_with("pan:") || lower.contains("killed")
+        })
+        .take(5)
+        .collect();
+    let said = if said.is_empty() {
+        lines.iter().rev().take(5).rev().copied().collect()
+    } else {
+        said
+    };
+    let detail = if said.is_empty() {
+        "(no output)".to_string()
+    } else {
+        said.join("\n  ")
+    };
+    Failure::Internal(format!("{what}:\n  {detail}\n{REPORT}"))
+}
+
+fn log_file(dir: &Path, log: &str) -> Result<(std::fs::File, std::fs::File), Failure> {
+    let cannot =
+        |e: std::io::Error| Failure::Internal(format!("cannot write in {}: {e}", dir.display()));
+    let out = std::fs::File::create(dir.join(log)).map_err(cannot)?;
+    let err = out.try_clone().map_err(cannot)?;
+    Ok((out, err))
+}
+
+fn spawn(cmd: &mut Command, dir: &Path, log: &str, tool: Tool) -> Result<Child, Failure> {
+    let (out, err) = log_file(dir, log)?;
+    cmd.current_dir(dir)
         .stdout(out)
         .stderr(err)
-        .status()
-        .map_err(|e| Failure::Input(format!("cannot run {what}: {e}")))?;
-    if !status.success() {
+        .spawn()
+        .map_err(|e| tool_failure(tool, &format!("cannot run it: {e}")))
+}
+
+/// Runs a tool that must succeed (spin -a, cc) with its output in `dir/log`, reporting progress.
+fn run_to_file(
+    cmd: &mut Command,
+    dir: &Path,
+    log: &str,
+    tool: Tool,
+    progress: &mut Progress,
+) -> Result<(), Failure> {
+    let mut child = spawn(cmd, dir, log, tool)?;
+    let succeeded = loop {
+        match child.try_wait() {
+            Ok(Some(status)) => break status.success(),
+            Ok(None) => {
+                progress.tick(None);
+                std::thread::sleep(POLL);
+            }
+            Err(e) => return Err(tool_failure(tool, &format!("waiting for it: {e}"))),
+        }
+    };
+    if !succeeded {
         let text = std::fs::read_to_string(dir.join(log)).unwrap_or_default();
-        let tail: Vec<&str> = text.lines().rev().take(15).collect();
-        let tail: Vec<&str> = tail.into_iter().rev().collect();
-        return Err(Failure::Input(format!(
-            "{what} failed in {}:\n{}",
-            dir.display(),
-            tail.join("\n")
-        )));
+        return Err(tool_failure(tool, &text));
     }
     Ok(())
 }
 
-/// Generates, compiles and runs the verifier for `check` on `dir/model.pml`.
-pub fn run_check(dir: &Path, check: Check, limits: Limits) -> Result<PanResult, Failure> {
+/// How often a running tool is looked at.
+const POLL: Duration = Duration::from_millis(20);
+
+/// Seconds between two progress lines when stderr is not a terminal; the environment variable
+/// `DYNAROLE_PROGRESS_SECONDS` changes it (the tests lower it).
+const PROGRESS_SECONDS: u64 = 10;
+
+/// Progress of one check on stderr: a spinner on a terminal, otherwise a line every
+/// [`PROGRESS_SECONDS`]. Nothing goes to stdout, whose report stays deterministic.
+pub struct Progress {
+    label: String,
+    phase: &'static str,
+    started: Instant,
+    last_line: Instant,
+    interval: Duration,
+    spinner: Option<ProgressBar>,
+}
+
+impl Progress {
+    /// Progress of the check named `label` (e.g. `M3: S1, S2, S3 (safety)`).
+    pub fn new(label: &str) -> Progress {
+        let seconds = match std::env::var("DYNAROLE_PROGRESS_SECONDS") {
+            Err(_) => PROGRESS_SECONDS,
+            Ok(v) => v.parse::<u64>().unwrap_or_else(|_| {
+                eprintln!("warning: DYNAROLE_PROGRESS_SECONDS=`{v}` is not a whole number of seconds; progress every {PROGRESS_SECONDS} s");
+                PROGRESS_SECONDS
+            }),
+        };
+        let spinner = std::io::stderr().is_terminal().then(|| {
+            let bar = ProgressBar::new_spinner();
+            if let Ok(style) = ProgressStyle::with_template("{spinner} {elapsed} {msg}") {
+                bar.set_style(style);
+            }
+            bar.enable_steady_tick(Duration::from_millis(200));
+            bar
+        });
+        let now = Instant::now();
+        Progress {
+            label: label.to_string(),
+            phase: "generating the verifier",
+            started: now,
+            last_line: now,
+            interval: Duration::from_secs(seconds.max(1)),
+            spinner,
+        }
+    }
+
+    fn phase(&mut self, phase: &'static str) {
+        self.phase = phase;
+        self.tick(None);
+    }
+
+    /// Reports what runs now; `search` is pan's (states, depth) so far.
+    fn tick(&mut self, search: Option<(u64, u64)>) {
+        let figures = search.map_or(String::new(), |(states, depth)| {
+            format!(", {states} states, depth {depth}")
+        });
+        let message = format!("{}: {}{figures}", self.label, self.phase);
+        if let Some(bar) = &self.spinner {
+            if bar.message() != message {
+                bar.set_message(message);
+            }
+        } else if self.last_line.elapsed() >= self.interval {
+            self.last_line = Instant::now();
+            eprintln!(
+                "progress: {message} ({} s)",
+                self.started.elapsed().as_secs()
+            );
+        }
+    }
+}
+
+impl Drop for Progress {
+    fn drop(&mut self) {
+        if let Some(bar) = &self.spinner {
+            bar.finish_and_clear();
+        }
+    }
+}
+
+/// Generates, compiles and runs the verifier for `check` on `dir/model.pml`, with progress
+/// under `label`. Failures of the tools are internal failures; a search that hits a limit
+/// is a result (incomplete).
+pub fn run_check(
+    dir: &Path,
+    check: Check,
+    limits: Limits,
+    label: &str,
+) -> Result<PanResult, Failure> {
+    let mut progress = Progress::new(label);
+    build(dir, check, limits, &mut progress)?;
+    search(dir, check, limits, &mut progress)
+}
+
+/// Generates and compiles the verifier (`dir/pan`) for `check` within `limits` (the depth
+/// bound is given to pan when it runs, so one build serves every bound).
+pub fn build(
+    dir: &Path,
+    check: Check,
+    limits: Limits,
+    progress: &mut Progress,
+) -> Result<(), Failure> {
     let mut spin = Command::new("spin");
     if check == Check::Liveness {
         spin.arg("-DLIVENESS");
     }
     spin.args(["-a", "model.pml"]);
-    run_to_file(&mut spin, dir, "spin.log", "spin -a")?;
+    run_to_file(&mut spin, dir, "spin.log", Tool::Spin, progress)?;
     let mut cc = Command::new("cc");
     // Measured on eight2car's models: -O1 halves the compile time and runs a safety search
     // as fast as -O2; the liveness search (weak fairness) runs twice as fast with -O2.
@@ -135,17 +315,26 @@ pub fn run_check(dir: &Path, check: Check, limits: Limits) -> Result<PanResult, 
     } else {
         cc.arg("-DCOLLAPSE");
     }
-    if limits.shortest && check == Check::Safety {
+    if (limits.shortest && check == Check::Safety) || limits.depth.is_some() {
         cc.arg("-DREACH");
     }
-    run_to_file(&mut cc, dir, "cc.log", "cc (spin's verifier)")?;
-    let log = std::fs::File::create(dir.join("pan.log"))
-        .map_err(|e| Failure::Input(format!("cannot write in {}: {e}", dir.display())))?;
-    let log_err = log
-        .try_clone()
-        .map_err(|e| Failure::Input(format!("cannot write in {}: {e}", dir.display())))?;
+    progress.phase("compiling the verifier");
+    run_to_file(&mut cc, dir, "cc.log", Tool::Compiler, progress)?;
+    Ok(())
+}
+
+/// Runs the verifier that [`build`] made, within `limits`, and reads its figures.
+pub fn search(
+    dir: &Path,
+    check: Check,
+    limits: Limits,
+    progress: &mut Progress,
+) -> Result<PanResult, Failure> {
     let mut pan = Command::new("./pan");
-    pan.arg(MAX_DEPTH);
+    match limits.depth {
+        Some(depth) => pan.arg(format!("-m{depth}")),
+        None => pan.arg(MAX_DEPTH),
+    };
     if limits.bitstate {
         // 2^k bits of hash array, within the memory limit (at most 2^33 bits = 1 GiB).
         let bits = (limits.memory_mb.max(16) * 8 * 1024 * 1024 / 2)
@@ -158,18 +347,20 @@ pub fn run_check(dir: &Path, check: Check, limits: Limits) -> Result<PanResult, 
     } else if limits.shortest {
         pan.arg("-i");
     }
+    progress.phase("searching");
     let started = Instant::now();
-    let mut child = pan
-        .current_dir(dir)
-        .stdout(log)
-        .stderr(log_err)
-        .spawn()
-        .map_err(|e| Failure::Input(format!("cannot run pan: {e}")))?;
+    let mut child = spawn(&mut pan, dir, "pan.log", Tool::Pan)?;
     let deadline = Duration::from_secs(limits.time_s);
     let mut timed_out = false;
+    let mut killed = false;
+    let mut looked = Instant::now();
+    let mut search = None;
     loop {
         match child.try_wait() {
-            Ok(Some(_)) => break,
+            Ok(Some(status)) => {
+                killed = killed_by_the_system(status);
+                break;
+            }
             Ok(None) => {
                 if started.elapsed() > deadline {
                     let _ = child.kill();
@@ -177,27 +368,45 @@ pub fn run_check(dir: &Path, check: Check, limits: Limits) -> Result<PanResult, 
                     timed_out = true;
                     break;
                 }
-                std::thread::sleep(Duration::from_millis(20));
+                // pan prints `Depth= ... States= ...` every million states.
+                if looked.elapsed() >= Duration::from_secs(1) {
+                    looked = Instant::now();
+                    let text = std::fs::read_to_string(dir.join("pan.log")).unwrap_or_default();
+                    let so_far = parse_pan(&text);
+                    search = (so_far.states > 0).then_some((so_far.states, so_far.depth));
+                }
+                progress.tick(search);
+                std::thread::sleep(POLL);
             }
-            Err(e) => return Err(Failure::Input(format!("waiting for pan: {e}"))),
+            Err(e) => return Err(tool_failure(Tool::Pan, &format!("waiting for it: {e}"))),
         }
     }
     let text = std::fs::read_to_string(dir.join("pan.log")).unwrap_or_default();
     let mut result = parse_pan(&text);
+    // The system's out-of-memory killer stops pan without a word: a search out of memory.
+    result.out_of_memory |= killed && !result.reported;
     if !timed_out && !result.reported && !result.out_of_memory {
-        let first: Vec<&str> = text.lines().take(5).collect();
-        return Err(Failure::Input(format!(
-            "pan stopped without a result in {}:\n{}",
-            dir.display(),
-            first.join("\n")
-        )));
+        return Err(tool_failure(Tool::Pan, &text));
     }
     result.timed_out = timed_out;
     result.bitstate = limits.bitstate;
+    result.bounded = limits.depth.is_some();
     if timed_out {
         result.seconds = started.elapsed().as_secs_f64();
     }
     Ok(result)
+}
+
+/// Whether a process was ended by SIGKILL, which the system's out-of-memory killer sends.
+#[cfg(unix)]
+fn killed_by_the_system(status: std::process::ExitStatus) -> bool {
+    use std::os::unix::process::ExitStatusExt;
+    status.signal() == Some(9)
+}
+
+#[cfg(not(unix))]
+fn killed_by_the_system(_status: std::process::ExitStatus) -> bool {
+    false
 }
 
 /// Reads pan's report.
@@ -270,8 +479,115 @@ pub fn replay_trail(dir: &Path, check: Check) -> Result<String, Failure> {
     spin.args(["-T", "-t", "-k", "model.pml.trail", "model.pml"]);
     let output = spin
         .current_dir(dir)
-        .stderr(Stdio::null())
         .output()
-        .map_err(|e| Failure::Input(format!("cannot run spin -t: {e}")))?;
+        .map_err(|e| tool_failure(Tool::Replay, &format!("cannot run it: {e}")))?;
+    if !output.status.success() {
+        return Err(tool_failure(
+            Tool::Replay,
+            &String::from_utf8_lossy(&output.stderr),
+        ));
+    }
     Ok(String::from_utf8_lossy(&output.stdout).into_owned())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn internal(failure: &Failure) -> &str {
+        assert_eq!(
+            failure.exit_code(),
+            std::process::ExitCode::from(crate::load::INTERNAL_EXIT)
+        );
+        match failure {
+            Failure::Internal(m) => m,
+            other => panic!("not an internal failure: {other:?}"),
+        }
+    }
+
+    #[test]
+    fn spin_rejecting_the_model_is_an_internal_failure_with_its_reason() {
+        let log = "ltl finishes: <> ([] ((g_state[0]==254)))\nspin: model.pml:145, Error: d_step sequence too long\n";
+        let failure = tool_failure(Tool::Spin, log);
+        let message = internal(&failure);
+        assert!(message.starts_with("spin rejected the generated model:"));
+        assert!(message.contains("model.pml:145, Error: d_step sequence too long"));
+        assert!(!message.contains("ltl finishes"), "{message}");
+        assert!(message.contains("please report it"));
+    }
+
+    #[test]
+    fn the_compiler_failing_and_pan_stopping_are_internal_failures() {
+        let cc = "pan.c: In function 'main':\npan.c:12:5: error: expected ';' before '}' token\n";
+        let message = internal(&tool_failure(Tool::Compiler, cc)).to_string();
+        assert!(message.contains("the C compiler failed on spin's verifier"));
+        assert!(message.contains("pan.c:12:5: error: expected ';'"));
+        let pan = "pan: error, VECTORSZ too small, recompile pan.c with -DVECTORSZ=N\n";
+        let message = internal(&tool_failure(Tool::Pan, pan)).to_string();
+        assert!(message.contains("pan) stopped without a result"));
+        assert!(message.contains("VECTORSZ too small"));
+        let silent = internal(&tool_failure(Tool::Replay, "")).to_string();
+        assert!(silent.contains("(no output)"));
+    }
+
+    #[test]
+    fn limits_met_by_pan_are_an_incomplete_search_not_a_failure() {
+        let oom = "pan: out of memory\n\thint: to reduce memory, recompile with\nState-vector 476 byte, depth reached 91, errors: 0\n";
+        let r = parse_pan(oom);
+        assert!(r.out_of_memory && !r.complete() && r.errors == 0);
+        let memlim = "pan: reached -DMEMLIM bound\n\t1.0737e+09 bytes used\n";
+        let r = parse_pan(memlim);
+        assert!(r.out_of_memory && !r.reported);
+        let depth = "error: max search depth too small\nState-vector 476 byte, depth reached 99, errors: 0\n     3949 states, stored\n";
+        let r = parse_pan(depth);
+        assert!(r.depth_limited && r.reported && !r.complete());
+        assert_eq!((r.states, r.depth), (3949, 99));
+    }
+
+    #[test]
+    fn a_violation_is_read_with_its_first_line() {
+        let text = "pan:1: assertion violated 0 (at depth 69)\npan: wrote model.pml.trail\nState-vector 476 byte, depth reached 69, errors: 1\n     3949 states, stored\n";
+        let r = parse_pan(text);
+        assert_eq!(r.errors, 1);
+        assert_eq!(
+            r.error_line.as_deref(),
+            Some("pan:1: assertion violated 0 (at depth 69)")
+        );
+    }
+
+    #[test]
+    fn progress_lines_of_a_running_search_give_its_figures() {
+        let text = "Depth=    5279 States=    1e+06 Transitions= 3.2e+06 Memory=   200.1\nDepth=    6011 States=    2e+06 Transitions= 6.5e+06 Memory=   380.4\n";
+        let r = parse_pan(text);
+        assert_eq!((r.states, r.depth, r.reported), (2_000_000, 6011, false));
+    }
+
+    /// A real spin run on a model past spin's limit on a `d_step`'s jumps (2048): the
+    /// rejection is an internal failure naming spin's reason.
+    #[test]
+    fn a_model_spin_rejects_is_reported_as_an_internal_failure() {
+        let dir = std::env::temp_dir().join(format!("dynarole-spin-test-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("a scratch directory");
+        let branches = "    if :: x > 0 -> x-- :: else -> x++ fi;\n".repeat(1500);
+        let model = format!(
+            "byte x;\nactive proctype p() {{\n    d_step {{\n{branches}    skip\n    }}\n}}\n"
+        );
+        std::fs::write(dir.join("model.pml"), model).expect("the model written");
+        let limits = Limits {
+            memory_mb: 64,
+            time_s: 10,
+            bitstate: false,
+            shortest: false,
+            depth: None,
+        };
+        let outcome = run_check(&dir, Check::Safety, limits, "test");
+        let _ = std::fs::remove_dir_all(&dir);
+        let failure = outcome.expect_err("spin rejects the model");
+        let message = internal(&failure);
+        assert!(
+            message.contains("spin rejected the generated model")
+                && message.contains("d_step sequence too long"),
+            "{message}"
+        );
+    }
 }

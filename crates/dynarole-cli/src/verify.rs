@@ -3,7 +3,7 @@
 //! the model itself for `dynarole compile --target promela`.
 
 use crate::compile::{ProtocolArg, ProtocolOptions};
-use crate::counterexample::{explain, parse_events, Context};
+use crate::counterexample::{explain, parse_events, Context, Event};
 use crate::load::{self, Failure, PluginArgs};
 use crate::render;
 use crate::spin::{self, Check, Limits, PanResult};
@@ -48,7 +48,9 @@ pub enum Method {
     Compositional,
 }
 
-/// Modules above which `auto` chooses the compositional model for the lattice protocol.
+/// Modules above which the full model's exhaustive search is not expected to finish: `auto`
+/// then chooses the compositional model for the lattice protocol, and a full model is first
+/// searched within bounds ([`BOUNDED_STEPS`]).
 const AUTO_FULL_MODULES: usize = 3;
 
 /// A deliberately broken lattice protocol (for the tests of the checker itself).
@@ -335,7 +337,7 @@ pub fn run(args: &VerifyArgs) -> Result<ExitCode, Failure> {
             None => scratch_dir(),
         };
         std::fs::create_dir_all(&dir)
-            .map_err(|e| Failure::Input(format!("cannot create {}: {e}", dir.display())))?;
+            .map_err(|e| Failure::Internal(format!("cannot create {}: {e}", dir.display())))?;
         let result = verify_in(&dir, args, &built, &display, source);
         if args.keep.is_none() {
             let _ = std::fs::remove_dir_all(&dir);
@@ -379,7 +381,12 @@ fn verify_in(
             } else {
                 vec![Check::Safety, Check::Liveness]
             };
-            check_model(dir, args, model, &checks, "", &explain_with)?
+            let bounded_first = built.topology.modules.len() > AUTO_FULL_MODULES;
+            let how = How {
+                who: "",
+                bounded_first,
+            };
+            check_model(dir, args, model, &checks, how, &explain_with)?
         }
         Models::Compositional {
             per_module,
@@ -438,8 +445,12 @@ fn check_each_module(
         let name = &built.topology.modules[k].name;
         let sub = dir.join(format!("module-{k}"));
         std::fs::create_dir_all(&sub)
-            .map_err(|e| Failure::Input(format!("cannot create {}: {e}", sub.display())))?;
-        let found = check_model(&sub, args, model, &checks, name, explain_with)?;
+            .map_err(|e| Failure::Internal(format!("cannot create {}: {e}", sub.display())))?;
+        let how = How {
+            who: name,
+            bounded_first: false,
+        };
+        let found = check_model(&sub, args, model, &checks, how, explain_with)?;
         let violated = found.contains(&Verdict::Violated);
         verdicts.extend(found);
         if violated {
@@ -472,29 +483,46 @@ fn unreached(built: &Built, stuck: &[usize], deaf: &[usize]) -> String {
     parts.join("; ")
 }
 
-/// Runs the checks on one model in `dir` (falling back to bitstate when the exhaustive search
-/// does not fit), prints a line per check, explains the first violation and stops there.
+/// How one model is checked.
+#[derive(Clone, Copy)]
+struct How<'a> {
+    /// The module a compositional model is for (empty: the full model).
+    who: &'a str,
+    /// Look for a short violation first (bounded searches, [`BOUNDED_STEPS`]): the full model
+    /// of a robot larger than [`AUTO_FULL_MODULES`] modules, whose exhaustive search runs deep
+    /// before it backtracks to a violation a few steps from the start.
+    bounded_first: bool,
+}
+
+/// The bounds of the searches tried first (steps after `init`), each run only when the last
+/// met its bound without a violation; each gets a quarter of the time limit.
+const BOUNDED_STEPS: [u64; 3] = [50, 100, 200];
+
+/// Runs the checks on one model in `dir` (for safety on a large full model, bounded searches
+/// first; falling back to bitstate when the exhaustive search does not fit), prints a line
+/// per check, explains the first violation and stops there.
 fn check_model(
     dir: &Path,
     args: &VerifyArgs,
     model: &Model,
     checks: &[Check],
-    who: &str,
+    how: How,
     explain_with: &Explain,
 ) -> Result<Vec<Verdict>, Failure> {
     let path = dir.join("model.pml");
     std::fs::write(&path, &model.text)
-        .map_err(|e| Failure::Input(format!("cannot write {}: {e}", path.display())))?;
+        .map_err(|e| Failure::Internal(format!("cannot write {}: {e}", path.display())))?;
     let limits = Limits {
         memory_mb: args.memory_mb,
         time_s: args.time_s,
         bitstate: args.bitstate,
         shortest: false,
+        depth: None,
     };
-    let who = if who.is_empty() {
+    let who = if how.who.is_empty() {
         String::new()
     } else {
-        format!("{who}: ")
+        format!("{}: ", how.who)
     };
     let mut verdicts = Vec::new();
     for &check in checks {
@@ -503,20 +531,16 @@ fn check_model(
             (Check::Safety, false) => "S1, S2, S3, G1-G4 (safety)",
             (Check::Liveness, _) => "L (finishes, weak fairness)",
         };
-        let mut result = spin::run_check(dir, check, limits)?;
-        let mut fell_back = false;
-        if result.errors == 0 && !limits.bitstate && (result.out_of_memory || result.timed_out) {
-            println!(
-                "  {who}{label}: the state space is too large for an exhaustive search ({}); trying a bitstate search",
-                describe(&result)
-            );
-            let bitstate = Limits {
-                bitstate: true,
-                ..limits
-            };
-            result = spin::run_check(dir, check, bitstate)?;
-            fell_back = true;
-        }
+        let named = format!("{who}{label}");
+        let bounded = if how.bounded_first && check == Check::Safety && !limits.bitstate {
+            bounded_search(dir, check, limits, model, &named)?
+        } else {
+            None
+        };
+        let (result, used, fell_back) = match bounded {
+            Some(found) => (found.0, found.1, false),
+            None => exhaustive(dir, check, limits, &named)?,
+        };
         let verdict = if result.errors > 0 {
             Verdict::Violated
         } else if result.complete() {
@@ -535,14 +559,86 @@ fn check_model(
                 }
             }
         };
-        println!("  {who}{label}: {word} — {}", describe(&result));
+        println!("  {named}: {word} — {}", describe(&result));
         verdicts.push(verdict);
         if verdict == Verdict::Violated {
-            explain_violation(dir, check, limits, model, explain_with)?;
+            explain_violation(dir, check, used, model, explain_with)?;
             break;
         }
     }
     Ok(verdicts)
+}
+
+/// The exhaustive search, then bitstate if it does not fit; the result, the limits it ran
+/// with, and whether it fell back.
+fn exhaustive(
+    dir: &Path,
+    check: Check,
+    limits: Limits,
+    named: &str,
+) -> Result<(PanResult, Limits, bool), Failure> {
+    let result = spin::run_check(dir, check, limits, named)?;
+    if result.errors == 0 && !limits.bitstate && (result.out_of_memory || result.timed_out) {
+        println!(
+            "  {named}: the state space is too large for an exhaustive search ({}); trying a bitstate search",
+            describe(&result)
+        );
+        let bitstate = Limits {
+            bitstate: true,
+            ..limits
+        };
+        return Ok((
+            spin::run_check(dir, check, bitstate, named)?,
+            bitstate,
+            true,
+        ));
+    }
+    Ok((result, limits, false))
+}
+
+/// Bounded searches (every run of at most [`BOUNDED_STEPS`] steps after `init`, the smallest
+/// first): `Some` when one found a violation or covered every state (no run reached the
+/// bound), with the limits it ran with; `None` to go on with the exhaustive search. A
+/// violation found is a real run, so stopping at the bound loses nothing but completeness.
+fn bounded_search(
+    dir: &Path,
+    check: Check,
+    limits: Limits,
+    model: &Model,
+    named: &str,
+) -> Result<Option<(PanResult, Limits)>, Failure> {
+    let first = Limits {
+        depth: Some(0),
+        ..limits
+    };
+    spin::build(dir, check, first, &mut spin::Progress::new(named))?;
+    for steps in BOUNDED_STEPS {
+        let bounded = Limits {
+            depth: Some(model.init_steps as u64 + steps),
+            time_s: (limits.time_s / 4).max(1),
+            ..limits
+        };
+        // A fresh progress per search: its spinner is gone before the line below is printed.
+        let result = spin::search(dir, check, bounded, &mut spin::Progress::new(named))?;
+        let outcome = if result.errors > 0 {
+            "a violation"
+        } else if result.complete() {
+            "no violation, and no run reaches the bound"
+        } else {
+            "no violation within the bound"
+        };
+        println!(
+            "  {named}: bounded search, runs of at most {steps} steps: {outcome} — {}",
+            describe(&result)
+        );
+        if result.errors > 0 || result.complete() {
+            return Ok(Some((result, bounded)));
+        }
+        if result.timed_out || result.out_of_memory {
+            break;
+        }
+    }
+    Ok(None)
 }
 
 /// Replays the trail of a violation (shortened first, for safety) and prints it in the
@@ -564,13 +660,18 @@ fn explain_violation(
             shortest: true,
             ..limits
         };
-        let again = spin::run_check(dir, check, bfs)?;
+        let again = spin::run_check(dir, check, bfs, "shortening the counterexample")?;
         if again.errors == 0 || !trail.exists() {
             let _ = std::fs::rename(&kept, &trail);
         }
     }
     let output = spin::replay_trail(dir, check)?;
     let events = parse_events(&output);
+    // pan reported an assertion violated; a replay that does not reach it is not a
+    // counterexample to tell, and not a verdict either.
+    if check == Check::Safety && !events.iter().any(|e| matches!(e, Event::Violation { .. })) {
+        return Err(spin::tool_failure(spin::Tool::Replay, &output));
+    }
     let cx = Context {
         ir: explain_with.ir,
         module_names: &model.module_names,
@@ -588,11 +689,18 @@ fn describe(r: &PanResult) -> String {
     let mut parts = vec![
         if r.bitstate {
             "bitstate (partial)".to_string()
+        } else if r.depth_limited || (r.bounded && !r.complete()) {
+            "bounded (partial)".to_string()
         } else {
             "exhaustive".to_string()
         },
-        format!("{} states", r.states),
-        format!("depth {}", r.depth),
+        // pan reports its figures every million states and at the end: a search stopped
+        // before either has none to give.
+        if r.states == 0 && !r.reported {
+            "states not reported".to_string()
+        } else {
+            format!("{} states, depth {}", r.states, r.depth)
+        },
         format!("{:.2} s", r.seconds),
     ];
     if r.memory_mb > 0.0 {

@@ -51,6 +51,68 @@ fn every_paper_merge_variant_starts_a_statement_too_early_without_any_loss() {
     }
 }
 
+/// The paper's own robot (eight.json, seven modules): the Java merge's race found by the
+/// bounded search on the first two groups of eight2car (the whole sequence: the same race,
+/// docs/verification.md), and progress reported on stderr while spin works, not on stdout.
+#[test]
+fn the_paper_protocols_race_is_found_on_the_papers_own_robot() {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_dynarole"))
+        .args([
+            "verify",
+            "examples/verify/eight2car_start.dr",
+            "--from",
+            "examples/atron/eight.json",
+            "--protocol",
+            "paper",
+            "--merge",
+            "java",
+        ])
+        .env("DYNAROLE_PROGRESS_SECONDS", "1")
+        .current_dir(repo_root())
+        .output()
+        .expect("the dynarole binary runs");
+    let (stdout, stderr) = (text(&out.stdout), text(&out.stderr));
+    assert_eq!(out.status.code(), Some(1), "{stdout}{stderr}");
+    assert!(
+        stdout.contains("bounded search, runs of at most 50 steps: a violation"),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("S1 violated: M3 started #2 `M3.Joint.rotateFromToBy(0, 324, false, 150)` (examples/verify/eight2car_start.dr:9:5) before #0 was done"),
+        "{stdout}"
+    );
+    // The race: M0 starts #0 (pending {1}), and a neighbour's copy at state 0 erases it.
+    assert!(
+        stdout.contains("M0 starts #0 `M0.Connector[0].retract()`"),
+        "{stdout}"
+    );
+    assert!(stdout.contains("pending {1}"), "{stdout}");
+    assert!(
+        stderr.contains("progress: S1, S2, S3 (safety): compiling the verifier ("),
+        "{stderr}"
+    );
+    assert!(!stdout.contains("progress:"), "{stdout}");
+}
+
+/// Without spin, `verify` cannot give a verdict: an error of its own (exit 4), never 1
+/// (violated) or 3 (inconclusive).
+#[test]
+fn a_missing_spin_is_an_internal_failure_not_a_verdict() {
+    let empty = std::env::temp_dir().join(format!("dynarole-no-tools-{}", std::process::id()));
+    std::fs::create_dir_all(&empty).expect("a scratch directory");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_dynarole"))
+        .args(["verify", "examples/verify/ab_c.dr", "--from", LINE])
+        .env("PATH", &empty)
+        .current_dir(repo_root())
+        .output()
+        .expect("the dynarole binary runs");
+    let _ = std::fs::remove_dir_all(&empty);
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(4), "{stderr}");
+    assert!(stderr.contains("error: spin is not installed"), "{stderr}");
+    assert!(!text(&out.stdout).contains("result:"));
+}
+
 #[test]
 fn the_single_step_handover_repairs_the_c_port_but_not_the_java_merge() {
     let args = [
@@ -365,14 +427,17 @@ fn the_liveness_check_fails_when_the_end_is_never_surely_carried() {
         time_s: 300,
         bitstate: false,
         shortest: false,
+        depth: None,
     };
-    let result = dynarole_cli::spin::run_check(&check, dynarole_cli::spin::Check::Liveness, limits)
-        .expect("pan runs");
+    let result =
+        dynarole_cli::spin::run_check(&check, dynarole_cli::spin::Check::Liveness, limits, "L")
+            .expect("pan runs");
     assert!(result.errors > 0, "{result:?}");
     // The unchanged model proves L.
     std::fs::write(check.join("model.pml"), &model).expect("write");
-    let result = dynarole_cli::spin::run_check(&check, dynarole_cli::spin::Check::Liveness, limits)
-        .expect("pan runs");
+    let result =
+        dynarole_cli::spin::run_check(&check, dynarole_cli::spin::Check::Liveness, limits, "L")
+            .expect("pan runs");
     assert!(result.errors == 0 && result.complete(), "{result:?}");
 }
 

@@ -96,6 +96,19 @@ pub struct Model {
     pub module_names: Vec<String>,
     /// Paper protocol: (first state, statements) of each unit of the layout; empty otherwise.
     pub paper_states: Vec<(u8, Vec<usize>)>,
+    /// The steps `init` takes before the robot's first step (filling the tables, starting the
+    /// processes): the depth at which a search meets the robot's initial state.
+    pub init_steps: usize,
+}
+
+/// Counts `init`'s steps in a model's text: each `d_step` and each `run` is one step of the
+/// search (those in `atomic` too).
+fn init_steps(text: &str) -> usize {
+    text.split_once("\ninit {\n").map_or(0, |(_, init)| {
+        init.lines()
+            .filter(|l| l.trim_start().starts_with("d_step") || l.trim_start().starts_with("run "))
+            .count()
+    })
 }
 
 /// The limits every model shares.
@@ -158,16 +171,20 @@ pub fn generate_promela(
     };
     let mut out = String::new();
     g.header(&mut out);
-    let paper_states = match options.compile.protocol {
+    let (paper_states, fill) = match options.compile.protocol {
         Protocol::Lattice => {
             lattice::write(&g, &mut out);
-            Vec::new()
+            (Vec::new(), String::new())
         }
-        Protocol::Paper => paper::write(&g, &mut out, pending_slots(ir)?)?,
+        Protocol::Paper => {
+            let written = paper::write(&g, &mut out, pending_slots(ir)?)?;
+            (written.states, written.fill)
+        }
         Protocol::Token => return Err(limit("the token baseline is not modelled".into())),
     };
-    g.processes(&mut out);
+    g.processes(&mut out, &fill);
     Ok(Model {
+        init_steps: init_steps(&out),
         text: out,
         module_names: topology.modules.iter().map(|m| m.name.clone()).collect(),
         paper_states,
@@ -223,6 +240,7 @@ pub fn generate_compositional(
     g.header(&mut out);
     compositional::write(&g, &mut out, checked, graph);
     Ok(Model {
+        init_steps: init_steps(&out),
         text: out,
         module_names: topology.modules.iter().map(|m| m.name.clone()).collect(),
         paper_states: Vec::new(),
@@ -399,10 +417,10 @@ impl Gen<'_> {
         out.push('\n');
     }
 
-    /// `init`'s first steps: the tables filled, in `d_step`s of at most 100 assignments
-    /// (spin limits the length of a `d_step` and of an inline).
-    pub fn table_steps(&self) -> String {
-        let fill = self.table_fill();
+    /// `init`'s first steps: the tables filled (and the protocol's own, `extra`), in `d_step`s
+    /// of at most 100 assignments (spin limits the length of a `d_step` and of an inline).
+    pub fn table_steps(&self, extra: &str) -> String {
+        let fill = self.table_fill() + extra;
         let lines: Vec<&str> = fill.lines().collect();
         lines
             .chunks(100)
@@ -517,7 +535,7 @@ impl Gen<'_> {
     }
 
     /// Module, link, actuator, late-packet and reset processes, the LTL property, and `init`.
-    fn processes(&self, out: &mut String) {
+    fn processes(&self, out: &mut String, fill: &str) {
         out.push_str("/* ---- Processes ---- */\n");
         for k in 0..self.m() {
             let _ = writeln!(
@@ -568,7 +586,7 @@ impl Gen<'_> {
         let _ = write!(
             out,
             "init {{\n{}    d_step {{ initialise() }};\n    atomic {{\n",
-            self.table_steps()
+            self.table_steps(fill)
         );
         for k in 0..self.m() {
             let _ = writeln!(out, "        run module_{k}();");

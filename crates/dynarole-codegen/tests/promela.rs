@@ -127,3 +127,35 @@ fn compositional_model_is_for_the_lattice_protocol_with_nv_and_without_late_slot
     let late = generate_compositional(&ir, &topology, &options(Protocol::Lattice, 1), 0, &graph);
     assert!(late.expect_err("refused").message.contains("late-packet"));
 }
+
+/// The paper model's step is the same code whatever the sequence (the switch is tables read
+/// by one inline), so a long sequence stays within spin's limit on a `d_step`; the tables
+/// carry the layout.
+#[test]
+fn the_paper_switch_is_tables_so_a_step_does_not_grow_with_the_sequence() {
+    let long = "robot atron;\nsequence long {\n".to_string()
+        + &"    M0.Joint.rotateFromToBy(0, 108, true, 150) &\n    M1.Joint.rotateFromToBy(0, 108, true, 150);\n    M2.Joint.rotateFromToBy(0, 108, true, 150);\n".repeat(10)
+        + "}\n";
+    let parsed = parse(&long);
+    let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
+    let program = program.unwrap_or_else(|| panic!("{diagnostics:?}"));
+    let plan = program.expand("long").expect("sequence exists");
+    let long_ir = program.lower(&[plan]).expect("fits");
+    let topology = line(&[0, 1, 2, 3]);
+    let short = generate_promela(&ir(), &topology, &options(Protocol::Paper, 1)).expect("models");
+    let long = generate_promela(&long_ir, &topology, &options(Protocol::Paper, 1)).expect("models");
+    let step = |text: &str| -> String {
+        let from = text.find("inline program_step(m)").expect("a step");
+        let to = from + text[from..].find("\n}\n").expect("its end");
+        text[from..to].to_string()
+    };
+    assert_eq!(step(&short.text), step(&long.text));
+    // 30 statements: 10 parallel units (3 states) and 20 sequential ones (2), from state 1.
+    assert!(long.text.contains("#define SW_STATES 71"), "{}", long.text);
+    assert!(long.text.contains("sw_issue[29] = 29;"));
+    assert_eq!(long.paper_states.len(), 30);
+    // init: the table d_steps, initialise, and one `run` per process.
+    let runs = long.text.matches("        run ").count();
+    let fills = long.text.matches("    d_step {\n").count();
+    assert_eq!(long.init_steps, runs + fills + 1);
+}

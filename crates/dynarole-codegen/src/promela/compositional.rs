@@ -167,7 +167,7 @@ pub(crate) fn write(g: &Gen, out: &mut String, c: usize, graph: &LivenessGraph) 
     let _ = write!(
         out,
         "init {{\n{}    d_step {{ initialise() }};\n    atomic {{\n",
-        g.table_steps()
+        g.table_steps("")
     );
     let _ = writeln!(out, "        run module_{c}();\n        run news();");
     for k in 0..g.m() {

@@ -1,7 +1,8 @@
 //! The paper's protocol in Promela: a transcription of `runtime/paper/dr_paper.c` (every
 //! inline names the C function it mirrors) and of the Fig. 2 switch that `paper.rs` generates,
 //! state for state, from the same layout (`Ir::paper_layout`), so that the model splits steps
-//! exactly as the generated C does.
+//! exactly as the generated C does. The switch is tables indexed by the state, read by one
+//! inline, so that a step's code does not grow with the sequence (spin limits a `d_step`).
 //!
 //! Abstractions: a packet is the sender's (state, address, pending slots) (the alternate flag
 //! is always 0, framing and CRC drop what is corrupted: a loss); the periodic broadcast is "a
@@ -13,11 +14,16 @@ use crate::c::PaperMerge;
 use dynarole_core::lower::{LimitError, PaperUnit, PaperUnitKind};
 use std::fmt::Write;
 
-pub(crate) fn write(
-    g: &Gen,
-    out: &mut String,
-    slots: usize,
-) -> Result<Vec<(u8, Vec<usize>)>, LimitError> {
+/// What the paper protocol's part of the model leaves for the rest: the layout's (first
+/// state, statements) of each unit, and the assignments that fill the switch's tables (run by
+/// `init`).
+pub(crate) struct Written {
+    pub states: Vec<(u8, Vec<usize>)>,
+    pub fill: String,
+}
+
+/// Writes the paper protocol's part of the model.
+pub(crate) fn write(g: &Gen, out: &mut String, slots: usize) -> Result<Written, LimitError> {
     let units = g.ir.paper_layout()?;
     let o = &g.options.compile;
     let merge = match o.merge {
@@ -133,12 +139,7 @@ pub(crate) fn write(
         );
     }
 
-    // The generated switch (paper.rs), one case per state, fall-through as a loop.
-    out.push_str("/* dr_program_step(m): the Fig. 2 switch that paper.rs generates for this sequence, case for\n * case (a C fall-through there is t_go = 1 here). */\ninline program_step(m) {\n    t_go = 1;\n    do\n    :: !t_go -> break\n    :: else ->\n        t_go = 0;\n        if\n        :: lstate[m] == 0 -> lstate[m] = 1; t_go = 1 /* entry */\n");
-    for (k, unit) in units.iter().enumerate() {
-        unit_cases(out, unit, units.get(k + 1));
-    }
-    out.push_str("        :: else -> skip\n        fi\n    od\n}\n\n");
+    let fill = switch(out, &units);
     out.push_str("/* dr_module_step(m): an idle module takes the mailbox, then one step of the switch. */\ninline step(m) {\n    if\n    :: lstate[m] == IDLE -> lstate[m] = mailbox[m]; mailbox[m] = IDLE\n    :: else -> skip\n    fi;\n    program_step(m);\n    end_check(m)\n}\n\n");
     let clear_marks = if o.restart_pending {
         "    t_j = 0;\n    do\n    :: t_j < P -> mark[m * P + t_j] = 0; t_j++\n    :: else -> break\n    od;\n"
@@ -157,64 +158,206 @@ pub(crate) fn write(
         out,
         "/* The first dr_module_init of every module. */\ninline initialise() {{\n{init}    skip\n}}\n"
     );
-    Ok(units
+    let states = units
         .iter()
         .map(|u| (u.first_state, u.statements.clone()))
-        .collect())
+        .collect();
+    Ok(Written { states, fill })
 }
 
-fn issue_all(unit: &PaperUnit) -> String {
-    unit.statements
-        .iter()
-        .map(|i| format!("issue(m, {i}, 0); "))
-        .collect()
+/// What a state of the switch does (`sw_kind`), by the unit it belongs to.
+#[derive(Clone, Copy)]
+enum Case {
+    /// No case: the switch does nothing (the C `default`).
+    None = 0,
+    /// Parallel `S`: add pending S, start the statement.
+    ParallelStart = 1,
+    /// Parallel `S+1`: the hand-over, then fall through.
+    Handover = 2,
+    /// Parallel `S+2`: wait for the operation, remove pending S.
+    ParallelWait = 3,
+    /// Sequential or block `S`: start the statements.
+    Start = 4,
+    /// Sequential `S+1`: wait for the operation and an empty pending set, then transfer.
+    SequentialWait = 5,
+    /// Block `S+1`: wait for the operations (not the pending set), then transfer.
+    BlockWait = 6,
 }
 
-/// The cases of one unit, as `paper.rs` `unit_cases` writes them in C.
-fn unit_cases(out: &mut String, unit: &PaperUnit, next: Option<&PaperUnit>) {
-    let s = u32::from(unit.first_state);
-    let statements: Vec<String> = unit.statements.iter().map(|i| i.to_string()).collect();
-    match unit.kind {
-        PaperUnitKind::Parallel => {
-            let (next_state, next_address) =
-                next.map_or((254, 255), |n| (n.first_state, n.address));
-            let _ = writeln!(
-                out,
-                "        :: lstate[m] == {s} -> /* module {}: statement {} & */\n            add_pending(m, {s}); {}lstate[m] = {}\n        :: lstate[m] == {} -> handover(m, {s}, {next_state}, {next_address}); lstate[m] = {}; t_go = 1\n        :: lstate[m] == {} ->\n            if\n            :: BUSY(m) -> skip\n            :: else -> remove_pending(m, {s}); lstate[m] = IDLE\n            fi",
-                unit.address,
-                statements.join(", "),
-                issue_all(unit),
-                s + 1,
-                s + 1,
-                s + 2,
-                s + 2
-            );
+/// One state's row of the switch's tables.
+struct Row {
+    case: Case,
+    /// The statements a start state issues.
+    issues: Vec<usize>,
+    /// Where control goes next: (state, address); `local`: the next unit is on the same
+    /// module, which falls through to it instead of sending.
+    next: (u8, u8),
+    local: bool,
+}
+
+/// The switch's rows, one per state from 0 to the last unit's last state.
+fn rows(units: &[PaperUnit]) -> Vec<Row> {
+    let mut rows: Vec<Row> = Vec::new();
+    let mut put = |state: u8, row: Row| {
+        let at = usize::from(state);
+        while rows.len() <= at {
+            rows.push(Row {
+                case: Case::None,
+                issues: Vec::new(),
+                next: (0, 0),
+                local: false,
+            });
         }
-        PaperUnitKind::Sequential | PaperUnitKind::Block => {
-            let wait = if unit.kind == PaperUnitKind::Sequential {
-                "HAS_PENDING(m) || BUSY(m)"
-            } else {
-                "BUSY(m) /* a block does not look at the pending set */"
-            };
-            let transfer = match next {
-                Some(n) if n.address == unit.address => {
-                    format!("lstate[m] = {}; t_go = 1", s + 2)
-                }
-                Some(n) => format!(
-                    "send_state(m, {}, {}); lstate[m] = IDLE",
-                    n.first_state, n.address
-                ),
-                None => "send_state(m, STATE_END, ADDRESS_ALL); lstate[m] = IDLE".to_string(),
-            };
-            let _ = writeln!(
-                out,
-                "        :: lstate[m] == {s} -> /* module {}: statement {} ; */\n            {}lstate[m] = {}\n        :: lstate[m] == {} ->\n            if\n            :: {wait} -> skip\n            :: else -> {transfer}\n            fi",
-                unit.address,
-                statements.join(", "),
-                issue_all(unit),
-                s + 1,
-                s + 1
-            );
+        rows[at] = row;
+    };
+    for (k, unit) in units.iter().enumerate() {
+        let next = units.get(k + 1);
+        let target = next.map_or((254, 255), |n| (n.first_state, n.address));
+        let local = next.is_some_and(|n| n.address == unit.address);
+        let s = unit.first_state;
+        let row = |case: Case, issues: Vec<usize>| Row {
+            case,
+            issues,
+            next: target,
+            local,
+        };
+        match unit.kind {
+            PaperUnitKind::Parallel => {
+                put(s, row(Case::ParallelStart, unit.statements.clone()));
+                // The hand-over always sends (the C writes handover(), never a fall-through).
+                put(
+                    s + 1,
+                    Row {
+                        local: false,
+                        ..row(Case::Handover, Vec::new())
+                    },
+                );
+                put(s + 2, row(Case::ParallelWait, Vec::new()));
+            }
+            PaperUnitKind::Sequential | PaperUnitKind::Block => {
+                put(s, row(Case::Start, unit.statements.clone()));
+                let wait = if unit.kind == PaperUnitKind::Sequential {
+                    Case::SequentialWait
+                } else {
+                    Case::BlockWait
+                };
+                put(s + 1, row(wait, Vec::new()));
+            }
         }
     }
+    rows
 }
+
+/// The Fig. 2 switch that `paper.rs` generates in C, as tables indexed by the state (what
+/// each case does, which statements it starts, where it transfers control) and one inline
+/// that interprets them: a step's code no longer grows with the sequence, which keeps it
+/// within spin's limit on the length of a `d_step`. Writes the layout as a comment, the
+/// tables and `program_step`; returns the assignments that fill the tables.
+fn switch(out: &mut String, units: &[PaperUnit]) -> String {
+    let rows = rows(units);
+    out.push_str(
+        "/* The switch's layout (paper.rs): first state, kind, module address, statements. */\n",
+    );
+    for unit in units {
+        let kind = match unit.kind {
+            PaperUnitKind::Parallel => "&",
+            PaperUnitKind::Sequential => ";",
+            PaperUnitKind::Block => "block",
+        };
+        let statements: Vec<String> = unit.statements.iter().map(|i| i.to_string()).collect();
+        let _ = writeln!(
+            out,
+            "/*   {:>3}  {kind:<5}  module {}: statement {} */",
+            unit.first_state,
+            unit.address,
+            statements.join(", ")
+        );
+    }
+    let issued: usize = rows.iter().map(|r| r.issues.len()).sum();
+    let _ = writeln!(
+        out,
+        "#define SW_STATES {}\n#define SW_PARALLEL_START {}\n#define SW_HANDOVER {}\n#define SW_PARALLEL_WAIT {}\n#define SW_START {}\n#define SW_SEQUENTIAL_WAIT {}\n#define SW_BLOCK_WAIT {}\n/* State t's case (SW_*, 0: none), the statements it starts (sw_issue[sw_issue_first[t] ..\n * sw_issue_first[t + 1])), where control goes next (state, address) and whether by falling\n * through (the next unit is on the same module). */\nhidden byte sw_kind[SW_STATES];\nhidden short sw_issue_first[SW_STATES + 1];\nhidden byte sw_issue[{}];\nhidden byte sw_next[SW_STATES];\nhidden byte sw_next_addr[SW_STATES];\nhidden byte sw_local[SW_STATES];\nhidden byte t_u, t_v;\nhidden short t_w;\n",
+        rows.len(),
+        Case::ParallelStart as u8,
+        Case::Handover as u8,
+        Case::ParallelWait as u8,
+        Case::Start as u8,
+        Case::SequentialWait as u8,
+        Case::BlockWait as u8,
+        issued.max(1)
+    );
+    out.push_str(PROGRAM_STEP);
+    let mut fill = String::new();
+    let mut at = 0;
+    for (t, row) in rows.iter().enumerate() {
+        let _ = writeln!(fill, "        sw_issue_first[{t}] = {at};");
+        if let Case::None = row.case {
+            continue;
+        }
+        let _ = writeln!(
+            fill,
+            "        sw_kind[{t}] = {};\n        sw_next[{t}] = {};\n        sw_next_addr[{t}] = {};\n        sw_local[{t}] = {};",
+            row.case as u8,
+            row.next.0,
+            row.next.1,
+            u8::from(row.local)
+        );
+        for &i in &row.issues {
+            let _ = writeln!(fill, "        sw_issue[{at}] = {i};");
+            at += 1;
+        }
+    }
+    let _ = writeln!(fill, "        sw_issue_first[{}] = {at};", rows.len());
+    fill
+}
+
+/// The interpreter of the switch's tables: one case per iteration, a C fall-through is
+/// `t_go = 1`. `t_u` is the state, `t_v` the unit's pending state or the transfer's target.
+const PROGRAM_STEP: &str = "/* dr_program_step(m): the generated switch, case for case from the tables. */
+inline program_step(m) {
+    t_go = 1;
+    do
+    :: !t_go -> break
+    :: else ->
+        t_go = 0;
+        t_u = lstate[m];
+        if
+        :: t_u == 0 -> lstate[m] = 1; t_go = 1 /* entry */
+        :: t_u != 0 && t_u < SW_STATES && (sw_kind[t_u] == SW_PARALLEL_START || sw_kind[t_u] == SW_START) ->
+            if
+            :: sw_kind[t_u] == SW_PARALLEL_START -> t_v = t_u; add_pending(m, t_v)
+            :: else -> skip
+            fi;
+            t_w = sw_issue_first[t_u];
+            do
+            :: t_w < sw_issue_first[t_u + 1] -> issue(m, sw_issue[t_w], 0); t_w++
+            :: else -> break
+            od;
+            lstate[m] = t_u + 1
+        :: t_u != 0 && t_u < SW_STATES && sw_kind[t_u] == SW_HANDOVER ->
+            t_v = t_u - 1;
+            handover(m, t_v, sw_next[t_u], sw_next_addr[t_u]);
+            lstate[m] = t_u + 1;
+            t_go = 1
+        :: t_u != 0 && t_u < SW_STATES && sw_kind[t_u] == SW_PARALLEL_WAIT ->
+            if
+            :: BUSY(m) -> skip
+            :: else -> t_v = t_u - 2; remove_pending(m, t_v); lstate[m] = IDLE
+            fi
+        :: t_u != 0 && t_u < SW_STATES && (sw_kind[t_u] == SW_SEQUENTIAL_WAIT || sw_kind[t_u] == SW_BLOCK_WAIT) ->
+            if
+            :: sw_kind[t_u] == SW_SEQUENTIAL_WAIT && (HAS_PENDING(m) || BUSY(m)) -> skip
+            :: sw_kind[t_u] == SW_BLOCK_WAIT && BUSY(m) -> skip /* a block does not look at the pending set */
+            :: else ->
+                t_v = sw_next[t_u];
+                if
+                :: sw_local[t_u] -> lstate[m] = t_v; t_go = 1
+                :: else -> send_state(m, t_v, sw_next_addr[t_u]); lstate[m] = IDLE
+                fi
+            fi
+        :: else -> skip
+        fi
+    od
+}
+
+";
