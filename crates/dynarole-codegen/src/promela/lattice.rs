@@ -119,7 +119,7 @@ pub(crate) fn write(g: &Gen, out: &mut String) {
 
     // dr_module_init (a reset)
     let restore = if no_nv {
-        let mut s = String::from("unheard[m] = CONNECTED(m); /* rule 1 (the bound is assumed never to expire: see docs) */\n    unechoed[m] = NONE;\n");
+        let mut s = String::from("unheard[m] = CONNECTED(m); /* rule 1: hear every neighbour connected now (no time-out) */\n    unechoed[m] = NONE;\n");
         if g.options.late > 0 {
             s.push_str("    /* Assumption (b): no packet crosses a reset. */\n");
             for slot in 0..g.options.late {
