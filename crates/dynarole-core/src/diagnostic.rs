@@ -42,8 +42,10 @@ pub struct Description {
 #[strum_discriminants(strum(serialize_all = "kebab-case"))]
 pub enum DiagnosticKind {
     // ---- syntax ----
+    /// A run of `count` characters that are not part of the language, starting with `found`.
     UnknownCharacter {
         found: char,
+        count: usize,
     },
     UnterminatedComment,
     UnexpectedToken {
@@ -71,6 +73,22 @@ pub enum DiagnosticKind {
     },
     EmptySequence {
         name: String,
+    },
+    /// Expanded, the sequence would have more statements than a program can.
+    SequenceTooLong {
+        name: String,
+        /// At least this many (the count saturates).
+        statements: usize,
+        limit: usize,
+    },
+    /// Sequences using sequences, deeper than expansion accepts.
+    CompositionTooDeep {
+        name: String,
+        limit: usize,
+    },
+    /// More errors than a report shows; the rest are counted.
+    TooManyErrors {
+        more: usize,
     },
     // ---- names ----
     MissingRobot,
@@ -235,8 +253,11 @@ impl Diagnostic {
         use DiagnosticKind as K;
         let d = Description::error(self.code());
         match &self.kind {
-            K::UnknownCharacter { found } => d
+            K::UnknownCharacter { found, count: 1 } => d
                 .title(format!("unexpected character `{}`", found.escape_debug()))
+                .label("not part of the language"),
+            K::UnknownCharacter { found, count } => d
+                .title(format!("{count} unexpected characters, from `{}`", found.escape_debug()))
                 .label("not part of the language"),
             K::UnterminatedComment => d
                 .title("unterminated block comment")
@@ -284,6 +305,19 @@ impl Diagnostic {
                 .warning()
                 .title(format!("sequence `{name}` has no statements"))
                 .label("empty body"),
+            K::SequenceTooLong { name, statements, limit } => d
+                .title(format!("sequence `{name}` would have {statements} statements once expanded (limit {limit})"))
+                .label("expanded here")
+                .hint("the sequences it uses are inlined: one used twice counts twice; split the work into sequences that run one after another"),
+            K::CompositionTooDeep { name, limit } => d
+                .title(format!("sequence `{name}` uses sequences more than {limit} levels deep"))
+                .label("the chain of sequences using sequences ends here")
+                .hint("use the inner sequences side by side in one body instead of each inside the next"),
+            K::TooManyErrors { more } => d
+                .warning()
+                .title(format!("{more} more diagnostic{} not shown", plural(*more)))
+                .label("the next one is here")
+                .hint("fix the errors above and run again"),
             K::MissingRobot => d
                 .title("the file does not say which robot it is for")
                 .label("expected a `robot` declaration")
@@ -498,6 +532,23 @@ impl DiagnosticCode {
 }
 
 /// True when any diagnostic is an error (warnings do not fail a check).
+/// Most diagnostics shown for one file; the rest are counted in one [`DiagnosticKind::TooManyErrors`].
+pub const MAX_SHOWN: usize = 50;
+
+/// The diagnostics a report shows: the first [`MAX_SHOWN`], then one that counts the rest,
+/// so that the output stays bounded whatever the input.
+pub fn shown(diagnostics: &[Diagnostic]) -> Vec<Diagnostic> {
+    let mut out: Vec<Diagnostic> = diagnostics.iter().take(MAX_SHOWN).cloned().collect();
+    if let Some(next) = diagnostics.get(MAX_SHOWN) {
+        let more = diagnostics.len() - MAX_SHOWN;
+        out.push(Diagnostic::new(
+            DiagnosticKind::TooManyErrors { more },
+            next.span,
+        ));
+    }
+    out
+}
+
 pub fn has_errors(diagnostics: &[Diagnostic]) -> bool {
     diagnostics.iter().any(|d| d.severity() == Severity::Error)
 }

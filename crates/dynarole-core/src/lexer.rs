@@ -130,18 +130,34 @@ pub fn lex(source: &str) -> Lexed {
                 out.errors
                     .push(Diagnostic::new(DiagnosticKind::UnterminatedComment, span));
             }
-            Err(()) => {
-                let found = lexer.slice().chars().next().unwrap_or(' ');
-                out.errors.push(Diagnostic::new(
-                    DiagnosticKind::UnknownCharacter { found },
-                    span,
-                ));
-            }
+            Err(()) => unknown_character(&mut out.errors, lexer.slice(), span),
         }
     }
     let end = Span::new(source.len(), source.len());
     out.tokens.push((Token::Eof, end));
     out
+}
+
+/// Reports bad text at `span`; a run of bad characters, one after the other, is one error,
+/// so that the report stays short whatever the input.
+fn unknown_character(errors: &mut Vec<Diagnostic>, text: &str, span: Span) {
+    let count = text.chars().count();
+    if let Some(Diagnostic {
+        kind: DiagnosticKind::UnknownCharacter { count: before, .. },
+        span: run,
+    }) = errors.last_mut()
+    {
+        if run.end == span.start {
+            *before += count;
+            *run = run.to(span);
+            return;
+        }
+    }
+    let found = text.chars().next().unwrap_or(' ');
+    errors.push(Diagnostic::new(
+        DiagnosticKind::UnknownCharacter { found, count },
+        span,
+    ));
 }
 
 impl Token {
