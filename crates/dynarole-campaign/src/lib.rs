@@ -12,7 +12,8 @@ mod spec;
 mod stats;
 mod tables;
 
-pub use plan::{Axis, Faults, PlannedRun};
+pub use load::{read_limited, MAX_INPUT_BYTES};
+pub use plan::{plan, Axis, Faults, Plan, PlannedRun, MAX_RUNS};
 pub use plot::rasterise_svg;
 pub use results::{Outcome, Row, COLUMNS};
 pub use spec::{CampaignFile, Merge, ProtocolName, ProtocolOptions, Range, SpecError, Sweep};
@@ -119,7 +120,6 @@ pub fn run(options: &Options) -> Result<Done, Error> {
         .iter()
         .filter(|r| !done.contains(&r.index))
         .take(options.max_runs.map_or(usize::MAX, |n| n as usize))
-        .cloned()
         .collect();
     if !pending.is_empty() {
         exec::prepare(&inputs)?;
@@ -141,7 +141,7 @@ pub fn run(options: &Options) -> Result<Done, Error> {
         files.extend(plot::write_all(&summaries, &options.out_dir)?);
     }
     Ok(Done {
-        total: planned.len() as u64,
+        total: planned.len(),
         already,
         ran,
         rows,
@@ -152,20 +152,15 @@ pub fn run(options: &Options) -> Result<Done, Error> {
 }
 
 /// The rows already in `runs.csv`, each checked against the planned run of its index.
-fn recorded(
-    path: &Path,
-    planned: &[PlannedRun],
-    campaign: &CampaignFile,
-) -> Result<Vec<Row>, Error> {
+fn recorded(path: &Path, planned: &plan::Plan, campaign: &CampaignFile) -> Result<Vec<Row>, Error> {
     let rows = results::read_existing(path)?;
     let preset = campaign.scenario.network.preset.name();
     let timeout = campaign.scenario.timeout_ms;
     let mut seen = std::collections::BTreeSet::new();
     for row in &rows {
-        let matches = usize::try_from(row.run)
-            .ok()
-            .and_then(|i| planned.get(i))
-            .is_some_and(|run| row.is_result_of(run, preset, timeout));
+        let matches = planned
+            .get(row.run)
+            .is_some_and(|run| row.is_result_of(&run, preset, timeout));
         if !matches {
             return Err(Error::Results(format!(
                 "{}: run {} was recorded with other parameters than this campaign's; \

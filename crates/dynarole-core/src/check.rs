@@ -220,7 +220,17 @@ impl<'f> Checker<'f> {
 
     fn expr(&mut self, expr: &Expr, robot: &RobotApi) -> Type {
         match &expr.kind {
-            ExprKind::Int(_) => Type::Int,
+            ExprKind::Int(n) => {
+                if i32::try_from(*n).is_err() {
+                    let kind = K::NumberOutOfRange {
+                        value: *n,
+                        allowed: format!("{} to {}", i32::MIN, i32::MAX),
+                        reason: "role predicates are computed in 32 bits on the modules".into(),
+                    };
+                    self.report(kind, expr.span);
+                }
+                Type::Int
+            }
             ExprKind::Bool(_) => Type::Bool,
             ExprKind::Constant(name) => match robot.constant(name) {
                 Some(_) => Type::Int,
@@ -264,7 +274,33 @@ impl<'f> Checker<'f> {
                 self.expect_type(rhs, robot, Type::Int, &context);
             }
         }
+        if op == BinaryOp::Eq {
+            self.id_comparison(lhs, rhs);
+            self.id_comparison(rhs, lhs);
+        }
         Type::Bool
+    }
+
+    /// A module ID equal to a number no module can have is a mistake: IDs are 16 bits on the
+    /// modules (65,535 means "none", and `neighbour_id` answers -1 for no neighbour).
+    fn id_comparison(&mut self, query: &Expr, number: &Expr) {
+        let lowest = match &query.kind {
+            ExprKind::Name(name) if name.name == "id" => 0,
+            ExprKind::Call { function, .. } if function.name == "neighbour_id" => -1,
+            _ => return,
+        };
+        let Some(value) = literal(number) else { return };
+        let max = i64::from(u16::MAX) - 1;
+        // A number beyond 32 bits is reported on its own.
+        if (lowest..=max).contains(&value) || i32::try_from(value).is_err() {
+            return;
+        }
+        let kind = K::NumberOutOfRange {
+            value,
+            allowed: format!("{lowest} to {max}"),
+            reason: "module IDs are 16 bits on the modules (65535 means none)".into(),
+        };
+        self.report(kind, number.span);
     }
 
     fn expect_type(&mut self, expr: &Expr, robot: &RobotApi, want: Type, context: &str) {
@@ -673,6 +709,19 @@ fn cycle(stack: &[(&str, Span)], node: &str, next: &str, span: Span) -> (Vec<Str
     let mut uses: Vec<Span> = on_cycle.iter().skip(1).map(|(_, s)| *s).collect();
     uses.push(span);
     (path, uses)
+}
+
+/// The value of a number written in a predicate (`7`, `-7`, `(7)`), if `expr` is one.
+fn literal(expr: &Expr) -> Option<i64> {
+    match &expr.kind {
+        ExprKind::Int(n) => Some(*n),
+        ExprKind::Paren(inner) => literal(inner),
+        ExprKind::Unary {
+            op: UnaryOp::Negate,
+            operand,
+        } => literal(operand).and_then(i64::checked_neg),
+        _ => None,
+    }
 }
 
 /// Deepest chain of sequences using sequences that expansion (a recursive pass) accepts.

@@ -169,6 +169,12 @@ pub enum DiagnosticKind {
         value: i64,
         allowed: String,
     },
+    /// A number in a role predicate that the generated code cannot hold or compare.
+    NumberOutOfRange {
+        value: i64,
+        allowed: String,
+        reason: String,
+    },
     FemaleConnector {
         part: String,
         method: String,
@@ -405,6 +411,10 @@ impl Diagnostic {
             K::ArgumentOutOfRange { param, value, allowed } => d
                 .title(format!("`{param}` = {value} is out of range"))
                 .label(format!("allowed: {allowed}")),
+            K::NumberOutOfRange { value, allowed, reason } => d
+                .title(format!("{value} is out of range here"))
+                .label(format!("expected {allowed}"))
+                .hint(reason.clone()),
             K::FemaleConnector { part, method, index, males } => d
                 .title(format!("`{method}` on female {part} {index}"))
                 .label("only male connectors can extend or retract")

@@ -138,6 +138,15 @@ pub fn lex(source: &str) -> Lexed {
     out
 }
 
+/// Whether `text` is a name of the language (a sequence, role or label): exactly one
+/// identifier token, not a keyword. Decided by the lexer itself so that the rule is one.
+pub fn is_identifier(text: &str) -> bool {
+    let mut lexer = Token::lexer(text);
+    matches!(lexer.next(), Some(Ok(Token::Ident(_))))
+        && lexer.span() == (0..text.len())
+        && lexer.next().is_none()
+}
+
 /// Reports bad text at `span`; a run of bad characters, one after the other, is one error,
 /// so that the report stays short whatever the input.
 fn unknown_character(errors: &mut Vec<Diagnostic>, text: &str, span: Span) {
