@@ -439,9 +439,7 @@ impl<'f> Checker<'f> {
     }
 
     fn label(&mut self, label: &Ident) {
-        if self.file.roles().any(|r| r.name.name == label.name)
-            || parse_module_label(&label.name).is_some()
-        {
+        if self.file.has_role(&label.name) || parse_module_label(&label.name).is_some() {
             return;
         }
         let suggestion = module_label_lookalike(&label.name)
@@ -802,7 +800,7 @@ pub fn parse_module_label(name: &str) -> Option<u32> {
 
 /// Who runs a statement labelled `label` in `file` (roles take precedence over `M<k>`).
 pub fn resolve_label(file: &SourceFile, label: &str) -> Option<Label> {
-    if file.roles().any(|r| r.name.name == label) {
+    if file.has_role(label) {
         return Some(Label::Role(label.to_string()));
     }
     parse_module_label(label).map(Label::Module)

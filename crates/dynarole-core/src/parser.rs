@@ -39,6 +39,7 @@ pub fn parse(source: &str) -> Parsed {
         file: SourceFile {
             items,
             comments: lexed.comments,
+            names: NameIndex::default(),
         },
         diagnostics,
     }
