@@ -86,6 +86,10 @@ pub enum DiagnosticKind {
         name: String,
         limit: usize,
     },
+    /// The file is too large or too broken to read further.
+    InputTooLarge {
+        what: String,
+    },
     /// More errors than a report shows; the rest are counted.
     TooManyErrors {
         more: usize,
@@ -319,6 +323,10 @@ impl Diagnostic {
                 .title(format!("sequence `{name}` uses sequences more than {limit} levels deep"))
                 .label("the chain of sequences using sequences ends here")
                 .hint("use the inner sequences side by side in one body instead of each inside the next"),
+            K::InputTooLarge { what } => d
+                .title(format!("{what}: the rest of the file is not read"))
+                .label("reading stops here")
+                .hint("fix the errors above, or split the file (docs/limits.md gives every limit)"),
             K::TooManyErrors { more } => d
                 .warning()
                 .title(format!("{more} more diagnostic{} not shown", plural(*more)))
@@ -546,16 +554,22 @@ impl DiagnosticCode {
 pub const MAX_SHOWN: usize = 50;
 
 /// The diagnostics a report shows: the first [`MAX_SHOWN`], then one that counts the rest,
-/// so that the output stays bounded whatever the input.
+/// so that the output stays bounded whatever the input; a file that was not read to its end
+/// says so whatever its place in the list.
 pub fn shown(diagnostics: &[Diagnostic]) -> Vec<Diagnostic> {
     let mut out: Vec<Diagnostic> = diagnostics.iter().take(MAX_SHOWN).cloned().collect();
-    if let Some(next) = diagnostics.get(MAX_SHOWN) {
-        let more = diagnostics.len() - MAX_SHOWN;
+    let rest = diagnostics.get(MAX_SHOWN..).unwrap_or(&[]);
+    let (stops, others): (Vec<&Diagnostic>, Vec<&Diagnostic>) = rest
+        .iter()
+        .partition(|d| matches!(d.kind, DiagnosticKind::InputTooLarge { .. }));
+    if let Some(next) = others.first() {
+        let more = others.len();
         out.push(Diagnostic::new(
             DiagnosticKind::TooManyErrors { more },
             next.span,
         ));
     }
+    out.extend(stops.into_iter().cloned());
     out
 }
 

@@ -115,11 +115,22 @@ pub struct Lexed {
     pub errors: Vec<Diagnostic>,
 }
 
+/// Most tokens a file may have: 60,000 statements of 15 tokens with room to spare, and about
+/// 60 MB of tokens at most.
+pub const MAX_TOKENS: usize = 1_500_000;
+
 pub fn lex(source: &str) -> Lexed {
     let mut out = Lexed::default();
     let mut lexer = Token::lexer(source);
     while let Some(result) = lexer.next() {
         let span = Span::new(lexer.span().start, lexer.span().end);
+        if let Some(what) = too_much(&out) {
+            out.errors.push(Diagnostic::new(
+                DiagnosticKind::InputTooLarge { what },
+                span,
+            ));
+            break;
+        }
         match result {
             Ok(Token::LineComment) | Ok(Token::BlockComment) => out.comments.push(Comment {
                 text: lexer.slice().trim_end().to_string(),
@@ -136,6 +147,15 @@ pub fn lex(source: &str) -> Lexed {
     let end = Span::new(source.len(), source.len());
     out.tokens.push((Token::Eof, end));
     out
+}
+
+/// Why lexing must stop here, if it must: too many tokens or too many bad characters.
+fn too_much(lexed: &Lexed) -> Option<String> {
+    if lexed.tokens.len() >= MAX_TOKENS {
+        return Some(format!("more than {MAX_TOKENS} tokens"));
+    }
+    let limit = crate::parser::MAX_SYNTAX_ERRORS;
+    (lexed.errors.len() >= limit).then(|| format!("more than {limit} syntax errors"))
 }
 
 /// Whether `text` is a name of the language (a sequence, role or label): exactly one
