@@ -258,6 +258,16 @@ impl SourceFile {
         }
     }
 
+    /// The first role named `name`, with its place among the items (declaration order).
+    pub fn role(&self, name: &str) -> Option<(usize, &RoleDecl)> {
+        let (item, _) = self.declared(name)?;
+        let item = item?;
+        match self.items.get(item)? {
+            Item::Role(decl) => Some((item, decl)),
+            _ => None,
+        }
+    }
+
     /// Whether a role is named `name`.
     pub fn has_role(&self, name: &str) -> bool {
         self.declared(name).is_some_and(|(role, _)| role.is_some())

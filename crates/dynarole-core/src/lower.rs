@@ -187,17 +187,24 @@ impl Program<'_> {
                 });
             }
         }
-        let mut next = addresses
+        let first_free = addresses
             .iter()
             .map(|a| u32::from(a.number) + 1)
             .max()
             .unwrap_or(0);
-        let used: BTreeSet<&Label> = flat.iter().map(|(s, _, _)| &s.label).collect();
-        for role in self.file.roles() {
+        // The roles the statements use, in declaration order (found through the file's
+        // index: a scan of every item per sequence made many-sequence files quadratic).
+        let mut roles: Vec<(usize, &crate::ast::RoleDecl)> = flat
+            .iter()
+            .filter_map(|(s, _, _)| match &s.label {
+                Label::Role(name) => self.file.role(name),
+                Label::Module(_) => None,
+            })
+            .collect();
+        roles.sort_by_key(|(item, _)| *item);
+        roles.dedup_by_key(|(item, _)| *item);
+        for (next, (_, role)) in (first_free..).zip(roles) {
             let label = Label::Role(role.name.name.clone());
-            if !used.contains(&label) {
-                continue;
-            }
             if next > MAX_ADDRESS {
                 return Err(LimitError {
                     message: format!("more roles and modules than the {MAX_ADDRESS} addresses"),
@@ -209,7 +216,6 @@ impl Program<'_> {
                 label,
                 predicate: Some(role.predicate.clone()),
             });
-            next += 1;
         }
         addresses.sort_by_key(|a| a.number);
         Ok(addresses)
