@@ -67,6 +67,7 @@ pub fn analyze<'f>(
     let mut checker = Checker {
         file,
         diagnostics: Vec::new(),
+        searches_left: crate::diagnostic::MAX_SHOWN,
     };
     let robot = checker.robot(registry);
     checker.duplicates();
@@ -95,6 +96,21 @@ pub fn analyze<'f>(
 struct Checker<'f> {
     file: &'f SourceFile,
     diagnostics: Vec<Diagnostic>,
+    /// Searches of the file's own names for a "did you mean" still allowed: each costs a
+    /// comparison with every role or sequence, and a report shows only the first errors.
+    searches_left: usize,
+}
+
+impl Checker<'_> {
+    /// The closest of `candidates` to `name`, while the search budget lasts.
+    fn closest_declared<'a>(
+        &mut self,
+        name: &str,
+        candidates: impl IntoIterator<Item = &'a str>,
+    ) -> Option<String> {
+        self.searches_left = self.searches_left.checked_sub(1)?;
+        closest(name, candidates)
+    }
 }
 
 /// The role queries a predicate may use, and their number of arguments.
@@ -409,10 +425,9 @@ impl<'f> Checker<'f> {
 
     fn sequence_name(&mut self, name: &Ident) {
         if self.file.sequence(&name.name).is_none() {
-            let suggestion = closest(
-                &name.name,
-                self.file.sequences().map(|s| s.name.name.as_str()),
-            );
+            let file = self.file;
+            let suggestion =
+                self.closest_declared(&name.name, file.sequences().map(|s| s.name.name.as_str()));
             self.report(
                 K::UnknownSequence {
                     name: name.name.clone(),
@@ -442,8 +457,10 @@ impl<'f> Checker<'f> {
         if self.file.has_role(&label.name) || parse_module_label(&label.name).is_some() {
             return;
         }
-        let suggestion = module_label_lookalike(&label.name)
-            .or_else(|| closest(&label.name, self.file.roles().map(|r| r.name.name.as_str())));
+        let file = self.file;
+        let suggestion = module_label_lookalike(&label.name).or_else(|| {
+            self.closest_declared(&label.name, file.roles().map(|r| r.name.name.as_str()))
+        });
         self.report(
             K::UnknownLabel {
                 name: label.name.clone(),
