@@ -525,11 +525,22 @@ impl<'f> Checker<'f> {
                 count <= MAX_STATEMENTS && depth <= MAX_COMPOSITION_DEPTH
             })
         };
+        let mut total = 0usize;
+        let mut total_reported = false;
         for decl in self.file.sequences() {
             let name = decl.name.name.as_str();
             let Some(&(count, depth)) = sizes.get(name) else {
                 continue;
             };
+            total = total.saturating_add(count);
+            if total > MAX_EXPANDED_PER_FILE && !total_reported {
+                total_reported = true;
+                let kind = K::FileTooLong {
+                    statements: total,
+                    limit: MAX_EXPANDED_PER_FILE,
+                };
+                self.report(kind, decl.name.span);
+            }
             let uses = graph.get(name).map(Vec::as_slice).unwrap_or(&[]);
             if within(name) || !uses.iter().all(|(callee, _)| within(callee)) {
                 continue;
@@ -738,6 +749,10 @@ fn literal(expr: &Expr) -> Option<i64> {
         _ => None,
     }
 }
+
+/// Most statements all the sequences of a file expand to together: `check` expands and lowers
+/// each sequence, so this bounds its work on a file of many sequences using a long one.
+pub const MAX_EXPANDED_PER_FILE: usize = 1_000_000;
 
 /// Deepest chain of sequences using sequences that expansion (a recursive pass) accepts.
 pub const MAX_COMPOSITION_DEPTH: usize = 64;

@@ -81,6 +81,12 @@ pub enum DiagnosticKind {
         statements: usize,
         limit: usize,
     },
+    /// All the sequences of the file, expanded, have more statements than checking accepts.
+    FileTooLong {
+        /// At least this many (the count saturates).
+        statements: usize,
+        limit: usize,
+    },
     /// Sequences using sequences, deeper than expansion accepts.
     CompositionTooDeep {
         name: String,
@@ -319,6 +325,10 @@ impl Diagnostic {
                 .title(format!("sequence `{name}` would have {statements} statements once expanded (limit {limit})"))
                 .label("expanded here")
                 .hint("the sequences it uses are inlined: one used twice counts twice; split the work into sequences that run one after another"),
+            K::FileTooLong { statements, limit } => d
+                .title(format!("the sequences of this file expand to {statements} statements together (limit {limit})"))
+                .label("the total passes the limit with this sequence")
+                .hint("each sequence is expanded and checked on its own, so one used by many counts once per use; split the file"),
             K::CompositionTooDeep { name, limit } => d
                 .title(format!("sequence `{name}` uses sequences more than {limit} levels deep"))
                 .label("the chain of sequences using sequences ends here")
