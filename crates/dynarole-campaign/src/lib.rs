@@ -13,7 +13,8 @@ mod spec;
 mod stats;
 mod tables;
 
-pub use plan::{plan, Axis, Faults, PlannedRun};
+pub use load::{read_limited, MAX_INPUT_BYTES};
+pub use plan::{plan, Axis, Faults, Plan, PlannedRun, MAX_RUNS};
 pub use plot::rasterise_svg;
 pub use progress::{Progress, ProgressMode, INTERVAL_VARIABLE};
 pub use results::{Outcome, Row, COLUMNS};
@@ -124,7 +125,6 @@ pub fn run(options: &Options) -> Result<Done, Error> {
         .iter()
         .filter(|r| !done.contains(&r.index))
         .take(options.max_runs.map_or(usize::MAX, |n| n as usize))
-        .cloned()
         .collect();
     if !pending.is_empty() {
         exec::prepare(&inputs)?;
@@ -146,7 +146,7 @@ pub fn run(options: &Options) -> Result<Done, Error> {
         files.extend(plot::write_all(&summaries, &options.out_dir)?);
     }
     Ok(Done {
-        total: planned.len() as u64,
+        total: planned.len(),
         already,
         ran,
         rows,
@@ -157,20 +157,15 @@ pub fn run(options: &Options) -> Result<Done, Error> {
 }
 
 /// The rows already in `runs.csv`, each checked against the planned run of its index.
-fn recorded(
-    path: &Path,
-    planned: &[PlannedRun],
-    campaign: &CampaignFile,
-) -> Result<Vec<Row>, Error> {
+fn recorded(path: &Path, planned: &plan::Plan, campaign: &CampaignFile) -> Result<Vec<Row>, Error> {
     let rows = results::read_existing(path)?;
     let preset = campaign.scenario.network.preset.name();
     let timeout = campaign.scenario.timeout_ms;
     let mut seen = std::collections::BTreeSet::new();
     for row in &rows {
-        let matches = usize::try_from(row.run)
-            .ok()
-            .and_then(|i| planned.get(i))
-            .is_some_and(|run| row.is_result_of(run, preset, timeout));
+        let matches = planned
+            .get(row.run)
+            .is_some_and(|run| row.is_result_of(&run, preset, timeout));
         if !matches {
             return Err(Error::Results(format!(
                 "{}: run {} was recorded with other parameters than this campaign's; \

@@ -87,26 +87,90 @@ impl PlannedRun {
     }
 }
 
-/// Every run of the campaign, in index order.
-pub fn plan(campaign: &CampaignFile) -> Result<Vec<PlannedRun>, SpecError> {
-    let mut runs = Vec::new();
+/// Most runs a campaign may plan (points x protocols x seeds). A run takes a fraction of a
+/// second at best, so a million is already days of computing; past it the file is refused
+/// before anything is planned.
+pub const MAX_RUNS: u64 = 1_000_000;
+
+/// Every run of the campaign, in index order, computed from its index when asked for: a plan
+/// is the points of the sweep and nothing per run, so its size does not grow with `seeds`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Plan {
+    points: Vec<(Axis, f64, Faults)>,
+    protocols: Vec<ProtocolName>,
+    seeds: u64,
+    first_seed: u64,
+}
+
+/// The plan of `campaign`; fails, naming the field, when it would have more than
+/// [`MAX_RUNS`] runs.
+pub fn plan(campaign: &CampaignFile) -> Result<Plan, SpecError> {
+    let mut points = Vec::new();
     for axis in Axis::ALL {
-        for (value, faults) in points(campaign, axis)? {
-            for &protocol in &campaign.protocols {
-                for k in 0..campaign.seeds {
-                    runs.push(PlannedRun {
-                        index: runs.len() as u64,
-                        axis,
-                        value,
-                        protocol,
-                        seed: campaign.first_seed.wrapping_add(k),
-                        faults,
-                    });
-                }
-            }
+        for (value, faults) in self::points(campaign, axis)? {
+            points.push((axis, value, faults));
         }
     }
-    Ok(runs)
+    let plan = Plan {
+        points,
+        protocols: campaign.protocols.clone(),
+        seeds: campaign.seeds,
+        first_seed: campaign.first_seed,
+    };
+    let runs = plan
+        .runs_per_point()
+        .and_then(|r| r.checked_mul(plan.points.len() as u64));
+    match runs {
+        Some(n) if n <= MAX_RUNS => Ok(plan),
+        _ => Err(SpecError::new(
+            "seeds",
+            format!(
+                "{} points x {} protocols x {} seeds is more than {MAX_RUNS} runs",
+                plan.points.len(),
+                plan.protocols.len(),
+                plan.seeds
+            ),
+        )),
+    }
+}
+
+impl Plan {
+    fn runs_per_point(&self) -> Option<u64> {
+        (self.protocols.len() as u64).checked_mul(self.seeds)
+    }
+
+    /// The number of runs (at most [`MAX_RUNS`]).
+    pub fn len(&self) -> u64 {
+        self.runs_per_point().unwrap_or(0) * self.points.len() as u64
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The run with this index, if the plan has it.
+    pub fn get(&self, index: u64) -> Option<PlannedRun> {
+        let per_point = self.runs_per_point().filter(|&n| n > 0)?;
+        let point = usize::try_from(index / per_point).ok()?;
+        let &(axis, value, faults) = self.points.get(point)?;
+        let within = index % per_point;
+        let protocol = *self
+            .protocols
+            .get(usize::try_from(within / self.seeds).ok()?)?;
+        Some(PlannedRun {
+            index,
+            axis,
+            value,
+            protocol,
+            seed: self.first_seed.wrapping_add(within % self.seeds),
+            faults,
+        })
+    }
+
+    /// Every run, in index order.
+    pub fn iter(&self) -> impl Iterator<Item = PlannedRun> + '_ {
+        (0..self.len()).filter_map(|i| self.get(i))
+    }
 }
 
 /// The values of `axis` and the faults at each (none when the axis is not swept).

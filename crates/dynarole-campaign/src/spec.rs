@@ -137,8 +137,12 @@ impl CampaignFile {
         if sorted.len() != self.protocols.len() {
             return Err(error("protocols", "a protocol is listed twice"));
         }
-        if self.seeds == 0 {
-            return Err(error("seeds", "must be above 0"));
+        if self.seeds == 0 || self.seeds > crate::plan::MAX_RUNS {
+            let most = crate::plan::MAX_RUNS;
+            return Err(error(
+                "seeds",
+                format!("expected 1 to {most}, found {}", self.seeds),
+            ));
         }
         self.scenario.check().map_err(|e| e.nested_in("scenario"))?;
         self.sweep.check()

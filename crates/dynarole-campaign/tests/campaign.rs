@@ -183,3 +183,39 @@ fn ranges_include_their_end_and_round() {
     assert_eq!(values.get(3), Some(&0.15));
     assert_eq!(values.last(), Some(&0.4));
 }
+
+#[test]
+fn huge_campaigns_are_refused_before_planning() {
+    let seeds = MINIMAL.replace("seeds = 1", "seeds = 4294967296");
+    let seeds = format!("{seeds}[sweep]\nloss = {{ from = 0.0, to = 0.0, step = 1.0 }}\n");
+    assert!(
+        parse_error(&seeds).starts_with("seeds: expected 1 to 1000000"),
+        "{}",
+        parse_error(&seeds)
+    );
+    // Each factor is allowed; their product is not, and planning says so without building it.
+    let product = MINIMAL.replace("seeds = 1", "seeds = 1000");
+    let product = format!("{product}[sweep]\nloss = {{ from = 0.0, to = 1.0, step = 0.001 }}\n");
+    let campaign = CampaignFile::parse(&product, Path::new(".")).expect("each field in range");
+    let error = dynarole_campaign::plan(&campaign).expect_err("too many runs");
+    assert_eq!(error.field, "seeds");
+    assert!(
+        error.message.contains("more than 1000000 runs"),
+        "{}",
+        error.message
+    );
+}
+
+#[test]
+fn a_plan_gives_each_run_from_its_index() {
+    let text = MINIMAL.replace("seeds = 1", "seeds = 3");
+    let text =
+        format!("{text}first_seed = 7\n[sweep]\nloss = {{ from = 0.0, to = 0.2, step = 0.1 }}\n");
+    let campaign = CampaignFile::parse(&text, Path::new(".")).expect("valid");
+    let plan = dynarole_campaign::plan(&campaign).expect("small");
+    assert_eq!(plan.len(), 9);
+    let runs: Vec<(u64, f64, u64)> = plan.iter().map(|r| (r.index, r.value, r.seed)).collect();
+    assert_eq!(runs[4], (4, 0.1, 8));
+    assert_eq!(runs[8], (8, 0.2, 9));
+    assert!(plan.get(9).is_none());
+}

@@ -54,8 +54,9 @@ pub struct PluginArgs {
     pub plugins: Vec<PathBuf>,
 }
 
+/// Every user file the commands read comes through here (with the size limit).
 pub fn read_source(path: &Path) -> Result<String, Failure> {
-    std::fs::read_to_string(path)
+    dynarole_campaign::read_limited(path)
         .map_err(|e| Failure::Input(format!("cannot read {}: {e}", path.display())))
 }
 

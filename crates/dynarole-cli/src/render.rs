@@ -2,7 +2,7 @@
 
 use crate::load::Failure;
 use codespan_reporting::diagnostic::{Diagnostic as Report, Label, Severity as ReportSeverity};
-use codespan_reporting::files::SimpleFile;
+use codespan_reporting::files::{Files, SimpleFile};
 use codespan_reporting::term::{
     self,
     termcolor::{ColorChoice, StandardStream, WriteColor},
@@ -35,11 +35,45 @@ pub fn write_diagnostics(
 ) {
     let file = SimpleFile::new(path, source);
     let config = term::Config::default();
-    for diagnostic in diagnostics {
-        let report = to_report(diagnostic);
+    for diagnostic in dynarole_core::diagnostic::shown(diagnostics) {
+        let mut report = to_report(&diagnostic);
+        if let Some(place) = too_long_to_show(&file, &diagnostic) {
+            report.labels.clear();
+            report.notes.insert(0, place);
+        }
         // A failing write to stderr leaves nothing better to report to.
         let _ = term::emit(out, &config, &file, &report);
     }
+}
+
+/// Longest source line printed under a message; a longer one is named, not printed, so that
+/// the output of a hostile file stays small.
+const MAX_SHOWN_LINE: usize = 300;
+
+/// For a diagnostic on a line too long to print: where it is, in words.
+fn too_long_to_show(file: &SimpleFile<&str, &str>, diagnostic: &Diagnostic) -> Option<String> {
+    let d = diagnostic.describe();
+    let spans = std::iter::once(diagnostic.span).chain(d.secondary.iter().map(|(s, _)| *s));
+    let line_of = |at: u32| {
+        let line = file.line_index((), at as usize).ok()?;
+        let range = file.line_range((), line).ok()?;
+        Some((line, range))
+    };
+    let long = spans
+        .filter_map(|span| line_of(span.start))
+        .any(|(_, range)| range.len() > MAX_SHOWN_LINE);
+    if !long {
+        return None;
+    }
+    let at = diagnostic.span.start as usize;
+    let (line, _) = line_of(diagnostic.span.start)?;
+    let column = file.column_number((), line, at).ok()?;
+    Some(format!(
+        "at {}:{}:{column}: {} (the line is longer than {MAX_SHOWN_LINE} bytes and is not shown)",
+        file.name(),
+        line + 1,
+        d.label
+    ))
 }
 
 fn to_report(diagnostic: &Diagnostic) -> Report<()> {

@@ -13,6 +13,12 @@ pub fn run(
     name: Option<&str>,
     plugins: &PluginArgs,
 ) -> Result<ExitCode, Failure> {
+    if let Some(name) = name.filter(|n| !dynarole_core::lexer::is_identifier(n)) {
+        return Err(Failure::Usage(format!(
+            "--name `{}`: expected a name (a letter or `_`, then letters, digits or `_`; not a keyword)",
+            name.escape_debug()
+        )));
+    }
     load::with_program(path, plugins, |program, source| {
         let display = path.display().to_string();
         reverse_in(program, source, &display, sequence, name)

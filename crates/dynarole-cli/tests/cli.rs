@@ -831,3 +831,169 @@ fn simulate_explains_the_checks_once_and_heads_the_trace_with_its_columns() {
         );
     }
 }
+
+/// A statement every ATRON file can use, on module `m`.
+fn retract(m: u32) -> String {
+    format!("M{m}.Connector[$CONNECTOR_0].retract();")
+}
+
+#[test]
+fn reverse_names_are_names() {
+    let bad = dynarole(&[
+        "reverse",
+        "examples/atron/eight2car.dr",
+        "eight2car",
+        "--name",
+        "a b",
+    ]);
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(
+        text(&bad.stderr).contains("--name `a b`: expected a name"),
+        "{}",
+        text(&bad.stderr)
+    );
+    let injected = dynarole(&[
+        "reverse",
+        "examples/atron/eight2car.dr",
+        "eight2car",
+        "--name",
+        "x { M0.Connector[$CONNECTOR_0].extend(); } sequence y",
+    ]);
+    assert_eq!(injected.status.code(), Some(2));
+    let grid = scratch(
+        "grid.dr",
+        &format!("robot atron;\nsequence grid20p {{ {} }}\n", retract(0)),
+    );
+    let out = dynarole(&["reverse", grid.to_str().expect("path"), "grid20p"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert!(
+        text(&out.stdout).contains("sequence grid20p_reversed {"),
+        "{}",
+        text(&out.stdout)
+    );
+}
+
+#[test]
+fn a_program_at_the_statement_limit_checks() {
+    // On one module each statement waits for one: 60,000 entries in the dependency table.
+    let one_module: Vec<String> = (0..60_000).map(|_| retract(0)).collect();
+    let source = format!(
+        "robot atron;\nsequence s {{\n{}\n}}\n",
+        one_module.join("\n")
+    );
+    let out = dynarole(&["check", scratch("long.dr", &source).to_str().expect("path")]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    // On 200 modules each waits for two (its group and its module): past the 16-bit table.
+    let many: Vec<String> = (0..60_000).map(|i| retract(i % 200)).collect();
+    let source = format!("robot atron;\nsequence s {{\n{}\n}}\n", many.join("\n"));
+    let out = dynarole(&[
+        "check",
+        scratch("long-200.dr", &source).to_str().expect("path"),
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    let stderr = text(&out.stderr);
+    assert!(stderr.contains("more than 65535 entries"), "{stderr}");
+}
+
+#[test]
+fn hostile_inputs_end_in_one_short_error() {
+    // Doubling compositions: refused where the count passes the limit, before expanding.
+    let mut doubling = format!("robot atron;\nsequence s0 {{ {} }}\n", retract(0));
+    for i in 1..40 {
+        doubling.push_str(&format!("sequence s{i} {{ s{}; s{}; }}\n", i - 1, i - 1));
+    }
+    // A line of 10,000 bad characters: one error, the line not printed.
+    let bad_line = format!(
+        "robot atron;\nsequence s {{ {} }}\n{}\n",
+        retract(0),
+        "@".repeat(10_000)
+    );
+    // A chain of 10,000 sequences, each using the one before.
+    let mut chain = format!("robot atron;\nsequence c0 {{ {} }}\n", retract(0));
+    for i in 1..10_000 {
+        chain.push_str(&format!("sequence c{i} {{ c{}; }}\n", i - 1));
+    }
+    let role = format!(
+        "robot atron;\nrole R requires id == 4294967296;\nsequence s {{ {} }}\n",
+        "R.Connector[$CONNECTOR_0].retract();"
+    );
+    // Many roles and many unknown labels: suggestions are searched for the first few only.
+    let mut unknown = String::from("robot atron;\n");
+    for i in 0..2_000 {
+        unknown.push_str(&format!("role R{i} requires id == {i};\n"));
+    }
+    unknown.push_str("sequence s {\n");
+    for i in 0..2_000 {
+        unknown.push_str(&format!("X{i}.Connector[$CONNECTOR_0].retract();\n"));
+    }
+    unknown.push_str("}\n");
+    for (name, source, expected) in [
+        ("unknown.dr", unknown, "1950 more diagnostics not shown"),
+        (
+            "doubling.dr",
+            doubling,
+            "sequence `s16` would have 65536 statements",
+        ),
+        ("bad-line.dr", bad_line, "10000 unexpected characters"),
+        (
+            "chain.dr",
+            chain,
+            "sequence `c64` uses sequences more than 64 levels deep",
+        ),
+        ("role-id.dr", role, "4294967296 is out of range here"),
+    ] {
+        let path = scratch(name, &source);
+        let out = dynarole(&["check", path.to_str().expect("path")]);
+        let stderr = text(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{name}: {stderr}");
+        assert!(stderr.contains(expected), "{name}: {stderr}");
+        assert!(
+            stderr.len() < 40_000,
+            "{name}: {} bytes of errors",
+            stderr.len()
+        );
+    }
+}
+
+#[test]
+fn endless_or_huge_inputs_are_refused_with_the_limit() {
+    for args in [
+        vec!["check", "/dev/zero"],
+        vec![
+            "check",
+            "examples/atron/eight2car.dr",
+            "--from",
+            "/dev/zero",
+        ],
+    ] {
+        let out = dynarole(&args);
+        assert_eq!(out.status.code(), Some(1));
+        let stderr = text(&out.stderr);
+        assert!(
+            stderr.contains("cannot read /dev/zero") || stderr.contains("/dev/zero:"),
+            "{stderr}"
+        );
+        assert!(stderr.contains("larger than 8 MiB"), "{stderr}");
+    }
+}
+
+#[test]
+fn a_huge_plugin_count_names_the_field() {
+    let plugin = scratch(
+        "huge.robot.toml",
+        "name = \"huge\"\n[[part]]\nname = \"P\"\ncount = 1000000000\nconstant_prefix = \"P_\"\n",
+    );
+    let source = scratch("huge.dr", "robot huge;\nsequence s { M0.P[0].x(); }\n");
+    let out = dynarole(&[
+        "check",
+        source.to_str().expect("path"),
+        "--plugin",
+        plugin.to_str().expect("path"),
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(
+        text(&out.stderr).contains("field `part[0].count`: expected 1 to 255"),
+        "{}",
+        text(&out.stderr)
+    );
+}

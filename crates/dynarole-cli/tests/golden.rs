@@ -5,7 +5,7 @@ use codespan_reporting::term::termcolor::NoColor;
 use dynarole_cli::check::{check_one, OnConfiguration, Protocol};
 use dynarole_cli::load::{self, PluginArgs};
 use dynarole_cli::render::write_diagnostics;
-use dynarole_core::diagnostic::{all_codes, has_errors, DiagnosticCode};
+use dynarole_core::diagnostic::{all_codes, has_errors, shown, DiagnosticCode};
 use dynarole_core::format::{format_file, format_items};
 use dynarole_core::{analyze, parse, Diagnostic};
 use std::collections::BTreeSet;
@@ -37,11 +37,10 @@ fn golden_output(path: &Path, source: &str, codes: &mut BTreeSet<DiagnosticCode>
     let paper = check_one(path, source, &plugins, Protocol::Paper, on.as_ref()).unwrap_or_default();
     let token = check_one(path, source, &plugins, Protocol::Token, on.as_ref()).unwrap_or_default();
     codes.extend(
-        lattice
-            .iter()
-            .chain(&paper)
-            .chain(&token)
-            .map(Diagnostic::code),
+        [&lattice, &paper, &token]
+            .into_iter()
+            .flat_map(|d| shown(d))
+            .map(|d| d.code()),
     );
     out.push_str(&section("check", &render(&name, source, &lattice)));
     if paper != lattice {

@@ -2,13 +2,33 @@
 
 use crate::lexer::Comment;
 use crate::span::Span;
+use std::collections::BTreeMap;
 
 /// A whole source file: its items in order, and its comments (for the formatter).
 #[derive(Clone, Debug, PartialEq, Eq, Default)]
 pub struct SourceFile {
     pub items: Vec<Item>,
     pub comments: Vec<Comment>,
+    /// Built from `items` on first look-up; the items must not change after.
+    pub names: NameIndex,
 }
+
+/// For each declared name, the item of its first role and of its first sequence, so that a
+/// look-up costs a logarithm, not a scan of the file (which made files with many
+/// declarations and statements quadratic). Not part of a file's value: any two compare equal.
+#[derive(Clone, Debug, Default)]
+pub struct NameIndex(std::sync::OnceLock<BTreeMap<String, Declared>>);
+
+/// The item of the first role, and of the first sequence, of one name.
+type Declared = (Option<usize>, Option<usize>);
+
+impl PartialEq for NameIndex {
+    fn eq(&self, _: &NameIndex) -> bool {
+        true
+    }
+}
+
+impl Eq for NameIndex {}
 
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Item {
@@ -231,6 +251,44 @@ impl SourceFile {
     }
 
     pub fn sequence(&self, name: &str) -> Option<&SequenceDecl> {
-        self.sequences().find(|decl| decl.name.name == name)
+        let (_, item) = self.declared(name)?;
+        match self.items.get(item?)? {
+            Item::Sequence(decl) => Some(decl),
+            _ => None,
+        }
+    }
+
+    /// The first role named `name`, with its place among the items (declaration order).
+    pub fn role(&self, name: &str) -> Option<(usize, &RoleDecl)> {
+        let (item, _) = self.declared(name)?;
+        let item = item?;
+        match self.items.get(item)? {
+            Item::Role(decl) => Some((item, decl)),
+            _ => None,
+        }
+    }
+
+    /// Whether a role is named `name`.
+    pub fn has_role(&self, name: &str) -> bool {
+        self.declared(name).is_some_and(|(role, _)| role.is_some())
+    }
+
+    /// The items of the first role and the first sequence named `name`.
+    fn declared(&self, name: &str) -> Option<Declared> {
+        let index = self.names.0.get_or_init(|| {
+            let mut index: BTreeMap<String, Declared> = BTreeMap::new();
+            for (i, item) in self.items.iter().enumerate() {
+                let (name, is_role) = match item {
+                    Item::Role(d) => (&d.name.name, true),
+                    Item::Sequence(d) => (&d.name.name, false),
+                    Item::Robot(_) => continue,
+                };
+                let entry = index.entry(name.clone()).or_default();
+                let slot = if is_role { &mut entry.0 } else { &mut entry.1 };
+                slot.get_or_insert(i);
+            }
+            index
+        });
+        index.get(name).copied()
     }
 }

@@ -5,6 +5,7 @@
 
 use crate::ast::*;
 use crate::diagnostic::{has_errors, Diagnostic, DiagnosticKind as K};
+use crate::lower::MAX_STATEMENTS;
 use crate::robot::{ParamType, Part, RobotApi, RobotRegistry, Value};
 use crate::span::Span;
 use crate::suggest::{closest, module_label_lookalike};
@@ -66,6 +67,7 @@ pub fn analyze<'f>(
     let mut checker = Checker {
         file,
         diagnostics: Vec::new(),
+        searches_left: crate::diagnostic::MAX_SHOWN,
     };
     let robot = checker.robot(registry);
     checker.duplicates();
@@ -94,6 +96,21 @@ pub fn analyze<'f>(
 struct Checker<'f> {
     file: &'f SourceFile,
     diagnostics: Vec<Diagnostic>,
+    /// Searches of the file's own names for a "did you mean" still allowed: each costs a
+    /// comparison with every role or sequence, and a report shows only the first errors.
+    searches_left: usize,
+}
+
+impl Checker<'_> {
+    /// The closest of `candidates` to `name`, while the search budget lasts.
+    fn closest_declared<'a>(
+        &mut self,
+        name: &str,
+        candidates: impl IntoIterator<Item = &'a str>,
+    ) -> Option<String> {
+        self.searches_left = self.searches_left.checked_sub(1)?;
+        closest(name, candidates)
+    }
 }
 
 /// The role queries a predicate may use, and their number of arguments.
@@ -219,7 +236,17 @@ impl<'f> Checker<'f> {
 
     fn expr(&mut self, expr: &Expr, robot: &RobotApi) -> Type {
         match &expr.kind {
-            ExprKind::Int(_) => Type::Int,
+            ExprKind::Int(n) => {
+                if i32::try_from(*n).is_err() {
+                    let kind = K::NumberOutOfRange {
+                        value: *n,
+                        allowed: format!("{} to {}", i32::MIN, i32::MAX),
+                        reason: "role predicates are computed in 32 bits on the modules".into(),
+                    };
+                    self.report(kind, expr.span);
+                }
+                Type::Int
+            }
             ExprKind::Bool(_) => Type::Bool,
             ExprKind::Constant(name) => match robot.constant(name) {
                 Some(_) => Type::Int,
@@ -263,7 +290,33 @@ impl<'f> Checker<'f> {
                 self.expect_type(rhs, robot, Type::Int, &context);
             }
         }
+        if op == BinaryOp::Eq {
+            self.id_comparison(lhs, rhs);
+            self.id_comparison(rhs, lhs);
+        }
         Type::Bool
+    }
+
+    /// A module ID equal to a number no module can have is a mistake: IDs are 16 bits on the
+    /// modules (65,535 means "none", and `neighbour_id` answers -1 for no neighbour).
+    fn id_comparison(&mut self, query: &Expr, number: &Expr) {
+        let lowest = match &query.kind {
+            ExprKind::Name(name) if name.name == "id" => 0,
+            ExprKind::Call { function, .. } if function.name == "neighbour_id" => -1,
+            _ => return,
+        };
+        let Some(value) = literal(number) else { return };
+        let max = i64::from(u16::MAX) - 1;
+        // A number beyond 32 bits is reported on its own.
+        if (lowest..=max).contains(&value) || i32::try_from(value).is_err() {
+            return;
+        }
+        let kind = K::NumberOutOfRange {
+            value,
+            allowed: format!("{lowest} to {max}"),
+            reason: "module IDs are 16 bits on the modules (65535 means none)".into(),
+        };
+        self.report(kind, number.span);
     }
 
     fn expect_type(&mut self, expr: &Expr, robot: &RobotApi, want: Type, context: &str) {
@@ -372,10 +425,9 @@ impl<'f> Checker<'f> {
 
     fn sequence_name(&mut self, name: &Ident) {
         if self.file.sequence(&name.name).is_none() {
-            let suggestion = closest(
-                &name.name,
-                self.file.sequences().map(|s| s.name.name.as_str()),
-            );
+            let file = self.file;
+            let suggestion =
+                self.closest_declared(&name.name, file.sequences().map(|s| s.name.name.as_str()));
             self.report(
                 K::UnknownSequence {
                     name: name.name.clone(),
@@ -402,13 +454,13 @@ impl<'f> Checker<'f> {
     }
 
     fn label(&mut self, label: &Ident) {
-        if self.file.roles().any(|r| r.name.name == label.name)
-            || parse_module_label(&label.name).is_some()
-        {
+        if self.file.has_role(&label.name) || parse_module_label(&label.name).is_some() {
             return;
         }
-        let suggestion = module_label_lookalike(&label.name)
-            .or_else(|| closest(&label.name, self.file.roles().map(|r| r.name.name.as_str())));
+        let file = self.file;
+        let suggestion = module_label_lookalike(&label.name).or_else(|| {
+            self.closest_declared(&label.name, file.roles().map(|r| r.name.name.as_str()))
+        });
         self.report(
             K::UnknownLabel {
                 name: label.name.clone(),
@@ -443,15 +495,12 @@ impl<'f> Checker<'f> {
         let mut state: BTreeMap<&str, Visit> = BTreeMap::new();
         let mut found = Vec::new();
         for decl in self.file.sequences() {
-            find_cycles(
-                &graph,
-                &decl.name.name,
-                &mut state,
-                &mut Vec::new(),
-                &mut found,
-            );
+            find_cycles(&graph, &decl.name.name, &mut state, &mut found);
         }
         let acyclic = found.is_empty();
+        if acyclic {
+            self.expansion_limits(&graph);
+        }
         for (path, uses) in found {
             let Some((&last, rest)) = uses.split_last() else {
                 continue;
@@ -465,6 +514,51 @@ impl<'f> Checker<'f> {
             );
         }
         acyclic
+    }
+
+    /// Reports each sequence whose expansion would pass a limit while the sequences it uses
+    /// do not (where the limit is crossed), before anything is expanded.
+    fn expansion_limits(&mut self, graph: &UsesGraph<'_>) {
+        let sizes = expanded_sizes(self.file, graph);
+        let within = |name: &str| {
+            sizes.get(name).is_none_or(|&(count, depth)| {
+                count <= MAX_STATEMENTS && depth <= MAX_COMPOSITION_DEPTH
+            })
+        };
+        let mut total = 0usize;
+        let mut total_reported = false;
+        for decl in self.file.sequences() {
+            let name = decl.name.name.as_str();
+            let Some(&(count, depth)) = sizes.get(name) else {
+                continue;
+            };
+            total = total.saturating_add(count);
+            if total > MAX_EXPANDED_PER_FILE && !total_reported {
+                total_reported = true;
+                let kind = K::FileTooLong {
+                    statements: total,
+                    limit: MAX_EXPANDED_PER_FILE,
+                };
+                self.report(kind, decl.name.span);
+            }
+            let uses = graph.get(name).map(Vec::as_slice).unwrap_or(&[]);
+            if within(name) || !uses.iter().all(|(callee, _)| within(callee)) {
+                continue;
+            }
+            let kind = if depth > MAX_COMPOSITION_DEPTH {
+                K::CompositionTooDeep {
+                    name: name.to_string(),
+                    limit: MAX_COMPOSITION_DEPTH,
+                }
+            } else {
+                K::SequenceTooLong {
+                    name: name.to_string(),
+                    statements: count,
+                    limit: MAX_STATEMENTS,
+                }
+            };
+            self.report(kind, decl.name.span);
+        }
     }
 
     // ---------- reversal ----------
@@ -589,42 +683,140 @@ fn collect_calls<'a>(body: &'a Body, out: &mut Vec<(&'a str, Span)>) {
     }
 }
 
-/// Depth-first search; each back edge is one cycle, reported as names and use spans.
+/// Depth-first search; each back edge is one cycle, reported as names and use spans. The
+/// search keeps its own stack, so a chain of any length of sequences using each other cannot
+/// exhaust the thread's.
 fn find_cycles<'f>(
     graph: &UsesGraph<'f>,
-    node: &'f str,
+    root: &'f str,
     state: &mut BTreeMap<&'f str, Visit>,
-    stack: &mut Vec<(&'f str, Span)>,
     found: &mut Vec<(Vec<String>, Vec<Span>)>,
 ) {
-    if state.contains_key(node) {
+    if state.contains_key(root) {
         return;
     }
-    state.insert(node, Visit::Active);
-    for &(next, span) in graph.get(node).map(Vec::as_slice).unwrap_or(&[]) {
+    state.insert(root, Visit::Active);
+    // The sequences being visited, each with its next use to follow.
+    let mut frames: Vec<(&'f str, usize)> = vec![(root, 0)];
+    // For each visited sequence but the deepest: it and the use that led further down.
+    let mut stack: Vec<(&'f str, Span)> = Vec::new();
+    while let Some((node, next_use)) = frames.last_mut() {
+        let node = *node;
+        let uses = graph.get(node).map(Vec::as_slice).unwrap_or(&[]);
+        let Some(&(next, span)) = uses.get(*next_use) else {
+            state.insert(node, Visit::Done);
+            frames.pop();
+            stack.pop();
+            continue;
+        };
+        *next_use += 1;
         match state.get(next) {
-            Some(Visit::Active) => {
-                let start = stack
-                    .iter()
-                    .position(|(n, _)| *n == next)
-                    .unwrap_or(stack.len());
-                let mut path: Vec<String> =
-                    stack[start..].iter().map(|(n, _)| n.to_string()).collect();
-                path.push(node.to_string());
-                path.push(next.to_string());
-                let mut uses: Vec<Span> = stack[start..].iter().skip(1).map(|(_, s)| *s).collect();
-                uses.push(span);
-                found.push((path, uses));
-            }
+            Some(Visit::Active) => found.push(cycle(&stack, node, next, span)),
             Some(Visit::Done) => {}
             None => {
                 stack.push((node, span));
-                find_cycles(graph, next, state, stack, found);
-                stack.pop();
+                state.insert(next, Visit::Active);
+                frames.push((next, 0));
             }
         }
     }
-    state.insert(node, Visit::Done);
+}
+
+/// The cycle closed by `node` using `next` (at `span`), which is on `stack` or is `node`.
+fn cycle(stack: &[(&str, Span)], node: &str, next: &str, span: Span) -> (Vec<String>, Vec<Span>) {
+    let start = stack
+        .iter()
+        .position(|(n, _)| *n == next)
+        .unwrap_or(stack.len());
+    let on_cycle = stack.get(start..).unwrap_or(&[]);
+    let mut path: Vec<String> = on_cycle.iter().map(|(n, _)| n.to_string()).collect();
+    path.push(node.to_string());
+    path.push(next.to_string());
+    let mut uses: Vec<Span> = on_cycle.iter().skip(1).map(|(_, s)| *s).collect();
+    uses.push(span);
+    (path, uses)
+}
+
+/// The value of a number written in a predicate (`7`, `-7`, `(7)`), if `expr` is one.
+fn literal(expr: &Expr) -> Option<i64> {
+    match &expr.kind {
+        ExprKind::Int(n) => Some(*n),
+        ExprKind::Paren(inner) => literal(inner),
+        ExprKind::Unary {
+            op: UnaryOp::Negate,
+            operand,
+        } => literal(operand).and_then(i64::checked_neg),
+        _ => None,
+    }
+}
+
+/// Most statements all the sequences of a file expand to together: `check` expands and lowers
+/// each sequence, so this bounds its work on a file of many sequences using a long one.
+pub const MAX_EXPANDED_PER_FILE: usize = 1_000_000;
+
+/// Deepest chain of sequences using sequences that expansion (a recursive pass) accepts.
+pub const MAX_COMPOSITION_DEPTH: usize = 64;
+
+/// For an acyclic file, each sequence's size once expanded (statements, saturating) and depth
+/// of composition, computed without expanding; sequences are visited callees first with an
+/// explicit stack.
+fn expanded_sizes<'f>(
+    file: &'f SourceFile,
+    graph: &UsesGraph<'f>,
+) -> BTreeMap<&'f str, (usize, usize)> {
+    let mut sizes: BTreeMap<&'f str, (usize, usize)> = BTreeMap::new();
+    let mut decls: BTreeMap<&str, &SequenceDecl> = BTreeMap::new();
+    for decl in file.sequences() {
+        decls.entry(decl.name.name.as_str()).or_insert(decl);
+    }
+    for decl in file.sequences() {
+        let mut todo = vec![decl.name.name.as_str()];
+        while let Some(&name) = todo.last() {
+            if sizes.contains_key(name) {
+                todo.pop();
+                continue;
+            }
+            let uses = graph.get(name).map(Vec::as_slice).unwrap_or(&[]);
+            let pending: Vec<&str> = uses
+                .iter()
+                .map(|(callee, _)| *callee)
+                .filter(|callee| !sizes.contains_key(callee) && graph.contains_key(callee))
+                .collect();
+            if !pending.is_empty() {
+                todo.extend(pending);
+                continue;
+            }
+            let own = match decls.get(name).map(|d| &d.definition) {
+                Some(SequenceDef::Body(body)) => statements_in(body),
+                _ => 0,
+            };
+            let (mut count, mut depth) = (own, 0usize);
+            for (callee, _) in uses {
+                let (n, d) = sizes.get(callee).copied().unwrap_or((0, 0));
+                count = count.saturating_add(n);
+                depth = depth.max(d);
+            }
+            sizes.insert(name, (count, depth + 1));
+            todo.pop();
+        }
+    }
+    sizes
+}
+
+/// Statements written in `body` and its blocks (calls not followed).
+fn statements_in(body: &Body) -> usize {
+    let mut count = 0usize;
+    let mut stack = vec![body];
+    while let Some(body) = stack.pop() {
+        for element in &body.elements {
+            match &element.kind {
+                ElementKind::Statement(_) => count += 1,
+                ElementKind::Block(inner) => stack.push(inner),
+                ElementKind::Call(_) => {}
+            }
+        }
+    }
+    count
 }
 
 // ---------- resolution, shared with later passes ----------
@@ -640,7 +832,7 @@ pub fn parse_module_label(name: &str) -> Option<u32> {
 
 /// Who runs a statement labelled `label` in `file` (roles take precedence over `M<k>`).
 pub fn resolve_label(file: &SourceFile, label: &str) -> Option<Label> {
-    if file.roles().any(|r| r.name.name == label) {
+    if file.has_role(label) {
         return Some(Label::Role(label.to_string()));
     }
     parse_module_label(label).map(Label::Module)

@@ -42,8 +42,10 @@ pub struct Description {
 #[strum_discriminants(strum(serialize_all = "kebab-case"))]
 pub enum DiagnosticKind {
     // ---- syntax ----
+    /// A run of `count` characters that are not part of the language, starting with `found`.
     UnknownCharacter {
         found: char,
+        count: usize,
     },
     UnterminatedComment,
     UnexpectedToken {
@@ -71,6 +73,32 @@ pub enum DiagnosticKind {
     },
     EmptySequence {
         name: String,
+    },
+    /// Expanded, the sequence would have more statements than a program can.
+    SequenceTooLong {
+        name: String,
+        /// At least this many (the count saturates).
+        statements: usize,
+        limit: usize,
+    },
+    /// All the sequences of the file, expanded, have more statements than checking accepts.
+    FileTooLong {
+        /// At least this many (the count saturates).
+        statements: usize,
+        limit: usize,
+    },
+    /// Sequences using sequences, deeper than expansion accepts.
+    CompositionTooDeep {
+        name: String,
+        limit: usize,
+    },
+    /// The file is too large or too broken to read further.
+    InputTooLarge {
+        what: String,
+    },
+    /// More errors than a report shows; the rest are counted.
+    TooManyErrors {
+        more: usize,
     },
     // ---- names ----
     MissingRobot,
@@ -150,6 +178,12 @@ pub enum DiagnosticKind {
         param: String,
         value: i64,
         allowed: String,
+    },
+    /// A number in a role predicate that the generated code cannot hold or compare.
+    NumberOutOfRange {
+        value: i64,
+        allowed: String,
+        reason: String,
     },
     FemaleConnector {
         part: String,
@@ -235,8 +269,11 @@ impl Diagnostic {
         use DiagnosticKind as K;
         let d = Description::error(self.code());
         match &self.kind {
-            K::UnknownCharacter { found } => d
+            K::UnknownCharacter { found, count: 1 } => d
                 .title(format!("unexpected character `{}`", found.escape_debug()))
+                .label("not part of the language"),
+            K::UnknownCharacter { found, count } => d
+                .title(format!("{count} unexpected characters, from `{}`", found.escape_debug()))
                 .label("not part of the language"),
             K::UnterminatedComment => d
                 .title("unterminated block comment")
@@ -284,6 +321,27 @@ impl Diagnostic {
                 .warning()
                 .title(format!("sequence `{name}` has no statements"))
                 .label("empty body"),
+            K::SequenceTooLong { name, statements, limit } => d
+                .title(format!("sequence `{name}` would have {statements} statements once expanded (limit {limit})"))
+                .label("expanded here")
+                .hint("the sequences it uses are inlined: one used twice counts twice; split the work into sequences that run one after another"),
+            K::FileTooLong { statements, limit } => d
+                .title(format!("the sequences of this file expand to {statements} statements together (limit {limit})"))
+                .label("the total passes the limit with this sequence")
+                .hint("each sequence is expanded and checked on its own, so one used by many counts once per use; split the file"),
+            K::CompositionTooDeep { name, limit } => d
+                .title(format!("sequence `{name}` uses sequences more than {limit} levels deep"))
+                .label("the chain of sequences using sequences ends here")
+                .hint("use the inner sequences side by side in one body instead of each inside the next"),
+            K::InputTooLarge { what } => d
+                .title(format!("{what}: the rest of the file is not read"))
+                .label("reading stops here")
+                .hint("fix the errors above, or split the file (docs/limits.md gives every limit)"),
+            K::TooManyErrors { more } => d
+                .warning()
+                .title(format!("{more} more diagnostic{} not shown", plural(*more)))
+                .label("the next one is here")
+                .hint("fix the errors above and run again"),
             K::MissingRobot => d
                 .title("the file does not say which robot it is for")
                 .label("expected a `robot` declaration")
@@ -373,6 +431,10 @@ impl Diagnostic {
             K::ArgumentOutOfRange { param, value, allowed } => d
                 .title(format!("`{param}` = {value} is out of range"))
                 .label(format!("allowed: {allowed}")),
+            K::NumberOutOfRange { value, allowed, reason } => d
+                .title(format!("{value} is out of range here"))
+                .label(format!("expected {allowed}"))
+                .hint(reason.clone()),
             K::FemaleConnector { part, method, index, males } => d
                 .title(format!("`{method}` on female {part} {index}"))
                 .label("only male connectors can extend or retract")
@@ -500,6 +562,29 @@ impl DiagnosticCode {
 }
 
 /// True when any diagnostic is an error (warnings do not fail a check).
+/// Most diagnostics shown for one file; the rest are counted in one [`DiagnosticKind::TooManyErrors`].
+pub const MAX_SHOWN: usize = 50;
+
+/// The diagnostics a report shows: the first [`MAX_SHOWN`], then one that counts the rest,
+/// so that the output stays bounded whatever the input; a file that was not read to its end
+/// says so whatever its place in the list.
+pub fn shown(diagnostics: &[Diagnostic]) -> Vec<Diagnostic> {
+    let mut out: Vec<Diagnostic> = diagnostics.iter().take(MAX_SHOWN).cloned().collect();
+    let rest = diagnostics.get(MAX_SHOWN..).unwrap_or(&[]);
+    let (stops, others): (Vec<&Diagnostic>, Vec<&Diagnostic>) = rest
+        .iter()
+        .partition(|d| matches!(d.kind, DiagnosticKind::InputTooLarge { .. }));
+    if let Some(next) = others.first() {
+        let more = others.len();
+        out.push(Diagnostic::new(
+            DiagnosticKind::TooManyErrors { more },
+            next.span,
+        ));
+    }
+    out.extend(stops.into_iter().cloned());
+    out
+}
+
 pub fn has_errors(diagnostics: &[Diagnostic]) -> bool {
     diagnostics.iter().any(|d| d.severity() == Severity::Error)
 }

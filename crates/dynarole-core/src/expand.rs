@@ -95,13 +95,8 @@ impl Plan {
     /// its single pending set, cannot express it (Sec. III-A), and this says where.
     pub fn flatten_for_paper(&self) -> Result<Vec<(ResolvedStatement, SeparatorKind)>, Diagnostic> {
         let mut out: Vec<(ResolvedStatement, SeparatorKind)> = Vec::new();
-        let mut group_len = 0usize;
-        for (i, element) in self.elements.iter().enumerate() {
-            let group_size = group_len
-                + self.elements[i..]
-                    .iter()
-                    .position(|e| e.separator == SeparatorKind::Sequential)
-                    .map_or(0, |p| p + 1);
+        let group_sizes = self.group_sizes();
+        for (element, &group_size) in self.elements.iter().zip(&group_sizes) {
             match &element.kind {
                 PlanKind::Op(s) => out.push((s.clone(), element.separator)),
                 PlanKind::Block(inner) => {
@@ -120,13 +115,33 @@ impl Plan {
                     splice(&mut out, flat, element.separator);
                 }
             }
-            group_len = if element.separator == SeparatorKind::Sequential {
-                0
-            } else {
-                group_len + 1
-            };
         }
         Ok(out)
+    }
+
+    /// For each element, the size of the parallel group it belongs to: the elements before
+    /// it in the group and those up to and including the next `;` (none if no `;` follows).
+    /// Two passes, so a group of any length costs its length.
+    fn group_sizes(&self) -> Vec<usize> {
+        let n = self.elements.len();
+        let mut sizes = vec![0; n];
+        let mut next_sequential = None;
+        for i in (0..n).rev() {
+            if self.elements[i].separator == SeparatorKind::Sequential {
+                next_sequential = Some(i);
+            }
+            sizes[i] = next_sequential.map_or(0, |end| end - i + 1);
+        }
+        let mut before = 0;
+        for (size, element) in sizes.iter_mut().zip(&self.elements) {
+            *size += before;
+            before = if element.separator == SeparatorKind::Sequential {
+                0
+            } else {
+                before + 1
+            };
+        }
+        sizes
     }
 }
 

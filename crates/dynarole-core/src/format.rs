@@ -52,6 +52,7 @@ pub fn format_items(items: Vec<Item>) -> String {
         &SourceFile {
             items,
             comments: Vec::new(),
+            names: Default::default(),
         },
         "",
     )

@@ -115,11 +115,22 @@ pub struct Lexed {
     pub errors: Vec<Diagnostic>,
 }
 
+/// Most tokens a file may have: 60,000 statements of 15 tokens with room to spare, and about
+/// 60 MB of tokens at most.
+pub const MAX_TOKENS: usize = 1_500_000;
+
 pub fn lex(source: &str) -> Lexed {
     let mut out = Lexed::default();
     let mut lexer = Token::lexer(source);
     while let Some(result) = lexer.next() {
         let span = Span::new(lexer.span().start, lexer.span().end);
+        if let Some(what) = too_much(&out) {
+            out.errors.push(Diagnostic::new(
+                DiagnosticKind::InputTooLarge { what },
+                span,
+            ));
+            break;
+        }
         match result {
             Ok(Token::LineComment) | Ok(Token::BlockComment) => out.comments.push(Comment {
                 text: lexer.slice().trim_end().to_string(),
@@ -130,18 +141,52 @@ pub fn lex(source: &str) -> Lexed {
                 out.errors
                     .push(Diagnostic::new(DiagnosticKind::UnterminatedComment, span));
             }
-            Err(()) => {
-                let found = lexer.slice().chars().next().unwrap_or(' ');
-                out.errors.push(Diagnostic::new(
-                    DiagnosticKind::UnknownCharacter { found },
-                    span,
-                ));
-            }
+            Err(()) => unknown_character(&mut out.errors, lexer.slice(), span),
         }
     }
     let end = Span::new(source.len(), source.len());
     out.tokens.push((Token::Eof, end));
     out
+}
+
+/// Why lexing must stop here, if it must: too many tokens or too many bad characters.
+fn too_much(lexed: &Lexed) -> Option<String> {
+    if lexed.tokens.len() >= MAX_TOKENS {
+        return Some(format!("more than {MAX_TOKENS} tokens"));
+    }
+    let limit = crate::parser::MAX_SYNTAX_ERRORS;
+    (lexed.errors.len() >= limit).then(|| format!("more than {limit} syntax errors"))
+}
+
+/// Whether `text` is a name of the language (a sequence, role or label): exactly one
+/// identifier token, not a keyword. Decided by the lexer itself so that the rule is one.
+pub fn is_identifier(text: &str) -> bool {
+    let mut lexer = Token::lexer(text);
+    matches!(lexer.next(), Some(Ok(Token::Ident(_))))
+        && lexer.span() == (0..text.len())
+        && lexer.next().is_none()
+}
+
+/// Reports bad text at `span`; a run of bad characters, one after the other, is one error,
+/// so that the report stays short whatever the input.
+fn unknown_character(errors: &mut Vec<Diagnostic>, text: &str, span: Span) {
+    let count = text.chars().count();
+    if let Some(Diagnostic {
+        kind: DiagnosticKind::UnknownCharacter { count: before, .. },
+        span: run,
+    }) = errors.last_mut()
+    {
+        if run.end == span.start {
+            *before += count;
+            *run = run.to(span);
+            return;
+        }
+    }
+    let found = text.chars().next().unwrap_or(' ');
+    errors.push(Diagnostic::new(
+        DiagnosticKind::UnknownCharacter { found, count },
+        span,
+    ));
 }
 
 impl Token {

@@ -73,30 +73,33 @@ impl Program<'_> {
         let mut flat = Vec::new();
         let mut entry: Vec<u16> = Vec::new();
         for plan in plans {
-            entry = flatten(plan, &entry, &mut flat);
+            entry = flatten(plan, &entry, &mut flat)?;
         }
-        check_count(&flat)?;
         let addresses = self.addresses(&flat)?;
         let mut operations: Vec<(String, String)> = Vec::new();
-        let mut statements = Vec::new();
+        let mut statements: Vec<IrStatement> = Vec::new();
+        // Each address's latest statement so far.
+        let mut latest = [None; 256];
         for (statement, deps, separator) in &flat {
-            statements.push(self.lower_statement(
+            let lowered = self.lower_statement(
                 statement,
                 deps,
                 *separator,
                 &addresses,
                 &mut operations,
-                &statements,
-            )?);
+                &latest,
+            )?;
+            latest[usize::from(lowered.address)] = Some(statements.len() as u16);
+            statements.push(lowered);
         }
-        let window = window_needed(&statements);
-        if window > MAX_WINDOW {
-            let message = format!("the lattice protocol would need a window of {window} statements (limit {MAX_WINDOW}): too many statements can be in progress at once");
-            return Err(LimitError {
+        check_dep_entries(&statements)?;
+        let window = window_needed(&statements, MAX_WINDOW).map_err(|s| {
+            let message = format!("the lattice protocol would need a window of more than {MAX_WINDOW} statements: this statement can be complete while a statement more than {MAX_WINDOW} places before it is not");
+            LimitError {
                 message,
-                span: flat.first().map_or(Span::default(), |f| f.0.span),
-            });
-        }
+                span: statements.get(s).map_or(Span::default(), |s| s.span),
+            }
+        })?;
         let max_args = statements.iter().map(|s| s.args.len()).max().unwrap_or(0);
         Ok(Ir {
             robot: self.robot.name.clone(),
@@ -115,7 +118,7 @@ impl Program<'_> {
         separator: SeparatorKind,
         addresses: &[Address],
         operations: &mut Vec<(String, String)>,
-        earlier: &[IrStatement],
+        latest: &[Option<u16>; 256],
     ) -> Result<IrStatement, LimitError> {
         let limit = |message: String| LimitError {
             message,
@@ -148,10 +151,7 @@ impl Program<'_> {
                 Value::Bool(b) => Ok(i16::from(*b)),
             })
             .collect::<Result<Vec<i16>, LimitError>>()?;
-        let previous_on_module = earlier
-            .iter()
-            .rposition(|s| s.address == address)
-            .map(|p| p as u16);
+        let previous_on_module = latest[usize::from(address)];
         Ok(IrStatement {
             address,
             op: u8::try_from(op).map_err(|_| limit("more than 256 kinds of operation".into()))?,
@@ -166,10 +166,7 @@ impl Program<'_> {
     }
 
     /// `M<k>` is address k; roles get the next free numbers, in declaration order.
-    fn addresses(
-        &self,
-        flat: &[(ResolvedStatement, Vec<u16>, SeparatorKind)],
-    ) -> Result<Vec<Address>, LimitError> {
+    fn addresses(&self, flat: &Flat) -> Result<Vec<Address>, LimitError> {
         let mut addresses: Vec<Address> = Vec::new();
         for (statement, _, _) in flat {
             let Label::Module(id) = statement.label else {
@@ -190,16 +187,24 @@ impl Program<'_> {
                 });
             }
         }
-        let mut next = addresses
+        let first_free = addresses
             .iter()
             .map(|a| u32::from(a.number) + 1)
             .max()
             .unwrap_or(0);
-        for role in self.file.roles() {
+        // The roles the statements use, in declaration order (found through the file's
+        // index: a scan of every item per sequence made many-sequence files quadratic).
+        let mut roles: Vec<(usize, &crate::ast::RoleDecl)> = flat
+            .iter()
+            .filter_map(|(s, _, _)| match &s.label {
+                Label::Role(name) => self.file.role(name),
+                Label::Module(_) => None,
+            })
+            .collect();
+        roles.sort_by_key(|(item, _)| *item);
+        roles.dedup_by_key(|(item, _)| *item);
+        for (next, (_, role)) in (first_free..).zip(roles) {
             let label = Label::Role(role.name.name.clone());
-            if !flat.iter().any(|(s, _, _)| s.label == label) {
-                continue;
-            }
             if next > MAX_ADDRESS {
                 return Err(LimitError {
                     message: format!("more roles and modules than the {MAX_ADDRESS} addresses"),
@@ -211,41 +216,36 @@ impl Program<'_> {
                 label,
                 predicate: Some(role.predicate.clone()),
             });
-            next += 1;
         }
         addresses.sort_by_key(|a| a.number);
         Ok(addresses)
     }
 }
 
-fn check_count(flat: &[(ResolvedStatement, Vec<u16>, SeparatorKind)]) -> Result<(), LimitError> {
-    if flat.len() > usize::from(u16::MAX) - 1 {
-        let span = flat.last().map_or(Span::default(), |f| f.0.span);
-        return Err(LimitError {
-            message: format!("{} statements; the limit is {}", flat.len(), u16::MAX - 1),
-            span,
-        });
-    }
-    Ok(())
-}
+/// Most statements a program can have: indices are 16 bits and 65,535 is reserved.
+pub const MAX_STATEMENTS: usize = u16::MAX as usize - 1;
+/// Most statements one statement can wait for (`n_deps` is one byte in the lattice tables).
+pub const MAX_WAITS: usize = u8::MAX as usize;
+/// Most entries of the lattice dependency table (`first_dep` is 16 bits).
+pub const MAX_DEP_ENTRIES: usize = u16::MAX as usize;
+
+type Flat = Vec<(ResolvedStatement, Vec<u16>, SeparatorKind)>;
 
 /// Appends the statements of `plan` to `out` with their dependencies; `entry` is what must be
 /// complete before the plan starts. Returns the statements whose completion ends the plan.
-fn flatten(
-    plan: &Plan,
-    entry: &[u16],
-    out: &mut Vec<(ResolvedStatement, Vec<u16>, SeparatorKind)>,
-) -> Vec<u16> {
+/// Fails before appending a statement that would pass [`MAX_STATEMENTS`] or wait for more
+/// than [`MAX_WAITS`], so the flattened form is never larger than the limits allow.
+fn flatten(plan: &Plan, entry: &[u16], out: &mut Flat) -> Result<Vec<u16>, LimitError> {
     let mut group_entry: Vec<u16> = entry.to_vec();
     let mut group_exit: Vec<u16> = Vec::new();
     for element in &plan.elements {
         let exit = match &element.kind {
             PlanKind::Op(statement) => {
-                out.push((statement.clone(), group_entry.clone(), element.separator));
-                vec![(out.len() - 1) as u16]
+                let index = push_statement(out, statement, &group_entry, element.separator)?;
+                vec![index]
             }
             PlanKind::Block(inner) => {
-                let exit = flatten(inner, &group_entry, out);
+                let exit = flatten(inner, &group_entry, out)?;
                 // The block's last statement carries the block's own separator.
                 if let Some(last) = out.last_mut() {
                     last.2 = element.separator;
@@ -261,31 +261,100 @@ fn flatten(
     // A body ends with `;`, so group_exit is empty here; an unclosed group would end the
     // plan together with the last closed one.
     group_entry.extend(group_exit);
-    group_entry
+    Ok(group_entry)
+}
+
+fn push_statement(
+    out: &mut Flat,
+    statement: &ResolvedStatement,
+    deps: &[u16],
+    separator: SeparatorKind,
+) -> Result<u16, LimitError> {
+    let limit = |message: String| LimitError {
+        message,
+        span: statement.span,
+    };
+    if out.len() >= MAX_STATEMENTS {
+        return Err(limit(format!(
+            "more than {MAX_STATEMENTS} statements (statement numbers are 16 bits)"
+        )));
+    }
+    // The module's previous statement may come on top of these.
+    if deps.len() >= MAX_WAITS {
+        return Err(limit(format!("this statement waits for the {} statements of the parallel group before it; the lattice tables hold at most {} per statement", deps.len(), MAX_WAITS - 1)));
+    }
+    out.push((statement.clone(), deps.to_vec(), separator));
+    Ok((out.len() - 1) as u16)
+}
+
+/// The lattice dependency table holds every statement's `waits_for`, indexed by 16 bits.
+fn check_dep_entries(statements: &[IrStatement]) -> Result<(), LimitError> {
+    let mut total = 0usize;
+    for statement in statements {
+        total += statement.waits_for().len();
+        if total > MAX_DEP_ENTRIES {
+            let message = format!("the lattice dependency table would have more than {MAX_DEP_ENTRIES} entries (16-bit positions): too many statements wait for large parallel groups");
+            return Err(LimitError {
+                message,
+                span: statement.span,
+            });
+        }
+    }
+    Ok(())
 }
 
 /// The smallest window (multiple of 8, at least 8) covering, for every statement s, every
 /// earlier statement that is not a (transitive) dependency of s: those can still be incomplete
-/// when s is complete, so both must fit above the low-water mark.
-fn window_needed(statements: &[IrStatement]) -> usize {
-    let n = statements.len();
-    let mut ancestors: Vec<BTreeSet<usize>> = Vec::with_capacity(n);
+/// when s is complete, so both must fit above the low-water mark. `Err(s)` names the first
+/// statement that would need more than `limit` (at most 128).
+///
+/// Linear in the statements and their dependencies: the ancestors of s are kept as a prefix
+/// `0..low` that is entirely ancestors plus a 128-bit mask of the ancestors in `low..s`, which
+/// is exact as long as no statement needs more than 128 (`s - low` stays below 128).
+fn window_needed(statements: &[IrStatement], limit: usize) -> Result<usize, usize> {
+    debug_assert!(limit <= 128);
+    // For each statement: (low, mask), bit i of mask = statement low + i is an ancestor.
+    let mut ancestors: Vec<(usize, u128)> = Vec::with_capacity(statements.len());
     let mut needed = 1usize;
     for (s, statement) in statements.iter().enumerate() {
-        let mut mine = BTreeSet::new();
-        for d in statement.waits_for() {
+        let waits = statement.waits_for();
+        let base = waits
+            .iter()
+            .filter_map(|&d| ancestors.get(usize::from(d)))
+            .map(|&(low, _)| low)
+            .max()
+            .unwrap_or(0);
+        let mut mask = 0u128;
+        for &d in &waits {
             let d = usize::from(d);
-            mine.insert(d);
-            if let Some(theirs) = ancestors.get(d) {
-                mine.extend(theirs.iter().copied());
+            let Some(&(low, theirs)) = ancestors.get(d) else {
+                continue;
+            };
+            // low <= base, and d - base <= d - low < 128 when d is above the prefix.
+            mask |= shifted_down(theirs, base - low);
+            if d >= base {
+                mask |= 1u128 << (d - base);
             }
         }
-        if let Some(lowest) = (0..s).find(|t| !mine.contains(t)) {
-            needed = needed.max(s - lowest + 1);
+        let low = base + mask.trailing_ones() as usize;
+        if low < s {
+            let window = s - low + 1;
+            if window > limit {
+                return Err(s);
+            }
+            needed = needed.max(window);
         }
-        ancestors.push(mine);
+        ancestors.push((low, shifted_down(mask, low - base)));
     }
-    needed.div_ceil(8).max(1) * 8
+    Ok(needed.div_ceil(8).max(1) * 8)
+}
+
+/// `mask >> by`, zero when every bit is shifted out.
+fn shifted_down(mask: u128, by: usize) -> u128 {
+    u32::try_from(by)
+        .ok()
+        .and_then(|by| mask.checked_shr(by))
+        .unwrap_or(0)
 }
 
 /// How the paper's compiler turned a statement (or a block) into states (e.9 of the protocol
@@ -396,5 +465,99 @@ impl Ir {
         };
         *state += size;
         Ok(unit)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// The original definition, one set of ancestors per statement (quadratic): the reference
+    /// the linear `window_needed` must agree with.
+    fn window_reference(statements: &[IrStatement], limit: usize) -> Result<usize, usize> {
+        let mut ancestors: Vec<BTreeSet<usize>> = Vec::new();
+        let mut needed = 1usize;
+        for (s, statement) in statements.iter().enumerate() {
+            let mut mine = BTreeSet::new();
+            for d in statement.waits_for() {
+                let d = usize::from(d);
+                mine.insert(d);
+                mine.extend(ancestors[d].iter().copied());
+            }
+            if let Some(lowest) = (0..s).find(|t| !mine.contains(t)) {
+                if s - lowest + 1 > limit {
+                    return Err(s);
+                }
+                needed = needed.max(s - lowest + 1);
+            }
+            ancestors.push(mine);
+        }
+        Ok(needed.div_ceil(8).max(1) * 8)
+    }
+
+    /// Statements on `modules` modules, each depending on a few earlier ones.
+    fn program(modules: u8) -> impl Strategy<Value = Vec<IrStatement>> {
+        let one = (
+            0..modules,
+            proptest::collection::vec(any::<prop::sample::Index>(), 0..3),
+        );
+        proptest::collection::vec(one, 0..220).prop_map(|raw| {
+            let mut latest = [None; 256];
+            let mut out = Vec::new();
+            for (i, (address, picks)) in raw.into_iter().enumerate() {
+                let mut deps: Vec<u16> = if i == 0 {
+                    Vec::new()
+                } else {
+                    picks.iter().map(|p| p.index(i) as u16).collect()
+                };
+                deps.sort_unstable();
+                deps.dedup();
+                out.push(IrStatement {
+                    address,
+                    op: 0,
+                    index: 0,
+                    args: Vec::new(),
+                    deps,
+                    previous_on_module: latest[usize::from(address)],
+                    separator: SeparatorKind::Sequential,
+                    text: String::new(),
+                    span: Span::default(),
+                });
+                latest[usize::from(address)] = Some(i as u16);
+            }
+            out
+        })
+    }
+
+    proptest! {
+        #[test]
+        fn window_matches_the_reference(
+            statements in (1u8..6).prop_flat_map(program),
+            limit in prop::sample::select(vec![4usize, 16, 40, 128]),
+        ) {
+            prop_assert_eq!(
+                window_needed(&statements, limit),
+                window_reference(&statements, limit)
+            );
+        }
+    }
+
+    #[test]
+    fn a_long_chain_needs_the_smallest_window() {
+        let statements: Vec<IrStatement> = (0..60_000u16)
+            .map(|i| IrStatement {
+                address: 1,
+                op: 0,
+                index: 0,
+                args: Vec::new(),
+                deps: i.checked_sub(1).into_iter().collect(),
+                previous_on_module: i.checked_sub(1),
+                separator: SeparatorKind::Sequential,
+                text: String::new(),
+                span: Span::default(),
+            })
+            .collect();
+        assert_eq!(window_needed(&statements, MAX_WINDOW), Ok(8));
     }
 }

@@ -12,6 +12,9 @@ use crate::span::Span;
 /// Deepest nesting of blocks or of predicate sub-expressions the parser accepts.
 pub const MAX_NESTING: usize = 64;
 
+/// Syntax errors recorded before the rest of a file is skipped (lexer and parser each).
+pub const MAX_SYNTAX_ERRORS: usize = 1000;
+
 /// Most binary operators in one role predicate. A chain `a || b || ...` is a tree as deep as it
 /// is long, and later passes walk trees recursively.
 pub const MAX_OPERATORS: usize = 1000;
@@ -39,6 +42,7 @@ pub fn parse(source: &str) -> Parsed {
         file: SourceFile {
             items,
             comments: lexed.comments,
+            names: NameIndex::default(),
         },
         diagnostics,
     }
@@ -109,8 +113,19 @@ impl Parser {
         }
     }
 
+    /// Records a syntax error; past [`MAX_SYNTAX_ERRORS`] the parser says so once and skips
+    /// to the end, so that a hostile file costs bounded memory and time.
     fn report(&mut self, kind: DiagnosticKind, span: Span) {
-        self.diagnostics.push(Diagnostic::new(kind, span));
+        if self.diagnostics.len() < MAX_SYNTAX_ERRORS {
+            self.diagnostics.push(Diagnostic::new(kind, span));
+            return;
+        }
+        let what = format!("more than {MAX_SYNTAX_ERRORS} syntax errors");
+        self.diagnostics.push(Diagnostic::new(
+            DiagnosticKind::InputTooLarge { what },
+            span,
+        ));
+        self.pos = self.tokens.len().saturating_sub(1);
     }
 
     fn unexpected(&mut self, expected: &str) -> Broken {

@@ -56,7 +56,8 @@ impl Program<'_> {
     }
 
     /// The name a reversed sequence gets: `Y` if `name` is declared `= reverse Y`; the file's
-    /// own `X = reverse name` if there is one; else `b2a` for `a2b`; else `name_reversed`.
+    /// own `X = reverse name` if there is one; else `b2a` for `a2b` when that is a name (not
+    /// for `grid20p`, whose swap `0p2grid` is not); else `name_reversed`.
     pub fn reverse_name(&self, name: &str) -> String {
         if let Some(SequenceDef::Reverse(target)) = self.file.sequence(name).map(|d| &d.definition)
         {
@@ -66,7 +67,11 @@ impl Program<'_> {
             return alias;
         }
         match name.split_once('2') {
-            Some((from, to)) if !from.is_empty() && !to.is_empty() && !to.contains('2') => {
+            Some((from, to))
+                if !from.is_empty()
+                    && !to.contains('2')
+                    && crate::lexer::is_identifier(&format!("{to}2{from}")) =>
+            {
                 format!("{to}2{from}")
             }
             _ => format!("{name}_reversed"),

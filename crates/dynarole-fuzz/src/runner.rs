@@ -3,7 +3,7 @@
 
 use crate::corpus::{Corpus, Entry};
 use crate::mutate::{apply, cases, Case};
-use crate::targets::{Context, Mode, Outcome, Target, EXTREMES};
+use crate::targets::{Context, Outcome, Target, EXTREMES};
 use proptest::test_runner::{Config, RngAlgorithm, TestCaseError, TestError, TestRng, TestRunner};
 use std::cell::Cell;
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -56,7 +56,6 @@ pub struct Summary {
     pub inputs: u64,
     pub accepted: u64,
     pub rejected: u64,
-    pub deferred: u64,
     pub elapsed: Duration,
 }
 
@@ -66,7 +65,6 @@ impl Summary {
         match outcome {
             Outcome::Accepted => self.accepted += 1,
             Outcome::Rejected => self.rejected += 1,
-            Outcome::Deferred => self.deferred += 1,
         }
     }
 }
@@ -75,11 +73,10 @@ impl std::fmt::Display for Summary {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "{} inputs ({} accepted, {} rejected, {} deferred) in {:.2} s",
+            "{} inputs ({} accepted, {} rejected) in {:.2} s",
             self.inputs,
             self.accepted,
             self.rejected,
-            self.deferred,
             self.elapsed.as_secs_f64()
         )
     }
@@ -87,16 +84,11 @@ impl std::fmt::Display for Summary {
 
 /// Runs every corpus file through `target`; the first broken property or panic is an error
 /// naming the file.
-pub fn run_corpus(
-    target: Target,
-    ctx: &Context,
-    corpus: &Corpus,
-    mode: Mode,
-) -> Result<Summary, String> {
+pub fn run_corpus(target: Target, ctx: &Context, corpus: &Corpus) -> Result<Summary, String> {
     let started = Instant::now();
     let mut summary = Summary::default();
     for entry in &corpus.entries {
-        let outcome = run_one(target, ctx, &entry.text(), mode)
+        let outcome = run_one(target, ctx, &entry.text())
             .map_err(|e| format!("{}/{}: {e}", target.name(), entry.name))?;
         summary.count(outcome);
     }
@@ -105,8 +97,8 @@ pub fn run_corpus(
 }
 
 /// `target` on `text`, a panic turned into an error.
-fn run_one(target: Target, ctx: &Context, text: &str, mode: Mode) -> Result<Outcome, String> {
-    match catch_unwind(AssertUnwindSafe(|| target.run(ctx, text, mode))) {
+fn run_one(target: Target, ctx: &Context, text: &str) -> Result<Outcome, String> {
+    match catch_unwind(AssertUnwindSafe(|| target.run(ctx, text))) {
         Ok(result) => result,
         Err(panic) => Err(format!("panicked: {}", panic_text(panic.as_ref()))),
     }
@@ -126,7 +118,6 @@ pub fn run_mutations(
     ctx: &Context,
     corpus: &Corpus,
     settings: &Settings,
-    mode: Mode,
 ) -> Result<Summary, String> {
     if corpus.entries.is_empty() || settings.cases == 0 {
         return Ok(Summary::default());
@@ -143,7 +134,7 @@ pub fn run_mutations(
     let strategy = cases(target.vocabulary(), EXTREMES);
     let result = runner.run(&strategy, |case| {
         let text = String::from_utf8_lossy(&apply(&case, &corpus.entries)).into_owned();
-        let outcome = run_one(target, ctx, &text, mode).map_err(TestCaseError::fail)?;
+        let outcome = run_one(target, ctx, &text).map_err(TestCaseError::fail)?;
         let mut s = summary.take();
         s.count(outcome);
         summary.set(s);

@@ -1,6 +1,7 @@
 //! The fuzz targets: what each one runs on an input, and the properties it checks.
 
 use dynarole_campaign::{plan, CampaignFile};
+use dynarole_core::diagnostic::MAX_SHOWN;
 use dynarole_core::format::format_file;
 use dynarole_core::{analyze, parse, Diagnostic, RobotApi, RobotRegistry};
 use dynarole_sim::Scenario;
@@ -10,18 +11,11 @@ use std::path::Path;
 /// Error text allowed on top of what is proportional to the input (a loader may quote the
 /// offending line or name; a diagnostic may quote a token).
 pub const ERROR_BASE_BYTES: usize = 4096;
-/// Diagnostic text allowed per byte of source in [`Mode::Guarded`]: today every unknown
-/// character is its own diagnostic (a title, a label and a hint).
-pub const GUARDED_DIAGNOSTIC_BYTES_PER_INPUT_BYTE: usize = 256;
-/// Diagnostic text allowed per byte of source in [`Mode::Hostile`]: a run of unknown
-/// characters must not flood the output with one diagnostic per byte.
+/// Text allowed per shown diagnostic (title, label, hint), besides what it may quote.
+pub const DIAGNOSTIC_BYTES: usize = 256;
+/// Quoted text allowed per byte of source, over all shown diagnostics: a diagnostic that
+/// quotes the whole source, shown fifty times, breaks it.
 pub const DIAGNOSTIC_BYTES_PER_INPUT_BYTE: usize = 16;
-/// Campaigns with more seeds than this are parsed but not planned in [`Mode::Guarded`]:
-/// planning allocates one run per seed, and the limit on `seeds` has not landed yet.
-pub const GUARDED_MAX_SEEDS: u64 = 1000;
-/// Plugins with a part `count` above this are not loaded in [`Mode::Guarded`]: the loader
-/// names every index before it checks the count, and the fix has not landed yet.
-pub const GUARDED_MAX_PLUGIN_COUNT: i64 = 1 << 16;
 
 /// A fuzz target; its name is its corpus folder.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -43,23 +37,11 @@ pub enum Target {
     Plugin,
 }
 
-/// Which inputs may reach the code.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Mode {
-    /// Inputs that reach a path still waiting for its size limit (see the `GUARDED_*`
-    /// constants) are counted as deferred instead of run.
-    Guarded,
-    /// Everything runs, as it will once the limits land.
-    Hostile,
-}
-
 /// What became of an input that broke no property.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Outcome {
     Accepted,
     Rejected,
-    /// Not run in [`Mode::Guarded`].
-    Deferred,
 }
 
 /// What the targets share: the robots a source may name.
@@ -287,22 +269,22 @@ impl Target {
     }
 
     /// Runs `text` through the target; `Err` names the property it broke.
-    pub fn run(self, ctx: &Context, text: &str, mode: Mode) -> Result<Outcome, String> {
+    pub fn run(self, ctx: &Context, text: &str) -> Result<Outcome, String> {
         match self {
-            Target::Parse => front_end(text, mode),
-            Target::Check => check(ctx, text, mode),
-            Target::Format => format(text, mode),
+            Target::Parse => front_end(text),
+            Target::Check => check(ctx, text),
+            Target::Format => format(text),
             Target::Configuration => configuration(text),
             Target::Scenario => loader(text, Scenario::from_toml_str(text).map(|_| ())),
-            Target::Campaign => campaign(text, mode),
-            Target::Plugin => plugin(ctx, text, mode),
+            Target::Campaign => campaign(text),
+            Target::Plugin => plugin(ctx, text),
         }
     }
 }
 
-fn front_end(text: &str, mode: Mode) -> Result<Outcome, String> {
+fn front_end(text: &str) -> Result<Outcome, String> {
     let parsed = parse(text);
-    well_formed(text, &parsed.diagnostics, mode)?;
+    well_formed(text, &parsed.diagnostics)?;
     Ok(verdict(parsed.diagnostics.is_empty()))
 }
 
@@ -314,11 +296,11 @@ fn verdict(clean: bool) -> Outcome {
     }
 }
 
-fn check(ctx: &Context, text: &str, mode: Mode) -> Result<Outcome, String> {
+fn check(ctx: &Context, text: &str) -> Result<Outcome, String> {
     let parsed = parse(text);
     let (program, mut diagnostics) = analyze(&parsed.file, &ctx.registry);
     diagnostics.extend(parsed.diagnostics.iter().cloned());
-    well_formed(text, &diagnostics, mode)?;
+    well_formed(text, &diagnostics)?;
     let Some(program) = program else {
         return Ok(Outcome::Rejected);
     };
@@ -326,7 +308,7 @@ fn check(ctx: &Context, text: &str, mode: Mode) -> Result<Outcome, String> {
         let name = &decl.name.name;
         if let Some(plan) = program.expand(name) {
             if let Err(d) = plan.flatten_for_paper() {
-                well_formed(text, &[d], mode)?;
+                well_formed(text, &[d])?;
             }
             match program.lower(std::slice::from_ref(&plan)) {
                 Ok(ir) => {
@@ -338,15 +320,15 @@ fn check(ctx: &Context, text: &str, mode: Mode) -> Result<Outcome, String> {
             }
         }
         if let Some(Err(errors)) = program.reverse_sequence(name, "reversed") {
-            well_formed(text, &errors, mode)?;
+            well_formed(text, &errors)?;
         }
     }
     Ok(verdict(diagnostics.is_empty()))
 }
 
-fn format(text: &str, mode: Mode) -> Result<Outcome, String> {
+fn format(text: &str) -> Result<Outcome, String> {
     let parsed = parse(text);
-    well_formed(text, &parsed.diagnostics, mode)?;
+    well_formed(text, &parsed.diagnostics)?;
     if !parsed.diagnostics.is_empty() {
         return Ok(Outcome::Rejected);
     }
@@ -385,28 +367,28 @@ fn configuration(text: &str) -> Result<Outcome, String> {
     }
 }
 
-fn campaign(text: &str, mode: Mode) -> Result<Outcome, String> {
+fn campaign(text: &str) -> Result<Outcome, String> {
     let campaign = match CampaignFile::parse(text, Path::new("campaigns")) {
         Ok(campaign) => campaign,
         Err(e) => return loader(text, Err(e)),
     };
-    if mode == Mode::Guarded && campaign.seeds > GUARDED_MAX_SEEDS {
-        return Ok(Outcome::Deferred);
-    }
     let runs = match plan(&campaign) {
         Ok(runs) => runs,
         Err(e) => return loader(text, Err(e)),
     };
-    match runs.iter().enumerate().find(|(i, r)| r.index != *i as u64) {
-        Some((i, r)) => Err(format!("planned run {i} has index {}", r.index)),
-        None => Ok(Outcome::Accepted),
+    // The plan is computed run by run: probe its first thousand runs and its last one.
+    let n = runs.len();
+    for i in (0..n.min(1000)).chain(n.checked_sub(1)) {
+        match runs.get(i) {
+            Some(r) if r.index == i => {}
+            Some(r) => return Err(format!("planned run {i} has index {}", r.index)),
+            None => return Err(format!("planned run {i} of {n} is missing")),
+        }
     }
+    Ok(Outcome::Accepted)
 }
 
-fn plugin(ctx: &Context, text: &str, mode: Mode) -> Result<Outcome, String> {
-    if mode == Mode::Guarded && plugin_count_above(text, GUARDED_MAX_PLUGIN_COUNT) {
-        return Ok(Outcome::Deferred);
-    }
+fn plugin(ctx: &Context, text: &str) -> Result<Outcome, String> {
     let api = match RobotApi::from_toml(text) {
         Ok(api) => api,
         Err(e) => return loader(text, Err(e)),
@@ -424,20 +406,6 @@ fn plugin(ctx: &Context, text: &str, mode: Mode) -> Result<Outcome, String> {
         )),
         None => Ok(Outcome::Accepted),
     }
-}
-
-/// Whether some `[[part]]` of a plugin's TOML has a `count` above `bound`.
-fn plugin_count_above(text: &str, bound: i64) -> bool {
-    let Ok(table) = text.parse::<toml::Table>() else {
-        return false;
-    };
-    let Some(parts) = table.get("part").and_then(|p| p.as_array()) else {
-        return false;
-    };
-    parts
-        .iter()
-        .filter_map(|p| p.get("count").and_then(|c| c.as_integer()))
-        .any(|c| c > bound)
 }
 
 /// A loader's result: accepted, or refused with an error of bounded size.
@@ -460,25 +428,29 @@ fn loader<E: std::fmt::Display>(text: &str, result: Result<(), E>) -> Result<Out
     Ok(Outcome::Rejected)
 }
 
-/// Diagnostics point inside the source at character boundaries and their text is bounded.
-fn well_formed(text: &str, diagnostics: &[Diagnostic], mode: Mode) -> Result<(), String> {
+/// Diagnostics point inside the source at character boundaries, and the text of those a user
+/// is shown (the first `MAX_SHOWN`, then "N more") is bounded.
+fn well_formed(text: &str, diagnostics: &[Diagnostic]) -> Result<(), String> {
     let mut total = 0usize;
-    for d in diagnostics {
+    for (i, d) in diagnostics.iter().enumerate() {
         let description = d.describe();
         span_inside(text, d.span.start, d.span.end)?;
         for (span, label) in &description.secondary {
             span_inside(text, span.start, span.end)?;
-            total += label.len();
+            if i < MAX_SHOWN {
+                total += label.len();
+            }
         }
-        total += description.title.len()
-            + description.label.len()
-            + description.hint.as_ref().map_or(0, String::len);
+        if i < MAX_SHOWN {
+            total += description.title.len()
+                + description.label.len()
+                + description.hint.as_ref().map_or(0, String::len);
+        }
     }
-    let per_byte = match mode {
-        Mode::Guarded => GUARDED_DIAGNOSTIC_BYTES_PER_INPUT_BYTE,
-        Mode::Hostile => DIAGNOSTIC_BYTES_PER_INPUT_BYTE,
-    };
-    let limit = ERROR_BASE_BYTES + per_byte * text.len();
+    let shown = diagnostics.len().min(MAX_SHOWN);
+    let limit = ERROR_BASE_BYTES
+        + shown * DIAGNOSTIC_BYTES
+        + DIAGNOSTIC_BYTES_PER_INPUT_BYTE * text.len();
     if total > limit {
         return Err(format!(
             "{} diagnostics, {total} bytes of text, for {} bytes of source (limit {limit})",
@@ -508,7 +480,10 @@ mod tests {
 
     fn unknown(start: u32, end: u32) -> Diagnostic {
         Diagnostic {
-            kind: DiagnosticKind::UnknownCharacter { found: '@' },
+            kind: DiagnosticKind::UnknownCharacter {
+                found: '@',
+                count: (end - start) as usize,
+            },
             span: Span { start, end },
         }
     }
@@ -523,12 +498,29 @@ mod tests {
     }
 
     #[test]
-    fn diagnostic_floods_break_the_hostile_bound_only() {
-        let text = "@".repeat(3000);
-        let flood: Vec<Diagnostic> = (0..3000).map(|i| unknown(i, i + 1)).collect();
-        assert!(well_formed(&text, &flood, Mode::Guarded).is_ok());
-        assert!(well_formed(&text, &flood, Mode::Hostile).is_err());
-        assert!(well_formed(&text, &[unknown(0, 3000)], Mode::Hostile).is_ok());
+    fn long_shown_diagnostics_break_the_bound() {
+        // Diagnostics quoting more text than the source could justify.
+        let text = "@".repeat(100);
+        let quoting = |n: usize| Diagnostic {
+            kind: DiagnosticKind::UnexpectedToken {
+                expected: "x".repeat(n),
+                found: "@".into(),
+            },
+            span: Span { start: 0, end: 1 },
+        };
+        assert!(well_formed(&text, &[quoting(10_000)]).is_err());
+        assert!(well_formed(&text, &[quoting(10)]).is_ok());
+    }
+
+    #[test]
+    fn a_run_of_bad_characters_is_one_diagnostic() {
+        let parsed = parse(&"@".repeat(3000));
+        assert_eq!(
+            parsed.diagnostics.len(),
+            1,
+            "{:?}",
+            parsed.diagnostics.first()
+        );
     }
 
     #[test]
@@ -540,16 +532,9 @@ mod tests {
     }
 
     #[test]
-    fn guards_defer_only_what_waits_for_a_limit() {
+    fn a_huge_plugin_count_is_rejected() {
         let big = "name = \"g\"\n[[part]]\nname = \"P\"\ncount = 70000\n";
         let ctx = Context::new(&[]);
-        assert_eq!(
-            Target::Plugin.run(&ctx, big, Mode::Guarded),
-            Ok(Outcome::Deferred)
-        );
-        assert_eq!(
-            Target::Plugin.run(&ctx, big, Mode::Hostile),
-            Ok(Outcome::Rejected)
-        );
+        assert_eq!(Target::Plugin.run(&ctx, big), Ok(Outcome::Rejected));
     }
 }

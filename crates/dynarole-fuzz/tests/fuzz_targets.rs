@@ -2,7 +2,7 @@
 //! `DYNAROLE_FUZZ_CASES` seeded mutations of them (see `docs/fuzzing.md`). The hostile
 //! regression inputs of `fuzz/regressions/` wait for the size limits to land.
 
-use dynarole_fuzz::{corpus, run_corpus, run_mutations, Context, Corpus, Mode, Settings, Target};
+use dynarole_fuzz::{corpus, run_corpus, run_mutations, Context, Corpus, Settings, Target};
 use std::path::PathBuf;
 
 /// Mutated cases per target when `DYNAROLE_FUZZ_CASES` is not set: the whole run stays within
@@ -31,11 +31,10 @@ fn fuzz(target: Target) {
         dir.display()
     );
     let ctx = context();
-    let regression =
-        run_corpus(target, &ctx, &corpus, Mode::Guarded).unwrap_or_else(|e| panic!("{e}"));
+    let regression = run_corpus(target, &ctx, &corpus).unwrap_or_else(|e| panic!("{e}"));
     eprintln!("{} corpus: {regression}", target.name());
-    let mutations = run_mutations(target, &ctx, &corpus, &settings(), Mode::Guarded)
-        .unwrap_or_else(|e| panic!("{e}"));
+    let mutations =
+        run_mutations(target, &ctx, &corpus, &settings()).unwrap_or_else(|e| panic!("{e}"));
     eprintln!("{} mutations: {mutations}", target.name());
 }
 
@@ -83,28 +82,24 @@ fn regressions(target: Target) {
         "{}: no regressions",
         dir.display()
     );
-    let summary =
-        run_corpus(target, &context(), &corpus, Mode::Hostile).unwrap_or_else(|e| panic!("{e}"));
+    let summary = run_corpus(target, &context(), &corpus).unwrap_or_else(|e| panic!("{e}"));
     eprintln!("{} regressions: {summary}", target.name());
 }
 
 /// Lines of thousands of unknown characters: one diagnostic each until the lexer merges them.
 #[test]
-#[ignore = "enabled once the limits land"]
 fn parse_regressions() {
     regressions(Target::Parse);
 }
 
 /// `seeds = 4294967296`: planned one run per seed before any limit.
 #[test]
-#[ignore = "enabled once the limits land"]
 fn campaign_regressions() {
     regressions(Target::Campaign);
 }
 
 /// `count = 1000000000`: the loader names every index before checking the count.
 #[test]
-#[ignore = "enabled once the limits land"]
 fn plugin_regressions() {
     regressions(Target::Plugin);
 }
@@ -121,9 +116,9 @@ fn one_seed_gives_the_same_cases() {
     };
     let ctx = context();
     let counts = || {
-        let s = run_mutations(Target::Scenario, &ctx, &corpus, &settings, Mode::Guarded)
+        let s = run_mutations(Target::Scenario, &ctx, &corpus, &settings)
             .unwrap_or_else(|e| panic!("{e}"));
-        (s.inputs, s.accepted, s.rejected, s.deferred)
+        (s.inputs, s.accepted, s.rejected)
     };
     let first = counts();
     assert_eq!(first.0, 300);

@@ -191,8 +191,23 @@ fn parse_atron(file: AtronFile) -> Result<AtronConfiguration, ConfigError> {
 }
 
 /// Builds one ATRON module and checks its redundant fields against the model.
+/// Largest module ID: the runtime's `dr_hal_id` is 16 bits and 65,535 means "no ID".
+pub const MAX_MODULE_ID: u32 = 65_534;
+
+/// A module ID the runtime can hold, or an error naming `modules[i].id`.
+fn check_id(i: usize, id: Option<u32>) -> Result<Option<u32>, ConfigError> {
+    match id {
+        Some(id) if id > MAX_MODULE_ID => Err(ConfigError::new(
+            format!("modules[{i}].id"),
+            format!("expected 0 to {MAX_MODULE_ID} (IDs are 16 bits on the modules, 65535 means none), found {id}"),
+        )),
+        _ => Ok(id),
+    }
+}
+
 fn atron_module(i: usize, record: AtronRecord) -> Result<AtronModule, ConfigError> {
     let at = |field: &str| format!("modules[{i}].{field}");
+    let id = check_id(i, record.id)?;
     let orientation = atron_orientation(i, &record)?;
     let joint_units = u16::try_from(record.joint)
         .ok()
@@ -225,7 +240,7 @@ fn atron_module(i: usize, record: AtronRecord) -> Result<AtronModule, ConfigErro
     }
     Ok(AtronModule {
         name: record.name,
-        id: record.id,
+        id,
         ussr_name: record.ussr_name,
         position,
         orientation,
@@ -358,6 +373,7 @@ fn mtran_module(i: usize, record: MtranRecord) -> Result<MtranModule, ConfigErro
             ),
         )
     })?;
+    let id = check_id(i, record.id)?;
     let mut joints_deg = [0i16; 2];
     for (j, (out, angle)) in joints_deg.iter_mut().zip(record.joints_deg).enumerate() {
         *out = i16::try_from(angle).map_err(|_| {
@@ -369,7 +385,7 @@ fn mtran_module(i: usize, record: MtranRecord) -> Result<MtranModule, ConfigErro
     }
     let module = MtranModule {
         name: record.name,
-        id: record.id,
+        id,
         ussr_name: record.ussr_name,
         centre_quarter_pitch,
         orientation,

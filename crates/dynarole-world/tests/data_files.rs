@@ -372,3 +372,13 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn module_ids_beyond_16_bits_are_refused_not_clamped() -> Result<(), String> {
+    let (path, message) = error_after(|v| v["modules"][2]["id"] = json!(70000))?;
+    assert_eq!(path, "modules[2].id");
+    assert!(message.contains("expected 0 to 65534"), "{message}");
+    let (path, _) = mtran_error_after(|v| v["modules"][0]["id"] = json!(65535))?;
+    assert_eq!(path, "modules[0].id");
+    Ok(())
+}

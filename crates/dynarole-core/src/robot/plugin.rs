@@ -3,6 +3,7 @@
 use super::*;
 use crate::lexer::{lex, Token};
 use serde::Deserialize;
+use std::collections::BTreeSet;
 
 /// A plugin that cannot be used: the field that is wrong, the message, where in the text.
 pub type PluginError = crate::toml_error::TomlError;
@@ -77,16 +78,18 @@ impl RobotApi {
         check_name("name", &raw.name)?;
         let mut parts = Vec::new();
         let mut constants = Vec::new();
+        let mut part_names = BTreeSet::new();
         for (i, raw_part) in raw.part.iter().enumerate() {
             let field = format!("part[{i}]");
-            if parts.iter().any(|p: &Part| p.name == raw_part.name) {
+            if !part_names.insert(raw_part.name.as_str()) {
                 return Err(error(
                     format!("{field}.name"),
                     format!("part `{}` is defined twice", raw_part.name),
                 ));
             }
-            constants.extend(part_constants(raw_part, i, &field)?);
+            // The part (and its `count`) is checked before its constants are built from it.
             parts.push(convert_part(raw_part, &field)?);
+            constants.extend(part_constants(raw_part, i, &field)?);
         }
         for (i, raw_part) in raw.part.iter().enumerate() {
             resolve_inverses(&mut parts, i, raw_part)?;
@@ -176,8 +179,9 @@ fn part_constants(raw: &RawPart, part: usize, field: &str) -> Result<Vec<Constan
 }
 
 fn check_unique_constants(constants: &[Constant]) -> Result<(), PluginError> {
-    for (i, c) in constants.iter().enumerate() {
-        if constants[..i].iter().any(|d| d.name == c.name) {
+    let mut seen = BTreeSet::new();
+    for c in constants {
+        if !seen.insert(c.name.as_str()) {
             return Err(error(
                 "part",
                 format!("constant `${}` is defined twice", c.name),
@@ -205,9 +209,10 @@ fn convert_part(raw: &RawPart, field: &str) -> Result<Part, PluginError> {
         ));
     }
     let mut operations = Vec::new();
+    let mut names = BTreeSet::new();
     for (j, raw_op) in raw.operation.iter().enumerate() {
         let op_field = format!("{field}.operation[{j}]");
-        if operations.iter().any(|o: &Operation| o.name == raw_op.name) {
+        if !names.insert(raw_op.name.as_str()) {
             return Err(error(
                 format!("{op_field}.name"),
                 format!("operation `{}` is defined twice", raw_op.name),
@@ -616,5 +621,15 @@ mod tests {
             ty.expect_err("type").field,
             "part[0].operation[0].params[0].type"
         );
+    }
+
+    #[test]
+    fn a_huge_count_is_refused_before_anything_is_built() {
+        let huge = RobotApi::from_toml(
+            "name = \"g\"\n[[part]]\nname = \"P\"\ncount = 1000000000\nconstant_prefix = \"P_\"\n",
+        )
+        .expect_err("count");
+        assert_eq!(huge.field, "part[0].count");
+        assert!(huge.message.contains("expected 1 to 255"), "{huge}");
     }
 }
