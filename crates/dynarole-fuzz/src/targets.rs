@@ -448,9 +448,8 @@ fn well_formed(text: &str, diagnostics: &[Diagnostic]) -> Result<(), String> {
         }
     }
     let shown = diagnostics.len().min(MAX_SHOWN);
-    let limit = ERROR_BASE_BYTES
-        + shown * DIAGNOSTIC_BYTES
-        + DIAGNOSTIC_BYTES_PER_INPUT_BYTE * text.len();
+    let limit =
+        ERROR_BASE_BYTES + shown * DIAGNOSTIC_BYTES + DIAGNOSTIC_BYTES_PER_INPUT_BYTE * text.len();
     if total > limit {
         return Err(format!(
             "{} diagnostics, {total} bytes of text, for {} bytes of source (limit {limit})",
@@ -477,16 +476,6 @@ fn span_inside(text: &str, start: u32, end: u32) -> Result<(), String> {
 mod tests {
     use super::*;
     use dynarole_core::{DiagnosticKind, Span};
-
-    fn unknown(start: u32, end: u32) -> Diagnostic {
-        Diagnostic {
-            kind: DiagnosticKind::UnknownCharacter {
-                found: '@',
-                count: (end - start) as usize,
-            },
-            span: Span { start, end },
-        }
-    }
 
     #[test]
     fn spans_must_be_character_ranges_of_the_source() {
