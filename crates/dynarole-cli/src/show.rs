@@ -68,8 +68,13 @@ pub fn run(config_path: &Path, output: &Path) -> Result<ExitCode, Failure> {
             )))
         }
     };
-    std::fs::write(output, bytes)
-        .map_err(|e| Failure::Input(format!("cannot write {}: {e}", output.display())))?;
+    let cannot_write =
+        |e: std::io::Error| Failure::Input(format!("cannot write {}: {e}", output.display()));
+    // Like `compile -o` and `campaign -o`, the folder is made when it is missing.
+    if let Some(parent) = output.parent().filter(|p| !p.as_os_str().is_empty()) {
+        std::fs::create_dir_all(parent).map_err(cannot_write)?;
+    }
+    std::fs::write(output, bytes).map_err(cannot_write)?;
     println!("wrote {}", output.display());
     Ok(ExitCode::SUCCESS)
 }

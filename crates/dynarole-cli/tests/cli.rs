@@ -417,6 +417,21 @@ fn show_writes_png_and_svg_and_refuses_other_formats() {
 }
 
 #[test]
+fn show_makes_the_folder_it_writes_into() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli-show-folder");
+    let _ = std::fs::remove_dir_all(&dir);
+    let svg = dir.join("pictures").join("car.svg");
+    let out = dynarole(&[
+        "show",
+        "examples/atron/car.json",
+        "-o",
+        svg.to_str().expect("path"),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    assert!(svg.is_file());
+}
+
+#[test]
 fn compile_writes_a_self_contained_directory_for_each_protocol() {
     for protocol in ["lattice", "paper"] {
         let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
