@@ -36,8 +36,18 @@ uint8_t fuzz_seal(uint8_t *bytes, uint8_t len, uint8_t cap)
     if ((unsigned)len + 2u > cap) {
         return len;
     }
+    /* The header as a module of this robot and program writes it (the corpus was captured
+     * from an older build: its fingerprint may differ), then the CRC. */
     if (len >= 2u) {
-        bytes[1] = (uint8_t)(len + 2u); /* the frame's length field, as a sender writes it */
+        bytes[1] = (uint8_t)(len + 2u);
+    }
+    if (len >= DR_PACKET_HEADER) {
+        bytes[2] = (uint8_t)(DR_ROBOT_ID >> 8);
+        bytes[3] = (uint8_t)(DR_ROBOT_ID & 0xFFu);
+        bytes[4] = (uint8_t)(dr_program.fingerprint >> 24);
+        bytes[5] = (uint8_t)(dr_program.fingerprint >> 16);
+        bytes[6] = (uint8_t)(dr_program.fingerprint >> 8);
+        bytes[7] = (uint8_t)(dr_program.fingerprint & 0xFFu);
     }
     crc = dr_crc16(bytes, len);
     bytes[len] = (uint8_t)(crc >> 8);

@@ -196,5 +196,10 @@ int main(int argc, char **argv)
     printf("fuzz: %u corpus files and %lu mutations (seed %lu): %lu frames delivered, %lu past "
            "the framing to the decoder; no law broken\n",
            n_files, runs, seed, fuzz_frames_delivered, fuzz_frames_decoded);
+    if (runs > 0u && fuzz_frames_decoded == 0u) {
+        /* A run whose frames all stop at the framing tests nothing behind it. */
+        fprintf(stderr, "fuzz: no frame reached the decoder: regenerate the corpus (make corpus)\n");
+        return 1;
+    }
     return 0;
 }
