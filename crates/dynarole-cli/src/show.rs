@@ -38,6 +38,10 @@ const SMALL_BODY_PX: f64 = 14.0;
 const LABEL_PT: i32 = 15;
 /// Above this many module bodies the view search (quadratic in them) is skipped.
 const MAX_BODIES_FOR_VIEW_SEARCH: usize = 200;
+/// Above this many bodies names and connector numbers are left out: nobody could read them at
+/// that scale, and their text is most of the cost of a large picture (60,000 modules: a
+/// 93 MB SVG that does not rasterise in minutes).
+const MAX_LABELLED_BODIES: usize = 400;
 /// The preferred view, used when several separate the modules equally well.
 const PREFERRED_VIEW_DEG: (f64, f64) = (30.0, 35.0);
 /// How much paler the farthest body is than the nearest.
@@ -382,11 +386,14 @@ fn draw_picture<'a>(
 ) -> DrawResult<'a> {
     root.fill(&WHITE)?;
     draw_in_depth_order(root, scene, layout)?;
-    for latch in &scene.latches {
+    let labelled = scene.bodies.len() <= MAX_LABELLED_BODIES;
+    let latches = if labelled { &scene.latches[..] } else { &[] };
+    for latch in latches {
         draw_connector_numbers(root, latch, scene.radius, layout)?;
     }
     let r = layout.radius_px(scene.radius);
-    for body in &scene.bodies {
+    let bodies = if labelled { &scene.bodies[..] } else { &[] };
+    for body in bodies {
         let (x, y) = layout.px(body.centre);
         // A module too small to hold its name has it beside it.
         let at = if r >= SMALL_BODY_PX {
@@ -396,12 +403,17 @@ fn draw_picture<'a>(
         };
         halo_text(root, &body.name, ipx(at), LABEL_PT)?;
     }
-    let title = format!(
+    let mut title = format!(
         "{} ({}, {} modules)",
         config.metadata().name,
         config.robot().name(),
         module_count(config)
     );
+    if !labelled {
+        title.push_str(&format!(
+            "; names and connector numbers left out above {MAX_LABELLED_BODIES} bodies"
+        ));
+    }
     root.draw(&Text::new(title, (12, 12), ("sans-serif", 20).into_font()))?;
     let bottom = i32::try_from(layout.size.1).unwrap_or(i32::MAX);
     draw_gizmo(root, &layout.view, (55, bottom - 50))?;
