@@ -15,4 +15,4 @@ pub mod targets;
 
 pub use corpus::{Corpus, Entry};
 pub use runner::{run_corpus, run_mutations, Settings, Summary};
-pub use targets::{Context, Outcome, Target};
+pub use targets::{Context, Outcome, Target, SOURCE_WORDS};

@@ -95,7 +95,8 @@ pub const EXTREMES: &[&str] = &[
     "1e999",
 ];
 
-const SOURCE_WORDS: &[&str] = &[
+/// Words of the language (and near misses) that mutations insert and token soup is made of.
+pub const SOURCE_WORDS: &[&str] = &[
     "robot",
     "atron",
     "mtran",

@@ -122,6 +122,14 @@ fn lossy(loss: f64) -> Scenario {
     s
 }
 
+/// A lattice run under faults: no violation, the goal reached, every start the runtime's own.
+fn assert_clean_run(report: &Report, seed: u64, scenario: &Scenario) {
+    let context = || format!("seed {seed}, {scenario:?}\n{}", report.summary());
+    assert!(report.violations.is_empty(), "{}", context());
+    assert!(report.success, "{}", context());
+    assert_statements_are_the_runtimes(report, "run");
+}
+
 #[test]
 fn a_thousand_randomised_fault_runs_forward_then_reverse_have_no_violation() {
     let sim = chain3_and_back();
@@ -130,17 +138,7 @@ fn a_thousand_randomised_fault_runs_forward_then_reverse_have_no_violation() {
     for seed in 0..1_000u64 {
         let scenario = random_faults(&mut rng, &["M0", "M1", "M2"], 12_000);
         let report = run(&sim, CHAIN3, Some(CHAIN3), &scenario, seed);
-        assert!(
-            report.violations.is_empty(),
-            "seed {seed}, {scenario:?}\n{}",
-            report.summary()
-        );
-        assert!(
-            report.success,
-            "seed {seed}, {scenario:?}\n{}",
-            report.summary()
-        );
-        assert_statements_are_the_runtimes(&report, "run");
+        assert_clean_run(&report, seed, &scenario);
         resets += report.counters.resets;
     }
     assert!(
@@ -157,16 +155,6 @@ fn randomised_faults_on_eight2car_and_back_have_no_violation() {
     for seed in 0..12u64 {
         let scenario = random_faults(&mut rng, &modules, 60_000);
         let report = run(&sim, EIGHT, Some(EIGHT), &scenario, seed);
-        assert!(
-            report.violations.is_empty(),
-            "seed {seed}, {scenario:?}\n{}",
-            report.summary()
-        );
-        assert!(
-            report.success,
-            "seed {seed}, {scenario:?}\n{}",
-            report.summary()
-        );
-        assert_statements_are_the_runtimes(&report, "run");
+        assert_clean_run(&report, seed, &scenario);
     }
 }

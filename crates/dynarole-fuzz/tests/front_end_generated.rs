@@ -1,71 +1,12 @@
-//! The front end never panics: arbitrary bytes and token soup go through parse, check, format
-//! and the plugin loader. Whatever parses cleanly must format to text that parses cleanly.
+//! The front end never panics on generated input: arbitrary bytes and token soup (the fuzz
+//! targets' words) go through parse, check, format and the plugin loader; whatever parses
+//! cleanly must format to text that parses cleanly. (The corpus-driven targets are in
+//! `fuzz_targets.rs`.)
 
 use dynarole_core::format::format_file;
 use dynarole_core::{analyze, parse, RobotApi, RobotRegistry};
+use dynarole_fuzz::SOURCE_WORDS;
 use proptest::prelude::*;
-
-const VOCABULARY: &[&str] = &[
-    "robot",
-    "atron",
-    "mtran",
-    "role",
-    "requires",
-    "sequence",
-    "reverse",
-    "{",
-    "}",
-    ";",
-    "&",
-    "&&",
-    "|",
-    "||",
-    "!",
-    "=",
-    "==",
-    "!=",
-    "<",
-    ">=",
-    "(",
-    ")",
-    "[",
-    "]",
-    ",",
-    ".",
-    "-",
-    "M0",
-    "M3",
-    "MO",
-    "Connector",
-    "Joint",
-    "extend",
-    "retract",
-    "rotateFromToBy",
-    "rotateToBy",
-    "$CONNECTOR_0",
-    "$CONNECTOR",
-    "$JOINT_NORTH",
-    "0",
-    "4",
-    "108",
-    "324",
-    "99999999999999999999",
-    "true",
-    "false",
-    "id",
-    "connected",
-    "joint",
-    "neighbours",
-    "neighbour_id",
-    "s",
-    "t",
-    "/* c */",
-    "// c\n",
-    "/*",
-    "$",
-    "#",
-    "\u{e9}",
-];
 
 fn run_front_end(text: &str) {
     let parsed = parse(text);
@@ -99,7 +40,7 @@ proptest! {
     }
 
     #[test]
-    fn token_soup_never_panics(words in prop::collection::vec(prop::sample::select(VOCABULARY), 0..80)) {
+    fn token_soup_never_panics(words in prop::collection::vec(prop::sample::select(SOURCE_WORDS), 0..80)) {
         run_front_end(&words.join(" "));
     }
 
