@@ -32,7 +32,7 @@ pub fn run(args: &SimulateArgs) -> Result<ExitCode, Failure> {
         let display = args.file.display().to_string();
         let names = load::select_sequences(program, &display, args.sequences)?;
         let plans = crate::world::plans(program, &display, &names)?;
-        let scenario = scenario(args)?;
+        let (scenario, scenario_text) = scenario(args)?;
         let start = read_configuration(args.from)?;
         let expect = args.expect.map(|p| read_configuration(p)).transpose()?;
         let mut options = args.options.compile_options(1, names.join(" + "));
@@ -49,6 +49,11 @@ pub fn run(args: &SimulateArgs) -> Result<ExitCode, Failure> {
             }
             Err(e) => return Err(Failure::Input(e.to_string())),
         };
+        if let (Some(path), Some(text)) = (args.scenario, scenario_text) {
+            simulator
+                .check_scenario(&scenario, &start)
+                .map_err(|e| Failure::toml(path, text, e))?;
+        }
         let mode = dynarole_campaign::ProgressMode::for_stderr().map_err(Failure::Usage)?;
         let progress =
             dynarole_campaign::Progress::start(mode, "simulate", args.repeat.max(1), "runs");
@@ -85,13 +90,16 @@ pub fn run(args: &SimulateArgs) -> Result<ExitCode, Failure> {
     })
 }
 
-fn scenario(args: &SimulateArgs) -> Result<Scenario, Failure> {
-    let mut scenario = match args.scenario {
+/// The scenario, and its text when it comes from a file (to show later errors in it).
+fn scenario(args: &SimulateArgs) -> Result<(Scenario, Option<String>), Failure> {
+    let (mut scenario, text) = match args.scenario {
         Some(path) => {
             let text = load::read_source(path)?;
-            Scenario::from_toml_str(&text).map_err(|e| Failure::toml(path, text.clone(), e))?
+            let scenario =
+                Scenario::from_toml_str(&text).map_err(|e| Failure::toml(path, text.clone(), e))?;
+            (scenario, Some(text))
         }
-        None => Scenario::default(),
+        None => (Scenario::default(), None),
     };
     if let Some(loss) = args.loss {
         if !(0.0..=1.0).contains(&loss) {
@@ -101,7 +109,7 @@ fn scenario(args: &SimulateArgs) -> Result<Scenario, Failure> {
         }
         scenario.network.loss = loss;
     }
-    Ok(scenario)
+    Ok((scenario, text))
 }
 
 fn output(args: &SimulateArgs, report: &Report, wall: f64, k: u64) -> Result<(), Failure> {

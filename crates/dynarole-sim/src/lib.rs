@@ -164,6 +164,23 @@ impl Simulator {
         Ok((library.directory.clone(), library.cached))
     }
 
+    /// Every module and connector `scenario` names exists in the configuration `start` (the
+    /// check `run` makes, for callers that report it against the scenario's text).
+    pub fn check_scenario(
+        &self,
+        scenario: &Scenario,
+        start: &Configuration,
+    ) -> Result<(), ScenarioError> {
+        let world = RobotWorld::new(start.clone(), &self.sequence.robot)
+            .map_err(|e| ScenarioError::new("", e))?;
+        Self::check_scenario_on(&world, scenario)
+    }
+
+    fn check_scenario_on(world: &RobotWorld, scenario: &Scenario) -> Result<(), ScenarioError> {
+        let view = View::of(world);
+        scenario.check_modules(|name| view.index(name).is_some(), view.connectors())
+    }
+
     /// One run: deterministic in the inputs and the seed.
     pub fn run(&self, run: &Run) -> Result<Report, SimError> {
         let world =
@@ -171,9 +188,7 @@ impl Simulator {
         run.scenario
             .check()
             .map_err(|e| SimError::Input(e.to_string()))?;
-        let view = View::of(&world);
-        run.scenario
-            .check_modules(|name| view.index(name).is_some(), view.connectors())
+        Self::check_scenario_on(&world, run.scenario)
             .map_err(|e| SimError::Input(format!("scenario: {e}")))?;
         let preset = run.scenario.network.preset;
         let library = self.library(preset)?;
