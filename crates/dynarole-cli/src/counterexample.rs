@@ -1,7 +1,7 @@
 //! A counterexample of spin, in the user's terms: the `@` events the model prints during a
 //! replay of the trail, translated back to modules, statements and source locations.
 
-use dynarole_core::lower::Ir;
+use dynarole_core::lower::{Ir, PAPER_STATE_END};
 use dynarole_core::span::line_col;
 use std::collections::BTreeMap;
 use std::fmt::Write;
@@ -192,7 +192,7 @@ impl Context<'_> {
     fn paper_state(&self, state: i64) -> String {
         match state {
             0 => "0 (initial)".into(),
-            254 => "254 (end)".into(),
+            s if s == i64::from(PAPER_STATE_END) => format!("{PAPER_STATE_END} (end)"),
             _ => {
                 let unit = self
                     .paper_states

@@ -2,7 +2,9 @@
 //! compiler numbered it (protocol notes, e.9).
 
 use crate::c::{CompileOptions, PaperMerge};
-use dynarole_core::lower::{Ir, LimitError, PaperUnit, PaperUnitKind};
+use dynarole_core::lower::{
+    Ir, LimitError, PaperUnit, PaperUnitKind, PAPER_ADDRESS_ALL, PAPER_STATE_END,
+};
 use std::fmt::Write;
 
 pub fn paper_machine(ir: &Ir, options: &CompileOptions) -> Result<String, LimitError> {
@@ -98,8 +100,10 @@ fn unit_cases(out: &mut String, ir: &Ir, unit: &PaperUnit, next: Option<&PaperUn
     match unit.kind {
         PaperUnitKind::Parallel => {
             let i = unit.statements[0];
-            let (next_state, next_address) =
-                next.map_or((254, 255), |n| (n.first_state, n.address));
+            let (next_state, next_address) = next
+                .map_or((PAPER_STATE_END, PAPER_ADDRESS_ALL), |n| {
+                    (n.first_state, n.address)
+                });
             let _ = writeln!(
                 out,
                 "    case {s}: /* module {}: {} & */",

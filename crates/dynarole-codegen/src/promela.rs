@@ -29,7 +29,7 @@ mod paper;
 pub use compositional::{liveness_graph, LivenessGraph};
 
 use crate::c::{pending_slots, CompileOptions, Protocol};
-use dynarole_core::lower::{Ir, LimitError};
+use dynarole_core::lower::{Ir, LimitError, PAPER_STATE_END};
 use dynarole_core::span::Span;
 use std::fmt::Write;
 
@@ -361,9 +361,10 @@ impl Gen<'_> {
             "/* The address of module m (the role predicates on the configuration). */\n#define ADDR(m) {addr}"
         );
         self.tables(out);
+        // Spelled out as a number (the verifier tests fail with the STATE_END macro here).
         let finished = match self.options.compile.protocol {
-            Protocol::Lattice => "(epoch[m] >= N_EPOCHS)",
-            Protocol::Paper | Protocol::Token => "(g_state[m] == 254)",
+            Protocol::Lattice => "(epoch[m] >= N_EPOCHS)".to_string(),
+            Protocol::Paper | Protocol::Token => format!("(g_state[m] == {PAPER_STATE_END})"),
         };
         let _ = writeln!(
             out,

@@ -15,6 +15,12 @@ pub const MAX_ADDRESS: u32 = 253;
 pub const MAX_WINDOW: usize = 128;
 /// States of the paper protocol are one byte, and 254, 255 are reserved.
 pub const MAX_PAPER_STATE: u32 = 253;
+/// The paper protocol's reserved state "the sequence has ended" (`DR_STATE_END` in C).
+pub const PAPER_STATE_END: u8 = 254;
+/// The paper protocol's reserved state "nothing to do" (`DR_STATE_IDLE` in C).
+pub const PAPER_STATE_IDLE: u8 = 255;
+/// The paper protocol's recipient of the end: every module (`DR_ADDRESS_ALL` in C).
+pub const PAPER_ADDRESS_ALL: u8 = 255;
 
 /// The compiled form of one or more sequences run in turn.
 #[derive(Clone, Debug, PartialEq)]

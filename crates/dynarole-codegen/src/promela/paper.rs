@@ -11,7 +11,9 @@
 
 use super::Gen;
 use crate::c::PaperMerge;
-use dynarole_core::lower::{LimitError, PaperUnit, PaperUnitKind};
+use dynarole_core::lower::{
+    LimitError, PaperUnit, PaperUnitKind, PAPER_ADDRESS_ALL, PAPER_STATE_END, PAPER_STATE_IDLE,
+};
 use std::fmt::Write;
 
 /// What the paper protocol's part of the model leaves for the rest: the layout's (first
@@ -34,7 +36,7 @@ pub(crate) fn write(g: &Gen, out: &mut String, slots: usize) -> Result<Written, 
     let first_address = g.ir.statements.first().map_or(0, |s| s.address);
     let _ = writeln!(
         out,
-        "#define P {slots}            /* DR_CONF_MAX_PENDING */\n#define MERGE {merge}        /* 0 printed (> and), 1 Java (> or), 2 C port (>= or) */\n#define SINGLE_STEP_HANDOVER {}\n#define FIRST_ADDRESS {first_address}\n#define STATE_END 254\n#define IDLE 255\n#define ADDRESS_ALL 255\n",
+        "#define P {slots}            /* DR_CONF_MAX_PENDING */\n#define MERGE {merge}        /* 0 printed (> and), 1 Java (> or), 2 C port (>= or) */\n#define SINGLE_STEP_HANDOVER {}\n#define FIRST_ADDRESS {first_address}\n#define STATE_END {PAPER_STATE_END}\n#define IDLE {PAPER_STATE_IDLE}\n#define ADDRESS_ALL {PAPER_ADDRESS_ALL}\n",
         u8::from(o.single_step_handover)
     );
     out.push_str("/* ---- Module state: dr_module_t ---- */\nbyte g_state[N_MODULES];       /* global.state */\nbyte g_addr[N_MODULES];        /* global.address */\nbyte pend[N_MODULES * P];      /* global.pending, slot k of module m at m * P + k; 0 = empty */\nbyte lstate[N_MODULES] = IDLE; /* local_state, the switch's state */\nbyte mailbox[N_MODULES] = IDLE;\n");
@@ -212,7 +214,9 @@ fn rows(units: &[PaperUnit]) -> Vec<Row> {
     };
     for (k, unit) in units.iter().enumerate() {
         let next = units.get(k + 1);
-        let target = next.map_or((254, 255), |n| (n.first_state, n.address));
+        let target = next.map_or((PAPER_STATE_END, PAPER_ADDRESS_ALL), |n| {
+            (n.first_state, n.address)
+        });
         let local = next.is_some_and(|n| n.address == unit.address);
         let s = unit.first_state;
         let row = |case: Case, issues: Vec<usize>| Row {
