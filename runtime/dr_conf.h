@@ -61,4 +61,26 @@
 #define DR_CONF_CHANNELS 8
 #endif
 
+/* Lattice protocol: where the persisted state lives in non-volatile storage (two copies, one
+ * after the other). */
+#ifndef DR_CONF_LATTICE_NV_ADDR
+#define DR_CONF_LATTICE_NV_ADDR 0
+#endif
+
+/* Token baseline: messages a module keeps until acknowledged. The original's queue was
+ * unbounded; two neighbours whose messages wait for each other's acknowledgement never
+ * acknowledge (see runtime/token/README.md), so with unlimited tries messages pile up: a full
+ * queue drops new ones. */
+#ifndef DR_CONF_TOKEN_QUEUE
+#define DR_CONF_TOKEN_QUEUE 16
+#endif
+/* Token baseline: (sender, counter) pairs remembered to drop duplicates (the original kept 64). */
+#ifndef DR_CONF_TOKEN_SEEN
+#define DR_CONF_TOKEN_SEEN 64
+#endif
+/* Token baseline: acknowledgements waiting to be sent. */
+#ifndef DR_CONF_TOKEN_ACKS
+#define DR_CONF_TOKEN_ACKS 6
+#endif
+
 #endif /* DR_CONF_H */

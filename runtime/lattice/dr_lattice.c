@@ -3,11 +3,6 @@
 #include "dr_lattice.h"
 #include "dr_packet.h"
 
-/* Where the persisted state lives in non-volatile storage (two copies, one after the other).
- * Belongs in dr_conf.h; kept here until that contract is extended. */
-#ifndef DR_CONF_LATTICE_NV_ADDR
-#define DR_CONF_LATTICE_NV_ADDR 0
-#endif
 
 /* DR_PROGRAM_NO_NV: after a (re)start a module acts only once it has heard a packet from every
  * neighbour connected at that moment, however long that takes. There is no time-out: a

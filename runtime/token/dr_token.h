@@ -32,20 +32,6 @@
 #define DR_MANY_ADDRESSES 0xFEu
 #define DR_NONE 0xFFFFu
 
-/* Messages a module keeps until acknowledged. The original's queue was unbounded; two
- * neighbours whose messages wait for each other's acknowledgement never acknowledge (see
- * README.md), so with unlimited tries messages pile up: a full queue drops new ones. */
-#ifndef DR_CONF_TOKEN_QUEUE
-#define DR_CONF_TOKEN_QUEUE 16
-#endif
-/* (sender, counter) pairs remembered to drop duplicates (the original kept 64). */
-#ifndef DR_CONF_TOKEN_SEEN
-#define DR_CONF_TOKEN_SEEN 64
-#endif
-/* Acknowledgements waiting to be sent. */
-#ifndef DR_CONF_TOKEN_ACKS
-#define DR_CONF_TOKEN_ACKS 6
-#endif
 
 #if DR_CONF_TOKEN_QUEUE > 255 || DR_CONF_TOKEN_SEEN > 255 || DR_CONF_TOKEN_ACKS > 255
 #error "the token runtime counts its queues in one byte"
