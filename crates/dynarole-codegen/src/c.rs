@@ -475,16 +475,19 @@ fn makefile(protocol: Protocol) -> String {
          #   make size             text/data/bss of each object (add MCU=... for the MCU's)\n\
          #   make clean            removes build/\n\
          SRCS = dr_packet.c {protocol_source} dr_program.c\n\
+         # The runtime's own warning flags (runtime/*/Makefile): the generated code meets them too.\n\
+         WARN = -std=c99 -Wall -Wextra -Werror -pedantic -Wshadow -Wconversion \\\n\
+         \x20      -Wstrict-prototypes -Wmissing-prototypes\n\
          ifeq ($(MCU),)\n\
          BUILD = build/host\n\
-         CFLAGS ?= -std=c99 -Os -Wall -Wextra -Werror -pedantic\n\
+         CFLAGS ?= -Os $(WARN)\n\
          SIZE ?= size\n\
          else\n\
          BUILD = build/$(MCU)\n\
          CC = avr-gcc\n\
          AR = avr-ar\n\
          SIZE = avr-size\n\
-         CFLAGS = -std=c99 -Os -mmcu=$(MCU) -Wall -Wextra -Werror\n\
+         CFLAGS = -Os -mmcu=$(MCU) $(WARN)\n\
          ifneq ($(filter-out clean,$(or $(MAKECMDGOALS),all)),)\n\
          ifeq ($(shell command -v $(CC)),)\n\
          $(error $(CC) not found, needed for MCU=$(MCU): install it (Debian or Ubuntu: sudo apt-get install gcc-avr avr-libc), or build for the host without MCU)\n\
