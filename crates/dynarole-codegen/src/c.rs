@@ -332,6 +332,8 @@ fn roles(ir: &Ir, robot: &RobotApi) -> String {
     let mut out = String::from("/* The module's address: exactly one label must describe it. */\n");
     out.push_str("static uint8_t dr_program_address_of(struct dr_module *m)\n{\n");
     out.push_str("    uint8_t found = DR_NO_ADDRESS;\n    uint8_t n = 0;\n");
+    // No label, or only constant predicates, ask the module nothing.
+    out.push_str("    (void)m;\n");
     for address in &ir.addresses {
         let test = match (&address.label, &address.predicate) {
             (Label::Module(id), _) => format!("dr_hal_id(m) == {id}u"),
@@ -384,6 +386,10 @@ fn lattice_tables(ir: &Ir, options: &CompileOptions) -> String {
             args.join(", "),
             s.text
         );
+    }
+    if ir.statements.is_empty() {
+        // C99 has no empty arrays; n_statements stays 0, so the runtime never reads it.
+        out.push_str("    { 0u, 0u, 0u, 0u, 0u, { 0 } } /* no statements */\n");
     }
     out.push_str("};\n\n");
     let _ = writeln!(

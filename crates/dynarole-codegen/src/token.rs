@@ -93,6 +93,10 @@ pub fn token_tables(ir: &Ir, options: &CompileOptions) -> Result<String, LimitEr
             s.text
         );
     }
+    if ir.statements.is_empty() {
+        // C99 has no empty arrays; the program's count stays 0, so the runtime never reads it.
+        out.push_str("    { 0u, 0u, 0u, 0u, 0u, 0u, { 0 } } /* no statements */\n");
+    }
     let (reliable, tries) = match options.token_retries {
         TokenRetries::Plain => (0, 1),
         TokenRetries::Tries(n) => (1, n.max(1)),
