@@ -1,0 +1,898 @@
+//! `parallelise`: the most parallelism that is provably safe on the model, found from a
+//! sequence written in order. The dependency graph of the statements (what must stay ordered,
+//! decided by the independence check on the state before the earlier statement), its
+//! transitive reduction, and its expression in the language as parallel groups (levels) or as
+//! series-parallel blocks. Every form returned has been written out, parsed, replayed to the
+//! input's final configuration and checked for independence forward and in reverse.
+
+use crate::independence::check_independence;
+use crate::robot_world::RobotWorld;
+use crate::roles::Assignment;
+use crate::run::replay;
+use dynarole_core::ast::{ElementKind, Item, SeparatorKind};
+use dynarole_core::check::{resolve_statement, ResolvedStatement};
+use dynarole_core::diagnostic::{has_errors, Diagnostic, DiagnosticKind};
+use dynarole_core::expand::{Plan, PlanElement, PlanKind};
+use dynarole_core::format::{format_items, statement as statement_text};
+use dynarole_core::{analyze, parse, Program, RobotRegistry, Span};
+use dynarole_world::{compare, Configuration, Port};
+use std::collections::BTreeMap;
+use std::fmt::Write;
+
+/// Rounds of "verify the output, add the edge it shows to be missing" before giving up on
+/// parallelism (each round adds an edge; the sequential form is always valid).
+const MAX_REPAIRS: usize = 64;
+
+/// A sequence's statements arranged in the language: a statement, statements or blocks one
+/// after the other (`;`), or side by side (`&`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Layout {
+    Op(usize),
+    Seq(Vec<Layout>),
+    Par(Vec<Layout>),
+}
+
+/// Which way the graph was written.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FormKind {
+    /// Parallel groups separated by `;` (what the paper's protocol can run).
+    Levels,
+    /// Nested blocks `{ A; B } & { C; D };` where the graph is series-parallel.
+    Blocks,
+    /// The input order, one statement per group (when nothing parallel could be verified).
+    Sequential,
+}
+
+/// One verified way of writing the parallelised sequence.
+#[derive(Clone, Debug)]
+pub struct Form {
+    pub kind: FormKind,
+    pub layout: Layout,
+    /// `sequence NAME { ... }`, in the canonical layout.
+    pub text: String,
+    /// Top-level parallel groups.
+    pub groups: usize,
+}
+
+/// What `parallelise` found.
+#[derive(Clone, Debug)]
+pub struct Parallelised {
+    /// The statements in input order, as source text.
+    pub statements: Vec<String>,
+    /// The dependency graph after transitive reduction (earlier, later), input indices.
+    pub edges: Vec<(usize, usize)>,
+    /// Verified forms, levels (or the sequential fallback) first.
+    pub forms: Vec<Form>,
+    /// The robot and role declarations the new sequence needs, as source.
+    pub header: String,
+    /// What the verification changed or gave up, in words.
+    pub notes: Vec<String>,
+}
+
+/// What to parallelise and how.
+pub struct Request<'a> {
+    pub program: &'a Program<'a>,
+    /// The sequence's name in the program (its reverse is checked too when it has one).
+    pub sequence: &'a str,
+    pub world: RobotWorld,
+    pub assignment: &'a Assignment,
+    /// Name of the new sequence.
+    pub name: &'a str,
+    /// Also try series-parallel blocks (not for the paper's protocol).
+    pub blocks: bool,
+}
+
+/// Builds the dependency graph of `request.sequence` from `request.world` and writes it as
+/// the verified forms. Fails with the replay's diagnostics when the input itself does not
+/// replay (a refused step), or with a message when no form can be verified.
+pub fn parallelise(request: &Request) -> Result<Parallelised, ParalleliseError> {
+    let program = request.program;
+    let plan = program.expand(request.sequence).ok_or_else(|| {
+        ParalleliseError::Message(format!("no sequence named `{}`", request.sequence))
+    })?;
+    let input = replay(
+        program,
+        std::slice::from_ref(&plan),
+        request.world.clone(),
+        request.assignment,
+    );
+    if input.n_rejected > 0 || has_errors(&input.diagnostics) {
+        return Err(ParalleliseError::Input(input.diagnostics));
+    }
+    let statements: Vec<ResolvedStatement> = plan.statements().into_iter().cloned().collect();
+    let graph = Graph::build(request, &statements);
+    let verifier = Verifier {
+        request,
+        header: header(program),
+        texts: statement_texts(program, &statements),
+        expected: input.final_configuration,
+        suspicious: suspicious_spans(&input.diagnostics),
+        spans: statements.iter().map(|s| s.span).collect(),
+        reversible: program
+            .reverse_sequence(request.sequence, "r")
+            .is_some_and(|r| r.is_ok()),
+    };
+    let mut notes = Vec::new();
+    let (edges, levels) = verifier.levels(graph.edges.clone(), statements.len(), &mut notes)?;
+    let mut forms = vec![levels];
+    if request.blocks {
+        let layout = series_parallel(statements.len(), &edges);
+        if layout != forms[0].layout {
+            match verifier.form(FormKind::Blocks, layout) {
+                Ok(form) => forms.push(form),
+                Err(failure) => notes.push(format!(
+                    "the block form did not verify ({}); only parallel groups are used",
+                    failure.reason
+                )),
+            }
+        }
+    }
+    Ok(Parallelised {
+        statements: verifier.texts.clone(),
+        edges,
+        forms,
+        header: verifier.header.clone(),
+        notes,
+    })
+}
+
+/// Why nothing could be written.
+#[derive(Clone, Debug)]
+pub enum ParalleliseError {
+    /// The input does not replay: its refused steps, at their source locations.
+    Input(Vec<Diagnostic>),
+    Message(String),
+}
+
+/// Edges found between statements, with the ancestors of each (bit sets) to skip the pairs
+/// already ordered through others.
+struct Graph {
+    edges: Vec<(usize, usize)>,
+}
+
+impl Graph {
+    /// For each statement, from the nearest earlier one back: an edge when the pair must stay
+    /// ordered and is not already ordered through the edges found. Parents found this way
+    /// never reach one another, so the result is already transitively reduced.
+    fn build(request: &Request, statements: &[ResolvedStatement]) -> Graph {
+        let n = statements.len();
+        let pre = pre_states(request, statements);
+        let modules: Vec<Option<&str>> = statements
+            .iter()
+            .map(|s| request.assignment.get(&s.label).map(String::as_str))
+            .collect();
+        let mut ancestors = vec![BitSet::new(n); n];
+        let mut edges = Vec::new();
+        for j in 0..n {
+            for i in (0..j).rev() {
+                if ancestors[j].contains(i) {
+                    continue;
+                }
+                let pair = Pair {
+                    request,
+                    a: &statements[i],
+                    b: &statements[j],
+                    modules: (modules[i], modules[j]),
+                };
+                if pair.must_stay_ordered(&pre[i]) {
+                    edges.push((i, j));
+                    let above = ancestors[i].clone();
+                    ancestors[j].union(&above);
+                    ancestors[j].insert(i);
+                }
+            }
+        }
+        edges.sort_unstable();
+        Graph { edges }
+    }
+}
+
+/// The world before each statement, in input order.
+fn pre_states(request: &Request, statements: &[ResolvedStatement]) -> Vec<RobotWorld> {
+    let mut world = request.world.clone();
+    let mut out = Vec::with_capacity(statements.len());
+    for statement in statements {
+        out.push(world.clone());
+        if let Some(module) = request.assignment.get(&statement.label) {
+            // The input replayed without a refusal, so this cannot fail.
+            let _ = world.apply(&request.program.robot, statement, module);
+        }
+    }
+    out
+}
+
+/// Two statements, the earlier first, and their modules.
+struct Pair<'a> {
+    request: &'a Request<'a>,
+    a: &'a ResolvedStatement,
+    b: &'a ResolvedStatement,
+    modules: (Option<&'a str>, Option<&'a str>),
+}
+
+impl Pair<'_> {
+    /// Conservative: same module, same latch, a step refused in either order, different
+    /// results in the two orders, or turns that may sweep through each other.
+    fn must_stay_ordered(&self, world: &RobotWorld) -> bool {
+        let (Some(ma), Some(mb)) = self.modules else {
+            return true;
+        };
+        if ma == mb || self.same_latch(world, ma, mb) {
+            return true;
+        }
+        if !self.both_orders_accepted(world) {
+            return true;
+        }
+        let group = Plan {
+            elements: vec![
+                element(self.a, SeparatorKind::Parallel),
+                element(self.b, SeparatorKind::Sequential),
+            ],
+        };
+        let program = self.request.program;
+        !check_independence(program, &[group], world.clone(), self.request.assignment).is_empty()
+    }
+
+    fn both_orders_accepted(&self, world: &RobotWorld) -> bool {
+        let robot = &self.request.program.robot;
+        let (Some(ma), Some(mb)) = self.modules else {
+            return false;
+        };
+        let run = |first: (&ResolvedStatement, &str), second: (&ResolvedStatement, &str)| {
+            let mut w = world.clone();
+            w.apply(robot, first.0, first.1).is_ok() && w.apply(robot, second.0, second.1).is_ok()
+        };
+        run((self.a, ma), (self.b, mb)) && run((self.b, mb), (self.a, ma))
+    }
+
+    /// Connector operations on the two ends of one latch (made, or facing, before `a`).
+    fn same_latch(&self, world: &RobotWorld, ma: &str, mb: &str) -> bool {
+        let robot = &self.request.program.robot;
+        let config = world.configuration();
+        let (Some(pa), Some(pb)) = (
+            port(robot, self.a, ma, &config),
+            port(robot, self.b, mb, &config),
+        ) else {
+            return false;
+        };
+        partner(&config, pa) == Some(pb) || partner(&config, pb) == Some(pa)
+    }
+}
+
+/// The port a connector statement works on.
+fn port(
+    robot: &dynarole_core::RobotApi,
+    statement: &ResolvedStatement,
+    module: &str,
+    config: &Configuration,
+) -> Option<Port> {
+    let part = robot.parts.get(statement.part)?;
+    if part.name != "Connector" {
+        return None;
+    }
+    let connector = u8::try_from(statement.index?).ok()?;
+    let index = match config {
+        Configuration::Atron(c) => c.module_index(module),
+        Configuration::Mtran(c) => c.module_index(module),
+    }?;
+    Some(Port {
+        module: index,
+        connector,
+    })
+}
+
+/// The port latched to `port`, or else the one it faces.
+fn partner(config: &Configuration, port: Port) -> Option<Port> {
+    match config {
+        Configuration::Atron(c) => c.latched_to(port).or_else(|| c.facing(port)),
+        Configuration::Mtran(c) => c.latched_to(port).or_else(|| c.facing(port)),
+    }
+}
+
+fn element(statement: &ResolvedStatement, separator: SeparatorKind) -> PlanElement {
+    PlanElement {
+        kind: PlanKind::Op(statement.clone()),
+        separator,
+        span: statement.span,
+    }
+}
+
+/// A fixed-size set of statement indices.
+#[derive(Clone, Debug)]
+struct BitSet(Vec<u64>);
+
+impl BitSet {
+    fn new(n: usize) -> BitSet {
+        BitSet(vec![0; n.div_ceil(64)])
+    }
+    fn contains(&self, i: usize) -> bool {
+        self.0.get(i / 64).is_some_and(|w| w & (1 << (i % 64)) != 0)
+    }
+    fn insert(&mut self, i: usize) {
+        if let Some(w) = self.0.get_mut(i / 64) {
+            *w |= 1 << (i % 64);
+        }
+    }
+    fn union(&mut self, other: &BitSet) {
+        for (w, o) in self.0.iter_mut().zip(&other.0) {
+            *w |= o;
+        }
+    }
+}
+
+/// The ancestors of every statement under `edges` (which point forwards).
+fn ancestors(n: usize, edges: &[(usize, usize)]) -> Vec<BitSet> {
+    let mut parents = vec![Vec::new(); n];
+    for &(i, j) in edges {
+        parents[j].push(i);
+    }
+    let mut out: Vec<BitSet> = Vec::with_capacity(n);
+    for (j, ps) in parents.iter().enumerate() {
+        let mut set = BitSet::new(n);
+        for &p in ps.iter().filter(|p| **p < j) {
+            set.union(&out[p]);
+            set.insert(p);
+        }
+        out.push(set);
+    }
+    out
+}
+
+/// Keeps only the edges no other path implies.
+pub fn transitive_reduction(n: usize, edges: &[(usize, usize)]) -> Vec<(usize, usize)> {
+    let anc = ancestors(n, edges);
+    let mut parents: Vec<Vec<usize>> = vec![Vec::new(); n];
+    for &(i, j) in edges {
+        if i < j && j < n && !parents[j].contains(&i) {
+            parents[j].push(i);
+        }
+    }
+    let mut out = Vec::new();
+    for (j, ps) in parents.iter().enumerate() {
+        for &i in ps {
+            if !ps.iter().any(|&k| k != i && anc[k].contains(i)) {
+                out.push((i, j));
+            }
+        }
+    }
+    out.sort_unstable();
+    out
+}
+
+/// Statement `j` runs in group `level[j]`: one after the latest group of its parents.
+fn levels_layout(n: usize, edges: &[(usize, usize)]) -> Layout {
+    let mut level = vec![0usize; n];
+    // By later statement: every edge points forwards, so a parent's level is final first.
+    let mut sorted: Vec<(usize, usize)> = edges
+        .iter()
+        .filter(|(i, j)| i < j && *j < n)
+        .copied()
+        .collect();
+    sorted.sort_unstable_by_key(|&(_, j)| j);
+    for &(i, j) in &sorted {
+        level[j] = level[j].max(level[i] + 1);
+    }
+    let depth = level.iter().max().map_or(0, |m| m + 1);
+    let groups = (0..depth)
+        .map(|l| group((0..n).filter(|&s| level[s] == l).map(Layout::Op).collect()))
+        .collect();
+    Layout::Seq(groups)
+}
+
+fn group(mut members: Vec<Layout>) -> Layout {
+    if members.len() == 1 {
+        members.remove(0)
+    } else {
+        Layout::Par(members)
+    }
+}
+
+/// Series-parallel decomposition of the graph: independent parts side by side, and a part
+/// split where everything before the cut precedes everything after it. Where the graph is not
+/// series-parallel, the first level is cut off, which orders more than the graph asks.
+fn series_parallel(n: usize, edges: &[(usize, usize)]) -> Layout {
+    let anc = ancestors(n, edges);
+    let nodes: Vec<usize> = (0..n).collect();
+    let mut work = SpWork { anc: &anc, edges };
+    work.layout(&nodes, 0)
+}
+
+struct SpWork<'a> {
+    anc: &'a [BitSet],
+    edges: &'a [(usize, usize)],
+}
+
+impl SpWork<'_> {
+    /// Each call removes at least one node or splits the set, so the depth is at most `n`;
+    /// beyond `MAX_DEPTH` the rest is written as levels.
+    fn layout(&mut self, nodes: &[usize], depth: usize) -> Layout {
+        const MAX_DEPTH: usize = 48;
+        if nodes.len() == 1 {
+            return Layout::Op(nodes[0]);
+        }
+        let sub: Vec<(usize, usize)> = self.induced(nodes);
+        if depth >= MAX_DEPTH {
+            return relabelled_levels(nodes, &sub);
+        }
+        let parts = components(nodes, &sub);
+        if parts.len() > 1 {
+            return Layout::Par(parts.iter().map(|p| self.layout(p, depth + 1)).collect());
+        }
+        let cuts = self.series_cuts(nodes, &sub);
+        let pieces = if cuts.len() > 1 {
+            cuts
+        } else {
+            first_level_cut(nodes, &sub)
+        };
+        let mut out = Vec::new();
+        for piece in &pieces {
+            match self.layout(piece, depth + 1) {
+                Layout::Seq(inner) => out.extend(inner),
+                other => out.push(other),
+            }
+        }
+        Layout::Seq(out)
+    }
+
+    fn induced(&self, nodes: &[usize]) -> Vec<(usize, usize)> {
+        self.edges
+            .iter()
+            .filter(|(i, j)| nodes.binary_search(i).is_ok() && nodes.binary_search(j).is_ok())
+            .copied()
+            .collect()
+    }
+
+    /// Pieces of `nodes` (a topological order) at every position where all the nodes before
+    /// are ancestors of all the nodes after.
+    fn series_cuts(&self, nodes: &[usize], sub: &[(usize, usize)]) -> Vec<Vec<usize>> {
+        let order = topological(nodes, sub);
+        let mut pieces = Vec::new();
+        let mut start = 0;
+        for cut in 1..order.len() {
+            let (before, after) = order.split_at(cut);
+            let clean = after
+                .iter()
+                .all(|&a| before[start..].iter().all(|&b| self.anc[a].contains(b)));
+            if clean {
+                let mut piece = before[start..].to_vec();
+                piece.sort_unstable();
+                pieces.push(piece);
+                start = cut;
+            }
+        }
+        let mut last = order[start..].to_vec();
+        last.sort_unstable();
+        pieces.push(last);
+        pieces
+    }
+}
+
+/// The statements with no parent in `sub`, then the rest.
+fn first_level_cut(nodes: &[usize], sub: &[(usize, usize)]) -> Vec<Vec<usize>> {
+    let (first, rest): (Vec<usize>, Vec<usize>) = nodes
+        .iter()
+        .partition(|n| !sub.iter().any(|(_, j)| j == *n));
+    vec![first, rest]
+        .into_iter()
+        .filter(|p| !p.is_empty())
+        .collect()
+}
+
+fn relabelled_levels(nodes: &[usize], sub: &[(usize, usize)]) -> Layout {
+    let local: BTreeMap<usize, usize> = nodes.iter().enumerate().map(|(k, n)| (*n, k)).collect();
+    let edges: Vec<(usize, usize)> = sub
+        .iter()
+        .filter_map(|(i, j)| Some((*local.get(i)?, *local.get(j)?)))
+        .collect();
+    relabel(levels_layout(nodes.len(), &edges), nodes)
+}
+
+fn relabel(layout: Layout, nodes: &[usize]) -> Layout {
+    match layout {
+        Layout::Op(k) => Layout::Op(nodes.get(k).copied().unwrap_or(k)),
+        Layout::Seq(v) => Layout::Seq(v.into_iter().map(|l| relabel(l, nodes)).collect()),
+        Layout::Par(v) => Layout::Par(v.into_iter().map(|l| relabel(l, nodes)).collect()),
+    }
+}
+
+/// Kahn's order, smallest index first (input order when the graph allows it).
+fn topological(nodes: &[usize], sub: &[(usize, usize)]) -> Vec<usize> {
+    let mut indegree: BTreeMap<usize, usize> = nodes.iter().map(|n| (*n, 0)).collect();
+    for (_, j) in sub {
+        *indegree.entry(*j).or_default() += 1;
+    }
+    let mut ready: std::collections::BTreeSet<usize> = indegree
+        .iter()
+        .filter(|(_, d)| **d == 0)
+        .map(|(n, _)| *n)
+        .collect();
+    let mut order = Vec::with_capacity(nodes.len());
+    while let Some(n) = ready.pop_first() {
+        order.push(n);
+        for (_, j) in sub.iter().filter(|(i, _)| *i == n) {
+            if let Some(d) = indegree.get_mut(j) {
+                *d -= 1;
+                if *d == 0 {
+                    ready.insert(*j);
+                }
+            }
+        }
+    }
+    order
+}
+
+/// Weakly connected components, each sorted, ordered by their first node.
+fn components(nodes: &[usize], sub: &[(usize, usize)]) -> Vec<Vec<usize>> {
+    let mut root: BTreeMap<usize, usize> = nodes.iter().map(|n| (*n, *n)).collect();
+    fn find(root: &BTreeMap<usize, usize>, mut n: usize) -> usize {
+        // Bounded: every step goes to a smaller index.
+        while let Some(&r) = root.get(&n) {
+            if r == n {
+                break;
+            }
+            n = r;
+        }
+        n
+    }
+    for &(i, j) in sub {
+        let (ri, rj) = (find(&root, i), find(&root, j));
+        let (lo, hi) = (ri.min(rj), ri.max(rj));
+        root.insert(hi, lo);
+    }
+    let mut parts: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
+    for &n in nodes {
+        parts.entry(find(&root, n)).or_default().push(n);
+    }
+    parts.into_values().collect()
+}
+
+/// Writes forms out and checks them on the model, exactly as `check --from` would.
+struct Verifier<'a> {
+    request: &'a Request<'a>,
+    header: String,
+    texts: Vec<String>,
+    expected: Configuration,
+    /// Statements the input's replay already calls suspicious (by input index).
+    suspicious: Vec<Span>,
+    spans: Vec<Span>,
+    reversible: bool,
+}
+
+/// Why a written form was not accepted, with the edge that would have prevented it.
+struct Failure {
+    reason: String,
+    edge: Option<(usize, usize)>,
+}
+
+impl Verifier<'_> {
+    /// The levels form, repaired edge by edge until it verifies, else the input order.
+    fn levels(
+        &self,
+        mut edges: Vec<(usize, usize)>,
+        n: usize,
+        notes: &mut Vec<String>,
+    ) -> Result<(Vec<(usize, usize)>, Form), ParalleliseError> {
+        for _ in 0..MAX_REPAIRS {
+            match self.form(FormKind::Levels, levels_layout(n, &edges)) {
+                Ok(form) => return Ok((edges, form)),
+                Err(Failure {
+                    reason,
+                    edge: Some(edge),
+                }) if !edges.contains(&edge) => {
+                    notes.push(format!(
+                        "kept `{}` before `{}`: {reason}",
+                        self.texts[edge.0], self.texts[edge.1]
+                    ));
+                    edges.push(edge);
+                    edges = transitive_reduction(n, &edges);
+                }
+                Err(failure) => {
+                    notes.push(format!("written in the input order: {}", failure.reason));
+                    break;
+                }
+            }
+        }
+        let chain: Vec<(usize, usize)> = (1..n).map(|j| (j - 1, j)).collect();
+        let layout = Layout::Seq((0..n).map(Layout::Op).collect());
+        let form = self.form(FormKind::Sequential, layout).map_err(|f| {
+            ParalleliseError::Message(format!(
+                "even the input order does not verify: {}",
+                f.reason
+            ))
+        })?;
+        Ok((chain, form))
+    }
+
+    /// Writes `layout`, parses it and checks it; the form when it passes.
+    fn form(&self, kind: FormKind, layout: Layout) -> Result<Form, Failure> {
+        let mut writer = Writer {
+            texts: &self.texts,
+            out: String::new(),
+            starts: Vec::new(),
+        };
+        writer.sequence(self.request.name, &layout);
+        let groups = match &layout {
+            Layout::Seq(v) => v.len(),
+            _ => 1,
+        };
+        let Writer {
+            out: text, starts, ..
+        } = writer;
+        self.verify(&text, &starts)?;
+        Ok(Form {
+            kind,
+            layout,
+            text,
+            groups,
+        })
+    }
+
+    /// Replays the written sequence (and its reverse from the end) and checks independence.
+    fn verify(&self, text: &str, starts: &[(usize, usize)]) -> Result<(), Failure> {
+        let reverse_name = format!("{}_r", self.request.name);
+        let mut source = format!("{}\n{text}", self.header);
+        let offset = self.header.len() + 1;
+        if self.reversible {
+            let _ = write!(
+                source,
+                "\nsequence {reverse_name} = reverse {};\n",
+                self.request.name
+            );
+        }
+        let index: BTreeMap<u32, usize> = starts
+            .iter()
+            .filter_map(|(at, s)| Some((u32::try_from(at + offset).ok()?, *s)))
+            .collect();
+        let parsed = parse(&source);
+        let mut registry = RobotRegistry::builtin();
+        registry.add(self.request.program.robot.clone());
+        let (program, diagnostics) = analyze(&parsed.file, &registry);
+        let program = program
+            .filter(|_| parsed.diagnostics.is_empty() && !has_errors(&diagnostics))
+            .ok_or_else(|| Failure {
+                reason: format!(
+                    "the written sequence does not check: {:?}",
+                    diagnostics.first().or(parsed.diagnostics.first())
+                ),
+                edge: None,
+            })?;
+        let lookup = Lookup {
+            index: &index,
+            n: self.texts.len(),
+        };
+        let forward = program.expand(self.request.name).unwrap_or_default();
+        let end = self.run(
+            &program,
+            &forward,
+            self.request.world.clone(),
+            &lookup,
+            Direction::Forward,
+        )?;
+        if let Err(difference) = compare(&end, &self.expected) {
+            let first = difference
+                .to_string()
+                .lines()
+                .next()
+                .unwrap_or_default()
+                .to_string();
+            return Err(Failure {
+                reason: format!("it ends elsewhere than the input ({first})"),
+                edge: None,
+            });
+        }
+        if self.reversible {
+            let backward = program.expand(&reverse_name).unwrap_or_default();
+            let world = RobotWorld::new(end, &program.robot)
+                .map_err(|reason| Failure { reason, edge: None })?;
+            self.run(&program, &backward, world, &lookup, Direction::Backward)?;
+        }
+        Ok(())
+    }
+
+    /// Replays `plan` and checks its groups; the end configuration when nothing is wrong.
+    fn run(
+        &self,
+        program: &Program,
+        plan: &Plan,
+        world: RobotWorld,
+        lookup: &Lookup,
+        direction: Direction,
+    ) -> Result<Configuration, Failure> {
+        let assignment = self.request.assignment;
+        let plans = std::slice::from_ref(plan);
+        let result = replay(program, plans, world.clone(), assignment);
+        for d in &result.diagnostics {
+            let new_warning = match &d.kind {
+                DiagnosticKind::StepSuspicious { .. } => lookup
+                    .statement(d.span)
+                    .is_none_or(|s| !self.suspicious.contains(&self.spans[s])),
+                _ => true,
+            };
+            if new_warning {
+                let reason = format!("{direction}, {}", describe(d));
+                return Err(Failure {
+                    reason,
+                    edge: lookup
+                        .statement(d.span)
+                        .and_then(|j| lookup.before(j, direction)),
+                });
+            }
+        }
+        if let Some(d) = check_independence(program, plans, world, assignment).first() {
+            let reason = format!("{direction}, {}", describe(d));
+            let edge = match &d.kind {
+                DiagnosticKind::NotIndependent { other, .. } => {
+                    match (lookup.statement(d.span), lookup.statement(*other)) {
+                        (Some(a), Some(b)) => Some((a.min(b), a.max(b))),
+                        _ => None,
+                    }
+                }
+                _ => None,
+            };
+            return Err(Failure { reason, edge });
+        }
+        Ok(result.final_configuration)
+    }
+}
+
+#[derive(Clone, Copy, Debug)]
+enum Direction {
+    Forward,
+    Backward,
+}
+
+impl std::fmt::Display for Direction {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Direction::Forward => "forwards",
+            Direction::Backward => "in its reverse",
+        })
+    }
+}
+
+/// From a span of the written file to the input index of its statement.
+struct Lookup<'a> {
+    index: &'a BTreeMap<u32, usize>,
+    n: usize,
+}
+
+impl Lookup<'_> {
+    fn statement(&self, span: Span) -> Option<usize> {
+        self.index.get(&span.start).copied()
+    }
+
+    /// The edge that keeps a refused statement after its neighbour in the input (before, for
+    /// the reverse, which runs the other way).
+    fn before(&self, j: usize, direction: Direction) -> Option<(usize, usize)> {
+        match direction {
+            Direction::Forward => j.checked_sub(1).map(|i| (i, j)),
+            Direction::Backward => (j + 1 < self.n).then_some((j, j + 1)),
+        }
+    }
+}
+
+fn describe(d: &Diagnostic) -> String {
+    match &d.kind {
+        DiagnosticKind::StepRejected { step, reason } => format!("`{step}` is refused: {reason}"),
+        DiagnosticKind::StepSuspicious { step, reason } => format!("`{step}`: {reason}"),
+        DiagnosticKind::NotIndependent {
+            step,
+            other_step,
+            reason,
+            ..
+        } => {
+            format!("`{step}` and `{other_step}` are not independent: {reason}")
+        }
+        other => format!("{other:?}"),
+    }
+}
+
+/// Prints a layout in the canonical layout of `fmt`, noting where each statement starts.
+struct Writer<'a> {
+    texts: &'a [String],
+    out: String,
+    starts: Vec<(usize, usize)>,
+}
+
+impl Writer<'_> {
+    fn sequence(&mut self, name: &str, layout: &Layout) {
+        let _ = write!(self.out, "sequence {name} {{");
+        self.body(layout, 1);
+        self.out.push_str("\n}\n");
+    }
+
+    /// The groups of a `Seq` (or one group), one element per line.
+    fn body(&mut self, layout: &Layout, depth: usize) {
+        let groups: Vec<&Layout> = match layout {
+            Layout::Seq(v) => v.iter().collect(),
+            other => vec![other],
+        };
+        for g in groups {
+            let members: Vec<&Layout> = match g {
+                Layout::Par(v) => v.iter().collect(),
+                other => vec![other],
+            };
+            for (k, m) in members.iter().enumerate() {
+                self.out.push('\n');
+                self.out.push_str(&"    ".repeat(depth));
+                self.element(m, depth);
+                self.out
+                    .push_str(if k + 1 == members.len() { ";" } else { " &" });
+            }
+        }
+    }
+
+    fn element(&mut self, layout: &Layout, depth: usize) {
+        match layout {
+            Layout::Op(s) => {
+                self.starts.push((self.out.len(), *s));
+                self.out
+                    .push_str(self.texts.get(*s).map_or("", String::as_str));
+            }
+            other => {
+                self.out.push('{');
+                self.body(other, depth + 1);
+                self.out.push('\n');
+                self.out.push_str(&"    ".repeat(depth));
+                self.out.push('}');
+            }
+        }
+    }
+}
+
+/// The robot and role declarations of the program, as source.
+fn header(program: &Program) -> String {
+    let items: Vec<Item> = program
+        .file
+        .items
+        .iter()
+        .filter(|item| matches!(item, Item::Robot(_) | Item::Role(_)))
+        .cloned()
+        .collect();
+    format_items(items)
+}
+
+/// Each statement as written in the source when it is executed as written (its constants
+/// kept), else as executed (a reversed statement, with its values).
+fn statement_texts(program: &Program, statements: &[ResolvedStatement]) -> Vec<String> {
+    let mut written: BTreeMap<Span, &dynarole_core::ast::Statement> = BTreeMap::new();
+    for decl in program.file.sequences() {
+        if let dynarole_core::ast::SequenceDef::Body(body) = &decl.definition {
+            collect_statements(body, &mut written);
+        }
+    }
+    statements
+        .iter()
+        .map(|s| {
+            written
+                .get(&s.span)
+                .filter(|w| {
+                    resolve_statement(program.file, w, &program.robot).is_ok_and(|r| r == *s)
+                })
+                .map_or_else(|| s.describe(&program.robot), |w| statement_text(w))
+        })
+        .collect()
+}
+
+fn collect_statements<'f>(
+    body: &'f dynarole_core::ast::Body,
+    out: &mut BTreeMap<Span, &'f dynarole_core::ast::Statement>,
+) {
+    // Bounded by the parser's nesting limit.
+    for element in &body.elements {
+        match &element.kind {
+            ElementKind::Statement(s) => {
+                out.insert(element.span, s);
+            }
+            ElementKind::Block(inner) => collect_statements(inner, out),
+            ElementKind::Call(_) => {}
+        }
+    }
+}
+
+fn suspicious_spans(diagnostics: &[Diagnostic]) -> Vec<Span> {
+    diagnostics
+        .iter()
+        .filter(|d| matches!(d.kind, DiagnosticKind::StepSuspicious { .. }))
+        .map(|d| d.span)
+        .collect()
+}
