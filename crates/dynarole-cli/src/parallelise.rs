@@ -229,7 +229,7 @@ fn seconds(estimate: &Result<u64, String>) -> String {
 }
 
 /// The critical path of `plans` in ms, as the simulator's timing preset weighs it.
-fn makespan(program: &Program, plans: &[Plan], protocol: Protocol) -> Result<u64, String> {
+pub fn makespan(program: &Program, plans: &[Plan], protocol: Protocol) -> Result<u64, String> {
     let options = CompileOptions {
         protocol: match protocol {
             Protocol::Paper => CodegenProtocol::Paper,
@@ -243,7 +243,7 @@ fn makespan(program: &Program, plans: &[Plan], protocol: Protocol) -> Result<u64
 }
 
 /// The makespan of a written form, from its text (what the user gets).
-fn form_makespan(
+pub fn form_makespan(
     found: &Parallelised,
     form: &Form,
     name: &str,
