@@ -210,6 +210,7 @@ fn describe_form(kind: FormKind) -> &'static str {
         FormKind::Levels => "Written as parallel groups: a statement waits for the whole group before it, not only for the statements it depends on.",
         FormKind::Blocks => "Written with blocks: chains that depend on each other only at their ends run side by side; where the graph is not series-parallel, more is ordered than needed.",
         FormKind::Sequential => "Written in the input order: no parallel form could be verified.",
+        FormKind::AsWritten => "Written as the input groups it: its own `&` verify, and no form found here is shorter.",
     }
 }
 
@@ -218,6 +219,7 @@ fn short_name(kind: FormKind) -> &'static str {
         FormKind::Levels => "parallel groups",
         FormKind::Blocks => "blocks",
         FormKind::Sequential => "the input order",
+        FormKind::AsWritten => "the input's own groups",
     }
 }
 

@@ -41,6 +41,8 @@ pub enum FormKind {
     Blocks,
     /// The input order, one statement per group (when nothing parallel could be verified).
     Sequential,
+    /// The input's own groups and blocks, when they verify (a candidate, not a result).
+    AsWritten,
 }
 
 /// One verified way of writing the parallelised sequence.
@@ -125,6 +127,18 @@ pub fn parallelise(request: &Request) -> Result<Parallelised, ParalleliseError> 
                     failure.reason
                 )),
             }
+        }
+    }
+    let written = written_layout(&plan, &mut 0);
+    let has_parallel = forms.iter().all(|f| f.layout != written)
+        && !matches!(&written, Layout::Seq(v) if v.iter().all(|g| matches!(g, Layout::Op(_))));
+    if has_parallel && (request.blocks || !has_blocks(&written)) {
+        match verifier.form(FormKind::AsWritten, written) {
+            Ok(form) => forms.push(form),
+            Err(failure) => notes.push(format!(
+                "the input's own groups do not verify ({})",
+                failure.reason
+            )),
         }
     }
     Ok(Parallelised {
@@ -378,6 +392,42 @@ fn levels_layout(n: usize, edges: &[(usize, usize)]) -> Layout {
     Layout::Seq(groups)
 }
 
+/// The plan's own groups and blocks, statements numbered in input order.
+fn written_layout(plan: &Plan, next: &mut usize) -> Layout {
+    let mut groups = Vec::new();
+    let mut current = Vec::new();
+    for element in &plan.elements {
+        current.push(match &element.kind {
+            PlanKind::Op(_) => {
+                *next += 1;
+                Layout::Op(*next - 1)
+            }
+            // Bounded by the parser's nesting limit.
+            PlanKind::Block(inner) => written_layout(inner, next),
+        });
+        if element.separator == SeparatorKind::Sequential {
+            groups.push(group(std::mem::take(&mut current)));
+        }
+    }
+    if !current.is_empty() {
+        groups.push(group(current));
+    }
+    Layout::Seq(groups)
+}
+
+/// Whether a sequence is nested anywhere below the top level (a block).
+fn has_blocks(layout: &Layout) -> bool {
+    let children = match layout {
+        Layout::Op(_) => return false,
+        Layout::Seq(v) | Layout::Par(v) => v,
+    };
+    children.iter().any(|c| match c {
+        Layout::Seq(_) => true,
+        Layout::Par(v) => v.iter().any(|m| !matches!(m, Layout::Op(_))),
+        Layout::Op(_) => false,
+    })
+}
+
 fn group(mut members: Vec<Layout>) -> Layout {
     if members.len() == 1 {
         members.remove(0)
@@ -561,6 +611,33 @@ struct Verifier<'a> {
 struct Failure {
     reason: String,
     edge: Option<(usize, usize)>,
+    /// A statement refused (or newly suspicious) in the written form, and which way it ran.
+    refused: Option<(usize, Direction)>,
+}
+
+impl Failure {
+    fn new(reason: String) -> Failure {
+        Failure {
+            reason,
+            edge: None,
+            refused: None,
+        }
+    }
+
+    /// The edge to add: the pair named, or for a refused statement the nearest statement
+    /// not yet ordered with it, on the side it ran after (before it in the input going
+    /// forwards, after it in the reverse).
+    fn repair(&self, n: usize, edges: &[(usize, usize)]) -> Option<(usize, usize)> {
+        if self.edge.is_some() {
+            return self.edge;
+        }
+        let (j, direction) = self.refused?;
+        let anc = ancestors(n, edges);
+        match direction {
+            Direction::Forward => (0..j).rev().find(|i| !anc[j].contains(*i)).map(|i| (i, j)),
+            Direction::Backward => (j + 1..n).find(|k| !anc[*k].contains(j)).map(|k| (j, k)),
+        }
+    }
 }
 
 impl Verifier<'_> {
@@ -572,20 +649,20 @@ impl Verifier<'_> {
         notes: &mut Vec<String>,
     ) -> Result<(Vec<(usize, usize)>, Form), ParalleliseError> {
         for _ in 0..MAX_REPAIRS {
-            match self.form(FormKind::Levels, levels_layout(n, &edges)) {
+            let failure = match self.form(FormKind::Levels, levels_layout(n, &edges)) {
                 Ok(form) => return Ok((edges, form)),
-                Err(Failure {
-                    reason,
-                    edge: Some(edge),
-                }) if !edges.contains(&edge) => {
+                Err(failure) => failure,
+            };
+            match failure.repair(n, &edges).filter(|e| !edges.contains(e)) {
+                Some(edge) => {
                     notes.push(format!(
-                        "kept `{}` before `{}`: {reason}",
-                        self.texts[edge.0], self.texts[edge.1]
+                        "kept `{}` before `{}`: {}",
+                        self.texts[edge.0], self.texts[edge.1], failure.reason
                     ));
                     edges.push(edge);
                     edges = transitive_reduction(n, &edges);
                 }
-                Err(failure) => {
+                None => {
                     notes.push(format!("written in the input order: {}", failure.reason));
                     break;
                 }
@@ -648,17 +725,13 @@ impl Verifier<'_> {
         let (program, diagnostics) = analyze(&parsed.file, &registry);
         let program = program
             .filter(|_| parsed.diagnostics.is_empty() && !has_errors(&diagnostics))
-            .ok_or_else(|| Failure {
-                reason: format!(
+            .ok_or_else(|| {
+                Failure::new(format!(
                     "the written sequence does not check: {:?}",
                     diagnostics.first().or(parsed.diagnostics.first())
-                ),
-                edge: None,
+                ))
             })?;
-        let lookup = Lookup {
-            index: &index,
-            n: self.texts.len(),
-        };
+        let lookup = Lookup { index: &index };
         let forward = program.expand(self.request.name).unwrap_or_default();
         let end = self.run(
             &program,
@@ -674,15 +747,13 @@ impl Verifier<'_> {
                 .next()
                 .unwrap_or_default()
                 .to_string();
-            return Err(Failure {
-                reason: format!("it ends elsewhere than the input ({first})"),
-                edge: None,
-            });
+            return Err(Failure::new(format!(
+                "it ends elsewhere than the input ({first})"
+            )));
         }
         if self.reversible {
             let backward = program.expand(&reverse_name).unwrap_or_default();
-            let world = RobotWorld::new(end, &program.robot)
-                .map_err(|reason| Failure { reason, edge: None })?;
+            let world = RobotWorld::new(end, &program.robot).map_err(Failure::new)?;
             self.run(&program, &backward, world, &lookup, Direction::Backward)?;
         }
         Ok(())
@@ -710,10 +781,8 @@ impl Verifier<'_> {
             if new_warning {
                 let reason = format!("{direction}, {}", describe(d));
                 return Err(Failure {
-                    reason,
-                    edge: lookup
-                        .statement(d.span)
-                        .and_then(|j| lookup.before(j, direction)),
+                    refused: lookup.statement(d.span).map(|j| (j, direction)),
+                    ..Failure::new(reason)
                 });
             }
         }
@@ -728,7 +797,10 @@ impl Verifier<'_> {
                 }
                 _ => None,
             };
-            return Err(Failure { reason, edge });
+            return Err(Failure {
+                edge,
+                ..Failure::new(reason)
+            });
         }
         Ok(result.final_configuration)
     }
@@ -752,21 +824,11 @@ impl std::fmt::Display for Direction {
 /// From a span of the written file to the input index of its statement.
 struct Lookup<'a> {
     index: &'a BTreeMap<u32, usize>,
-    n: usize,
 }
 
 impl Lookup<'_> {
     fn statement(&self, span: Span) -> Option<usize> {
         self.index.get(&span.start).copied()
-    }
-
-    /// The edge that keeps a refused statement after its neighbour in the input (before, for
-    /// the reverse, which runs the other way).
-    fn before(&self, j: usize, direction: Direction) -> Option<(usize, usize)> {
-        match direction {
-            Direction::Forward => j.checked_sub(1).map(|i| (i, j)),
-            Direction::Backward => (j + 1 < self.n).then_some((j, j + 1)),
-        }
     }
 }
 
