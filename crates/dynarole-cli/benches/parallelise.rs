@@ -152,24 +152,27 @@ fn random_moves(config: &str, n: usize, count: usize) -> String {
         let name = format!("M{m}");
         let c = (next() % 8) as u8;
         let joint = world.configuration().modules()[m].joint_units;
+        let mut trial = world.clone();
         let (text, ok) = match next() % 3 {
             0 => (
                 format!("M{m}.Connector[{c}].retract()"),
-                world.retract(&name, c),
+                trial.retract(&name, c),
             ),
             1 => (
                 format!("M{m}.Connector[{c}].extend()"),
-                world.extend(&name, c),
+                trial.extend(&name, c),
             ),
             _ => {
                 let to = (joint + 108) % 432;
                 (
                     format!("M{m}.Joint.rotateFromToBy({joint}, {to}, true, 150)"),
-                    world.rotate(&name, joint, to, true),
+                    trial.rotate(&name, joint, to, true),
                 )
             }
         };
+        // A step with a warning is done by the model but not kept: the world goes back.
         if ok.is_ok_and(|o| o.warnings.is_empty()) {
+            world = trial;
             body.push_str(&format!("    {text};\n"));
             kept += 1;
         }

@@ -443,7 +443,11 @@ fn series_parallel(n: usize, edges: &[(usize, usize)]) -> Layout {
     let anc = ancestors(n, edges);
     let nodes: Vec<usize> = (0..n).collect();
     let mut work = SpWork { anc: &anc, edges };
-    work.layout(&nodes, 0)
+    match work.layout(&nodes, 0) {
+        Layout::Seq(groups) => Layout::Seq(groups),
+        // One group: written like the levels, as the body's only group.
+        other => Layout::Seq(vec![other]),
+    }
 }
 
 struct SpWork<'a> {
