@@ -188,7 +188,7 @@ impl Graph {
                     b: &statements[j],
                     modules: (modules[i], modules[j]),
                 };
-                if pair.must_stay_ordered(&pre[i]) {
+                if pair.must_stay_ordered(&pre[i], &pre[i + 1]) {
                     edges.push((i, j));
                     let above = ancestors[i].clone();
                     ancestors[j].union(&above);
@@ -201,10 +201,10 @@ impl Graph {
     }
 }
 
-/// The world before each statement, in input order.
+/// The world before each statement, in input order, and at the end.
 fn pre_states(request: &Request, statements: &[ResolvedStatement]) -> Vec<RobotWorld> {
     let mut world = request.world.clone();
-    let mut out = Vec::with_capacity(statements.len());
+    let mut out = Vec::with_capacity(statements.len() + 1);
     for statement in statements {
         out.push(world.clone());
         if let Some(module) = request.assignment.get(&statement.label) {
@@ -212,7 +212,14 @@ fn pre_states(request: &Request, statements: &[ResolvedStatement]) -> Vec<RobotW
             let _ = world.apply(&request.program.robot, statement, module);
         }
     }
+    out.push(world);
     out
+}
+
+/// The same configuration, exactly or up to rigid motion (what `check --from` compares).
+fn same_configuration(a: &RobotWorld, b: &RobotWorld) -> bool {
+    let (a, b) = (a.configuration(), b.configuration());
+    a == b || compare(&a, &b).is_ok()
 }
 
 /// Two statements, the earlier first, and their modules.
@@ -225,16 +232,29 @@ struct Pair<'a> {
 
 impl Pair<'_> {
     /// Conservative: same module, same latch, a step refused in either order, different
-    /// results in the two orders, or turns that may sweep through each other.
-    fn must_stay_ordered(&self, world: &RobotWorld) -> bool {
+    /// results in the two orders, or two turns that may sweep through each other (decided
+    /// by `check_independence` on the pair as a group). `before` and `after` are the states
+    /// around `a` in the input.
+    fn must_stay_ordered(&self, before: &RobotWorld, after: &RobotWorld) -> bool {
         let (Some(ma), Some(mb)) = self.modules else {
             return true;
         };
-        if ma == mb || self.same_latch(world, ma, mb) {
+        if ma == mb || self.same_latch(before, ma, mb) {
             return true;
         }
-        if !self.both_orders_accepted(world) {
+        let robot = &self.request.program.robot;
+        // `a` then `b` is `b` on the state after `a`; `b` then `a` from the state before.
+        let mut ab = after.clone();
+        let mut ba = before.clone();
+        let accepted = ab.apply(robot, self.b, mb).is_ok()
+            && ba.apply(robot, self.b, mb).is_ok()
+            && ba.apply(robot, self.a, ma).is_ok();
+        if !accepted || !same_configuration(&ab, &ba) {
             return true;
+        }
+        if !(self.is_turn(self.a) && self.is_turn(self.b)) {
+            // Only two turns have a motion check; the rest is what was just done.
+            return false;
         }
         let group = Plan {
             elements: vec![
@@ -243,19 +263,15 @@ impl Pair<'_> {
             ],
         };
         let program = self.request.program;
-        !check_independence(program, &[group], world.clone(), self.request.assignment).is_empty()
+        !check_independence(program, &[group], before.clone(), self.request.assignment).is_empty()
     }
 
-    fn both_orders_accepted(&self, world: &RobotWorld) -> bool {
+    fn is_turn(&self, statement: &ResolvedStatement) -> bool {
         let robot = &self.request.program.robot;
-        let (Some(ma), Some(mb)) = self.modules else {
-            return false;
-        };
-        let run = |first: (&ResolvedStatement, &str), second: (&ResolvedStatement, &str)| {
-            let mut w = world.clone();
-            w.apply(robot, first.0, first.1).is_ok() && w.apply(robot, second.0, second.1).is_ok()
-        };
-        run((self.a, ma), (self.b, mb)) && run((self.b, mb), (self.a, ma))
+        robot
+            .parts
+            .get(statement.part)
+            .is_some_and(|p| p.name == "Joint")
     }
 
     /// Connector operations on the two ends of one latch (made, or facing, before `a`).
