@@ -181,6 +181,29 @@ fn bad_inputs_get_a_clear_error_and_the_usual_exit_codes() {
     assert!(text(&out.stderr).contains("no sequence named `nope`"));
     let out = parallelise("examples/atron/missing.dr", &[]);
     assert_eq!(out.status.code(), Some(1));
+    // Nothing to do, a configuration of another robot.
+    let empty = scratch("empty.dr", "robot atron;\nsequence e {\n}\n");
+    let empty = empty.display().to_string();
+    let out = dynarole(&[
+        "parallelise",
+        &empty,
+        "--sequence",
+        "e",
+        "--from",
+        "examples/atron/eight.json",
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(text(&out.stderr).contains("nothing to parallelise"));
+    let out = dynarole(&[
+        "parallelise",
+        &empty,
+        "--sequence",
+        "e",
+        "--from",
+        "examples/mtran/mtran-snake4.json",
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(text(&out.stderr).contains("MTRAN"), "{}", text(&out.stderr));
     // A sequence that does not replay from the configuration: its refused step, located.
     let out = dynarole(&[
         "parallelise",

@@ -102,6 +102,12 @@ pub fn parallelise(request: &Request) -> Result<Parallelised, ParalleliseError> 
         return Err(ParalleliseError::Input(input.diagnostics));
     }
     let statements: Vec<ResolvedStatement> = plan.statements().into_iter().cloned().collect();
+    if statements.is_empty() {
+        return Err(ParalleliseError::Message(format!(
+            "`{}` has no statements: nothing to parallelise",
+            request.sequence
+        )));
+    }
     let graph = Graph::build(request, &statements);
     let verifier = Verifier {
         request,
