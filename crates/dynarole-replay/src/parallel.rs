@@ -224,8 +224,13 @@ fn pre_states(request: &Request, statements: &[ResolvedStatement]) -> Vec<RobotW
 
 /// The same configuration, exactly or up to rigid motion (what `check --from` compares).
 fn same_configuration(a: &RobotWorld, b: &RobotWorld) -> bool {
-    let (a, b) = (a.configuration(), b.configuration());
-    a == b || compare(&a, &b).is_ok()
+    // Exact equality first, on the worlds' own configurations (no copy).
+    let equal = match (a, b) {
+        (RobotWorld::Atron(x), RobotWorld::Atron(y)) => x.configuration() == y.configuration(),
+        (RobotWorld::Mtran(x), RobotWorld::Mtran(y)) => x.configuration() == y.configuration(),
+        _ => false,
+    };
+    equal || compare(&a.configuration(), &b.configuration()).is_ok()
 }
 
 /// Two statements, the earlier first, and their modules.
@@ -258,7 +263,7 @@ impl Pair<'_> {
         if !accepted || !same_configuration(&ab, &ba) {
             return true;
         }
-        if !(self.is_turn(self.a) && self.is_turn(self.b)) {
+        if !(part_is(robot, self.a, "Joint") && part_is(robot, self.b, "Joint")) {
             // Only two turns have a motion check; the rest is what was just done.
             return false;
         }
@@ -272,17 +277,12 @@ impl Pair<'_> {
         !check_independence(program, &[group], before.clone(), self.request.assignment).is_empty()
     }
 
-    fn is_turn(&self, statement: &ResolvedStatement) -> bool {
-        let robot = &self.request.program.robot;
-        robot
-            .parts
-            .get(statement.part)
-            .is_some_and(|p| p.name == "Joint")
-    }
-
     /// Connector operations on the two ends of one latch (made, or facing, before `a`).
     fn same_latch(&self, world: &RobotWorld, ma: &str, mb: &str) -> bool {
         let robot = &self.request.program.robot;
+        if !(part_is(robot, self.a, "Connector") && part_is(robot, self.b, "Connector")) {
+            return false;
+        }
         let config = world.configuration();
         let (Some(pa), Some(pb)) = (
             port(robot, self.a, ma, &config),
@@ -294,6 +294,14 @@ impl Pair<'_> {
     }
 }
 
+/// Whether `statement` works on the plugin part named `name` (`Connector`, `Joint`).
+fn part_is(robot: &dynarole_core::RobotApi, statement: &ResolvedStatement, name: &str) -> bool {
+    robot
+        .parts
+        .get(statement.part)
+        .is_some_and(|p| p.name == name)
+}
+
 /// The port a connector statement works on.
 fn port(
     robot: &dynarole_core::RobotApi,
@@ -301,8 +309,7 @@ fn port(
     module: &str,
     config: &Configuration,
 ) -> Option<Port> {
-    let part = robot.parts.get(statement.part)?;
-    if part.name != "Connector" {
+    if !part_is(robot, statement, "Connector") {
         return None;
     }
     let connector = u8::try_from(statement.index?).ok()?;
