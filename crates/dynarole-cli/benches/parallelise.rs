@@ -6,8 +6,10 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use dynarole_cli::check::Protocol;
 use dynarole_cli::parallelise::{form_makespan, makespan};
+use dynarole_codegen::CompileOptions;
 use dynarole_core::{analyze, parse, RobotRegistry};
 use dynarole_replay::{assign_modules, parallelise, Parallelised, Request, RobotWorld};
+use dynarole_sim::{Run, Scenario, Simulator};
 use dynarole_world::{Configuration, World};
 use std::time::{Duration, Instant};
 
@@ -36,6 +38,34 @@ struct Row {
     before_ms: Result<u64, String>,
     after_ms: Result<u64, String>,
     time: Duration,
+    /// Completion of the generated C in the simulator at 0 % loss: all `;`, parallelised.
+    simulated: Option<(Result<f64, String>, Result<f64, String>)>,
+}
+
+/// Completion time (ms) of `sequence` run by the simulator from `config`, fault-free.
+fn simulated(source: &str, sequence: &str, config: &str) -> Result<f64, String> {
+    let parsed = parse(source);
+    let (program, _) = analyze(&parsed.file, &RobotRegistry::builtin());
+    let program = program.ok_or("does not check")?;
+    let plan = program.expand(sequence).ok_or("no sequence")?;
+    let options = CompileOptions {
+        name: "bench".into(),
+        ..CompileOptions::default()
+    };
+    let simulator = Simulator::new(&program, &[plan], &options).map_err(|e| e.to_string())?;
+    let start = Configuration::from_json_str(config).map_err(|e| e.to_string())?;
+    let report = simulator
+        .run(&Run {
+            start: &start,
+            expect: None,
+            scenario: &Scenario::default(),
+            seed: 1,
+            trace: false,
+        })
+        .map_err(|e| e.to_string())?;
+    report
+        .completion_ms
+        .ok_or_else(|| "did not finish".to_string())
 }
 
 fn sequential(source: &str) -> String {
@@ -84,7 +114,17 @@ fn row(case: &Case) -> Row {
     let best = (0..estimates.len())
         .min_by_key(|k| estimates[*k].clone().unwrap_or(u64::MAX))
         .unwrap_or(0);
+    // The simulator runs the generated C; the 1,000-statement chain is left out (its build and
+    // run take minutes).
+    let simulated = (found.statements.len() <= 100).then(|| {
+        let written = format!("{}\n{}", found.header, found.forms[best].text);
+        (
+            simulated(&source, case.sequence, &case.config),
+            simulated(&written, "out", &case.config),
+        )
+    });
     Row {
+        simulated,
         statements: found.statements.len(),
         groups: found.forms[best].groups,
         shipped_ms: critical_path(&case.source, case.sequence),
@@ -97,6 +137,13 @@ fn row(case: &Case) -> Row {
 fn seconds(ms: &Result<u64, String>) -> String {
     match ms {
         Ok(ms) => format!("{:.2} s", *ms as f64 / 1000.0),
+        Err(e) => format!("n/a ({e})"),
+    }
+}
+
+fn sim_seconds(ms: &Result<f64, String>) -> String {
+    match ms {
+        Ok(ms) => format!("{:.2} s", ms / 1000.0),
         Err(e) => format!("n/a ({e})"),
     }
 }
@@ -212,12 +259,16 @@ fn cases() -> Vec<Case> {
 
 fn benches(c: &mut Criterion) {
     let cases = cases();
-    println!("| sequence | statements | groups | critical path: shipped | all `;` | parallelised | time |");
-    println!("|---|---:|---:|---:|---:|---:|---:|");
+    println!("| sequence | statements | groups | critical path: shipped | all `;` | parallelised | simulated: all `;` | parallelised | time |");
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|");
     for case in &cases {
         let r = row(case);
+        let (sim_before, sim_after) = match &r.simulated {
+            Some((b, a)) => (sim_seconds(b), sim_seconds(a)),
+            None => ("not run".to_string(), "not run".to_string()),
+        };
         println!(
-            "| {} | {} | {} | {} | {} | {} | {:.3} s |",
+            "| {} | {} | {} | {} | {} | {} | {sim_before} | {sim_after} | {:.3} s |",
             case.name,
             r.statements,
             r.groups,
