@@ -28,6 +28,8 @@ struct Case {
     source: String,
     sequence: &'static str,
     config: String,
+    /// `--window`: only pairs at most this far apart are checked.
+    window: Option<usize>,
 }
 
 /// What one case gives: the table's row.
@@ -73,7 +75,12 @@ fn sequential(source: &str) -> String {
 }
 
 /// Parallelises `sequence` of `source` (lattice forms) and returns the result.
-fn run(source: &str, sequence: &str, config: &str) -> (Parallelised, Vec<Result<u64, String>>) {
+fn run(
+    source: &str,
+    sequence: &str,
+    config: &str,
+    window: Option<usize>,
+) -> (Parallelised, Vec<Result<u64, String>>) {
     let parsed = parse(source);
     let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
     let program = program.unwrap_or_else(|| panic!("{diagnostics:?}"));
@@ -88,6 +95,7 @@ fn run(source: &str, sequence: &str, config: &str) -> (Parallelised, Vec<Result<
         assignment: &assignment,
         name: "out",
         blocks: true,
+        window,
     };
     let found = parallelise(&request).unwrap_or_else(|e| panic!("{e:?}"));
     let estimates = found
@@ -109,7 +117,7 @@ fn critical_path(source: &str, sequence: &str) -> Result<u64, String> {
 fn row(case: &Case) -> Row {
     let source = sequential(&case.source);
     let started = Instant::now();
-    let (found, estimates) = run(&source, case.sequence, &case.config);
+    let (found, estimates) = run(&source, case.sequence, &case.config, case.window);
     let time = started.elapsed();
     let best = (0..estimates.len())
         .min_by_key(|k| estimates[*k].clone().unwrap_or(u64::MAX))
@@ -234,6 +242,7 @@ fn cases() -> Vec<Case> {
         source: source.to_string(),
         sequence,
         config: config.to_string(),
+        window: None,
     };
     let big = chain(100);
     let mut out = vec![
@@ -246,12 +255,17 @@ fn cases() -> Vec<Case> {
         shipped("left2right (M-TRAN)", MTRAN, "left2right", SNAKE4),
         shipped("right2left (M-TRAN)", MTRAN, "right2left", SNAKE4_MOVED),
     ];
-    for count in [100, 1000] {
+    for (count, window) in [(100, None), (1000, None), (100, Some(16)), (1000, Some(16))] {
+        let name = match window {
+            Some(w) => format!("{count} random moves, 100-module chain, window {w}"),
+            None => format!("{count} random moves, 100-module chain"),
+        };
         out.push(Case {
-            name: format!("{count} random moves, 100-module chain"),
+            name,
             source: random_moves(&big, 100, count),
             sequence: "chain",
             config: big.clone(),
+            window,
         });
     }
     out
@@ -281,7 +295,7 @@ fn benches(c: &mut Criterion) {
     for case in [&cases[0], &cases[cases.len() - 1]] {
         let source = sequential(&case.source);
         c.bench_function(&format!("parallelise {}", case.name), |b| {
-            b.iter(|| run(&source, case.sequence, &case.config))
+            b.iter(|| run(&source, case.sequence, &case.config, case.window))
         });
     }
 }

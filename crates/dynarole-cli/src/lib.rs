@@ -212,6 +212,10 @@ enum Command {
         /// `paper`: parallel groups only (no blocks), what the paper's protocol can run.
         #[arg(long, value_enum, default_value_t = check::Protocol::Lattice)]
         protocol: check::Protocol,
+        /// Check only statements at most N apart in the input; farther ones stay ordered
+        /// (faster on long sequences, less parallel). Default: every pair.
+        #[arg(long, value_name = "N")]
+        window: Option<usize>,
         #[command(flatten)]
         plugins: load::PluginArgs,
     },
@@ -350,6 +354,7 @@ pub fn main() -> ExitCode {
             name,
             out,
             protocol,
+            window,
             plugins,
         } => parallelise::run(&parallelise::ParalleliseArgs {
             file: &file,
@@ -358,6 +363,7 @@ pub fn main() -> ExitCode {
             name: name.as_deref(),
             out: out.as_ref(),
             protocol,
+            window,
             plugins: &plugins,
         }),
     };

@@ -23,6 +23,7 @@ pub struct ParalleliseArgs<'a> {
     pub name: Option<&'a str>,
     pub out: Option<&'a PathBuf>,
     pub protocol: Protocol,
+    pub window: Option<usize>,
     pub plugins: &'a PluginArgs,
 }
 
@@ -64,6 +65,7 @@ pub fn run(args: &ParalleliseArgs) -> Result<ExitCode, Failure> {
             assignment: &prepared.assignment,
             name: &name,
             blocks: args.protocol != Protocol::Paper,
+            window: args.window,
         };
         let found = match parallelise(&request) {
             Ok(found) => found,
@@ -189,6 +191,12 @@ impl Summary<'_> {
             seconds(self.after)
         );
         let _ = writeln!(out, "// {}", describe_form(self.form.kind));
+        if let Some(window) = self.args.window {
+            let _ = writeln!(
+                out,
+                "// Only statements at most {window} apart in the input were checked; farther ones stay ordered."
+            );
+        }
         for (form, estimate) in &self.others {
             let _ = writeln!(
                 out,

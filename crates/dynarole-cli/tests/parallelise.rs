@@ -218,3 +218,26 @@ fn bad_inputs_get_a_clear_error_and_the_usual_exit_codes() {
     assert!(stderr.contains("eight2car.dr:"), "{stderr}");
     assert!(stderr.contains("does not replay"), "{stderr}");
 }
+
+#[test]
+fn a_window_checks_fewer_pairs_and_keeps_the_rest_in_order() {
+    let input = sequential_eight2car();
+    let input = input.display().to_string();
+    let full = parallelise(&input, &[]);
+    let windowed = parallelise(&input, &["--window", "2"]);
+    assert_eq!(
+        windowed.status.code(),
+        Some(0),
+        "{}",
+        text(&windowed.stderr)
+    );
+    let (_, exact) = critical_paths(&text(&full.stderr));
+    let (before, narrow) = critical_paths(&text(&windowed.stderr));
+    assert!(
+        exact <= narrow && narrow < before,
+        "{exact} {narrow} {before}"
+    );
+    assert!(text(&windowed.stdout).contains("at most 2 apart"));
+    let out = parallelise(&input, &["--window", "-1"]);
+    assert_eq!(out.status.code(), Some(2));
+}

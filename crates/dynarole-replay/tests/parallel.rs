@@ -30,6 +30,7 @@ fn run(source: &str, sequence: &str, config: &str) -> Parallelised {
         assignment: &assignment,
         name: "out",
         blocks: true,
+        window: None,
     };
     parallelise(&request).unwrap_or_else(|e| panic!("{e:?}"))
 }
