@@ -216,7 +216,14 @@ impl Graph {
                 }
             }
         }
-        edges.sort_unstable();
+        // Edges added without a check (beyond the window) may be implied by later ones.
+        let edges = match request.window {
+            Some(_) => transitive_reduction(n, &edges),
+            None => {
+                edges.sort_unstable();
+                edges
+            }
+        };
         Graph { edges }
     }
 }

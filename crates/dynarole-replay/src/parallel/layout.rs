@@ -61,15 +61,22 @@ pub fn transitive_reduction(n: usize, edges: &[(usize, usize)]) -> Vec<(usize, u
     let anc = ancestors(n, edges);
     let mut parents: Vec<Vec<usize>> = vec![Vec::new(); n];
     for &(i, j) in edges {
-        if i < j && j < n && !parents[j].contains(&i) {
+        if i < j && j < n {
             parents[j].push(i);
         }
     }
     let mut out = Vec::new();
-    for (j, ps) in parents.iter().enumerate() {
-        for &i in ps {
-            if !ps.iter().any(|&k| k != i && anc[k].contains(i)) {
+    for (j, ps) in parents.iter_mut().enumerate() {
+        // Latest parent first: a parent is redundant when a later one already reaches it
+        // (edges point forwards, so only a later parent can).
+        ps.sort_unstable_by(|a, b| b.cmp(a));
+        ps.dedup();
+        let mut reached = BitSet::new(n);
+        for &i in ps.iter() {
+            if !reached.contains(i) {
                 out.push((i, j));
+                reached.union(&anc[i]);
+                reached.insert(i);
             }
         }
     }
