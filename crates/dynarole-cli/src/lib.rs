@@ -8,6 +8,7 @@ pub mod compile;
 pub mod counterexample;
 pub mod fmt;
 pub mod load;
+pub mod parallelise;
 pub mod render;
 pub mod replay;
 pub mod reverse;
@@ -209,6 +210,32 @@ enum Command {
         #[command(flatten)]
         plugins: load::PluginArgs,
     },
+    /// Rewrite a sequence written in order with the most parallelism that is provably safe
+    /// on the model; prints a complete `.dr` file and the makespan before and after.
+    Parallelise {
+        file: PathBuf,
+        /// The sequence to parallelise.
+        #[arg(long, value_name = "NAME")]
+        sequence: String,
+        /// The configuration it starts from (JSON).
+        #[arg(long, value_name = "CONFIG")]
+        from: PathBuf,
+        /// Name of the new sequence (default: SEQUENCE_parallel).
+        #[arg(long)]
+        name: Option<String>,
+        /// Write the file here instead of printing it.
+        #[arg(short = 'o', long = "output", value_name = "OUT.dr")]
+        out: Option<PathBuf>,
+        /// `paper`: parallel groups only (no blocks), what the paper's protocol can run.
+        #[arg(long, value_enum, default_value_t = check::Protocol::Lattice)]
+        protocol: check::Protocol,
+        /// Check only statements at most N apart in the input; farther ones stay ordered
+        /// (faster on long sequences, less parallel). Default: every pair.
+        #[arg(long, value_name = "N")]
+        window: Option<usize>,
+        #[command(flatten)]
+        plugins: load::PluginArgs,
+    },
 }
 
 /// Runs the command line; the exit code follows the README (0 ok, 1 bad input, 2 usage).
@@ -341,6 +368,25 @@ pub fn main() -> ExitCode {
             name,
             plugins,
         } => reverse::run(&file, &sequence, name.as_deref(), &plugins),
+        Command::Parallelise {
+            file,
+            sequence,
+            from,
+            name,
+            out,
+            protocol,
+            window,
+            plugins,
+        } => parallelise::run(&parallelise::ParalleliseArgs {
+            file: &file,
+            sequence: &sequence,
+            from: &from,
+            name: name.as_deref(),
+            out: out.as_ref(),
+            protocol,
+            window,
+            plugins: &plugins,
+        }),
     };
     match outcome {
         Ok(code) => code,

@@ -5,11 +5,16 @@
 //! source location, so the CLI renders it like any other message.
 
 mod independence;
+mod parallel;
 mod robot_world;
 mod roles;
 mod run;
 
 pub use independence::check_independence;
+pub use parallel::{
+    parallelise, transitive_reduction, Form, FormKind, Layout, ParalleliseError, Parallelised,
+    Request,
+};
 pub use robot_world::{RobotWorld, StepOutcome};
 pub use roles::{assign_modules, Assignment};
 pub use run::{replay, Replay};

@@ -1,0 +1,280 @@
+//! `dynarole parallelise`: a sequence written in order becomes the most parallel sequence
+//! that is provably safe on the model, printed as a complete `.dr` file with its makespan
+//! (the critical path with the simulator's timing preset) before and after.
+
+use crate::check::Protocol;
+use crate::load::{self, Failure, PluginArgs};
+use crate::render;
+use crate::world::{prepare, read_configuration};
+use dynarole_codegen::{CompileOptions, Protocol as CodegenProtocol};
+use dynarole_core::expand::Plan;
+use dynarole_core::{analyze, parse, Program, RobotApi, RobotRegistry};
+use dynarole_replay::{parallelise, Form, FormKind, ParalleliseError, Parallelised, Request};
+use dynarole_sim::{Simulator, Timing};
+use std::fmt::Write;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+/// What `parallelise` was asked to do.
+pub struct ParalleliseArgs<'a> {
+    pub file: &'a Path,
+    pub sequence: &'a str,
+    pub from: &'a Path,
+    pub name: Option<&'a str>,
+    pub out: Option<&'a PathBuf>,
+    pub protocol: Protocol,
+    pub window: Option<usize>,
+    pub plugins: &'a PluginArgs,
+}
+
+pub fn run(args: &ParalleliseArgs) -> Result<ExitCode, Failure> {
+    let name = args
+        .name
+        .map_or_else(|| format!("{}_parallel", args.sequence), str::to_string);
+    if !is_identifier(&name) {
+        return Err(Failure::Usage(format!(
+            "--name `{name}` is not a sequence name (a letter or `_`, then letters, digits or `_`)"
+        )));
+    }
+    if args.protocol == Protocol::Token {
+        return Err(Failure::Usage(
+            "--protocol takes `lattice` or `paper` here".into(),
+        ));
+    }
+    load::with_program(args.file, args.plugins, |program, source| {
+        let display = args.file.display().to_string();
+        let start = read_configuration(args.from)?;
+        let sequences = [args.sequence.to_string()];
+        let prepared = match prepare(program, &display, &sequences, start)? {
+            Ok(prepared) => prepared,
+            Err(errors) => {
+                render::diagnostics(&display, source, &errors);
+                return Ok(ExitCode::from(1));
+            }
+        };
+        let request = Request {
+            program,
+            sequence: args.sequence,
+            world: prepared.world.clone(),
+            assignment: &prepared.assignment,
+            name: &name,
+            blocks: args.protocol != Protocol::Paper,
+            window: args.window,
+        };
+        let found = match parallelise(&request) {
+            Ok(found) => found,
+            Err(ParalleliseError::Input(diagnostics)) => {
+                render::diagnostics(&display, source, &diagnostics);
+                eprintln!(
+                    "error: `{}` does not replay from {}; only a sequence that does can be parallelised",
+                    args.sequence,
+                    args.from.display()
+                );
+                return Ok(ExitCode::from(1));
+            }
+            Err(ParalleliseError::Message(m)) => return Err(Failure::Input(m)),
+        };
+        let before = makespan(program, &prepared.plans, args.protocol);
+        write_result(args, &name, &found, before, &program.robot)
+    })
+}
+
+/// Estimates every form, picks the shortest, prints or writes the file and the summary.
+fn write_result(
+    args: &ParalleliseArgs,
+    name: &str,
+    found: &Parallelised,
+    before: Result<u64, String>,
+    robot: &RobotApi,
+) -> Result<ExitCode, Failure> {
+    let estimates: Vec<Result<u64, String>> = found
+        .forms
+        .iter()
+        .map(|form| form_makespan(found, form, name, args.protocol, robot))
+        .collect();
+    let chosen = choose(&estimates);
+    let form = found
+        .forms
+        .get(chosen)
+        .ok_or_else(|| Failure::Input("nothing to write".into()))?;
+    let summary = Summary {
+        args,
+        found,
+        form,
+        before: &before,
+        after: &estimates[chosen],
+        others: found
+            .forms
+            .iter()
+            .zip(&estimates)
+            .enumerate()
+            .filter(|(k, _)| *k != chosen)
+            .map(|(_, pair)| pair)
+            .collect(),
+    };
+    let text = format!("{}{}\n{}", summary.comments(), found.header, form.text);
+    match args.out {
+        Some(path) => std::fs::write(path, &text)
+            .map_err(|e| Failure::Input(format!("cannot write {}: {e}", path.display())))?,
+        None => print!("{text}"),
+    }
+    eprintln!(
+        "{}: {} statements, {} groups; critical path {} before, {} after",
+        args.sequence,
+        found.statements.len(),
+        form.groups,
+        seconds(&before),
+        seconds(&estimates[chosen])
+    );
+    Ok(ExitCode::SUCCESS)
+}
+
+/// The form with the shortest estimate; the first (parallel groups) on a tie or when none
+/// could be estimated.
+fn choose(estimates: &[Result<u64, String>]) -> usize {
+    let mut best = 0;
+    for (k, e) in estimates.iter().enumerate() {
+        if let (Ok(ms), Ok(top)) = (e, &estimates[best]) {
+            if ms < top {
+                best = k;
+            }
+        } else if e.is_ok() && estimates[best].is_err() {
+            best = k;
+        }
+    }
+    best
+}
+
+/// The comment block at the top of the output.
+struct Summary<'a> {
+    args: &'a ParalleliseArgs<'a>,
+    found: &'a Parallelised,
+    form: &'a Form,
+    before: &'a Result<u64, String>,
+    after: &'a Result<u64, String>,
+    others: Vec<(&'a Form, &'a Result<u64, String>)>,
+}
+
+impl Summary<'_> {
+    fn comments(&self) -> String {
+        let file = self.args.file.file_name().map_or_else(
+            || self.args.file.display().to_string(),
+            |f| f.to_string_lossy().into_owned(),
+        );
+        let from = self.args.from.file_name().map_or_else(
+            || self.args.from.display().to_string(),
+            |f| f.to_string_lossy().into_owned(),
+        );
+        let mut out = String::new();
+        let _ = writeln!(
+            out,
+            "// `{}` of {file}, parallelised on {from} by `dynarole parallelise`.",
+            self.args.sequence
+        );
+        let _ = writeln!(
+            out,
+            "// {} statements in {} groups; {} dependency edges after transitive reduction.",
+            self.found.statements.len(),
+            self.form.groups,
+            self.found.edges.len()
+        );
+        let _ = writeln!(
+            out,
+            "// Critical path with the simulator's timing preset: {} before, {} after.",
+            seconds(self.before),
+            seconds(self.after)
+        );
+        let _ = writeln!(out, "// {}", describe_form(self.form.kind));
+        if let Some(window) = self.args.window {
+            let _ = writeln!(
+                out,
+                "// Only statements at most {window} apart in the input were checked; farther ones stay ordered."
+            );
+        }
+        for (form, estimate) in &self.others {
+            let _ = writeln!(
+                out,
+                "// Not chosen: {} ({}).",
+                short_name(form.kind),
+                seconds(estimate)
+            );
+        }
+        for note in &self.found.notes {
+            let _ = writeln!(out, "// Note: {note}.");
+        }
+        out.push_str("// Every `&` below was checked on the model, forwards and in the reverse.\n");
+        out
+    }
+}
+
+fn describe_form(kind: FormKind) -> &'static str {
+    match kind {
+        FormKind::Levels => "Written as parallel groups: a statement waits for the whole group before it, not only for the statements it depends on.",
+        FormKind::Blocks => "Written with blocks: chains that depend on each other only at their ends run side by side; where the graph is not series-parallel, more is ordered than needed.",
+        FormKind::Sequential => "Written in the input order: no parallel form could be verified.",
+        FormKind::AsWritten => "Written as the input groups it: its own `&` verify, and no form found here is shorter.",
+    }
+}
+
+fn short_name(kind: FormKind) -> &'static str {
+    match kind {
+        FormKind::Levels => "parallel groups",
+        FormKind::Blocks => "blocks",
+        FormKind::Sequential => "the input order",
+        FormKind::AsWritten => "the input's own groups",
+    }
+}
+
+fn seconds(estimate: &Result<u64, String>) -> String {
+    match estimate {
+        Ok(ms) => format!("{:.2} s", *ms as f64 / 1000.0),
+        Err(reason) => format!("not estimated ({reason})"),
+    }
+}
+
+/// The critical path of `plans` in ms, as the simulator's timing preset weighs it.
+pub fn makespan(program: &Program, plans: &[Plan], protocol: Protocol) -> Result<u64, String> {
+    let options = CompileOptions {
+        protocol: match protocol {
+            Protocol::Paper => CodegenProtocol::Paper,
+            Protocol::Lattice | Protocol::Token => CodegenProtocol::Lattice,
+        },
+        name: "parallelise".into(),
+        ..CompileOptions::default()
+    };
+    let simulator = Simulator::new(program, plans, &options).map_err(|e| e.to_string())?;
+    Ok(simulator.critical_path(&Timing::default()).duration_ms)
+}
+
+/// The makespan of a written form, from its text (what the user gets).
+pub fn form_makespan(
+    found: &Parallelised,
+    form: &Form,
+    name: &str,
+    protocol: Protocol,
+    robot: &RobotApi,
+) -> Result<u64, String> {
+    let source = format!("{}\n{}", found.header, form.text);
+    let parsed = parse(&source);
+    let mut registry = RobotRegistry::builtin();
+    registry.add(robot.clone());
+    let (program, diagnostics) = analyze(&parsed.file, &registry);
+    let program = program.ok_or_else(|| {
+        format!(
+            "the output does not check ({} diagnostics)",
+            diagnostics.len()
+        )
+    })?;
+    let plan = program
+        .expand(name)
+        .ok_or_else(|| format!("no sequence `{name}` in the output"))?;
+    makespan(&program, &[plan], protocol)
+}
+
+fn is_identifier(name: &str) -> bool {
+    let mut chars = name.chars();
+    chars
+        .next()
+        .is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+        && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
+}

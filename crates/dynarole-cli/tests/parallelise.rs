@@ -1,0 +1,243 @@
+//! `dynarole parallelise` end to end: the paper's eight2car written in order comes back at
+//! least as parallel as the hand-parallel file, its output checks clean forwards and in
+//! reverse, the paper protocol gets flat groups, and bad inputs get the usual exit codes.
+
+mod common;
+
+use common::{dynarole, text};
+use std::path::{Path, PathBuf};
+
+fn scratch(name: &str, contents: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("parallelise-tests");
+    std::fs::create_dir_all(&dir).expect("scratch dir");
+    let path = dir.join(name);
+    std::fs::write(&path, contents).expect("scratch file");
+    path
+}
+
+/// eight2car.dr with every `&` made `;`.
+fn sequential_eight2car() -> PathBuf {
+    let shipped = std::fs::read_to_string(common::repo_root().join("examples/atron/eight2car.dr"))
+        .expect("example");
+    let sequential = shipped.replace(" &\n", ";\n");
+    assert!(!sequential.contains(" &"));
+    scratch("eight2car_in_order.dr", &sequential)
+}
+
+/// The two critical paths (ms) of the summary line on stderr.
+fn critical_paths(stderr: &str) -> (u64, u64) {
+    let line = stderr
+        .lines()
+        .find(|l| l.contains("critical path"))
+        .unwrap_or_else(|| panic!("no summary in {stderr}"));
+    let figures: Vec<u64> = line
+        .split_whitespace()
+        .filter_map(|w| w.parse::<f64>().ok())
+        .map(|s| (s * 1000.0).round() as u64)
+        .collect();
+    match figures.as_slice() {
+        [.., before, after] => (*before, *after),
+        _ => panic!("no figures in {line}"),
+    }
+}
+
+fn parallelise(file: &str, extra: &[&str]) -> std::process::Output {
+    let mut args = vec![
+        "parallelise",
+        file,
+        "--sequence",
+        "eight2car",
+        "--from",
+        "examples/atron/eight.json",
+    ];
+    args.extend(extra);
+    dynarole(&args)
+}
+
+#[test]
+fn eight2car_in_order_is_at_least_as_fast_as_the_hand_parallel_file() {
+    let input = sequential_eight2car();
+    let out = parallelise(&input.display().to_string(), &[]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let (before, after) = critical_paths(&text(&out.stderr));
+    let shipped = parallelise("examples/atron/eight2car.dr", &[]);
+    let (hand, _) = critical_paths(&text(&shipped.stderr));
+    assert!(after <= hand, "{after} ms, the shipped file {hand} ms");
+    assert!(after < before);
+    insta::assert_snapshot!("eight2car_parallel", text(&out.stdout));
+}
+
+#[test]
+fn the_output_checks_clean_forwards_and_its_reverse_from_the_end() {
+    let input = sequential_eight2car();
+    let output = scratch("eight2car_parallel.dr", "");
+    let out = parallelise(
+        &input.display().to_string(),
+        &["--name", "fast", "-o", &output.display().to_string()],
+    );
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let output_path = output.display().to_string();
+    let check = dynarole(&["check", &output_path, "--from", "examples/atron/eight.json"]);
+    assert_eq!(check.status.code(), Some(0), "{}", text(&check.stderr));
+    assert!(
+        !text(&check.stderr).contains("warning"),
+        "{}",
+        text(&check.stderr)
+    );
+    let replay = dynarole(&[
+        "replay",
+        &output_path,
+        "--sequence",
+        "fast",
+        "--from",
+        "examples/atron/eight.json",
+        "--expect",
+        "examples/atron/car.json",
+    ]);
+    assert_eq!(replay.status.code(), Some(0), "{}", text(&replay.stdout));
+    let reversed = dynarole(&["reverse", &output_path, "fast", "--name", "back"]);
+    assert_eq!(
+        reversed.status.code(),
+        Some(0),
+        "{}",
+        text(&reversed.stderr)
+    );
+    let back = scratch("eight2car_parallel_back.dr", &text(&reversed.stdout));
+    let check = dynarole(&[
+        "check",
+        &back.display().to_string(),
+        "--from",
+        "examples/atron/car.json",
+    ]);
+    assert_eq!(check.status.code(), Some(0), "{}", text(&check.stderr));
+    assert!(
+        !text(&check.stderr).contains("warning"),
+        "{}",
+        text(&check.stderr)
+    );
+}
+
+#[test]
+fn the_paper_protocol_gets_flat_groups_and_fig5_keeps_its_turns_in_order() {
+    let output = scratch("fig5_paper.dr", "");
+    let out = parallelise(
+        "examples/atron/fig5.dr",
+        &["--protocol", "paper", "-o", &output.display().to_string()],
+    );
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let written = std::fs::read_to_string(&output).expect("output");
+    let code: String = written.lines().filter(|l| !l.starts_with("//")).collect();
+    assert_eq!(code.matches('{').count(), 1, "no blocks: {written}");
+    // M0's turn (which sweeps M6 near M5 if M1 turns first) ends its group.
+    let turn = written
+        .lines()
+        .find(|l| !l.starts_with("//") && l.contains("M0.Joint.rotateFromToBy(0, 324"))
+        .expect("M0's turn");
+    assert!(turn.trim_end().ends_with(';'), "{written}");
+    let output_path = output.display().to_string();
+    let check = dynarole(&[
+        "check",
+        "--protocol",
+        "paper",
+        &output_path,
+        "--from",
+        "examples/atron/eight.json",
+    ]);
+    assert_eq!(check.status.code(), Some(0), "{}", text(&check.stderr));
+    assert!(
+        !text(&check.stderr).contains("warning"),
+        "{}",
+        text(&check.stderr)
+    );
+}
+
+#[test]
+fn bad_inputs_get_a_clear_error_and_the_usual_exit_codes() {
+    // Usage: a missing option, an option value that is not a name.
+    let out = dynarole(&[
+        "parallelise",
+        "examples/atron/eight2car.dr",
+        "--sequence",
+        "x",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    let out = parallelise("examples/atron/eight2car.dr", &["--name", "2fast"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        text(&out.stderr).contains("`2fast`"),
+        "{}",
+        text(&out.stderr)
+    );
+    // Bad input: no such sequence, a missing file.
+    let out = dynarole(&[
+        "parallelise",
+        "examples/atron/eight2car.dr",
+        "--sequence",
+        "nope",
+        "--from",
+        "examples/atron/eight.json",
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(text(&out.stderr).contains("no sequence `nope` in examples/atron/eight2car.dr"));
+    let out = parallelise("examples/atron/missing.dr", &[]);
+    assert_eq!(out.status.code(), Some(1));
+    // Nothing to do, a configuration of another robot.
+    let empty = scratch("empty.dr", "robot atron;\nsequence e {\n}\n");
+    let empty = empty.display().to_string();
+    let out = dynarole(&[
+        "parallelise",
+        &empty,
+        "--sequence",
+        "e",
+        "--from",
+        "examples/atron/eight.json",
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(text(&out.stderr).contains("nothing to parallelise"));
+    let out = dynarole(&[
+        "parallelise",
+        &empty,
+        "--sequence",
+        "e",
+        "--from",
+        "examples/mtran/mtran-snake4.json",
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(text(&out.stderr).contains("MTRAN"), "{}", text(&out.stderr));
+    // A sequence that does not replay from the configuration: its refused step, located.
+    let out = dynarole(&[
+        "parallelise",
+        "examples/atron/eight2car.dr",
+        "--sequence",
+        "eight2car",
+        "--from",
+        "examples/atron/car.json",
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    let stderr = text(&out.stderr);
+    assert!(stderr.contains("eight2car.dr:"), "{stderr}");
+    assert!(stderr.contains("does not replay"), "{stderr}");
+}
+
+#[test]
+fn a_window_checks_fewer_pairs_and_keeps_the_rest_in_order() {
+    let input = sequential_eight2car();
+    let input = input.display().to_string();
+    let full = parallelise(&input, &[]);
+    let windowed = parallelise(&input, &["--window", "2"]);
+    assert_eq!(
+        windowed.status.code(),
+        Some(0),
+        "{}",
+        text(&windowed.stderr)
+    );
+    let (_, exact) = critical_paths(&text(&full.stderr));
+    let (before, narrow) = critical_paths(&text(&windowed.stderr));
+    assert!(
+        exact <= narrow && narrow < before,
+        "{exact} {narrow} {before}"
+    );
+    assert!(text(&windowed.stdout).contains("at most 2 apart"));
+    let out = parallelise(&input, &["--window", "-1"]);
+    assert_eq!(out.status.code(), Some(2));
+}

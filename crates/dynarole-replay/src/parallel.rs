@@ -1,0 +1,725 @@
+//! `parallelise`: the most parallelism that is provably safe on the model, found from a
+//! sequence written in order. The dependency graph of the statements (what must stay ordered,
+//! decided by the independence check on the state before the earlier statement), its
+//! transitive reduction, and its expression in the language as parallel groups (levels) or as
+//! series-parallel blocks. Every form returned has been written out, parsed, replayed to the
+//! input's final configuration and checked for independence forward and in reverse.
+
+use crate::independence::check_independence;
+use crate::robot_world::RobotWorld;
+use crate::roles::Assignment;
+use crate::run::replay;
+use dynarole_core::ast::{ElementKind, Item, SeparatorKind};
+use dynarole_core::check::{resolve_statement, ResolvedStatement};
+use dynarole_core::diagnostic::{has_errors, Diagnostic, DiagnosticKind};
+use dynarole_core::expand::{Plan, PlanElement, PlanKind};
+use dynarole_core::format::{format_items, statement as statement_text};
+use dynarole_core::{analyze, parse, Program, RobotRegistry, Span};
+use dynarole_world::{compare, Configuration, Port};
+use std::collections::BTreeMap;
+use std::fmt::Write;
+
+mod layout;
+
+use layout::{ancestors, has_blocks, levels_layout, series_parallel, written_layout, BitSet};
+pub use layout::{transitive_reduction, Layout};
+
+/// Rounds of "verify the output, add the edge it shows to be missing" before giving up on
+/// parallelism (each round adds an edge; the sequential form is always valid).
+const MAX_REPAIRS: usize = 64;
+
+/// Which way the graph was written.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FormKind {
+    /// Parallel groups separated by `;` (what the paper's protocol can run).
+    Levels,
+    /// Nested blocks `{ A; B } & { C; D };` where the graph is series-parallel.
+    Blocks,
+    /// The input order, one statement per group (when nothing parallel could be verified).
+    Sequential,
+    /// The input's own groups and blocks, when they verify (a candidate, not a result).
+    AsWritten,
+}
+
+/// One verified way of writing the parallelised sequence.
+#[derive(Clone, Debug)]
+pub struct Form {
+    pub kind: FormKind,
+    pub layout: Layout,
+    /// `sequence NAME { ... }`, in the canonical layout.
+    pub text: String,
+    /// Top-level parallel groups.
+    pub groups: usize,
+}
+
+/// What `parallelise` found.
+#[derive(Clone, Debug)]
+pub struct Parallelised {
+    /// The statements in input order, as source text.
+    pub statements: Vec<String>,
+    /// The dependency graph after transitive reduction (earlier, later), input indices.
+    pub edges: Vec<(usize, usize)>,
+    /// Verified forms, levels (or the sequential fallback) first.
+    pub forms: Vec<Form>,
+    /// The robot and role declarations the new sequence needs, as source.
+    pub header: String,
+    /// What the verification changed or gave up, in words.
+    pub notes: Vec<String>,
+}
+
+/// What to parallelise and how.
+pub struct Request<'a> {
+    pub program: &'a Program<'a>,
+    /// The sequence's name in the program (its reverse is checked too when it has one).
+    pub sequence: &'a str,
+    pub world: RobotWorld,
+    pub assignment: &'a Assignment,
+    /// Name of the new sequence.
+    pub name: &'a str,
+    /// Also try series-parallel blocks (not for the paper's protocol).
+    pub blocks: bool,
+    /// Check only pairs at most this many statements apart; farther pairs stay ordered
+    /// (faster on long sequences, less parallel). `None`: every pair.
+    pub window: Option<usize>,
+}
+
+/// Builds the dependency graph of `request.sequence` from `request.world` and writes it as
+/// the verified forms. Fails with the replay's diagnostics when the input itself does not
+/// replay (a refused step), or with a message when no form can be verified.
+pub fn parallelise(request: &Request) -> Result<Parallelised, ParalleliseError> {
+    let program = request.program;
+    let plan = program.expand(request.sequence).ok_or_else(|| {
+        ParalleliseError::Message(format!("no sequence named `{}`", request.sequence))
+    })?;
+    let input = replay(
+        program,
+        std::slice::from_ref(&plan),
+        request.world.clone(),
+        request.assignment,
+    );
+    if input.n_rejected > 0 || has_errors(&input.diagnostics) {
+        return Err(ParalleliseError::Input(input.diagnostics));
+    }
+    let statements: Vec<ResolvedStatement> = plan.statements().into_iter().cloned().collect();
+    if statements.is_empty() {
+        return Err(ParalleliseError::Message(format!(
+            "`{}` has no statements: nothing to parallelise",
+            request.sequence
+        )));
+    }
+    let graph = Graph::build(request, &statements);
+    let verifier = Verifier {
+        request,
+        header: header(program),
+        texts: statement_texts(program, &statements),
+        expected: input.final_configuration,
+        suspicious: suspicious_spans(&input.diagnostics),
+        spans: statements.iter().map(|s| s.span).collect(),
+        reversible: program
+            .reverse_sequence(request.sequence, "r")
+            .is_some_and(|r| r.is_ok()),
+    };
+    let mut notes = Vec::new();
+    let (edges, levels) = verifier.levels(graph.edges.clone(), statements.len(), &mut notes)?;
+    let mut forms = vec![levels];
+    other_forms(&verifier, &plan, &edges, &mut forms, &mut notes);
+    Ok(Parallelised {
+        statements: verifier.texts.clone(),
+        edges,
+        forms,
+        header: verifier.header.clone(),
+        notes,
+    })
+}
+
+/// The candidates besides parallel groups: series-parallel blocks (unless the protocol is the
+/// paper's) and the input's own groups when it has any; those that verify are added.
+fn other_forms(
+    verifier: &Verifier,
+    plan: &Plan,
+    edges: &[(usize, usize)],
+    forms: &mut Vec<Form>,
+    notes: &mut Vec<String>,
+) {
+    let blocks = verifier.request.blocks;
+    let n = verifier.texts.len();
+    let mut candidates = Vec::new();
+    if blocks {
+        candidates.push((FormKind::Blocks, series_parallel(n, edges)));
+    }
+    let written = written_layout(plan, &mut 0);
+    let sequential =
+        matches!(&written, Layout::Seq(v) if v.iter().all(|g| matches!(g, Layout::Op(_))));
+    if !sequential && (blocks || !has_blocks(&written)) {
+        candidates.push((FormKind::AsWritten, written));
+    }
+    for (kind, layout) in candidates {
+        if forms.iter().any(|f| f.layout == layout) {
+            continue;
+        }
+        match verifier.form(kind, layout) {
+            Ok(form) => forms.push(form),
+            Err(failure) => notes.push(match kind {
+                FormKind::AsWritten => {
+                    format!("the input's own groups do not verify ({})", failure.reason)
+                }
+                _ => format!("the block form did not verify ({})", failure.reason),
+            }),
+        }
+    }
+}
+
+/// Why nothing could be written.
+#[derive(Clone, Debug)]
+pub enum ParalleliseError {
+    /// The input does not replay: its refused steps, at their source locations.
+    Input(Vec<Diagnostic>),
+    Message(String),
+}
+
+/// The dependency graph of the input's statements: (earlier, later) pairs that must stay
+/// ordered, transitively reduced.
+struct Graph {
+    edges: Vec<(usize, usize)>,
+}
+
+impl Graph {
+    /// For each statement, from the nearest earlier one back: an edge when the pair must stay
+    /// ordered and is not already ordered through the edges found. Parents found this way
+    /// never reach one another, so the result is already transitively reduced.
+    fn build(request: &Request, statements: &[ResolvedStatement]) -> Graph {
+        let n = statements.len();
+        let pre = pre_states(request, statements);
+        let modules: Vec<Option<&str>> = statements
+            .iter()
+            .map(|s| request.assignment.get(&s.label).map(String::as_str))
+            .collect();
+        let mut ancestors = vec![BitSet::new(n); n];
+        let mut edges = Vec::new();
+        for j in 0..n {
+            for i in (0..j).rev() {
+                if ancestors[j].contains(i) {
+                    continue;
+                }
+                let pair = Pair {
+                    request,
+                    a: &statements[i],
+                    b: &statements[j],
+                    modules: (modules[i], modules[j]),
+                };
+                let beyond = request.window.is_some_and(|w| j - i > w);
+                if beyond || pair.must_stay_ordered(&pre[i], &pre[i + 1]) {
+                    edges.push((i, j));
+                    let above = ancestors[i].clone();
+                    ancestors[j].union(&above);
+                    ancestors[j].insert(i);
+                }
+            }
+        }
+        // Edges added without a check (beyond the window) may be implied by later ones.
+        let edges = match request.window {
+            Some(_) => transitive_reduction(n, &edges),
+            None => {
+                edges.sort_unstable();
+                edges
+            }
+        };
+        Graph { edges }
+    }
+}
+
+/// The world before each statement, in input order, and at the end.
+fn pre_states(request: &Request, statements: &[ResolvedStatement]) -> Vec<RobotWorld> {
+    let mut world = request.world.clone();
+    let mut out = Vec::with_capacity(statements.len() + 1);
+    for statement in statements {
+        out.push(world.clone());
+        if let Some(module) = request.assignment.get(&statement.label) {
+            // The input replayed without a refusal, so this cannot fail.
+            let _ = world.apply(&request.program.robot, statement, module);
+        }
+    }
+    out.push(world);
+    out
+}
+
+/// The same configuration, exactly or up to rigid motion (what `check --from` compares).
+fn same_configuration(a: &RobotWorld, b: &RobotWorld) -> bool {
+    // Exact equality first, on the worlds' own configurations (no copy).
+    let equal = match (a, b) {
+        (RobotWorld::Atron(x), RobotWorld::Atron(y)) => x.configuration() == y.configuration(),
+        (RobotWorld::Mtran(x), RobotWorld::Mtran(y)) => x.configuration() == y.configuration(),
+        _ => false,
+    };
+    equal || compare(&a.configuration(), &b.configuration()).is_ok()
+}
+
+/// Two statements, the earlier first, and their modules.
+struct Pair<'a> {
+    request: &'a Request<'a>,
+    a: &'a ResolvedStatement,
+    b: &'a ResolvedStatement,
+    modules: (Option<&'a str>, Option<&'a str>),
+}
+
+impl Pair<'_> {
+    /// Conservative: same module, same latch, a step refused in either order, different
+    /// results in the two orders, or two turns that may sweep through each other (decided
+    /// by `check_independence` on the pair as a group). `before` and `after` are the states
+    /// around `a` in the input.
+    fn must_stay_ordered(&self, before: &RobotWorld, after: &RobotWorld) -> bool {
+        let (Some(ma), Some(mb)) = self.modules else {
+            return true;
+        };
+        if ma == mb || self.same_latch(before, ma, mb) {
+            return true;
+        }
+        let robot = &self.request.program.robot;
+        // `a` then `b` is `b` on the state after `a`; `b` then `a` from the state before.
+        let mut ab = after.clone();
+        let mut ba = before.clone();
+        let accepted = ab.apply(robot, self.b, mb).is_ok()
+            && ba.apply(robot, self.b, mb).is_ok()
+            && ba.apply(robot, self.a, ma).is_ok();
+        if !accepted || !same_configuration(&ab, &ba) {
+            return true;
+        }
+        if !(part_is(robot, self.a, "Joint") && part_is(robot, self.b, "Joint")) {
+            // Only two turns have a motion check; the rest is what was just done.
+            return false;
+        }
+        let group = Plan {
+            elements: vec![
+                element(self.a, SeparatorKind::Parallel),
+                element(self.b, SeparatorKind::Sequential),
+            ],
+        };
+        let program = self.request.program;
+        !check_independence(program, &[group], before.clone(), self.request.assignment).is_empty()
+    }
+
+    /// Connector operations on the two ends of one latch (made, or facing, before `a`).
+    fn same_latch(&self, world: &RobotWorld, ma: &str, mb: &str) -> bool {
+        let robot = &self.request.program.robot;
+        if !(part_is(robot, self.a, "Connector") && part_is(robot, self.b, "Connector")) {
+            return false;
+        }
+        let config = world.configuration();
+        let (Some(pa), Some(pb)) = (
+            port(robot, self.a, ma, &config),
+            port(robot, self.b, mb, &config),
+        ) else {
+            return false;
+        };
+        partner(&config, pa) == Some(pb) || partner(&config, pb) == Some(pa)
+    }
+}
+
+/// Whether `statement` works on the plugin part named `name` (`Connector`, `Joint`).
+fn part_is(robot: &dynarole_core::RobotApi, statement: &ResolvedStatement, name: &str) -> bool {
+    robot
+        .parts
+        .get(statement.part)
+        .is_some_and(|p| p.name == name)
+}
+
+/// The port a connector statement works on.
+fn port(
+    robot: &dynarole_core::RobotApi,
+    statement: &ResolvedStatement,
+    module: &str,
+    config: &Configuration,
+) -> Option<Port> {
+    if !part_is(robot, statement, "Connector") {
+        return None;
+    }
+    let connector = u8::try_from(statement.index?).ok()?;
+    let index = match config {
+        Configuration::Atron(c) => c.module_index(module),
+        Configuration::Mtran(c) => c.module_index(module),
+    }?;
+    Some(Port {
+        module: index,
+        connector,
+    })
+}
+
+/// The port latched to `port`, or else the one it faces.
+fn partner(config: &Configuration, port: Port) -> Option<Port> {
+    match config {
+        Configuration::Atron(c) => c.latched_to(port).or_else(|| c.facing(port)),
+        Configuration::Mtran(c) => c.latched_to(port).or_else(|| c.facing(port)),
+    }
+}
+
+fn element(statement: &ResolvedStatement, separator: SeparatorKind) -> PlanElement {
+    PlanElement {
+        kind: PlanKind::Op(statement.clone()),
+        separator,
+        span: statement.span,
+    }
+}
+
+/// Writes forms out and checks them on the model, exactly as `check --from` would.
+struct Verifier<'a> {
+    request: &'a Request<'a>,
+    header: String,
+    texts: Vec<String>,
+    expected: Configuration,
+    /// Statements the input's replay already calls suspicious (by input index).
+    suspicious: Vec<Span>,
+    spans: Vec<Span>,
+    reversible: bool,
+}
+
+/// Why a written form was not accepted, with the edge that would have prevented it.
+struct Failure {
+    reason: String,
+    edge: Option<(usize, usize)>,
+    /// A statement refused (or newly suspicious) in the written form, and which way it ran.
+    refused: Option<(usize, Direction)>,
+}
+
+impl Failure {
+    fn new(reason: String) -> Failure {
+        Failure {
+            reason,
+            edge: None,
+            refused: None,
+        }
+    }
+
+    /// The edge to add: the pair named, or for a refused statement the nearest statement
+    /// not yet ordered with it, on the side it ran after (before it in the input going
+    /// forwards, after it in the reverse).
+    fn repair(&self, n: usize, edges: &[(usize, usize)]) -> Option<(usize, usize)> {
+        if self.edge.is_some() {
+            return self.edge;
+        }
+        let (j, direction) = self.refused?;
+        let anc = ancestors(n, edges);
+        match direction {
+            Direction::Forward => (0..j).rev().find(|i| !anc[j].contains(*i)).map(|i| (i, j)),
+            Direction::Backward => (j + 1..n).find(|k| !anc[*k].contains(j)).map(|k| (j, k)),
+        }
+    }
+}
+
+impl Verifier<'_> {
+    /// The levels form, repaired edge by edge until it verifies, else the input order.
+    fn levels(
+        &self,
+        mut edges: Vec<(usize, usize)>,
+        n: usize,
+        notes: &mut Vec<String>,
+    ) -> Result<(Vec<(usize, usize)>, Form), ParalleliseError> {
+        for _ in 0..MAX_REPAIRS {
+            let failure = match self.form(FormKind::Levels, levels_layout(n, &edges)) {
+                Ok(form) => return Ok((edges, form)),
+                Err(failure) => failure,
+            };
+            match failure.repair(n, &edges).filter(|e| !edges.contains(e)) {
+                Some(edge) => {
+                    notes.push(format!(
+                        "kept `{}` before `{}`: {}",
+                        self.texts[edge.0], self.texts[edge.1], failure.reason
+                    ));
+                    edges.push(edge);
+                    edges = transitive_reduction(n, &edges);
+                }
+                None => {
+                    notes.push(format!("written in the input order: {}", failure.reason));
+                    break;
+                }
+            }
+        }
+        let chain: Vec<(usize, usize)> = (1..n).map(|j| (j - 1, j)).collect();
+        let layout = Layout::Seq((0..n).map(Layout::Op).collect());
+        let form = self.form(FormKind::Sequential, layout).map_err(|f| {
+            ParalleliseError::Message(format!(
+                "even the input order does not verify: {}",
+                f.reason
+            ))
+        })?;
+        Ok((chain, form))
+    }
+
+    /// Writes `layout`, parses it and checks it; the form when it passes.
+    fn form(&self, kind: FormKind, layout: Layout) -> Result<Form, Failure> {
+        let mut writer = Writer {
+            texts: &self.texts,
+            out: String::new(),
+            starts: Vec::new(),
+        };
+        writer.sequence(self.request.name, &layout);
+        let groups = match &layout {
+            Layout::Seq(v) => v.len(),
+            _ => 1,
+        };
+        let Writer {
+            out: text, starts, ..
+        } = writer;
+        self.verify(&text, &starts)?;
+        Ok(Form {
+            kind,
+            layout,
+            text,
+            groups,
+        })
+    }
+
+    /// Replays the written sequence (and its reverse from the end) and checks independence.
+    fn verify(&self, text: &str, starts: &[(usize, usize)]) -> Result<(), Failure> {
+        let reverse_name = format!("{}_r", self.request.name);
+        let mut source = format!("{}\n{text}", self.header);
+        let offset = self.header.len() + 1;
+        if self.reversible {
+            let _ = write!(
+                source,
+                "\nsequence {reverse_name} = reverse {};\n",
+                self.request.name
+            );
+        }
+        let index: BTreeMap<u32, usize> = starts
+            .iter()
+            .filter_map(|(at, s)| Some((u32::try_from(at + offset).ok()?, *s)))
+            .collect();
+        let parsed = parse(&source);
+        let mut registry = RobotRegistry::builtin();
+        registry.add(self.request.program.robot.clone());
+        let (program, diagnostics) = analyze(&parsed.file, &registry);
+        let program = program
+            .filter(|_| parsed.diagnostics.is_empty() && !has_errors(&diagnostics))
+            .ok_or_else(|| {
+                Failure::new(format!(
+                    "the written sequence does not check: {:?}",
+                    diagnostics.first().or(parsed.diagnostics.first())
+                ))
+            })?;
+        let lookup = Lookup { index: &index };
+        let forward = program.expand(self.request.name).unwrap_or_default();
+        let end = self.run(
+            &program,
+            &forward,
+            self.request.world.clone(),
+            &lookup,
+            Direction::Forward,
+        )?;
+        if let Err(difference) = compare(&end, &self.expected) {
+            let first = difference
+                .to_string()
+                .lines()
+                .next()
+                .unwrap_or_default()
+                .to_string();
+            return Err(Failure::new(format!(
+                "it ends elsewhere than the input ({first})"
+            )));
+        }
+        if self.reversible {
+            let backward = program.expand(&reverse_name).unwrap_or_default();
+            let world = RobotWorld::new(end, &program.robot).map_err(Failure::new)?;
+            self.run(&program, &backward, world, &lookup, Direction::Backward)?;
+        }
+        Ok(())
+    }
+
+    /// Replays `plan` and checks its groups; the end configuration when nothing is wrong.
+    fn run(
+        &self,
+        program: &Program,
+        plan: &Plan,
+        world: RobotWorld,
+        lookup: &Lookup,
+        direction: Direction,
+    ) -> Result<Configuration, Failure> {
+        let assignment = self.request.assignment;
+        let plans = std::slice::from_ref(plan);
+        let result = replay(program, plans, world.clone(), assignment);
+        for d in &result.diagnostics {
+            let new_warning = match &d.kind {
+                DiagnosticKind::StepSuspicious { .. } => lookup
+                    .statement(d.span)
+                    .is_none_or(|s| !self.suspicious.contains(&self.spans[s])),
+                _ => true,
+            };
+            if new_warning {
+                let reason = format!("{direction}, {}", describe(d));
+                return Err(Failure {
+                    refused: lookup.statement(d.span).map(|j| (j, direction)),
+                    ..Failure::new(reason)
+                });
+            }
+        }
+        if let Some(d) = check_independence(program, plans, world, assignment).first() {
+            let reason = format!("{direction}, {}", describe(d));
+            let edge = match &d.kind {
+                DiagnosticKind::NotIndependent { other, .. } => {
+                    match (lookup.statement(d.span), lookup.statement(*other)) {
+                        (Some(a), Some(b)) => Some((a.min(b), a.max(b))),
+                        _ => None,
+                    }
+                }
+                _ => None,
+            };
+            return Err(Failure {
+                edge,
+                ..Failure::new(reason)
+            });
+        }
+        Ok(result.final_configuration)
+    }
+}
+
+#[derive(Clone, Copy, Debug)]
+enum Direction {
+    Forward,
+    Backward,
+}
+
+impl std::fmt::Display for Direction {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Direction::Forward => "forwards",
+            Direction::Backward => "in its reverse",
+        })
+    }
+}
+
+/// From a span of the written file to the input index of its statement.
+struct Lookup<'a> {
+    index: &'a BTreeMap<u32, usize>,
+}
+
+impl Lookup<'_> {
+    fn statement(&self, span: Span) -> Option<usize> {
+        self.index.get(&span.start).copied()
+    }
+}
+
+fn describe(d: &Diagnostic) -> String {
+    match &d.kind {
+        DiagnosticKind::StepRejected { step, reason } => format!("`{step}` is refused: {reason}"),
+        DiagnosticKind::StepSuspicious { step, reason } => format!("`{step}`: {reason}"),
+        DiagnosticKind::NotIndependent {
+            step,
+            other_step,
+            reason,
+            ..
+        } => {
+            format!("`{step}` and `{other_step}` are not independent: {reason}")
+        }
+        other => format!("{other:?}"),
+    }
+}
+
+/// Prints a layout in the canonical layout of `fmt`, noting where each statement starts.
+struct Writer<'a> {
+    texts: &'a [String],
+    out: String,
+    starts: Vec<(usize, usize)>,
+}
+
+impl Writer<'_> {
+    fn sequence(&mut self, name: &str, layout: &Layout) {
+        let _ = write!(self.out, "sequence {name} {{");
+        self.body(layout, 1);
+        self.out.push_str("\n}\n");
+    }
+
+    /// The groups of a `Seq` (or one group), one element per line.
+    fn body(&mut self, layout: &Layout, depth: usize) {
+        let groups: Vec<&Layout> = match layout {
+            Layout::Seq(v) => v.iter().collect(),
+            other => vec![other],
+        };
+        for g in groups {
+            let members: Vec<&Layout> = match g {
+                Layout::Par(v) => v.iter().collect(),
+                other => vec![other],
+            };
+            for (k, m) in members.iter().enumerate() {
+                self.out.push('\n');
+                self.out.push_str(&"    ".repeat(depth));
+                self.element(m, depth);
+                self.out
+                    .push_str(if k + 1 == members.len() { ";" } else { " &" });
+            }
+        }
+    }
+
+    fn element(&mut self, layout: &Layout, depth: usize) {
+        match layout {
+            Layout::Op(s) => {
+                self.starts.push((self.out.len(), *s));
+                self.out
+                    .push_str(self.texts.get(*s).map_or("", String::as_str));
+            }
+            other => {
+                self.out.push('{');
+                self.body(other, depth + 1);
+                self.out.push('\n');
+                self.out.push_str(&"    ".repeat(depth));
+                self.out.push('}');
+            }
+        }
+    }
+}
+
+/// The robot and role declarations of the program, as source.
+fn header(program: &Program) -> String {
+    let items: Vec<Item> = program
+        .file
+        .items
+        .iter()
+        .filter(|item| matches!(item, Item::Robot(_) | Item::Role(_)))
+        .cloned()
+        .collect();
+    format_items(items)
+}
+
+/// Each statement as written in the source when it is executed as written (its constants
+/// kept), else as executed (a reversed statement, with its values).
+fn statement_texts(program: &Program, statements: &[ResolvedStatement]) -> Vec<String> {
+    let mut written: BTreeMap<Span, &dynarole_core::ast::Statement> = BTreeMap::new();
+    for decl in program.file.sequences() {
+        if let dynarole_core::ast::SequenceDef::Body(body) = &decl.definition {
+            collect_statements(body, &mut written);
+        }
+    }
+    statements
+        .iter()
+        .map(|s| {
+            written
+                .get(&s.span)
+                .filter(|w| {
+                    resolve_statement(program.file, w, &program.robot).is_ok_and(|r| r == *s)
+                })
+                .map_or_else(|| s.describe(&program.robot), |w| statement_text(w))
+        })
+        .collect()
+}
+
+fn collect_statements<'f>(
+    body: &'f dynarole_core::ast::Body,
+    out: &mut BTreeMap<Span, &'f dynarole_core::ast::Statement>,
+) {
+    // Bounded by the parser's nesting limit.
+    for element in &body.elements {
+        match &element.kind {
+            ElementKind::Statement(s) => {
+                out.insert(element.span, s);
+            }
+            ElementKind::Block(inner) => collect_statements(inner, out),
+            ElementKind::Call(_) => {}
+        }
+    }
+}
+
+fn suspicious_spans(diagnostics: &[Diagnostic]) -> Vec<Span> {
+    diagnostics
+        .iter()
+        .filter(|d| matches!(d.kind, DiagnosticKind::StepSuspicious { .. }))
+        .map(|d| d.span)
+        .collect()
+}

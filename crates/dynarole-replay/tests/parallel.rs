@@ -1,0 +1,329 @@
+//! `parallelise` on the paper's sequences and on random sequences generated on the models:
+//! the output replays to the input's end, and every `&` it writes passes the independence
+//! check, forwards and in the reverse.
+
+use dynarole_core::{analyze, parse, RobotRegistry};
+use dynarole_replay::{
+    assign_modules, check_independence, parallelise, replay, FormKind, Layout, Parallelised,
+    Request, RobotWorld,
+};
+use dynarole_world::{compare, Configuration, MtranJoint, MtranWorld, World};
+use proptest::prelude::*;
+
+const EIGHT2CAR: &str = include_str!("../../../examples/atron/eight2car.dr");
+const FIG5: &str = include_str!("../../../examples/atron/fig5.dr");
+const EIGHT: &str = include_str!("../../../examples/atron/eight.json");
+
+/// Parallelises `sequence` of `source` from `config` (lattice forms, blocks allowed).
+fn run(source: &str, sequence: &str, config: &str) -> Parallelised {
+    let parsed = parse(source);
+    let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
+    let program = program.unwrap_or_else(|| panic!("{diagnostics:?}"));
+    let config = Configuration::from_json_str(config).expect("configuration");
+    let plan = program.expand(sequence).expect("sequence");
+    let assignment = assign_modules(&program, &[plan], &config).expect("labels");
+    let world = RobotWorld::new(config, &program.robot).expect("world");
+    let request = Request {
+        program: &program,
+        sequence,
+        world,
+        assignment: &assignment,
+        name: "out",
+        blocks: true,
+        window: None,
+    };
+    parallelise(&request).unwrap_or_else(|e| panic!("{e:?}"))
+}
+
+/// Replays `out` of `header + text` and its reverse, and checks independence on both: the
+/// final configuration of the forward run.
+fn check_written(found: &Parallelised, text: &str, config: &str) -> Configuration {
+    let source = format!("{}\n{text}\nsequence back = reverse out;\n", found.header);
+    let parsed = parse(&source);
+    let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
+    let program = program.unwrap_or_else(|| panic!("{source}\n{diagnostics:?}"));
+    let config = Configuration::from_json_str(config).expect("configuration");
+    let forward = vec![program.expand("out").expect("out")];
+    let assignment = assign_modules(&program, &forward, &config).expect("labels");
+    let world = RobotWorld::new(config, &program.robot).expect("world");
+    let done = replay(&program, &forward, world.clone(), &assignment);
+    assert_eq!(done.n_rejected, 0, "{source}\n{:?}", done.diagnostics);
+    let warnings = check_independence(&program, &forward, world, &assignment);
+    assert!(warnings.is_empty(), "{source}\n{warnings:?}");
+    let back = vec![program.expand("back").expect("back")];
+    let end = RobotWorld::new(done.final_configuration.clone(), &program.robot).expect("world");
+    let undone = replay(&program, &back, end.clone(), &assignment);
+    assert_eq!(undone.n_rejected, 0, "{source}\n{:?}", undone.diagnostics);
+    let warnings = check_independence(&program, &back, end, &assignment);
+    assert!(warnings.is_empty(), "reverse of\n{source}\n{warnings:?}");
+    done.final_configuration
+}
+
+/// The final configuration of `sequence` replayed as written.
+fn replayed(source: &str, sequence: &str, config: &str) -> Configuration {
+    let parsed = parse(source);
+    let (program, _) = analyze(&parsed.file, &RobotRegistry::builtin());
+    let program = program.expect("program");
+    let config = Configuration::from_json_str(config).expect("configuration");
+    let plans = vec![program.expand(sequence).expect("sequence")];
+    let assignment = assign_modules(&program, &plans, &config).expect("labels");
+    let world = RobotWorld::new(config, &program.robot).expect("world");
+    replay(&program, &plans, world, &assignment).final_configuration
+}
+
+/// The group (top-level element) each statement is in.
+fn group_of(layout: &Layout, statement: usize) -> Option<usize> {
+    let Layout::Seq(groups) = layout else {
+        return contains(layout, statement).then_some(0);
+    };
+    groups.iter().position(|g| contains(g, statement))
+}
+
+fn contains(layout: &Layout, statement: usize) -> bool {
+    match layout {
+        Layout::Op(s) => *s == statement,
+        Layout::Seq(v) | Layout::Par(v) => v.iter().any(|l| contains(l, statement)),
+    }
+}
+
+fn sequential(source: &str) -> String {
+    source.replace(" &\n", ";\n")
+}
+
+#[test]
+fn eight2car_written_in_order_comes_back_parallel_and_safe() {
+    let source = sequential(EIGHT2CAR);
+    assert!(!source.contains(" &"));
+    let found = run(&source, "eight2car", EIGHT);
+    assert_eq!(found.statements.len(), 25);
+    let expected = replayed(EIGHT2CAR, "eight2car", EIGHT);
+    for form in &found.forms {
+        let end = check_written(&found, &form.text, EIGHT);
+        assert_eq!(compare(&end, &expected), Ok(()));
+    }
+    assert_eq!(found.forms[0].kind, FormKind::Levels);
+    // The shipped, hand-parallel file has 16 groups.
+    assert!(found.forms[0].groups <= 16, "{}", found.forms[0].text);
+}
+
+#[test]
+fn the_order_dependent_turns_of_fig5_stay_in_order() {
+    // Fig. 5 joins M0's and M1's turns (statements 11 and 12); they sweep through each other
+    // in one order, so every form keeps them in different groups, M0's first.
+    let found = run(FIG5, "eight2car", EIGHT);
+    assert!(found.statements[11].starts_with("M0.Joint.rotateFromToBy(0, 324"));
+    assert!(found.statements[12].starts_with("M1.Joint.rotateFromToBy(324, 0"));
+    for form in &found.forms {
+        let (a, b) = (group_of(&form.layout, 11), group_of(&form.layout, 12));
+        assert!(a.is_some() && a < b, "{}", form.text);
+        check_written(&found, &form.text, EIGHT);
+    }
+}
+
+#[test]
+fn a_chain_of_dependent_statements_stays_a_chain() {
+    // One module's connector, released and made again: nothing can move.
+    let source = "robot atron;\nsequence s {\n    M0.Connector[0].retract();\n    \
+                  M0.Connector[0].extend();\n    M0.Connector[0].retract();\n}\n";
+    let found = run(source, "s", EIGHT);
+    assert_eq!(found.edges, vec![(0, 1), (1, 2)]);
+    assert_eq!(found.forms.len(), 1);
+    assert_eq!(found.forms[0].groups, 3);
+}
+
+#[test]
+fn transitive_reduction_keeps_only_the_needed_edges() {
+    let edges = [(0, 1), (1, 2), (0, 2), (2, 3), (0, 3), (1, 4)];
+    assert_eq!(
+        dynarole_replay::transitive_reduction(5, &edges),
+        vec![(0, 1), (1, 2), (1, 4), (2, 3)]
+    );
+}
+
+/// An ATRON chain of `n` modules, alternately east-west and north-south (as the rotation
+/// experiments' chains).
+fn atron_chain(n: usize) -> String {
+    let modules: Vec<String> = (0..n)
+        .map(|k| {
+            let orientation = if k % 2 == 0 { "EW" } else { "NS" };
+            format!(
+                r#"{{"name": "M{k}", "id": {k}, "position": [{k}, 0, {}], "orientation": "{orientation}", "joint": 0}}"#,
+                k % 2
+            )
+        })
+        .collect();
+    let connections: Vec<String> = (0..n - 1)
+        .map(|k| {
+            if k % 2 == 0 {
+                format!(r#"["M{k}", 5, "M{}", 0]"#, k + 1)
+            } else {
+                format!(r#"["M{k}", 2, "M{}", 1]"#, k + 1)
+            }
+        })
+        .collect();
+    format!(
+        r#"{{"name": "chain", "robot": "ATRON", "modules": [{}], "connections": [{}]}}"#,
+        modules.join(", "),
+        connections.join(", ")
+    )
+}
+
+/// A straight M-TRAN snake of `n` modules.
+fn mtran_snake(n: usize) -> String {
+    let modules: Vec<String> = (0..n)
+        .map(|k| {
+            format!(
+                r#"{{"name": "T{k}", "id": {k}, "position": [{}, 0, 0], "orientation": "ORI2", "joints_deg": [0, 0]}}"#,
+                2 * k
+            )
+        })
+        .collect();
+    let connections: Vec<String> = (0..n - 1)
+        .map(|k| format!(r#"["T{}", 0, "T{k}", 3]"#, k + 1))
+        .collect();
+    format!(
+        r#"{{"name": "snake", "robot": "MTRAN", "modules": [{}], "connections": [{}]}}"#,
+        modules.join(", "),
+        connections.join(", ")
+    )
+}
+
+/// Random operations tried on the ATRON model; the accepted ones (without warnings), as
+/// statements. A pick is (module, operation, connector or direction).
+fn atron_moves(config: &str, n: usize, picks: &[(usize, u8, u8)]) -> Vec<String> {
+    let Ok(Configuration::Atron(c)) = Configuration::from_json_str(config) else {
+        panic!("atron configuration");
+    };
+    let mut world = World::new(c);
+    let mut out = Vec::new();
+    for &(m, op, arg) in picks {
+        let (m, name) = (m % n, format!("M{}", m % n));
+        let joint = world.configuration().modules()[m].joint_units;
+        let c = arg % 8;
+        let mut trial = world.clone();
+        let (text, ok) = match op % 3 {
+            0 => (
+                format!("M{m}.Connector[{c}].retract()"),
+                trial.retract(&name, c),
+            ),
+            1 => (
+                format!("M{m}.Connector[{c}].extend()"),
+                trial.extend(&name, c),
+            ),
+            _ => {
+                let up = arg % 2 == 0;
+                let to = if up {
+                    (joint + 108) % 432
+                } else {
+                    (joint + 324) % 432
+                };
+                (
+                    format!("M{m}.Joint.rotateFromToBy({joint}, {to}, {up}, 150)"),
+                    trial.rotate(&name, joint, to, up),
+                )
+            }
+        };
+        // A step with a warning is done by the model but not kept: the world goes back.
+        if ok.is_ok_and(|o| o.warnings.is_empty()) {
+            world = trial;
+            out.push(text);
+        }
+    }
+    out
+}
+
+/// The same for the M-TRAN model (joints turn between -90, 0 and 90 degrees).
+fn mtran_moves(config: &str, n: usize, picks: &[(usize, u8, u8)]) -> Vec<String> {
+    let Ok(Configuration::Mtran(c)) = Configuration::from_json_str(config) else {
+        panic!("mtran configuration");
+    };
+    let mut world = MtranWorld::new(c);
+    let mut out = Vec::new();
+    for &(m, op, arg) in picks {
+        let (m, name) = (m % n, format!("T{}", m % n));
+        let c = arg % 6;
+        let mut trial = world.clone();
+        let (text, ok) = match op % 3 {
+            0 => (
+                format!("M{m}.Connector[{c}].retract()"),
+                trial.disconnect(&name, c),
+            ),
+            1 => (
+                format!("M{m}.Connector[{c}].extend()"),
+                trial.connect(&name, c),
+            ),
+            _ => {
+                let (joint, index) = if arg % 2 == 0 {
+                    (MtranJoint::North, 0)
+                } else {
+                    (MtranJoint::South, 1)
+                };
+                let from = world.configuration().modules()[m].joints_deg[index];
+                let to = match (from, arg % 4 < 2) {
+                    (0, true) => 90,
+                    (0, false) => -90,
+                    _ => 0,
+                };
+                let up = to > from;
+                (
+                    format!("M{m}.Joint[{index}].rotateFromToBy({from}, {to}, {up}, 100)"),
+                    trial.rotate(&name, joint, from, to, up),
+                )
+            }
+        };
+        // A step with a warning is done by the model but not kept: the world goes back.
+        if ok.is_ok_and(|o| o.warnings.is_empty()) {
+            world = trial;
+            out.push(text);
+        }
+    }
+    out
+}
+
+fn source_of(robot: &str, moves: &[String]) -> String {
+    let body: String = moves.iter().map(|m| format!("    {m};\n")).collect();
+    format!("robot {robot};\nsequence s {{\n{body}}}\n")
+}
+
+fn random_case(robot: &str, config: &str, moves: &[String]) -> Result<(), TestCaseError> {
+    let source = source_of(robot, moves);
+    let found = run(&source, "s", config);
+    let expected = replayed(&source, "s", config);
+    for form in &found.forms {
+        let end = check_written(&found, &form.text, config);
+        prop_assert_eq!(
+            compare(&end, &expected),
+            Ok(()),
+            "{}\n{}",
+            source,
+            form.text
+        );
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 24, ..ProptestConfig::default() })]
+
+    #[test]
+    fn random_atron_sequences_replay_to_the_same_end(
+        n in 3usize..8,
+        picks in proptest::collection::vec((0usize..8, 0u8..3, 0u8..8), 1..40),
+    ) {
+        let config = atron_chain(n);
+        let moves = atron_moves(&config, n, &picks);
+        prop_assume!(!moves.is_empty());
+        random_case("atron", &config, &moves)?;
+    }
+
+    #[test]
+    fn random_mtran_sequences_replay_to_the_same_end(
+        n in 2usize..6,
+        picks in proptest::collection::vec((0usize..6, 0u8..3, 0u8..8), 1..24),
+    ) {
+        let config = mtran_snake(n);
+        let moves = mtran_moves(&config, n, &picks);
+        prop_assume!(!moves.is_empty());
+        random_case("mtran", &config, &moves)?;
+    }
+}
