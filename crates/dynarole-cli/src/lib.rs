@@ -213,6 +213,7 @@ enum Command {
     /// Rewrite a sequence written in order with the most parallelism that is provably safe
     /// on the model; prints a complete `.dr` file and the makespan before and after.
     Parallelise {
+        /// The source file (.dr) holding the sequence.
         file: PathBuf,
         /// The sequence to parallelise.
         #[arg(long, value_name = "NAME")]
