@@ -8,7 +8,7 @@
 
 #include <stdint.h>
 
-struct dr_module; /* defined in dr_module.h */
+struct dr_module; /* defined by the protocol's runtime; its entry points: dr_module.h */
 
 /* Status of the operations started with dr_hal_op_start: DR_OP_DONE once every operation
  * started so far has taken effect (a module runs one operation at a time, except the paper

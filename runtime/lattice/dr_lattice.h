@@ -10,6 +10,7 @@
 #include <stdint.h>
 #include "dr_conf.h"
 #include "dr_hal.h"
+#include "dr_module.h"
 #include "dr_packet.h"
 
 /* Returned by a program's address_of when no role, or several, match this module. */
@@ -96,25 +97,18 @@ typedef struct dr_module {
  * predicates, starts from the bottom and notes the connected channels to hear from first).
  * Cost: O(statements + DR_CONF_CHANNELS). */
 void dr_module_init(dr_module_t *m, const dr_program_t *program, void *platform);
-/* One step of the module: merge is done on receipt; here it starts or polls its own
- * operation and broadcasts when due. Call every few milliseconds. Cost: O(statements). */
-void dr_module_step(dr_module_t *m);
-/* A packet arrived on `channel` (the connector it came in on; with DR_PROGRAM_NO_NV a valid
- * one counts as hearing that neighbour); malformed and foreign packets are counted and
- * dropped. A module must not be handed its own packets. */
-void dr_module_receive(dr_module_t *m, uint8_t channel, const uint8_t *bytes, uint8_t len);
-/* Whether this module knows that the last epoch is complete (the end). */
-uint8_t dr_module_finished(const dr_module_t *m);
-/* A short description of the module's protocol state, for traces and debugging:
- * `e<epoch> low<low> done<window> run<statement>`, decimal except `done`, the completed set
+/* The entry points of dr_module.h, for this protocol:
+ * - dr_module_step: merging is done on receipt; a step starts or polls the module's own
+ *   operation and broadcasts when due. Cost: O(statements).
+ * - dr_module_receive: with DR_PROGRAM_NO_NV a valid packet counts as hearing that
+ *   neighbour. Cost: O(len + W).
+ * - dr_module_finished: the last epoch is complete. Cost: O(1).
+ * - dr_module_describe: `e<epoch> low<low> done<window> run<statement>`, decimal except `done`, the completed set
  * of the window as a hexadecimal number (bit i: statement low + i; no leading zeros), and
  * `run-` when nothing runs here; e.g. "e0 low3 done5 run4". With DR_PROGRAM_NO_NV, what the
  * module waits for follows: ` hear<channels>` (hexadecimal, bit c = channel c) while a
  * neighbour connected at the restart has not been heard, ` echo<statement>` while its own
- * completion has not been sent back; e.g. "e0 low0 done0 run- hear11". Writes at most `cap`
- * bytes including the terminating NUL (a shorter prefix when it does not fit; nothing when
- * cap is 0) and returns the length without the NUL. No printf, no allocation. Cost: O(W/4). */
-uint8_t dr_module_describe(const dr_module_t *m, char *out, uint8_t cap);
+ * completion has not been sent back; e.g. "e0 low0 done0 run- hear11". Cost: O(W/4). */
 
 /* The semilattice (exported for tests and for the model checker's reference):
  * join: commutative, associative, idempotent; normalise: advance the low-water mark over the

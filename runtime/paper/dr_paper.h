@@ -10,6 +10,7 @@
 #include <stdint.h>
 #include "dr_conf.h"
 #include "dr_hal.h"
+#include "dr_module.h"
 #include "dr_packet.h"
 
 #define DR_NO_ADDRESS 0xFFu
@@ -61,15 +62,10 @@ typedef struct dr_module {
 } dr_module_t;
 
 void dr_module_init(dr_module_t *m, const dr_paper_program_t *program, void *platform);
-void dr_module_step(dr_module_t *m);
-void dr_module_receive(dr_module_t *m, uint8_t channel, const uint8_t *bytes, uint8_t len);
-uint8_t dr_module_finished(const dr_module_t *m);
-/* A short description of the module's protocol state, for traces and debugging:
- * `s<state> a<address> p{<pending>} l<local_state>`, in decimal, the non-empty pending slots
- * in slot order separated by commas; e.g. "s4 a3 p{1,4} l255". Writes at most `cap` bytes
- * including the terminating NUL (a shorter prefix when it does not fit; nothing when cap is
- * 0) and returns the length without the NUL. No printf, no allocation. Cost: O(pending). */
-uint8_t dr_module_describe(const dr_module_t *m, char *out, uint8_t cap);
+/* The entry points of dr_module.h, for this protocol: dr_module_finished is the end state
+ * (254) held; dr_module_describe writes `s<state> a<address> p{<pending>} l<local_state>`, in
+ * decimal, the non-empty pending slots in slot order separated by commas; e.g.
+ * "s4 a3 p{1,4} l255". Cost: O(pending). */
 
 /* Called by the generated state machine. */
 void dr_paper_add_pending(dr_module_t *m, uint8_t state);

@@ -25,6 +25,7 @@
 #include <stdint.h>
 #include "dr_conf.h"
 #include "dr_hal.h"
+#include "dr_module.h"
 #include "dr_packet.h"
 
 /* Returned by a program's address_of when no role, or several, match this module. */
@@ -114,18 +115,13 @@ typedef struct dr_module {
 /* Starts (or restarts after a reset) a module: finds its address and ID, forgets any token;
  * the module of statement 0 takes its token. Cost: O(statements) (role predicates). */
 void dr_module_init(dr_module_t *m, const dr_token_program_t *program, void *platform);
-/* One step: starts or polls the held statement's operation, hands the token on when it is
- * done, and sends at most one packet when a period is due. Call every few milliseconds.
- * Cost: O(hops of one route + DR_CONF_TOKEN_QUEUE). */
-void dr_module_step(dr_module_t *m);
-/* A packet arrived on `channel` (the connector it came in on). Malformed and foreign packets
- * are counted and dropped. Cost: O(DR_CONF_TOKEN_SEEN + hops of one route). */
-void dr_module_receive(dr_module_t *m, uint8_t channel, const uint8_t *bytes, uint8_t len);
-/* Whether this module knows that the last statement is done (the end). */
-uint8_t dr_module_finished(const dr_module_t *m);
-/* A short description for traces: `tok<statement>` or `tok-`, `run` when its operation is
- * started, `q<queued>`, `fin` once finished; e.g. "tok4 run q0". Same contract as the
- * lattice runtime's dr_module_describe (bounded, NUL-terminated, returns the length). */
-uint8_t dr_module_describe(const dr_module_t *m, char *out, uint8_t cap);
+/* The entry points of dr_module.h, for this protocol:
+ * - dr_module_step: starts or polls the held statement's operation, hands the token on when
+ *   it is done, and sends at most one packet when a period is due.
+ *   Cost: O(hops of one route + DR_CONF_TOKEN_QUEUE).
+ * - dr_module_receive: Cost: O(DR_CONF_TOKEN_SEEN + hops of one route).
+ * - dr_module_finished: the last statement is known to be done.
+ * - dr_module_describe: `tok<statement>` or `tok-`, `run` when its operation is started,
+ *   `q<queued>`, `fin` once finished; e.g. "tok4 run q0". */
 
 #endif /* DR_TOKEN_H */

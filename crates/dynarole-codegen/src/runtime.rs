@@ -1,9 +1,10 @@
 //! The runtime sources, embedded so that a compiled directory is self-contained.
 
 /// Files every protocol needs.
-pub const COMMON: [(&str, &str); 6] = [
+pub const COMMON: [(&str, &str); 7] = [
     ("dr_conf.h", include_str!("../../../runtime/dr_conf.h")),
     ("dr_hal.h", include_str!("../../../runtime/dr_hal.h")),
+    ("dr_module.h", include_str!("../../../runtime/dr_module.h")),
     ("dr_packet.h", include_str!("../../../runtime/dr_packet.h")),
     ("dr_packet.c", include_str!("../../../runtime/dr_packet.c")),
     ("dr_text.h", include_str!("../../../runtime/dr_text.h")),
