@@ -6,7 +6,7 @@ use dynarole_core::check::Label;
 use dynarole_core::diagnostic::{Diagnostic, DiagnosticKind};
 use dynarole_core::expand::Plan;
 use dynarole_core::{Program, RobotApi};
-use dynarole_world::{Configuration, Port};
+use dynarole_world::{Configuration, Port, View};
 use std::collections::BTreeMap;
 
 /// Module name for every label a plan uses.
@@ -47,7 +47,7 @@ fn resolve(
     label: &Label,
     config: &Configuration,
 ) -> Result<String, DiagnosticKind> {
-    let view = View { config };
+    let view = View::of(config);
     match label {
         Label::Module(id) => view
             .index_by_id(*id)
@@ -78,67 +78,6 @@ fn resolve(
     }
 }
 
-/// What a role predicate may ask of a module, over either robot's configuration.
-struct View<'c> {
-    config: &'c Configuration,
-}
-
-impl View<'_> {
-    fn len(&self) -> usize {
-        match self.config {
-            Configuration::Atron(c) => c.modules().len(),
-            Configuration::Mtran(c) => c.modules().len(),
-        }
-    }
-
-    fn name(&self, i: usize) -> String {
-        match self.config {
-            Configuration::Atron(c) => c.module(i).map(|m| m.name.clone()),
-            Configuration::Mtran(c) => c.modules().get(i).map(|m| m.name.clone()),
-        }
-        .unwrap_or_default()
-    }
-
-    fn id(&self, i: usize) -> Option<u32> {
-        match self.config {
-            Configuration::Atron(c) => c.module(i).and_then(|m| m.id),
-            Configuration::Mtran(c) => c.modules().get(i).and_then(|m| m.id),
-        }
-    }
-
-    fn index_by_id(&self, id: u32) -> Option<usize> {
-        match self.config {
-            Configuration::Atron(c) => c.module_index_by_id(id),
-            Configuration::Mtran(c) => c.module_index_by_id(id),
-        }
-    }
-
-    fn latched_to(&self, port: Port) -> Option<Port> {
-        match self.config {
-            Configuration::Atron(c) => c.latched_to(port),
-            Configuration::Mtran(c) => c.latched_to(port),
-        }
-    }
-
-    fn joint(&self, i: usize, joint: usize) -> Option<i64> {
-        match self.config {
-            Configuration::Atron(c) => c.module(i).map(|m| i64::from(m.joint_units)),
-            Configuration::Mtran(c) => c
-                .modules()
-                .get(i)
-                .and_then(|m| m.joints_deg.get(joint))
-                .map(|d| i64::from(*d)),
-        }
-    }
-
-    fn connectors(&self) -> u8 {
-        match self.config {
-            Configuration::Atron(_) => 8,
-            Configuration::Mtran(_) => 6,
-        }
-    }
-}
-
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Value {
     Int(i64),
@@ -147,7 +86,7 @@ enum Value {
 
 /// Evaluates a checked predicate for module `i`; `None` only for an ill-typed tree, which the
 /// checker has already refused.
-fn eval(expr: &Expr, view: &View, i: usize, robot: &RobotApi) -> Option<Value> {
+fn eval(expr: &Expr, view: &View<'_>, i: usize, robot: &RobotApi) -> Option<Value> {
     Some(match &expr.kind {
         ExprKind::Int(n) => Value::Int(*n),
         ExprKind::Bool(b) => Value::Bool(*b),
@@ -190,7 +129,7 @@ fn binary(op: BinaryOp, lhs: Value, rhs: Value) -> Option<Value> {
     Some(Value::Bool(b))
 }
 
-fn query(name: &str, arg: Option<i64>, view: &View, i: usize) -> Option<Value> {
+fn query(name: &str, arg: Option<i64>, view: &View<'_>, i: usize) -> Option<Value> {
     let port = |c: i64| {
         u8::try_from(c).ok().map(|connector| Port {
             module: i,
@@ -199,7 +138,7 @@ fn query(name: &str, arg: Option<i64>, view: &View, i: usize) -> Option<Value> {
     };
     Some(match name {
         "id" => Value::Int(view.id(i).map_or(-1, i64::from)),
-        "joint" => Value::Int(view.joint(i, usize::try_from(arg.unwrap_or(0)).ok()?)?),
+        "joint" => Value::Int(view.joint(i, u8::try_from(arg.unwrap_or(0)).ok()?)?),
         "neighbours" => {
             let latched = (0..view.connectors()).filter(|&c| {
                 view.latched_to(Port {

@@ -39,7 +39,7 @@ use dynarole_core::expand::Plan;
 use dynarole_core::Program;
 use dynarole_replay::RobotWorld;
 use dynarole_world::{compare, Configuration};
-use sequence::{Sequence, View};
+use sequence::{view, Sequence};
 use state::State;
 use std::cell::RefCell;
 use std::fmt;
@@ -177,7 +177,7 @@ impl Simulator {
     }
 
     fn check_scenario_on(world: &RobotWorld, scenario: &Scenario) -> Result<(), ScenarioError> {
-        let view = View::of(world);
+        let view = view(world);
         scenario.check_modules(|name| view.index(name).is_some(), view.connectors())
     }
 

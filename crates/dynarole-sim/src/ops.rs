@@ -3,9 +3,10 @@
 //! S1, S2 and S3.
 
 use crate::report::{Refusal, Violation};
-use crate::sequence::{OpKind, View};
+use crate::sequence::OpKind;
 use crate::state::{uniform, Attempt, Event, State};
 use dynarole_replay::RobotWorld;
+use dynarole_world::View;
 
 /// How a call of `dr_hal_op_start` relates to what already happened to its statement.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -3,13 +3,14 @@
 //! module to the next statement's module (the path the original hand-written token programs
 //! took, e.g. M3 -> M5 -> M6 -> M4).
 
-use crate::sequence::View;
+use crate::sequence::view;
 use dynarole_codegen::TokenRoutes;
 use dynarole_core::diagnostic::{Diagnostic, DiagnosticKind};
 use dynarole_core::expand::Plan;
 use dynarole_core::span::Span;
 use dynarole_core::Program;
 use dynarole_replay::{assign_modules, RobotWorld};
+use dynarole_world::View;
 use dynarole_world::{Configuration, Port};
 use std::collections::VecDeque;
 
@@ -40,7 +41,7 @@ pub fn token_routes(
             .get(&statement.label)
             .cloned()
             .unwrap_or_default();
-        let view = View::of(&world);
+        let view = view(&world);
         let Some(module) = view.index(&name) else {
             return Err(limit(
                 format!("module {name} is not in the configuration"),

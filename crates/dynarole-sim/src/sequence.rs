@@ -7,7 +7,7 @@ use dynarole_core::lower::Ir;
 use dynarole_core::robot::Value;
 use dynarole_core::RobotApi;
 use dynarole_replay::RobotWorld;
-use dynarole_world::{AtronConfiguration, MtranConfiguration, Port};
+use dynarole_world::{Port, View};
 
 /// The physical kind of an operation (for its duration and the links it breaks).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -125,112 +125,25 @@ fn kind(part: &str, op: &str) -> OpKind {
     }
 }
 
-/// The configuration of either robot, borrowed, with the queries the simulator needs.
-#[derive(Clone, Copy)]
-pub enum View<'w> {
-    Atron(&'w AtronConfiguration),
-    Mtran(&'w MtranConfiguration),
+/// The view of the world's current configuration (the robot-neutral queries of
+/// `dynarole_world::View`).
+pub fn view(world: &RobotWorld) -> View<'_> {
+    match world {
+        RobotWorld::Atron(w) => View::Atron(w.configuration()),
+        RobotWorld::Mtran(w) => View::Mtran(w.configuration()),
+    }
 }
 
-impl<'w> View<'w> {
-    pub fn of(world: &'w RobotWorld) -> View<'w> {
-        match world {
-            RobotWorld::Atron(w) => View::Atron(w.configuration()),
-            RobotWorld::Mtran(w) => View::Mtran(w.configuration()),
-        }
+/// Where a packet sent on `port` goes (atron.md a.8): the latched partner, or, for an
+/// unlatched male connector, an unlatched female connector facing it.
+pub fn link_target(view: View, port: Port) -> Option<Port> {
+    if let Some(p) = view.latched_to(port) {
+        return Some(p);
     }
-
-    pub fn connectors(self) -> u8 {
-        match self {
-            View::Atron(_) => 8,
-            View::Mtran(_) => 6,
-        }
+    if !view.is_male(port.connector) {
+        return None;
     }
-
-    pub fn is_male(self, connector: u8) -> bool {
-        match self {
-            View::Atron(_) => dynarole_world::atron::is_male(connector),
-            View::Mtran(_) => dynarole_world::mtran::is_mtran_male(connector),
-        }
-    }
-
-    /// Which send queue (UART) a connector uses on a half-duplex module: its hemisphere.
-    pub fn hemisphere(self, connector: u8) -> usize {
-        usize::from(connector >= self.connectors() / 2)
-    }
-
-    pub fn len(self) -> usize {
-        match self {
-            View::Atron(c) => c.modules().len(),
-            View::Mtran(c) => c.modules().len(),
-        }
-    }
-
-    pub fn name(self, m: usize) -> String {
-        match self {
-            View::Atron(c) => c.module(m).map(|x| x.name.clone()),
-            View::Mtran(c) => c.modules().get(m).map(|x| x.name.clone()),
-        }
-        .unwrap_or_default()
-    }
-
-    pub fn id(self, m: usize) -> Option<u32> {
-        match self {
-            View::Atron(c) => c.module(m).and_then(|x| x.id),
-            View::Mtran(c) => c.modules().get(m).and_then(|x| x.id),
-        }
-    }
-
-    pub fn index(self, name: &str) -> Option<usize> {
-        match self {
-            View::Atron(c) => c.module_index(name),
-            View::Mtran(c) => c.module_index(name),
-        }
-    }
-
-    pub fn joint(self, m: usize, joint: u8) -> Option<i64> {
-        match self {
-            View::Atron(c) => c.module(m).map(|x| i64::from(x.joint_units)),
-            View::Mtran(c) => c
-                .modules()
-                .get(m)
-                .and_then(|x| x.joints_deg.get(usize::from(joint)))
-                .map(|d| i64::from(*d)),
-        }
-    }
-
-    pub fn latched_to(self, port: Port) -> Option<Port> {
-        match self {
-            View::Atron(c) => c.latched_to(port),
-            View::Mtran(c) => c.latched_to(port),
-        }
-    }
-
-    pub fn facing(self, port: Port) -> Option<Port> {
-        match self {
-            View::Atron(c) => c.facing(port),
-            View::Mtran(c) => c.facing(port),
-        }
-    }
-
-    pub fn port_name(self, port: Port) -> String {
-        match self {
-            View::Atron(c) => c.port_name(port),
-            View::Mtran(c) => c.port_name(port),
-        }
-    }
-
-    /// Where a packet sent on `port` goes (atron.md a.8): the latched partner, or, for an
-    /// unlatched male connector, an unlatched female connector facing it.
-    pub fn link_target(self, port: Port) -> Option<Port> {
-        if let Some(p) = self.latched_to(port) {
-            return Some(p);
-        }
-        if !self.is_male(port.connector) {
-            return None;
-        }
-        let other = self.facing(port)?;
-        let free_female = !self.is_male(other.connector) && self.latched_to(other).is_none();
-        free_female.then_some(other)
-    }
+    let other = view.facing(port)?;
+    let free_female = !view.is_male(other.connector) && view.latched_to(other).is_none();
+    free_female.then_some(other)
 }

@@ -5,9 +5,10 @@
 use crate::engine::{Describer, DESCRIPTION_BYTES};
 use crate::report::{Counters, Refusal, Violation};
 use crate::scenario::{Preset, Scenario};
-use crate::sequence::{Sequence, View};
+use crate::sequence::{view, Sequence};
 use dynarole_replay::RobotWorld;
 use dynarole_world::Port;
+use dynarole_world::View;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::cmp::{Ordering, Reverse};
@@ -205,7 +206,7 @@ impl State {
         seed: u64,
         trace: bool,
     ) -> State {
-        let view = View::of(&world);
+        let view = view(&world);
         let preset = scenario.network.preset;
         let mut setup = stream(seed, 0);
         let connectors = usize::from(view.connectors());
@@ -276,7 +277,7 @@ impl State {
             };
             self.schedule(at, Event::PowerOn { module: m });
         }
-        let view = View::of(&self.world);
+        let view = view(&self.world);
         let index = |name: &str| view.index(name).unwrap_or(usize::MAX);
         let mut faults = Vec::new();
         for r in &self.scenario.reset {
@@ -341,7 +342,7 @@ impl State {
     }
 
     pub fn view(&self) -> View<'_> {
-        View::of(&self.world)
+        view(&self.world)
     }
 
     pub fn schedule(&mut self, time: u64, event: Event) {

@@ -2,7 +2,7 @@
 //! checker's links are made of (`dynarole verify`), by the simulator's own link rule
 //! (`View::link_target`, atron.md a.8) on every configuration a replay of the plans visits.
 
-use crate::sequence::View;
+use crate::sequence::{link_target, view};
 use dynarole_core::expand::Plan;
 use dynarole_core::Program;
 use dynarole_replay::{Assignment, RobotWorld};
@@ -30,7 +30,7 @@ pub fn communication_graph(
     mut world: RobotWorld,
     assignment: &Assignment,
 ) -> CommGraph {
-    let view = View::of(&world);
+    let view = view(&world);
     let names: Vec<String> = (0..view.len()).map(|m| view.name(m)).collect();
     let first = links(&world);
     let mut always = first.clone();
@@ -55,11 +55,11 @@ pub fn communication_graph(
 }
 
 fn links(world: &RobotWorld) -> BTreeSet<(usize, usize)> {
-    let view = View::of(world);
+    let view = view(world);
     let mut out = BTreeSet::new();
     for module in 0..view.len() {
         for connector in 0..view.connectors() {
-            if let Some(to) = view.link_target(Port { module, connector }) {
+            if let Some(to) = link_target(view, Port { module, connector }) {
                 if to.module != module {
                     out.insert((module, to.module));
                 }

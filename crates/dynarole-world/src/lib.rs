@@ -19,6 +19,7 @@ pub mod mtran;
 mod mtran_world;
 mod ops;
 mod structure;
+mod view;
 mod world;
 mod world_common;
 
@@ -32,4 +33,5 @@ pub use geometry::{Rotation, Vec3};
 pub use mtran::{MtranConfiguration, MtranJoint, MtranModule, MtranOrientation};
 pub use mtran_world::MtranWorld;
 pub use ops::{OpError, Outcome, Warning};
+pub use view::View;
 pub use world::{TurnMotion, World};
