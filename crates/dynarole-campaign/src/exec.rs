@@ -67,7 +67,7 @@ impl<'a> Worker<'a> {
 pub fn simulator(inputs: &Inputs, protocol: crate::spec::ProtocolName) -> Result<Simulator, Error> {
     let mut options = compile_options(inputs.campaign, protocol);
     if options.protocol == dynarole_codegen::Protocol::Token {
-        let routes = dynarole_sim::token_routes(&inputs.program, &inputs.plans, inputs.start)
+        let routes = dynarole_replay::token_routes(&inputs.program, &inputs.plans, inputs.start)
             .map_err(|diagnostics| Error::Diagnostics {
                 path: inputs.campaign.file.clone(),
                 source: inputs.source.to_string(),

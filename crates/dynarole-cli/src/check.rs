@@ -99,7 +99,7 @@ fn on_configuration(
     );
     let mut diagnostics = replay.diagnostics;
     if protocol == Protocol::Token && !has_errors(&diagnostics) {
-        if let Err(unroutable) = dynarole_sim::token_routes(program, &prepared.plans, &config) {
+        if let Err(unroutable) = dynarole_replay::token_routes(program, &prepared.plans, &config) {
             diagnostics.extend(unroutable);
         }
     }

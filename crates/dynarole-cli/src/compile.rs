@@ -250,7 +250,7 @@ pub fn add_token_routes(
     };
     let start = crate::world::read_configuration(from)?;
     Ok(
-        dynarole_sim::token_routes(program, plans, &start).map(|routes| {
+        dynarole_replay::token_routes(program, plans, &start).map(|routes| {
             options.routes = Some(routes);
         }),
     )

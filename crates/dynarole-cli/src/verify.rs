@@ -15,7 +15,7 @@ use dynarole_codegen::{
 use dynarole_core::check::Label;
 use dynarole_core::lower::Ir;
 use dynarole_core::{Diagnostic, DiagnosticKind, Program};
-use dynarole_sim::{communication_graph, CommGraph};
+use dynarole_replay::{communication_graph, CommGraph};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 

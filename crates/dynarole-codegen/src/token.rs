@@ -28,16 +28,7 @@ impl TokenRetries {
     }
 }
 
-/// Where each statement runs and how the token reaches it, on one configuration.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct TokenRoutes {
-    /// ID of the module that runs each statement.
-    pub holders: Vec<u16>,
-    /// For each statement, the hops of the hand-over into it: (module ID, connector it sends
-    /// on), from the previous statement's module up to the one before this statement's.
-    /// Empty for the first statement and when the previous one ran on the same module.
-    pub routes: Vec<Vec<(u16, u8)>>,
-}
+pub use dynarole_core::lower::TokenRoutes;
 
 /// `dr_program.c`'s tables and program for the token runtime.
 pub fn token_tables(ir: &Ir, options: &CompileOptions) -> Result<String, LimitError> {

@@ -22,6 +22,17 @@ pub const PAPER_STATE_IDLE: u8 = 255;
 /// The paper protocol's recipient of the end: every module (`DR_ADDRESS_ALL` in C).
 pub const PAPER_ADDRESS_ALL: u8 = 255;
 
+/// Where each statement runs and how the token reaches it, on one configuration.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct TokenRoutes {
+    /// ID of the module that runs each statement.
+    pub holders: Vec<u16>,
+    /// For each statement, the hops of the hand-over into it: (module ID, connector it sends
+    /// on), from the previous statement's module up to the one before this statement's.
+    /// Empty for the first statement and when the previous one ran on the same module.
+    pub routes: Vec<Vec<(u16, u8)>>,
+}
+
 /// The compiled form of one or more sequences run in turn.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Ir {

@@ -8,7 +8,9 @@ mod independence;
 mod parallel;
 mod robot_world;
 mod roles;
+mod routes;
 mod run;
+mod topology;
 
 pub use independence::check_independence;
 pub use parallel::{
@@ -17,4 +19,6 @@ pub use parallel::{
 };
 pub use robot_world::{RobotWorld, StepOutcome};
 pub use roles::{assign_modules, Assignment};
+pub use routes::token_routes;
 pub use run::{replay, Replay};
+pub use topology::{communication_graph, CommGraph};

@@ -17,6 +17,14 @@ pub enum RobotWorld {
 pub type StepOutcome = Outcome;
 
 impl RobotWorld {
+    /// The robot-neutral view of the current configuration.
+    pub fn view(&self) -> dynarole_world::View<'_> {
+        match self {
+            RobotWorld::Atron(w) => dynarole_world::View::Atron(w.configuration()),
+            RobotWorld::Mtran(w) => dynarole_world::View::Mtran(w.configuration()),
+        }
+    }
+
     /// Starts from `config`; fails when the configuration is not of the plugin's robot.
     pub fn new(config: Configuration, robot: &RobotApi) -> Result<RobotWorld, String> {
         match (robot.name.as_str(), config) {

@@ -16,21 +16,17 @@ mod ffi;
 mod network;
 mod ops;
 mod report;
-mod routes;
 mod scenario;
 mod sequence;
 mod state;
-mod topology;
 
 pub use build::cache_root;
 pub use critical::CriticalPath;
 pub use report::{Counters, ModuleReport, Refusal, Report, Violation};
-pub use routes::token_routes;
 pub use scenario::{
     Block, Foreign, JointModel, Network, Power, Preset, RandomResets, Reset, Scenario,
     ScenarioError, Timing,
 };
-pub use topology::{communication_graph, CommGraph};
 
 use build::Loaded;
 use dynarole_codegen::{generate_c, CompileOptions, Protocol};
@@ -39,7 +35,7 @@ use dynarole_core::expand::Plan;
 use dynarole_core::Program;
 use dynarole_replay::RobotWorld;
 use dynarole_world::{compare, Configuration};
-use sequence::{view, Sequence};
+use sequence::Sequence;
 use state::State;
 use std::cell::RefCell;
 use std::fmt;
@@ -177,7 +173,7 @@ impl Simulator {
     }
 
     fn check_scenario_on(world: &RobotWorld, scenario: &Scenario) -> Result<(), ScenarioError> {
-        let view = view(world);
+        let view = world.view();
         scenario.check_modules(|name| view.index(name).is_some(), view.connectors())
     }
 

@@ -3,7 +3,6 @@
 //! the way: a link broken by a turn, a blocked link, a collision, loss, a dead link.
 
 use crate::scenario::Preset;
-use crate::sequence::link_target;
 use crate::state::{uniform, Event, Packet, State};
 use dynarole_world::Port;
 
@@ -105,7 +104,7 @@ impl State {
             module: m,
             connector: channel,
         };
-        let Some(to) = link_target(self.view(), from) else {
+        let Some(to) = self.view().link_target(from) else {
             return;
         };
         let queue = self.send_queue(channel);
@@ -124,7 +123,7 @@ impl State {
                 module: m,
                 connector: c,
             })
-            .filter_map(|from| link_target(view, from).map(|to| (from, to)))
+            .filter_map(|from| view.link_target(from).map(|to| (from, to)))
             .collect()
     }
 

@@ -1,13 +1,12 @@
 //! What the simulator knows of the compiled sequence, from the IR (never from the C): each
 //! statement's module address, operation, dependencies and transitive dependents, the
-//! resolved statement the world applies, and the configuration queries the HAL answers.
+//! resolved statement the world applies (the configuration queries the HAL answers are
+//! `dynarole_world::View`).
 
 use dynarole_core::check::ResolvedStatement;
 use dynarole_core::lower::Ir;
 use dynarole_core::robot::Value;
 use dynarole_core::RobotApi;
-use dynarole_replay::RobotWorld;
-use dynarole_world::{Port, View};
 
 /// The physical kind of an operation (for its duration and the links it breaks).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -123,27 +122,4 @@ fn kind(part: &str, op: &str) -> OpKind {
         ("Joint", _) => OpKind::Turn,
         _ => OpKind::Other,
     }
-}
-
-/// The view of the world's current configuration (the robot-neutral queries of
-/// `dynarole_world::View`).
-pub fn view(world: &RobotWorld) -> View<'_> {
-    match world {
-        RobotWorld::Atron(w) => View::Atron(w.configuration()),
-        RobotWorld::Mtran(w) => View::Mtran(w.configuration()),
-    }
-}
-
-/// Where a packet sent on `port` goes (atron.md a.8): the latched partner, or, for an
-/// unlatched male connector, an unlatched female connector facing it.
-pub fn link_target(view: View, port: Port) -> Option<Port> {
-    if let Some(p) = view.latched_to(port) {
-        return Some(p);
-    }
-    if !view.is_male(port.connector) {
-        return None;
-    }
-    let other = view.facing(port)?;
-    let free_female = !view.is_male(other.connector) && view.latched_to(other).is_none();
-    free_female.then_some(other)
 }

@@ -5,7 +5,7 @@
 use crate::engine::{Describer, DESCRIPTION_BYTES};
 use crate::report::{Counters, Refusal, Violation};
 use crate::scenario::{Preset, Scenario};
-use crate::sequence::{view, Sequence};
+use crate::sequence::Sequence;
 use dynarole_replay::RobotWorld;
 use dynarole_world::Port;
 use dynarole_world::View;
@@ -206,7 +206,7 @@ impl State {
         seed: u64,
         trace: bool,
     ) -> State {
-        let view = view(&world);
+        let view = world.view();
         let preset = scenario.network.preset;
         let mut setup = stream(seed, 0);
         let connectors = usize::from(view.connectors());
@@ -277,7 +277,7 @@ impl State {
             };
             self.schedule(at, Event::PowerOn { module: m });
         }
-        let view = view(&self.world);
+        let view = self.world.view();
         let index = |name: &str| view.index(name).unwrap_or(usize::MAX);
         let mut faults = Vec::new();
         for r in &self.scenario.reset {
@@ -342,7 +342,7 @@ impl State {
     }
 
     pub fn view(&self) -> View<'_> {
-        view(&self.world)
+        self.world.view()
     }
 
     pub fn schedule(&mut self, time: u64, event: Event) {

@@ -6,7 +6,8 @@ mod common;
 use common::*;
 use dynarole_codegen::{CompileOptions, Protocol, TokenRetries, TokenRoutes};
 use dynarole_core::{analyze, parse, RobotRegistry};
-use dynarole_sim::{token_routes, Block, Report, Scenario, Simulator};
+use dynarole_replay::token_routes;
+use dynarole_sim::{Block, Report, Scenario, Simulator};
 
 fn eight2car_routes() -> TokenRoutes {
     let parsed = parse(EIGHT2CAR);

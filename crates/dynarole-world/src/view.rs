@@ -108,6 +108,20 @@ impl<'c> View<'c> {
         }
     }
 
+    /// Where a packet sent on `port` goes (atron.md a.8): the latched partner, or, for an
+    /// unlatched male connector, an unlatched female connector facing it.
+    pub fn link_target(self, port: Port) -> Option<Port> {
+        if let Some(p) = self.latched_to(port) {
+            return Some(p);
+        }
+        if !self.is_male(port.connector) {
+            return None;
+        }
+        let other = self.facing(port)?;
+        let free_female = !self.is_male(other.connector) && self.latched_to(other).is_none();
+        free_female.then_some(other)
+    }
+
     pub fn port_name(self, port: Port) -> String {
         match self {
             View::Atron(c) => c.port_name(port),

@@ -3,15 +3,13 @@
 //! module to the next statement's module (the path the original hand-written token programs
 //! took, e.g. M3 -> M5 -> M6 -> M4).
 
-use crate::sequence::view;
-use dynarole_codegen::TokenRoutes;
+use crate::{assign_modules, RobotWorld};
 use dynarole_core::diagnostic::{Diagnostic, DiagnosticKind};
 use dynarole_core::expand::Plan;
+use dynarole_core::lower::TokenRoutes;
 use dynarole_core::span::Span;
 use dynarole_core::Program;
-use dynarole_replay::{assign_modules, RobotWorld};
-use dynarole_world::View;
-use dynarole_world::{Configuration, Port};
+use dynarole_world::{Configuration, Port, View};
 use std::collections::VecDeque;
 
 /// Where each statement of `plans` (run in turn) runs on `start`, and the route its token
@@ -41,7 +39,7 @@ pub fn token_routes(
             .get(&statement.label)
             .cloned()
             .unwrap_or_default();
-        let view = view(&world);
+        let view = world.view();
         let Some(module) = view.index(&name) else {
             return Err(limit(
                 format!("module {name} is not in the configuration"),

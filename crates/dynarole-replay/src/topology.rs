@@ -1,11 +1,10 @@
 //! Who can hear whom during a reconfiguration: the communication graph that the model
 //! checker's links are made of (`dynarole verify`), by the simulator's own link rule
-//! (`View::link_target`, atron.md a.8) on every configuration a replay of the plans visits.
+//! (`dynarole_world::View::link_target`, atron.md a.8) on every configuration a replay of the plans visits.
 
-use crate::sequence::{link_target, view};
+use crate::{Assignment, RobotWorld};
 use dynarole_core::expand::Plan;
 use dynarole_core::Program;
-use dynarole_replay::{Assignment, RobotWorld};
 use dynarole_world::Port;
 use std::collections::BTreeSet;
 
@@ -30,7 +29,7 @@ pub fn communication_graph(
     mut world: RobotWorld,
     assignment: &Assignment,
 ) -> CommGraph {
-    let view = view(&world);
+    let view = world.view();
     let names: Vec<String> = (0..view.len()).map(|m| view.name(m)).collect();
     let first = links(&world);
     let mut always = first.clone();
@@ -55,11 +54,11 @@ pub fn communication_graph(
 }
 
 fn links(world: &RobotWorld) -> BTreeSet<(usize, usize)> {
-    let view = view(world);
+    let view = world.view();
     let mut out = BTreeSet::new();
     for module in 0..view.len() {
         for connector in 0..view.connectors() {
-            if let Some(to) = link_target(view, Port { module, connector }) {
+            if let Some(to) = view.link_target(Port { module, connector }) {
                 if to.module != module {
                     out.insert((module, to.module));
                 }
