@@ -10,6 +10,7 @@ use dynarole_codegen::CompileOptions;
 use dynarole_core::{analyze, parse, RobotRegistry};
 use dynarole_replay::{assign_modules, parallelise, Parallelised, Request, RobotWorld};
 use dynarole_sim::{Run, Scenario, Simulator};
+use dynarole_world::generated::atron_chain_json;
 use dynarole_world::{Configuration, World};
 use std::time::{Duration, Instant};
 
@@ -156,33 +157,6 @@ fn sim_seconds(ms: &Result<f64, String>) -> String {
     }
 }
 
-/// The zig-zag chain of the rotation experiments, `n` modules long.
-fn chain(n: usize) -> String {
-    let modules: Vec<String> = (0..n)
-        .map(|k| {
-            let orientation = if k % 2 == 0 { "EW" } else { "NS" };
-            format!(
-                r#"{{"name": "M{k}", "id": {k}, "position": [{k}, 0, {}], "orientation": "{orientation}", "joint": 0}}"#,
-                k % 2
-            )
-        })
-        .collect();
-    let connections: Vec<String> = (0..n - 1)
-        .map(|k| {
-            if k % 2 == 0 {
-                format!(r#"["M{k}", 5, "M{}", 0]"#, k + 1)
-            } else {
-                format!(r#"["M{k}", 2, "M{}", 1]"#, k + 1)
-            }
-        })
-        .collect();
-    format!(
-        r#"{{"name": "chain", "robot": "ATRON", "modules": [{}], "connections": [{}]}}"#,
-        modules.join(",\n"),
-        connections.join(",\n")
-    )
-}
-
 /// `count` moves a planner might list: random operations (a fixed xorshift stream) tried on
 /// the model, the accepted ones kept, all joined by `;`.
 fn random_moves(config: &str, n: usize, count: usize) -> String {
@@ -244,7 +218,7 @@ fn cases() -> Vec<Case> {
         config: config.to_string(),
         window: None,
     };
-    let big = chain(100);
+    let big = atron_chain_json(100);
     let mut out = vec![
         shipped("eight2car", EIGHT2CAR, "eight2car", EIGHT),
         shipped("eight2car (fig5.dr)", FIG5, "eight2car", EIGHT),

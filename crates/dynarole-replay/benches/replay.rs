@@ -4,34 +4,11 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use dynarole_core::{analyze, parse, RobotRegistry};
 use dynarole_replay::{assign_modules, replay, RobotWorld};
+use dynarole_world::generated::atron_chain_json;
 use dynarole_world::Configuration;
 
 const FIG5: &str = include_str!("../../../examples/atron/eight2car.dr");
 const EIGHT: &str = include_str!("../../../examples/atron/eight.json");
-
-/// The zig-zag chain of the rotation experiments, `n` modules long (data-file JSON).
-fn chain(n: usize) -> String {
-    let modules: Vec<String> = (0..n)
-        .map(|k| {
-            let orientation = if k % 2 == 0 { "EW" } else { "NS" };
-            format!(r#"{{"name": "M{k}", "id": {k}, "position": [{k}, 0, {}], "orientation": "{orientation}", "joint": 0}}"#, k % 2)
-        })
-        .collect();
-    let connections: Vec<String> = (0..n - 1)
-        .map(|k| {
-            if k % 2 == 0 {
-                format!(r#"["M{k}", 5, "M{}", 0]"#, k + 1)
-            } else {
-                format!(r#"["M{k}", 2, "M{}", 1]"#, k + 1)
-            }
-        })
-        .collect();
-    format!(
-        r#"{{"name": "chain", "robot": "ATRON", "modules": [{}], "connections": [{}]}}"#,
-        modules.join(",\n"),
-        connections.join(",\n")
-    )
-}
 
 /// 1,000 statements: latches in the middle released and re-made, and the last joints turned
 /// back and forth (each turn moves the short end, checked against all 10,000 modules).
@@ -81,7 +58,7 @@ fn benches(c: &mut Criterion) {
         "eight2car",
     );
     let n = 10_000;
-    let config = chain(n);
+    let config = atron_chain_json(n);
     let started = std::time::Instant::now();
     let loaded = Configuration::from_json_str(&config);
     assert!(loaded.is_ok());

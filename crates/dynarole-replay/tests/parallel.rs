@@ -7,6 +7,7 @@ use dynarole_replay::{
     assign_modules, check_independence, parallelise, replay, FormKind, Layout, Parallelised,
     Request, RobotWorld,
 };
+use dynarole_world::generated::atron_chain_json;
 use dynarole_world::{compare, Configuration, MtranJoint, MtranWorld, World};
 use proptest::prelude::*;
 
@@ -138,34 +139,6 @@ fn transitive_reduction_keeps_only_the_needed_edges() {
         dynarole_replay::transitive_reduction(5, &edges),
         vec![(0, 1), (1, 2), (1, 4), (2, 3)]
     );
-}
-
-/// An ATRON chain of `n` modules, alternately east-west and north-south (as the rotation
-/// experiments' chains).
-fn atron_chain(n: usize) -> String {
-    let modules: Vec<String> = (0..n)
-        .map(|k| {
-            let orientation = if k % 2 == 0 { "EW" } else { "NS" };
-            format!(
-                r#"{{"name": "M{k}", "id": {k}, "position": [{k}, 0, {}], "orientation": "{orientation}", "joint": 0}}"#,
-                k % 2
-            )
-        })
-        .collect();
-    let connections: Vec<String> = (0..n - 1)
-        .map(|k| {
-            if k % 2 == 0 {
-                format!(r#"["M{k}", 5, "M{}", 0]"#, k + 1)
-            } else {
-                format!(r#"["M{k}", 2, "M{}", 1]"#, k + 1)
-            }
-        })
-        .collect();
-    format!(
-        r#"{{"name": "chain", "robot": "ATRON", "modules": [{}], "connections": [{}]}}"#,
-        modules.join(", "),
-        connections.join(", ")
-    )
 }
 
 /// A straight M-TRAN snake of `n` modules.
@@ -310,7 +283,7 @@ proptest! {
         n in 3usize..8,
         picks in proptest::collection::vec((0usize..8, 0u8..3, 0u8..8), 1..40),
     ) {
-        let config = atron_chain(n);
+        let config = atron_chain_json(n);
         let moves = atron_moves(&config, n, &picks);
         prop_assume!(!moves.is_empty());
         random_case("atron", &config, &moves)?;

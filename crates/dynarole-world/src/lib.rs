@@ -12,6 +12,7 @@
 pub mod atron;
 mod compare;
 mod config;
+pub mod generated;
 pub mod geometry;
 mod graph;
 mod json;
