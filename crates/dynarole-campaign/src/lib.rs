@@ -15,7 +15,7 @@ mod tables;
 
 pub use load::{read_limited, MAX_INPUT_BYTES};
 pub use plan::{plan, Axis, Faults, Plan, PlannedRun, MAX_RUNS};
-pub use plot::rasterise_svg;
+pub use plot::{bounds, rasterise_svg};
 pub use progress::{Progress, ProgressMode, INTERVAL_VARIABLE};
 pub use results::{Outcome, Row, COLUMNS};
 pub use spec::{CampaignFile, Merge, ProtocolName, ProtocolOptions, Range, SpecError, Sweep};

@@ -148,8 +148,8 @@ fn save(figure: &Figure, dir: &Path, name: &str) -> Result<Vec<PathBuf>, Error> 
     Ok(vec![svg_path, png_path])
 }
 
-/// Smallest and largest value; (0, 0) when there is none.
-fn bounds(values: impl Iterator<Item = f64>) -> (f64, f64) {
+/// Smallest and largest value; (0, 0) when there is none (shared with `dynarole show`).
+pub fn bounds(values: impl Iterator<Item = f64>) -> (f64, f64) {
     let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
         (lo.min(v), hi.max(v))
     });

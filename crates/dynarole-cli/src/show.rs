@@ -7,9 +7,11 @@
 
 use crate::load::Failure;
 use crate::world::read_configuration;
-use dynarole_world::{AtronConfiguration, Configuration, MtranConfiguration, Port};
+use dynarole_campaign::bounds;
+use dynarole_world::{AtronConfiguration, Configuration, Latch, MtranConfiguration, Port};
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
+use std::collections::BTreeSet;
 use std::path::Path;
 use std::process::ExitCode;
 
@@ -209,21 +211,28 @@ fn atron_scene(config: &AtronConfiguration) -> Scene {
             .module(p.module)
             .map(|m| (m.position.map(f64::from), p.connector))
     };
-    let latches = config
-        .latches()
-        .iter()
-        .filter_map(|l| {
-            Some(LatchBar {
-                ends: [end(l.male)?, end(l.female)?],
-            })
-        })
-        .collect();
+    let latches = latch_bars(config.latches(), end);
     Scene {
         bodies,
         links: Vec::new(),
         latches,
         radius: ATRON_RADIUS,
     }
+}
+
+/// A bar for every latch whose two ends `end` can place (a point and the connector number).
+fn latch_bars(
+    latches: &BTreeSet<Latch>,
+    end: impl Fn(Port) -> Option<([f64; 3], u8)>,
+) -> Vec<LatchBar> {
+    latches
+        .iter()
+        .filter_map(|l| {
+            Some(LatchBar {
+                ends: [end(l.male)?, end(l.female)?],
+            })
+        })
+        .collect()
 }
 
 /// Centres of an M-TRAN module's blocks (north, south) in block pitches.
@@ -257,15 +266,7 @@ fn mtran_scene(config: &MtranConfiguration) -> Scene {
         block_centres(config, p.module)
             .map(|[n, s]| (if p.connector < 3 { n } else { s }, p.connector))
     };
-    let latches = config
-        .latches()
-        .iter()
-        .filter_map(|l| {
-            Some(LatchBar {
-                ends: [end(l.male)?, end(l.female)?],
-            })
-        })
-        .collect();
+    let latches = latch_bars(config.latches(), end);
     Scene {
         bodies,
         links,
@@ -339,17 +340,6 @@ impl Layout {
 fn pale(colour: RGBColor, amount: f64) -> RGBColor {
     let mix = |c: u8| (f64::from(c) + (255.0 - f64::from(c)) * amount).round() as u8;
     RGBColor(mix(colour.0), mix(colour.1), mix(colour.2))
-}
-
-fn bounds(values: impl Iterator<Item = f64>) -> (f64, f64) {
-    let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
-        (lo.min(v), hi.max(v))
-    });
-    if lo.is_finite() {
-        (lo, hi)
-    } else {
-        (0.0, 0.0)
-    }
 }
 
 fn ipx(p: (f64, f64)) -> (i32, i32) {
