@@ -67,6 +67,17 @@ fn eight2car_in_order_is_at_least_as_fast_as_the_hand_parallel_file() {
     insta::assert_snapshot!("eight2car_parallel", text(&out.stdout));
 }
 
+/// `dynarole ARGS` (a `check`) accepts the file with no warning.
+fn assert_checks_clean(args: &[&str]) {
+    let check = dynarole(args);
+    assert_eq!(check.status.code(), Some(0), "{}", text(&check.stderr));
+    assert!(
+        !text(&check.stderr).contains("warning"),
+        "{}",
+        text(&check.stderr)
+    );
+}
+
 #[test]
 fn the_output_checks_clean_forwards_and_its_reverse_from_the_end() {
     let input = sequential_eight2car();
@@ -77,13 +88,7 @@ fn the_output_checks_clean_forwards_and_its_reverse_from_the_end() {
     );
     assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
     let output_path = output.display().to_string();
-    let check = dynarole(&["check", &output_path, "--from", "examples/atron/eight.json"]);
-    assert_eq!(check.status.code(), Some(0), "{}", text(&check.stderr));
-    assert!(
-        !text(&check.stderr).contains("warning"),
-        "{}",
-        text(&check.stderr)
-    );
+    assert_checks_clean(&["check", &output_path, "--from", "examples/atron/eight.json"]);
     let replay = dynarole(&[
         "replay",
         &output_path,
@@ -103,18 +108,12 @@ fn the_output_checks_clean_forwards_and_its_reverse_from_the_end() {
         text(&reversed.stderr)
     );
     let back = scratch("eight2car_parallel_back.dr", &text(&reversed.stdout));
-    let check = dynarole(&[
+    assert_checks_clean(&[
         "check",
         &back.display().to_string(),
         "--from",
         "examples/atron/car.json",
     ]);
-    assert_eq!(check.status.code(), Some(0), "{}", text(&check.stderr));
-    assert!(
-        !text(&check.stderr).contains("warning"),
-        "{}",
-        text(&check.stderr)
-    );
 }
 
 #[test]
@@ -135,7 +134,7 @@ fn the_paper_protocol_gets_flat_groups_and_fig5_keeps_its_turns_in_order() {
         .expect("M0's turn");
     assert!(turn.trim_end().ends_with(';'), "{written}");
     let output_path = output.display().to_string();
-    let check = dynarole(&[
+    assert_checks_clean(&[
         "check",
         "--protocol",
         "paper",
@@ -143,12 +142,6 @@ fn the_paper_protocol_gets_flat_groups_and_fig5_keeps_its_turns_in_order() {
         "--from",
         "examples/atron/eight.json",
     ]);
-    assert_eq!(check.status.code(), Some(0), "{}", text(&check.stderr));
-    assert!(
-        !text(&check.stderr).contains("warning"),
-        "{}",
-        text(&check.stderr)
-    );
 }
 
 #[test]
