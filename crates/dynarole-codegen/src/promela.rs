@@ -361,7 +361,7 @@ impl Gen<'_> {
             "/* The address of module m (the role predicates on the configuration). */\n#define ADDR(m) {addr}"
         );
         self.tables(out);
-        // Spelled out as a number (the verifier tests fail with the STATE_END macro here).
+        // A number: FINISHED is used before the paper model defines its STATE_END.
         let finished = match self.options.compile.protocol {
             Protocol::Lattice => "(epoch[m] >= N_EPOCHS)".to_string(),
             Protocol::Paper | Protocol::Token => format!("(g_state[m] == {PAPER_STATE_END})"),
