@@ -3,8 +3,8 @@
 //! replay a counterexample, and tell a verdict from a failure of the tools.
 
 use crate::load::Failure;
+use dynarole_campaign::ProgressMode;
 use indicatif::{ProgressBar, ProgressStyle};
-use std::io::IsTerminal;
 use std::path::Path;
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
@@ -185,32 +185,31 @@ fn run_to_file(
 /// How often a running tool is looked at.
 const POLL: Duration = Duration::from_millis(20);
 
-/// Seconds between two progress lines when stderr is not a terminal; the environment variable
-/// `DYNAROLE_PROGRESS_SECONDS` changes it (the tests lower it).
-const PROGRESS_SECONDS: u64 = 10;
-
-/// Progress of one check on stderr: a spinner on a terminal, otherwise a line every
-/// [`PROGRESS_SECONDS`]. Nothing goes to stdout, whose report stays deterministic.
+/// Progress of one check on stderr, shown as every long command shows it
+/// (`dynarole_campaign::ProgressMode`: a spinner on a terminal, otherwise a line every
+/// `DYNAROLE_PROGRESS_SECONDS`, none when it is 0). Nothing goes to stdout, whose report stays
+/// deterministic.
 pub struct Progress {
     label: String,
     phase: &'static str,
     started: Instant,
     last_line: Instant,
-    interval: Duration,
+    /// Seconds between two lines; `None`: no lines (a spinner, or progress off).
+    interval: Option<Duration>,
     spinner: Option<ProgressBar>,
 }
 
 impl Progress {
     /// Progress of the check named `label` (e.g. `M3: S1, S2, S3 (safety)`).
     pub fn new(label: &str) -> Progress {
-        let seconds = match std::env::var("DYNAROLE_PROGRESS_SECONDS") {
-            Err(_) => PROGRESS_SECONDS,
-            Ok(v) => v.parse::<u64>().unwrap_or_else(|_| {
-                eprintln!("warning: DYNAROLE_PROGRESS_SECONDS=`{v}` is not a whole number of seconds; progress every {PROGRESS_SECONDS} s");
-                PROGRESS_SECONDS
-            }),
-        };
-        let spinner = std::io::stderr().is_terminal().then(|| {
+        // A bad interval does not stop a model-checking run: the default, with a warning.
+        let mode = ProgressMode::for_stderr().unwrap_or_else(|e| {
+            eprintln!("warning: {e}; progress every 10 s");
+            ProgressMode::Lines {
+                every: Duration::from_secs(10),
+            }
+        });
+        let spinner = (mode == ProgressMode::Bar).then(|| {
             let bar = ProgressBar::new_spinner();
             if let Ok(style) = ProgressStyle::with_template("{spinner} {elapsed} {msg}") {
                 bar.set_style(style);
@@ -218,13 +217,17 @@ impl Progress {
             bar.enable_steady_tick(Duration::from_millis(200));
             bar
         });
+        let interval = match mode {
+            ProgressMode::Lines { every } => Some(every),
+            ProgressMode::Bar | ProgressMode::Off => None,
+        };
         let now = Instant::now();
         Progress {
             label: label.to_string(),
             phase: "generating the verifier",
             started: now,
             last_line: now,
-            interval: Duration::from_secs(seconds.max(1)),
+            interval,
             spinner,
         }
     }
@@ -244,7 +247,10 @@ impl Progress {
             if bar.message() != message {
                 bar.set_message(message);
             }
-        } else if self.last_line.elapsed() >= self.interval {
+        } else if self
+            .interval
+            .is_some_and(|every| self.last_line.elapsed() >= every)
+        {
             self.last_line = Instant::now();
             eprintln!(
                 "progress: {message} ({} s)",
