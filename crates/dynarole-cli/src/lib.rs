@@ -5,7 +5,6 @@
 pub mod campaign;
 pub mod check;
 pub mod compile;
-pub mod counterexample;
 pub mod fmt;
 pub mod load;
 pub mod parallelise;
@@ -14,7 +13,6 @@ pub mod replay;
 pub mod reverse;
 pub mod show;
 pub mod simulate;
-pub mod spin;
 pub mod verify;
 pub mod world;
 

@@ -1,23 +1,21 @@
-//! `dynarole verify`: model-checks a compiled sequence on a configuration with spin (S1, S2,
-//! S3 and L under stated bounds) and reports a counterexample in the source's terms; also
-//! the model itself for `dynarole compile --target promela`.
+//! `dynarole verify` and `compile --target promela`: the arguments turned into
+//! `dynarole_verify`'s options, its report printed as it comes (progress on stderr), its
+//! errors turned into exit codes, and the model files written.
 
-use crate::compile::{ProtocolArg, ProtocolOptions};
-use crate::counterexample::{explain, parse_events, Context, Event};
+use crate::compile::ProtocolOptions;
 use crate::load::{self, Failure, PluginArgs};
 use crate::render;
-use crate::spin::{self, Check, Limits, PanResult};
 use crate::world::{prepare, read_configuration};
-use dynarole_codegen::{
-    generate_compositional, generate_promela, liveness_graph, Fault, LivenessGraph, Model,
-    ModelOptions, Protocol, Topology, TopologyLink, TopologyModule,
+use dynarole_campaign::ProgressMode;
+use dynarole_codegen::Fault;
+use dynarole_verify::{
+    BuildOptions, Built, Entry, Header, Inputs, Method, Models, Observer, Phase, Source, Verdict,
+    VerifyError, VerifyOptions,
 };
-use dynarole_core::check::Label;
-use dynarole_core::lower::Ir;
-use dynarole_core::{Diagnostic, DiagnosticKind, Program};
-use dynarole_replay::{communication_graph, CommGraph};
+use indicatif::{ProgressBar, ProgressStyle};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::time::{Duration, Instant};
 
 /// The bounds of the environment, shared by `verify` and `compile --target promela`.
 #[derive(Clone, Debug, clap::Args)]
@@ -36,22 +34,17 @@ pub struct ModelArgs {
     /// (lattice only: one model per module, every packet any state the robot has reached;
     /// scales to large robots), `auto` (compositional for the lattice protocol on more than
     /// three modules).
-    #[arg(long, value_enum, default_value_t = Method::Auto)]
-    pub method: Method,
+    #[arg(long, value_enum, default_value_t = MethodArg::Auto)]
+    pub method: MethodArg,
 }
 
 /// How the robot is modelled (see docs/verification.md).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
-pub enum Method {
+pub enum MethodArg {
     Auto,
     Full,
     Compositional,
 }
-
-/// Modules above which the full model's exhaustive search is not expected to finish: `auto`
-/// then chooses the compositional model for the lattice protocol, and a full model is first
-/// searched within bounds ([`BOUNDED_STEPS`]).
-const AUTO_FULL_MODULES: usize = 3;
 
 /// A deliberately broken lattice protocol (for the tests of the checker itself).
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
@@ -79,28 +72,9 @@ pub struct VerifyArgs<'a> {
     pub plugins: &'a PluginArgs,
 }
 
-/// A model and what it was made from.
-pub struct Built {
-    pub ir: Ir,
-    pub models: Models,
-    pub topology: Topology,
-    pub graph: CommGraph,
-    pub name: String,
-}
-
-/// The full model, or one compositional model per module.
-pub enum Models {
-    Full(Model),
-    Compositional {
-        /// One per module of the topology, in its order.
-        per_module: Vec<Model>,
-        liveness: LivenessGraph,
-    },
-}
-
 /// What a model is made from: a checked source, its sequences, a configuration, options.
 pub struct Request<'a> {
-    pub program: &'a Program<'a>,
+    pub program: &'a dynarole_core::Program<'a>,
     pub source: &'a str,
     pub display: &'a str,
     pub sequences: &'a [String],
@@ -110,211 +84,74 @@ pub struct Request<'a> {
     pub epochs: u16,
 }
 
-/// Expands, lowers and models the sequences on the configuration. `Err(code)` inside: the
-/// problem was rendered as a diagnostic of the source.
-pub fn build(req: &Request, fault: Option<FaultArg>) -> Result<Result<Built, ExitCode>, Failure> {
-    let Request {
-        program,
-        source,
-        display,
-        sequences,
-        from,
-        options,
-        model,
-        epochs,
-    } = *req;
-    let config = read_configuration(from)?;
-    let prepared = match prepare(program, display, sequences, config)? {
-        Ok(p) => p,
-        Err(diagnostics) => {
-            render::diagnostics(display, source, &diagnostics);
-            return Ok(Err(ExitCode::from(1)));
-        }
-    };
-    if let ProtocolArg::Paper = options.protocol {
-        for plan in &prepared.plans {
-            if let Err(d) = plan.flatten_for_paper() {
-                render::diagnostics(display, source, &[d]);
-                return Ok(Err(ExitCode::from(1)));
-            }
-        }
-    }
-    let limit_error = |e: dynarole_core::lower::LimitError| {
-        Diagnostic::new(DiagnosticKind::TargetLimit { message: e.message }, e.span)
-    };
-    let ir = match program.lower(&prepared.plans) {
-        Ok(ir) => ir,
-        Err(e) => {
-            render::diagnostics(display, source, &[limit_error(e)]);
-            return Ok(Err(ExitCode::from(1)));
-        }
-    };
-    let graph = communication_graph(
-        program,
-        &prepared.plans,
-        prepared.world.clone(),
-        &prepared.assignment,
-    );
-    let topology = topology(&ir, &graph, &prepared.assignment)?;
-    let name = prepared.names.join(" + ");
-    let mut reset_modules = Vec::new();
-    for wanted in &model.reset_only {
-        match graph.names.iter().position(|n| n == wanted) {
-            Some(k) => reset_modules.push(k),
-            None => {
-                return Err(Failure::Usage(format!(
-                    "--reset-only {wanted}: no module of that name in {}",
-                    from.display()
-                )))
-            }
-        }
-    }
-    let model_options = ModelOptions {
-        compile: options.compile_options(epochs, name.clone()),
-        resets: model.resets,
-        reset_modules,
-        late: model.late,
+/// The library's options for these arguments; the model is named after `names`.
+fn build_options(req: &Request, names: &[String], fault: Option<FaultArg>) -> BuildOptions {
+    BuildOptions {
+        compile: req.options.compile_options(req.epochs, names.join(" + ")),
+        method: match req.model.method {
+            MethodArg::Auto => Method::Auto,
+            MethodArg::Full => Method::Full,
+            MethodArg::Compositional => Method::Compositional,
+        },
+        resets: req.model.resets,
+        reset_only: req.model.reset_only.clone(),
+        late: req.model.late,
         fault: fault.map(|f| match f {
             FaultArg::JoinDropsDone => Fault::JoinDropsDone,
             FaultArg::JoinNoRebase => Fault::JoinNoRebase,
         }),
-    };
-    if model_options.compile.protocol != Protocol::Lattice && fault.is_some() {
-        return Err(Failure::Usage(
-            "the broken variants exist for the lattice protocol only".into(),
-        ));
     }
-    let o = &model_options.compile;
-    if model.method == Method::Compositional
-        && (o.protocol != Protocol::Lattice || o.no_nv || o.epochs != 1)
-    {
-        return Err(Failure::Usage(
-            "--method compositional models the lattice protocol with NV storage and one run (--epochs 1); use --method full".into(),
-        ));
+}
+
+/// The exit code or failure of a library error; the source's problems are rendered here.
+fn failed(error: VerifyError, req: &Request) -> Result<ExitCode, Failure> {
+    match error {
+        VerifyError::Source(diagnostics) => {
+            render::diagnostics(req.display, req.source, &diagnostics);
+            Ok(ExitCode::from(1))
+        }
+        VerifyError::Input(m) => Err(Failure::Input(m)),
+        VerifyError::Usage(m) => Err(Failure::Usage(m)),
+        VerifyError::Internal(m) => Err(Failure::Internal(m)),
     }
-    let models = match generate(&ir, &topology, &model_options, model.method) {
-        Ok(m) => m,
-        Err(e) => {
-            render::diagnostics(display, source, &[limit_error(e)]);
+}
+
+/// Reads the configuration, expands the sequences and models them. `Err(code)` inside: the
+/// problem was rendered as a diagnostic of the source.
+fn build(
+    req: &Request,
+    fault: Option<FaultArg>,
+) -> Result<Result<(Built, BuildOptions), ExitCode>, Failure> {
+    let config = read_configuration(req.from)?;
+    let prepared = match prepare(req.program, req.display, req.sequences, config)? {
+        Ok(p) => p,
+        Err(diagnostics) => {
+            render::diagnostics(req.display, req.source, &diagnostics);
             return Ok(Err(ExitCode::from(1)));
         }
     };
-    Ok(Ok(Built {
-        ir,
-        models,
-        topology,
-        graph,
-        name,
-    }))
-}
-
-/// Whether the compositional model is used: asked for, or `auto` on a lattice robot of more
-/// than AUTO_FULL_MODULES modules (one run, NV, no broken variant).
-fn compositional(options: &ModelOptions, modules: usize, method: Method) -> bool {
-    let o = &options.compile;
-    match method {
-        Method::Full => false,
-        Method::Compositional => true,
-        Method::Auto => {
-            o.protocol == Protocol::Lattice
-                && !o.no_nv
-                && o.epochs == 1
-                && options.fault.is_none()
-                && modules > AUTO_FULL_MODULES
-        }
-    }
-}
-
-fn generate(
-    ir: &Ir,
-    topology: &Topology,
-    options: &ModelOptions,
-    method: Method,
-) -> Result<Models, dynarole_core::lower::LimitError> {
-    if !compositional(options, topology.modules.len(), method) {
-        return generate_promela(ir, topology, options).map(Models::Full);
-    }
-    // Late packets are subsumed: every packet is any state the robot has already reached.
-    let options = ModelOptions {
-        late: 0,
-        ..options.clone()
+    let options = build_options(req, &prepared.names, fault);
+    let configuration = req.from.display().to_string();
+    let inputs = Inputs {
+        program: req.program,
+        names: &prepared.names,
+        plans: &prepared.plans,
+        assignment: &prepared.assignment,
+        world: &prepared.world,
+        configuration: &configuration,
     };
-    let liveness = liveness_graph(ir, topology);
-    let per_module = (0..topology.modules.len())
-        .map(|k| generate_compositional(ir, topology, &options, k, &liveness))
-        .collect::<Result<Vec<_>, _>>()?;
-    Ok(Models::Compositional {
-        per_module,
-        liveness,
-    })
-}
-
-/// The model's view of the robot: every module of the configuration with the address of the
-/// label assigned to it, and its links (fair when they exist throughout).
-fn topology(
-    ir: &Ir,
-    graph: &CommGraph,
-    assignment: &dynarole_replay::Assignment,
-) -> Result<Topology, Failure> {
-    let mut modules = Vec::new();
-    for name in &graph.names {
-        let labels: Vec<&Label> = assignment
-            .iter()
-            .filter(|(_, module)| *module == name)
-            .map(|(label, _)| label)
-            .collect();
-        let addresses: Vec<u8> = labels
-            .iter()
-            .filter_map(|l| ir.addresses.iter().find(|a| a.label == **l))
-            .map(|a| a.number)
-            .collect();
-        if addresses.len() > 1 {
-            return Err(Failure::Input(format!(
-                "module {name} has several roles; the model needs one address per module"
-            )));
-        }
-        modules.push(TopologyModule {
-            name: name.clone(),
-            address: addresses.first().copied(),
-        });
+    match dynarole_verify::build(&inputs, &options) {
+        Ok(built) => Ok(Ok((built, options))),
+        Err(e) => failed(e, req).map(Err),
     }
-    // A link surely exists in stage k (statements 0..k done, k not) when it exists in every
-    // configuration from the one after the first k statements to the one after the group
-    // (up to the next `;`) that statement k belongs to; in the last stage, in the final one.
-    let n = ir.statements.len();
-    let group_end = |k: usize| -> usize {
-        (k..n)
-            .find(|&j| ir.statements[j].separator == dynarole_core::ast::SeparatorKind::Sequential)
-            .map_or(n, |j| j + 1)
-    };
-    let all: std::collections::BTreeSet<(usize, usize)> =
-        graph.always.union(&graph.sometimes).copied().collect();
-    let links = all
-        .into_iter()
-        .map(|(from, to)| {
-            let fair_stages = (0..=n)
-                .filter(|&k| {
-                    let last = if k == n { n } else { group_end(k) };
-                    (k..=last).all(|t| graph.stages.get(t).is_some_and(|s| s.contains(&(from, to))))
-                })
-                .collect();
-            TopologyLink {
-                from,
-                to,
-                fair_stages,
-            }
-        })
-        .collect();
-    Ok(Topology { modules, links })
 }
 
 pub fn run(args: &VerifyArgs) -> Result<ExitCode, Failure> {
-    if let ProtocolArg::Token = args.options.protocol {
-        return Err(Failure::Usage(
-            "verify models the lattice and paper protocols; the token baseline is not modelled"
-                .into(),
-        ));
-    }
+    let protocol = args
+        .options
+        .compile_options(args.epochs, String::new())
+        .protocol;
+    dynarole_verify::modelled(protocol).map_err(|e| Failure::Usage(e.to_string()))?;
     load::with_program(args.file, args.plugins, |program, source| {
         let display = args.file.display().to_string();
         let request = Request {
@@ -327,22 +164,48 @@ pub fn run(args: &VerifyArgs) -> Result<ExitCode, Failure> {
             model: args.model,
             epochs: args.epochs,
         };
-        let built = match build(&request, args.fault)? {
+        let (built, options) = match build(&request, args.fault)? {
             Ok(b) => b,
             Err(code) => return Ok(code),
         };
-        spin::check_tools()?;
         let dir = match args.keep {
             Some(d) => d.to_path_buf(),
             None => scratch_dir(),
         };
         std::fs::create_dir_all(&dir)
             .map_err(|e| Failure::Internal(format!("cannot create {}: {e}", dir.display())))?;
-        let result = verify_in(&dir, args, &built, &display, source);
+        let header = dynarole_verify::header(&built, &options, &request.from.display().to_string());
+        let verify = VerifyOptions {
+            memory_mb: args.memory_mb,
+            time_s: args.time_s,
+            bitstate: args.bitstate,
+            safety_only: args.safety_only,
+        };
+        let source = Source {
+            path: &display,
+            text: source,
+        };
+        let report = dynarole_verify::verify(
+            &built,
+            header,
+            &verify,
+            source,
+            &dir,
+            &mut Printer::default(),
+        );
         if args.keep.is_none() {
             let _ = std::fs::remove_dir_all(&dir);
         }
-        result
+        let verdict = match report {
+            Ok(report) => report.verdict,
+            Err(e) => return failed(e, &request),
+        };
+        print!("{verdict}");
+        Ok(ExitCode::from(match verdict {
+            Verdict::Verified => 0,
+            Verdict::Violated => 1,
+            Verdict::Inconclusive => 3,
+        }))
     })
 }
 
@@ -353,463 +216,124 @@ fn scratch_dir() -> PathBuf {
     std::env::temp_dir().join(format!("dynarole-verify-{}-{nanos}", std::process::id()))
 }
 
-/// Whether a property was proved, refuted, or neither.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Verdict {
-    Verified,
-    Violated,
-    Inconclusive,
+/// Prints the report on stdout as it comes, and the progress of the tools on stderr.
+#[derive(Default)]
+struct Printer {
+    /// The progress of the check whose tools run now.
+    ticker: Option<Ticker>,
 }
 
-fn verify_in(
-    dir: &Path,
-    args: &VerifyArgs,
-    built: &Built,
-    display: &str,
-    source: &str,
-) -> Result<ExitCode, Failure> {
-    print_header(args, built);
-    let explain_with = Explain {
-        ir: &built.ir,
-        display,
-        source,
-    };
-    let verdicts = match &built.models {
-        Models::Full(model) => {
-            let checks = if args.safety_only {
-                vec![Check::Safety]
-            } else {
-                vec![Check::Safety, Check::Liveness]
-            };
-            let bounded_first = built.topology.modules.len() > AUTO_FULL_MODULES;
-            let how = How {
-                who: "",
-                bounded_first,
-            };
-            check_model(dir, args, model, &checks, how, &explain_with)?
+impl Observer for Printer {
+    fn header(&mut self, header: &Header) {
+        print!("{header}");
+    }
+
+    fn entry(&mut self, entry: &Entry) {
+        print!("{entry}");
+    }
+
+    fn begin(&mut self, _label: &str) {
+        self.ticker = Some(Ticker::new());
+    }
+
+    fn progress(&mut self, label: &str, phase: Phase, search: Option<(u64, u64)>) {
+        if let Some(ticker) = &mut self.ticker {
+            ticker.tick(label, phase, search);
         }
-        Models::Compositional {
-            per_module,
-            liveness,
-        } => check_each_module(dir, args, built, per_module, liveness, &explain_with)?,
-    };
-    let code = if verdicts.contains(&Verdict::Violated) {
-        println!("result: violated");
-        1
-    } else if verdicts.iter().all(|v| *v == Verdict::Verified) {
-        println!("result: verified");
-        0
-    } else {
-        println!("result: inconclusive (the search did not cover every state; see above)");
-        3
-    };
-    Ok(ExitCode::from(code))
+    }
+
+    fn end(&mut self) {
+        self.ticker = None;
+    }
 }
 
-/// What a counterexample is explained with.
-struct Explain<'a> {
-    ir: &'a Ir,
-    display: &'a str,
-    source: &'a str,
+/// Progress of one check on stderr, shown as every long command shows it
+/// (`dynarole_campaign::ProgressMode`: a spinner on a terminal, otherwise a line every
+/// `DYNAROLE_PROGRESS_SECONDS`, none when it is 0). Nothing goes to stdout, whose report stays
+/// deterministic.
+struct Ticker {
+    started: Instant,
+    last_line: Instant,
+    /// Seconds between two lines; `None`: no lines (a spinner, or progress off).
+    interval: Option<Duration>,
+    spinner: Option<ProgressBar>,
 }
 
-/// The compositional method: the modules one at a time (each model in its own directory),
-/// stopping at the first violation; L only where the links that surely exist carry what it
-/// needs.
-fn check_each_module(
-    dir: &Path,
-    args: &VerifyArgs,
-    built: &Built,
-    per_module: &[Model],
-    liveness: &LivenessGraph,
-    explain_with: &Explain,
-) -> Result<Vec<Verdict>, Failure> {
-    println!("method: compositional, one model per module (its own logic; every other module reduced to its start rule; every packet any dependency-closed state the robot has reached: any loss, delay, duplication, reordering, on any topology)");
-    let mut verdicts = Vec::new();
-    let mut checks = vec![Check::Safety];
-    if !args.safety_only {
-        let stuck = liveness.stuck_statements();
-        let deaf = liveness.deaf_modules();
-        if stuck.is_empty() && deaf.is_empty() {
-            println!("  links for L: in every stage, the dependencies of the next statement reach its module, and at the end every module is reached, over links that surely exist");
-            checks.push(Check::Liveness);
-        } else {
-            verdicts.push(Verdict::Inconclusive);
-            println!(
-                "  L: not established (NOT checked): {}",
-                unreached(built, &stuck, &deaf)
+impl Ticker {
+    fn new() -> Ticker {
+        // A bad interval does not stop a model-checking run: the default, with a warning.
+        let mode = ProgressMode::for_stderr().unwrap_or_else(|e| {
+            eprintln!("warning: {e}; progress every 10 s");
+            ProgressMode::Lines {
+                every: Duration::from_secs(10),
+            }
+        });
+        let spinner = (mode == ProgressMode::Bar).then(|| {
+            let bar = ProgressBar::new_spinner();
+            if let Ok(style) = ProgressStyle::with_template("{spinner} {elapsed} {msg}") {
+                bar.set_style(style);
+            }
+            bar.enable_steady_tick(Duration::from_millis(200));
+            bar
+        });
+        let interval = match mode {
+            ProgressMode::Lines { every } => Some(every),
+            ProgressMode::Bar | ProgressMode::Off => None,
+        };
+        let now = Instant::now();
+        Ticker {
+            started: now,
+            last_line: now,
+            interval,
+            spinner,
+        }
+    }
+
+    fn tick(&mut self, label: &str, phase: Phase, search: Option<(u64, u64)>) {
+        let figures = search.map_or(String::new(), |(states, depth)| {
+            format!(", {states} states, depth {depth}")
+        });
+        let message = format!("{label}: {phase}{figures}");
+        if let Some(bar) = &self.spinner {
+            if bar.message() != message {
+                bar.set_message(message);
+            }
+        } else if self
+            .interval
+            .is_some_and(|every| self.last_line.elapsed() >= every)
+        {
+            self.last_line = Instant::now();
+            eprintln!(
+                "progress: {message} ({} s)",
+                self.started.elapsed().as_secs()
             );
         }
     }
-    for (k, model) in per_module.iter().enumerate() {
-        let name = &built.topology.modules[k].name;
-        let sub = dir.join(format!("module-{k}"));
-        std::fs::create_dir_all(&sub)
-            .map_err(|e| Failure::Internal(format!("cannot create {}: {e}", sub.display())))?;
-        let how = How {
-            who: name,
-            bounded_first: false,
-        };
-        let found = check_model(&sub, args, model, &checks, how, explain_with)?;
-        let violated = found.contains(&Verdict::Violated);
-        verdicts.extend(found);
-        if violated {
-            println!("note: the compositional model over-approximates the network, so a violation may be spurious; check it with --method full");
-            break;
+}
+
+impl Drop for Ticker {
+    fn drop(&mut self) {
+        if let Some(bar) = &self.spinner {
+            bar.finish_and_clear();
         }
-    }
-    Ok(verdicts)
-}
-
-/// Why L cannot be established from the links that surely exist.
-fn unreached(built: &Built, stuck: &[usize], deaf: &[usize]) -> String {
-    let mut parts = Vec::new();
-    for &s in stuck {
-        parts.push(format!(
-            "in stage {s}, what #{s} `{}` waits for cannot be shown to reach its module",
-            built.ir.statements[s].text
-        ));
-    }
-    if !deaf.is_empty() {
-        let names: Vec<&str> = deaf
-            .iter()
-            .map(|&m| built.topology.modules[m].name.as_str())
-            .collect();
-        parts.push(format!(
-            "in the final configuration, {} cannot be shown to hear every module that ran statements",
-            names.join(", ")
-        ));
-    }
-    parts.join("; ")
-}
-
-/// How one model is checked.
-#[derive(Clone, Copy)]
-struct How<'a> {
-    /// The module a compositional model is for (empty: the full model).
-    who: &'a str,
-    /// Look for a short violation first (bounded searches, [`BOUNDED_STEPS`]): the full model
-    /// of a robot larger than [`AUTO_FULL_MODULES`] modules, whose exhaustive search runs deep
-    /// before it backtracks to a violation a few steps from the start.
-    bounded_first: bool,
-}
-
-/// The bounds of the searches tried first (steps after `init`), each run only when the last
-/// met its bound without a violation; each gets a quarter of the time limit.
-const BOUNDED_STEPS: [u64; 3] = [50, 100, 200];
-
-/// Runs the checks on one model in `dir` (for safety on a large full model, bounded searches
-/// first; falling back to bitstate when the exhaustive search does not fit), prints a line
-/// per check, explains the first violation and stops there.
-fn check_model(
-    dir: &Path,
-    args: &VerifyArgs,
-    model: &Model,
-    checks: &[Check],
-    how: How,
-    explain_with: &Explain,
-) -> Result<Vec<Verdict>, Failure> {
-    let path = dir.join("model.pml");
-    std::fs::write(&path, &model.text)
-        .map_err(|e| Failure::Internal(format!("cannot write {}: {e}", path.display())))?;
-    let limits = Limits {
-        memory_mb: args.memory_mb,
-        time_s: args.time_s,
-        bitstate: args.bitstate,
-        shortest: false,
-        depth: None,
-    };
-    let who = if how.who.is_empty() {
-        String::new()
-    } else {
-        format!("{}: ", how.who)
-    };
-    let mut verdicts = Vec::new();
-    for &check in checks {
-        let label = match (check, who.is_empty()) {
-            (Check::Safety, true) => "S1, S2, S3 (safety)",
-            (Check::Safety, false) => "S1, S2, S3, G1-G4 (safety)",
-            (Check::Liveness, _) => "L (finishes, weak fairness)",
-        };
-        let named = format!("{who}{label}");
-        let bounded = if how.bounded_first && check == Check::Safety && !limits.bitstate {
-            bounded_search(dir, check, limits, model, &named)?
-        } else {
-            None
-        };
-        let (result, used, fell_back) = match bounded {
-            Some(found) => (found.0, found.1, false),
-            None => exhaustive(dir, check, limits, &named)?,
-        };
-        let verdict = if result.errors > 0 {
-            Verdict::Violated
-        } else if result.complete() {
-            Verdict::Verified
-        } else {
-            Verdict::Inconclusive
-        };
-        let word = match verdict {
-            Verdict::Verified => "verified",
-            Verdict::Violated => "VIOLATED",
-            Verdict::Inconclusive => {
-                if fell_back || result.bitstate {
-                    "no violation found (NOT a proof)"
-                } else {
-                    "not finished (NOT a proof)"
-                }
-            }
-        };
-        println!("  {named}: {word} — {}", describe(&result));
-        verdicts.push(verdict);
-        if verdict == Verdict::Violated {
-            explain_violation(dir, check, used, model, explain_with)?;
-            break;
-        }
-    }
-    Ok(verdicts)
-}
-
-/// The exhaustive search, then bitstate if it does not fit; the result, the limits it ran
-/// with, and whether it fell back.
-fn exhaustive(
-    dir: &Path,
-    check: Check,
-    limits: Limits,
-    named: &str,
-) -> Result<(PanResult, Limits, bool), Failure> {
-    let result = spin::run_check(dir, check, limits, named)?;
-    if result.errors == 0 && !limits.bitstate && (result.out_of_memory || result.timed_out) {
-        println!(
-            "  {named}: the state space is too large for an exhaustive search ({}); trying a bitstate search",
-            describe(&result)
-        );
-        let bitstate = Limits {
-            bitstate: true,
-            ..limits
-        };
-        return Ok((
-            spin::run_check(dir, check, bitstate, named)?,
-            bitstate,
-            true,
-        ));
-    }
-    Ok((result, limits, false))
-}
-
-/// Bounded searches (every run of at most [`BOUNDED_STEPS`] steps after `init`, the smallest
-/// first): `Some` when one found a violation or covered every state (no run reached the
-/// bound), with the limits it ran with; `None` to go on with the exhaustive search. A
-/// violation found is a real run, so stopping at the bound loses nothing but completeness.
-fn bounded_search(
-    dir: &Path,
-    check: Check,
-    limits: Limits,
-    model: &Model,
-    named: &str,
-) -> Result<Option<(PanResult, Limits)>, Failure> {
-    let first = Limits {
-        depth: Some(0),
-        ..limits
-    };
-    spin::build(dir, check, first, &mut spin::Progress::new(named))?;
-    for steps in BOUNDED_STEPS {
-        let bounded = Limits {
-            depth: Some(model.init_steps as u64 + steps),
-            time_s: (limits.time_s / 4).max(1),
-            ..limits
-        };
-        // A fresh progress per search: its spinner is gone before the line below is printed.
-        let result = spin::search(dir, check, bounded, &mut spin::Progress::new(named))?;
-        let outcome = if result.errors > 0 {
-            "a violation"
-        } else if result.complete() {
-            "no violation, and no run reaches the bound"
-        } else {
-            "no violation within the bound"
-        };
-        println!(
-            "  {named}: bounded search, runs of at most {steps} steps: {outcome} — {}",
-            describe(&result)
-        );
-        if result.errors > 0 || result.complete() {
-            return Ok(Some((result, bounded)));
-        }
-        if result.timed_out || result.out_of_memory {
-            break;
-        }
-    }
-    Ok(None)
-}
-
-/// Replays the trail of a violation (shortened first, for safety) and prints it in the
-/// source's terms.
-fn explain_violation(
-    dir: &Path,
-    check: Check,
-    limits: Limits,
-    model: &Model,
-    explain_with: &Explain,
-) -> Result<(), Failure> {
-    if check == Check::Safety && !limits.bitstate {
-        // The first depth-first trail is rarely the shortest: search again, shortening
-        // it iteratively (keeping the first trail if that runs out of memory).
-        let trail = dir.join("model.pml.trail");
-        let kept = dir.join("dfs.trail");
-        let _ = std::fs::rename(&trail, &kept);
-        let bfs = Limits {
-            shortest: true,
-            ..limits
-        };
-        let again = spin::run_check(dir, check, bfs, "shortening the counterexample")?;
-        if again.errors == 0 || !trail.exists() {
-            let _ = std::fs::rename(&kept, &trail);
-        }
-    }
-    let output = spin::replay_trail(dir, check)?;
-    let events = parse_events(&output);
-    // pan reported an assertion violated; a replay that does not reach it is not a
-    // counterexample to tell, and not a verdict either.
-    if check == Check::Safety && !events.iter().any(|e| matches!(e, Event::Violation { .. })) {
-        return Err(spin::tool_failure(spin::Tool::Replay, &output));
-    }
-    let cx = Context {
-        ir: explain_with.ir,
-        module_names: &model.module_names,
-        paper_states: &model.paper_states,
-        path: explain_with.display,
-        source: explain_with.source,
-    };
-    println!();
-    print!("{}", explain(&events, &cx));
-    Ok(())
-}
-
-/// `exhaustive, 1234 states, depth 56, 0.10 s` and what limited the search.
-fn describe(r: &PanResult) -> String {
-    let mut parts = vec![
-        if r.bitstate {
-            "bitstate (partial)".to_string()
-        } else if r.depth_limited || (r.bounded && !r.complete()) {
-            "bounded (partial)".to_string()
-        } else {
-            "exhaustive".to_string()
-        },
-        // pan reports its figures every million states and at the end: a search stopped
-        // before either has none to give.
-        if r.states == 0 && !r.reported {
-            "states not reported".to_string()
-        } else {
-            format!("{} states, depth {}", r.states, r.depth)
-        },
-        format!("{:.2} s", r.seconds),
-    ];
-    if r.memory_mb > 0.0 {
-        parts.push(format!("{:.0} MB", r.memory_mb));
-    }
-    if r.out_of_memory {
-        parts.push("out of memory".into());
-    }
-    if r.timed_out {
-        parts.push("time limit reached".into());
-    }
-    if r.depth_limited {
-        parts.push("depth limit reached".into());
-    }
-    parts.join(", ")
-}
-
-fn print_header(args: &VerifyArgs, built: &Built) {
-    let protocol = match args.options.protocol {
-        ProtocolArg::Lattice => {
-            if args.options.no_nv {
-                "lattice protocol without NV".to_string()
-            } else {
-                "lattice protocol".to_string()
-            }
-        }
-        ProtocolArg::Paper => format!(
-            "paper protocol, {:?} merge{}{}",
-            args.options.merge,
-            if args.options.single_step_handover {
-                ", single-step handover"
-            } else {
-                ""
-            },
-            if args.options.restart_pending {
-                ", pending restart"
-            } else {
-                ""
-            }
-        )
-        .replace("CPort", "c-port")
-        .replace("Java", "java")
-        .replace("Printed", "printed"),
-        ProtocolArg::Token => "token baseline".to_string(),
-    };
-    let stages = built.ir.statements.len() + 1;
-    let throughout = built
-        .topology
-        .links
-        .iter()
-        .filter(|l| l.fair_stages.len() == stages)
-        .count();
-    println!(
-        "verify {} on {} ({protocol}): {} statements, {} modules, {} links ({} throughout, {} part of the time)",
-        built.name,
-        args.from.display(),
-        built.ir.statements.len(),
-        built.topology.modules.len(),
-        built.topology.links.len(),
-        throughout,
-        built.topology.links.len() - throughout
-    );
-    let epochs = match args.options.protocol {
-        ProtocolArg::Lattice => format!("{} run(s) of the sequence", args.epochs.max(1)),
-        ProtocolArg::Paper | ProtocolArg::Token => "one run".to_string(),
-    };
-    let who = if args.model.reset_only.is_empty() {
-        String::new()
-    } else {
-        format!(" (of {} only)", args.model.reset_only.join(", "))
-    };
-    let late = match built.models {
-        Models::Full(_) => format!(
-            "at most {} packet(s) in flight delivered late (and again)",
-            args.model.late
-        ),
-        Models::Compositional { .. } => {
-            "any number of packets delivered late (and again)".to_string()
-        }
-    };
-    println!(
-        "bounds: at most {} reset(s){who}; {late}; any packet may be lost; {epochs}; operations never fail",
-        args.model.resets
-    );
-    if args.fault.is_some() {
-        println!("note: a deliberately broken variant of the protocol is checked (--fault)");
     }
 }
 
 /// `dynarole compile --target promela`: writes DIR/model.pml (the compositional method:
 /// DIR/model-MODULE.pml for each module).
 pub fn write_model(req: &Request, out_dir: &Path) -> Result<ExitCode, Failure> {
-    let built = match build(req, None)? {
+    let (built, _) = match build(req, None)? {
         Ok(b) => b,
         Err(code) => return Ok(code),
     };
     std::fs::create_dir_all(out_dir)
         .map_err(|e| Failure::Input(format!("cannot create {}: {e}", out_dir.display())))?;
-    let files: Vec<(PathBuf, &Model)> = match &built.models {
-        Models::Full(model) => vec![(out_dir.join("model.pml"), model)],
-        Models::Compositional { per_module, .. } => per_module
-            .iter()
-            .zip(&built.topology.modules)
-            .map(|(model, m)| (out_dir.join(format!("model-{}.pml", m.name)), model))
-            .collect(),
-    };
-    for (path, model) in &files {
-        std::fs::write(path, &model.text)
+    let mut written = Vec::new();
+    for (name, model) in built.model_files() {
+        let path = out_dir.join(name);
+        std::fs::write(&path, &model.text)
             .map_err(|e| Failure::Input(format!("cannot write {}: {e}", path.display())))?;
+        written.push(path.display().to_string());
     }
     let what = match built.models {
         Models::Full(_) => "model",
@@ -821,11 +345,7 @@ pub fn write_model(req: &Request, out_dir: &Path) -> Result<ExitCode, Failure> {
         built.ir.statements.len(),
         built.topology.modules.len(),
         built.topology.links.len(),
-        files
-            .iter()
-            .map(|(p, _)| p.display().to_string())
-            .collect::<Vec<_>>()
-            .join(", ")
+        written.join(", ")
     );
     Ok(ExitCode::SUCCESS)
 }

@@ -1,7 +1,7 @@
 //! `dynarole verify` and `compile --target promela` end to end (spin must be installed:
 //! `scripts/test` installs it), and the translation of a counterexample back to the source.
 
-use dynarole_cli::counterexample::{explain, parse_events, Context};
+use dynarole_verify::{explain, parse_events, Context};
 mod common;
 
 use common::{dynarole, repo_root, text};
@@ -422,22 +422,30 @@ fn the_liveness_check_fails_when_the_end_is_never_surely_carried() {
         model.replace(fair_end, "    :: false -> skip"),
     )
     .expect("write");
-    let limits = dynarole_cli::spin::Limits {
+    let limits = dynarole_verify::spin::Limits {
         memory_mb: 1024,
         time_s: 300,
         bitstate: false,
         shortest: false,
         depth: None,
     };
-    let result =
-        dynarole_cli::spin::run_check(&check, dynarole_cli::spin::Check::Liveness, limits, "L")
-            .expect("pan runs");
+    let result = dynarole_verify::spin::run_check(
+        &check,
+        dynarole_verify::spin::Check::Liveness,
+        limits,
+        "L",
+    )
+    .expect("pan runs");
     assert!(result.errors > 0, "{result:?}");
     // The unchanged model proves L.
     std::fs::write(check.join("model.pml"), &model).expect("write");
-    let result =
-        dynarole_cli::spin::run_check(&check, dynarole_cli::spin::Check::Liveness, limits, "L")
-            .expect("pan runs");
+    let result = dynarole_verify::spin::run_check(
+        &check,
+        dynarole_verify::spin::Check::Liveness,
+        limits,
+        "L",
+    )
+    .expect("pan runs");
     assert!(result.errors == 0 && result.complete(), "{result:?}");
 }
 

@@ -99,16 +99,29 @@ pub struct Model {
     /// The steps `init` takes before the robot's first step (filling the tables, starting the
     /// processes): the depth at which a search meets the robot's initial state.
     pub init_steps: usize,
+    /// The processes `init` starts (those of the liveness check included): the verifier's
+    /// fairness bound depends on it.
+    pub processes: usize,
+}
+
+/// The lines of `init` in a model's text that start with `word`.
+fn init_lines(text: &str, word: &str) -> usize {
+    text.split_once("\ninit {\n").map_or(0, |(_, init)| {
+        init.lines()
+            .filter(|l| l.trim_start().starts_with(word))
+            .count()
+    })
 }
 
 /// Counts `init`'s steps in a model's text: each `d_step` and each `run` is one step of the
 /// search (those in `atomic` too).
 fn init_steps(text: &str) -> usize {
-    text.split_once("\ninit {\n").map_or(0, |(_, init)| {
-        init.lines()
-            .filter(|l| l.trim_start().starts_with("d_step") || l.trim_start().starts_with("run "))
-            .count()
-    })
+    init_lines(text, "d_step") + init_processes(text)
+}
+
+/// Counts the processes `init` starts in a model's text: one per `run`.
+fn init_processes(text: &str) -> usize {
+    init_lines(text, "run ")
 }
 
 /// The limits every model shares.
@@ -185,6 +198,7 @@ pub fn generate_promela(
     g.processes(&mut out, &fill);
     Ok(Model {
         init_steps: init_steps(&out),
+        processes: init_processes(&out),
         text: out,
         module_names: topology.modules.iter().map(|m| m.name.clone()).collect(),
         paper_states,
@@ -241,6 +255,7 @@ pub fn generate_compositional(
     compositional::write(&g, &mut out, checked, graph);
     Ok(Model {
         init_steps: init_steps(&out),
+        processes: init_processes(&out),
         text: out,
         module_names: topology.modules.iter().map(|m| m.name.clone()).collect(),
         paper_states: Vec::new(),

@@ -1,10 +1,9 @@
 //! Running spin on a generated model: generate the verifier (`spin -a`), compile it with a
-//! memory limit, run it with a time limit (reporting progress on stderr), read its figures,
-//! replay a counterexample, and tell a verdict from a failure of the tools.
+//! memory limit, run it with a time limit (reporting progress to an observer), read its
+//! figures, replay a counterexample, and tell a verdict from a failure of the tools.
 
-use crate::load::Failure;
-use dynarole_campaign::ProgressMode;
-use indicatif::{ProgressBar, ProgressStyle};
+use crate::report::{Observer, Phase};
+use crate::VerifyError;
 use std::path::Path;
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
@@ -62,14 +61,14 @@ impl PanResult {
 const MAX_DEPTH: &str = "-m1000000";
 
 /// Checks that spin and a C compiler are there; the error says how to install them.
-pub fn check_tools() -> Result<(), Failure> {
+pub fn check_tools() -> Result<(), VerifyError> {
     let spin = Command::new("spin")
         .arg("-V")
         .stdout(Stdio::null())
         .stderr(Stdio::null())
         .status();
     if spin.is_err() {
-        return Err(Failure::Internal(
+        return Err(VerifyError::Internal(
             "spin is not installed (it is needed to model-check): install it with `sudo apt-get install spin` (Debian, Ubuntu) or from https://spinroot.com, or run ./scripts/test once, which installs it".into(),
         ));
     }
@@ -79,7 +78,7 @@ pub fn check_tools() -> Result<(), Failure> {
         .stderr(Stdio::null())
         .status();
     if cc.is_err() {
-        return Err(Failure::Internal(
+        return Err(VerifyError::Internal(
             "no C compiler `cc` (spin's verifiers are C programs): install gcc or clang".into(),
         ));
     }
@@ -103,7 +102,7 @@ pub enum Tool {
 }
 
 /// The internal failure of `tool`, from its output: the lines that say what went wrong.
-pub fn tool_failure(tool: Tool, output: &str) -> Failure {
+pub fn tool_failure(tool: Tool, output: &str) -> VerifyError {
     let what = match tool {
         Tool::Spin => "spin rejected the generated model",
         Tool::Compiler => "the C compiler failed on spin's verifier (pan.c)",
@@ -136,18 +135,19 @@ pub fn tool_failure(tool: Tool, output: &str) -> Failure {
     } else {
         said.join("\n  ")
     };
-    Failure::Internal(format!("{what}:\n  {detail}\n{REPORT}"))
+    VerifyError::Internal(format!("{what}:\n  {detail}\n{REPORT}"))
 }
 
-fn log_file(dir: &Path, log: &str) -> Result<(std::fs::File, std::fs::File), Failure> {
-    let cannot =
-        |e: std::io::Error| Failure::Internal(format!("cannot write in {}: {e}", dir.display()));
+fn log_file(dir: &Path, log: &str) -> Result<(std::fs::File, std::fs::File), VerifyError> {
+    let cannot = |e: std::io::Error| {
+        VerifyError::Internal(format!("cannot write in {}: {e}", dir.display()))
+    };
     let out = std::fs::File::create(dir.join(log)).map_err(cannot)?;
     let err = out.try_clone().map_err(cannot)?;
     Ok((out, err))
 }
 
-fn spawn(cmd: &mut Command, dir: &Path, log: &str, tool: Tool) -> Result<Child, Failure> {
+fn spawn(cmd: &mut Command, dir: &Path, log: &str, tool: Tool) -> Result<Child, VerifyError> {
     let (out, err) = log_file(dir, log)?;
     cmd.current_dir(dir)
         .stdout(out)
@@ -163,7 +163,7 @@ fn run_to_file(
     log: &str,
     tool: Tool,
     progress: &mut Progress,
-) -> Result<(), Failure> {
+) -> Result<(), VerifyError> {
     let mut child = spawn(cmd, dir, log, tool)?;
     let succeeded = loop {
         match child.try_wait() {
@@ -185,111 +185,84 @@ fn run_to_file(
 /// How often a running tool is looked at.
 const POLL: Duration = Duration::from_millis(20);
 
-/// Progress of one check on stderr, shown as every long command shows it
-/// (`dynarole_campaign::ProgressMode`: a spinner on a terminal, otherwise a line every
-/// `DYNAROLE_PROGRESS_SECONDS`, none when it is 0). Nothing goes to stdout, whose report stays
-/// deterministic.
-pub struct Progress {
+/// Progress of the tool runs of one check, told to an observer (which decides how and how
+/// often to show it): begun when made, ended when dropped.
+pub struct Progress<'o> {
     label: String,
-    phase: &'static str,
-    started: Instant,
-    last_line: Instant,
-    /// Seconds between two lines; `None`: no lines (a spinner, or progress off).
-    interval: Option<Duration>,
-    spinner: Option<ProgressBar>,
+    phase: Phase,
+    observer: &'o mut dyn Observer,
 }
 
-impl Progress {
+impl<'o> Progress<'o> {
     /// Progress of the check named `label` (e.g. `M3: S1, S2, S3 (safety)`).
-    pub fn new(label: &str) -> Progress {
-        // A bad interval does not stop a model-checking run: the default, with a warning.
-        let mode = ProgressMode::for_stderr().unwrap_or_else(|e| {
-            eprintln!("warning: {e}; progress every 10 s");
-            ProgressMode::Lines {
-                every: Duration::from_secs(10),
-            }
-        });
-        let spinner = (mode == ProgressMode::Bar).then(|| {
-            let bar = ProgressBar::new_spinner();
-            if let Ok(style) = ProgressStyle::with_template("{spinner} {elapsed} {msg}") {
-                bar.set_style(style);
-            }
-            bar.enable_steady_tick(Duration::from_millis(200));
-            bar
-        });
-        let interval = match mode {
-            ProgressMode::Lines { every } => Some(every),
-            ProgressMode::Bar | ProgressMode::Off => None,
-        };
-        let now = Instant::now();
+    pub fn new(label: &str, observer: &'o mut dyn Observer) -> Progress<'o> {
+        observer.begin(label);
         Progress {
             label: label.to_string(),
-            phase: "generating the verifier",
-            started: now,
-            last_line: now,
-            interval,
-            spinner,
+            phase: Phase::Generating,
+            observer,
         }
     }
 
-    fn phase(&mut self, phase: &'static str) {
+    fn phase(&mut self, phase: Phase) {
         self.phase = phase;
         self.tick(None);
     }
 
     /// Reports what runs now; `search` is pan's (states, depth) so far.
     fn tick(&mut self, search: Option<(u64, u64)>) {
-        let figures = search.map_or(String::new(), |(states, depth)| {
-            format!(", {states} states, depth {depth}")
-        });
-        let message = format!("{}: {}{figures}", self.label, self.phase);
-        if let Some(bar) = &self.spinner {
-            if bar.message() != message {
-                bar.set_message(message);
-            }
-        } else if self
-            .interval
-            .is_some_and(|every| self.last_line.elapsed() >= every)
-        {
-            self.last_line = Instant::now();
-            eprintln!(
-                "progress: {message} ({} s)",
-                self.started.elapsed().as_secs()
-            );
-        }
+        self.observer.progress(&self.label, self.phase, search);
     }
 }
 
-impl Drop for Progress {
+impl Drop for Progress<'_> {
     fn drop(&mut self) {
-        if let Some(bar) = &self.spinner {
-            bar.finish_and_clear();
-        }
+        self.observer.end();
     }
 }
 
-/// Generates, compiles and runs the verifier for `check` on `dir/model.pml`, with progress
-/// under `label`. Failures of the tools are internal failures; a search that hits a limit
-/// is a result (incomplete).
+/// The processes of a model whose count is not known (a model file written elsewhere): the
+/// most spin runs (its process numbers are bytes).
+const MOST_PROCESSES: usize = 255;
+
+/// Generates, compiles and runs the verifier for `check` on `dir/model.pml`, a model written
+/// elsewhere (its processes not known: the fairness bound allows the most spin runs), with
+/// no progress shown. Failures of the tools are internal failures; a search that hits a
+/// limit is a result (incomplete).
 pub fn run_check(
     dir: &Path,
     check: Check,
     limits: Limits,
     label: &str,
-) -> Result<PanResult, Failure> {
-    let mut progress = Progress::new(label);
-    build(dir, check, limits, &mut progress)?;
+) -> Result<PanResult, VerifyError> {
+    let mut quiet = crate::report::Quiet;
+    let mut progress = Progress::new(label, &mut quiet);
+    build(dir, check, limits, MOST_PROCESSES, &mut progress)?;
     search(dir, check, limits, &mut progress)
 }
 
+/// [`run_check`] on a model of `processes` processes (`Model::processes`), with `progress`.
+pub fn run_model(
+    dir: &Path,
+    check: Check,
+    limits: Limits,
+    processes: usize,
+    progress: &mut Progress,
+) -> Result<PanResult, VerifyError> {
+    build(dir, check, limits, processes, progress)?;
+    search(dir, check, limits, progress)
+}
+
 /// Generates and compiles the verifier (`dir/pan`) for `check` within `limits` (the depth
-/// bound is given to pan when it runs, so one build serves every bound).
+/// bound is given to pan when it runs, so one build serves every bound); `processes`: the
+/// model's (`Model::processes`), for the fairness bound of liveness.
 pub fn build(
     dir: &Path,
     check: Check,
     limits: Limits,
+    processes: usize,
     progress: &mut Progress,
-) -> Result<(), Failure> {
+) -> Result<(), VerifyError> {
     let mut spin = Command::new("spin");
     if check == Check::Liveness {
         spin.arg("-DLIVENESS");
@@ -310,10 +283,7 @@ pub fn build(
             cc.args(["-DSAFETY", "-DNOCLAIM"]);
         }
         Check::Liveness => {
-            // Weak fairness needs (8 * NFAIR) / 2 - 2 > processes (pan's own check).
-            let text = std::fs::read_to_string(dir.join("model.pml")).unwrap_or_default();
-            let processes = text.matches("run ").count() + 2;
-            cc.arg(format!("-DNFAIR={}", (processes + 3).div_ceil(4) + 1));
+            cc.arg(format!("-DNFAIR={}", fairness_bound(processes)));
         }
     }
     if limits.bitstate {
@@ -324,9 +294,15 @@ pub fn build(
     if (limits.shortest && check == Check::Safety) || limits.depth.is_some() {
         cc.arg("-DREACH");
     }
-    progress.phase("compiling the verifier");
+    progress.phase(Phase::Compiling);
     run_to_file(&mut cc, dir, "cc.log", Tool::Compiler, progress)?;
     Ok(())
+}
+
+/// pan's `NFAIR` for a model of `processes` processes: weak fairness needs
+/// (8 * NFAIR) / 2 - 2 > processes, counting `init` and the never claim (pan's own check).
+fn fairness_bound(processes: usize) -> usize {
+    (processes + 2 + 3).div_ceil(4) + 1
 }
 
 /// Runs the verifier that [`build`] made, within `limits`, and reads its figures.
@@ -335,7 +311,7 @@ pub fn search(
     check: Check,
     limits: Limits,
     progress: &mut Progress,
-) -> Result<PanResult, Failure> {
+) -> Result<PanResult, VerifyError> {
     let mut pan = Command::new("./pan");
     match limits.depth {
         Some(depth) => pan.arg(format!("-m{depth}")),
@@ -353,7 +329,7 @@ pub fn search(
     } else if limits.shortest {
         pan.arg("-i");
     }
-    progress.phase("searching");
+    progress.phase(Phase::Searching);
     let started = Instant::now();
     let mut child = spawn(&mut pan, dir, "pan.log", Tool::Pan)?;
     let deadline = Duration::from_secs(limits.time_s);
@@ -477,7 +453,7 @@ pub fn parse_pan(text: &str) -> PanResult {
 
 /// Replays the counterexample of the last run (`model.pml.trail`) and returns what the model
 /// printed (its `@` events and spin's cycle marker).
-pub fn replay_trail(dir: &Path, check: Check) -> Result<String, Failure> {
+pub fn replay_trail(dir: &Path, check: Check) -> Result<String, VerifyError> {
     let mut spin = Command::new("spin");
     if check == Check::Liveness {
         spin.arg("-DLIVENESS");
@@ -500,13 +476,9 @@ pub fn replay_trail(dir: &Path, check: Check) -> Result<String, Failure> {
 mod tests {
     use super::*;
 
-    fn internal(failure: &Failure) -> &str {
-        assert_eq!(
-            failure.exit_code(),
-            std::process::ExitCode::from(crate::load::INTERNAL_EXIT)
-        );
+    fn internal(failure: &VerifyError) -> &str {
         match failure {
-            Failure::Internal(m) => m,
+            VerifyError::Internal(m) => m,
             other => panic!("not an internal failure: {other:?}"),
         }
     }
@@ -534,6 +506,15 @@ mod tests {
         assert!(message.contains("VECTORSZ too small"));
         let silent = internal(&tool_failure(Tool::Replay, "")).to_string();
         assert!(silent.contains("(no output)"));
+    }
+
+    #[test]
+    fn the_fairness_bound_passes_pans_own_check() {
+        for processes in [0, 1, 5, 13, 64, MOST_PROCESSES] {
+            let nfair = fairness_bound(processes);
+            // `init` and the never claim are processes too.
+            assert!(8 * nfair / 2 - 2 > processes + 2, "{processes}: {nfair}");
+        }
     }
 
     #[test]
