@@ -481,3 +481,37 @@ fn delivered_late(rest: &[Event], slot: usize) -> bool {
         })
         .unwrap_or(false)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn step(event: usize, text: &str) -> Step {
+        Step {
+            event,
+            text: text.into(),
+        }
+    }
+
+    #[test]
+    fn the_steps_after_spins_cycle_marker_are_told_as_repeating() {
+        let explanation = Explanation {
+            headline: "L violated".into(),
+            steps: vec![step(0, "M0 starts #0"), step(2, "M1 hears M0")],
+            cycle_starts: vec![1],
+            skipped: 2,
+        };
+        assert_eq!(
+            explanation.to_string(),
+            "L violated\ncounterexample:\n    1. M0 starts #0\n  then, forever:\n    2. M1 hears M0\n  (2 deliveries that repeat the link's previous packet are not shown)\n"
+        );
+        let at_the_end = Explanation {
+            cycle_starts: vec![2],
+            skipped: 0,
+            ..explanation
+        };
+        assert!(at_the_end
+            .to_string()
+            .ends_with("2. M1 hears M0\n  then, forever:\n"));
+    }
+}
