@@ -164,49 +164,59 @@ pub fn run(args: &VerifyArgs) -> Result<ExitCode, Failure> {
             model: args.model,
             epochs: args.epochs,
         };
-        let (built, options) = match build(&request, args.fault)? {
-            Ok(b) => b,
-            Err(code) => return Ok(code),
-        };
-        let dir = match args.keep {
-            Some(d) => d.to_path_buf(),
-            None => scratch_dir(),
-        };
-        std::fs::create_dir_all(&dir)
-            .map_err(|e| Failure::Internal(format!("cannot create {}: {e}", dir.display())))?;
-        let header = dynarole_verify::header(&built, &options, &request.from.display().to_string());
-        let verify = VerifyOptions {
-            memory_mb: args.memory_mb,
-            time_s: args.time_s,
-            bitstate: args.bitstate,
-            safety_only: args.safety_only,
-        };
-        let source = Source {
-            path: &display,
-            text: source,
-        };
-        let report = dynarole_verify::verify(
-            &built,
-            header,
-            &verify,
-            source,
-            &dir,
-            &mut Printer::default(),
-        );
-        if args.keep.is_none() {
-            let _ = std::fs::remove_dir_all(&dir);
+        match build(&request, args.fault)? {
+            Ok((built, options)) => check(args, &request, &built, &options),
+            Err(code) => Ok(code),
         }
-        let verdict = match report {
-            Ok(report) => report.verdict,
-            Err(e) => return failed(e, &request),
-        };
-        print!("{verdict}");
-        Ok(ExitCode::from(match verdict {
-            Verdict::Verified => 0,
-            Verdict::Violated => 1,
-            Verdict::Inconclusive => 3,
-        }))
     })
+}
+
+/// Checks the model in `--keep DIR` or a scratch directory (removed afterwards), printing
+/// the report as it comes; the exit code of its verdict.
+fn check(
+    args: &VerifyArgs,
+    request: &Request,
+    built: &Built,
+    options: &BuildOptions,
+) -> Result<ExitCode, Failure> {
+    let dir = match args.keep {
+        Some(d) => d.to_path_buf(),
+        None => scratch_dir(),
+    };
+    std::fs::create_dir_all(&dir)
+        .map_err(|e| Failure::Internal(format!("cannot create {}: {e}", dir.display())))?;
+    let header = dynarole_verify::header(built, options, &args.from.display().to_string());
+    let verify = VerifyOptions {
+        memory_mb: args.memory_mb,
+        time_s: args.time_s,
+        bitstate: args.bitstate,
+        safety_only: args.safety_only,
+    };
+    let source = Source {
+        path: request.display,
+        text: request.source,
+    };
+    let report = dynarole_verify::verify(
+        built,
+        header,
+        &verify,
+        source,
+        &dir,
+        &mut Printer::default(),
+    );
+    if args.keep.is_none() {
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+    let verdict = match report {
+        Ok(report) => report.verdict,
+        Err(e) => return failed(e, request),
+    };
+    print!("{verdict}");
+    Ok(ExitCode::from(match verdict {
+        Verdict::Verified => 0,
+        Verdict::Violated => 1,
+        Verdict::Inconclusive => 3,
+    }))
 }
 
 fn scratch_dir() -> PathBuf {

@@ -312,6 +312,34 @@ pub fn search(
     limits: Limits,
     progress: &mut Progress,
 ) -> Result<PanResult, VerifyError> {
+    progress.phase(Phase::Searching);
+    let started = Instant::now();
+    let mut child = spawn(&mut pan_command(check, limits), dir, "pan.log", Tool::Pan)?;
+    let ended = wait_for_pan(
+        &mut child,
+        dir,
+        Duration::from_secs(limits.time_s),
+        progress,
+    )?;
+    let text = std::fs::read_to_string(dir.join("pan.log")).unwrap_or_default();
+    let mut result = parse_pan(&text);
+    let timed_out = ended == PanEnd::TimedOut;
+    // The system's out-of-memory killer stops pan without a word: a search out of memory.
+    result.out_of_memory |= ended == PanEnd::Killed && !result.reported;
+    if !timed_out && !result.reported && !result.out_of_memory {
+        return Err(tool_failure(Tool::Pan, &text));
+    }
+    result.timed_out = timed_out;
+    result.bitstate = limits.bitstate;
+    result.bounded = limits.depth.is_some();
+    if timed_out {
+        result.seconds = started.elapsed().as_secs_f64();
+    }
+    Ok(result)
+}
+
+/// pan's command line for `check` within `limits`.
+fn pan_command(check: Check, limits: Limits) -> Command {
     let mut pan = Command::new("./pan");
     match limits.depth {
         Some(depth) => pan.arg(format!("-m{depth}")),
@@ -329,27 +357,40 @@ pub fn search(
     } else if limits.shortest {
         pan.arg("-i");
     }
-    progress.phase(Phase::Searching);
+    pan
+}
+
+/// How a pan run ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum PanEnd {
+    /// It stopped by itself.
+    Exited,
+    /// The system killed it (SIGKILL: the out-of-memory killer).
+    Killed,
+    /// It ran out of time and was stopped.
+    TimedOut,
+}
+
+/// Waits for pan (stopping it after `time`), telling `progress` its figures so far.
+fn wait_for_pan(
+    child: &mut Child,
+    dir: &Path,
+    time: Duration,
+    progress: &mut Progress,
+) -> Result<PanEnd, VerifyError> {
     let started = Instant::now();
-    let mut child = spawn(&mut pan, dir, "pan.log", Tool::Pan)?;
-    let deadline = Duration::from_secs(limits.time_s);
-    let mut timed_out = false;
-    let mut killed = false;
     let mut looked = Instant::now();
     let mut search = None;
     loop {
         match child.try_wait() {
-            Ok(Some(status)) => {
-                killed = killed_by_the_system(status);
-                break;
+            Ok(Some(status)) if killed_by_the_system(status) => return Ok(PanEnd::Killed),
+            Ok(Some(_)) => return Ok(PanEnd::Exited),
+            Ok(None) if started.elapsed() > time => {
+                let _ = child.kill();
+                let _ = child.wait();
+                return Ok(PanEnd::TimedOut);
             }
             Ok(None) => {
-                if started.elapsed() > deadline {
-                    let _ = child.kill();
-                    let _ = child.wait();
-                    timed_out = true;
-                    break;
-                }
                 // pan prints `Depth= ... States= ...` every million states.
                 if looked.elapsed() >= Duration::from_secs(1) {
                     looked = Instant::now();
@@ -363,20 +404,6 @@ pub fn search(
             Err(e) => return Err(tool_failure(Tool::Pan, &format!("waiting for it: {e}"))),
         }
     }
-    let text = std::fs::read_to_string(dir.join("pan.log")).unwrap_or_default();
-    let mut result = parse_pan(&text);
-    // The system's out-of-memory killer stops pan without a word: a search out of memory.
-    result.out_of_memory |= killed && !result.reported;
-    if !timed_out && !result.reported && !result.out_of_memory {
-        return Err(tool_failure(Tool::Pan, &text));
-    }
-    result.timed_out = timed_out;
-    result.bitstate = limits.bitstate;
-    result.bounded = limits.depth.is_some();
-    if timed_out {
-        result.seconds = started.elapsed().as_secs_f64();
-    }
-    Ok(result)
 }
 
 /// Whether a process was ended by SIGKILL, which the system's out-of-memory killer sends.
