@@ -204,3 +204,24 @@ fn what_is_not_modelled_is_bad_usage() {
         }
     });
 }
+
+/// The fairness bound comes from the processes the generator starts: one per module, per
+/// link, per module with statements (its actuator), and the radio of the liveness check.
+#[test]
+fn the_full_model_knows_its_processes() {
+    with_inputs(|inputs, _| {
+        let built = dynarole_verify::build(inputs, &options(Protocol::Lattice, PaperMerge::CPort))
+            .expect("a model");
+        let dynarole_verify::Models::Full(model) = &built.models else {
+            panic!("three modules get the full model");
+        };
+        let mut acting: Vec<u8> = built.ir.statements.iter().map(|s| s.address).collect();
+        acting.sort_unstable();
+        acting.dedup();
+        let t = &built.topology;
+        assert_eq!(
+            model.processes,
+            t.modules.len() + t.links.len() + acting.len() + 1
+        );
+    });
+}
