@@ -87,7 +87,7 @@ static uint8_t route_channel(const dr_module_t *m, uint16_t state)
     uint8_t i;
     for (i = 0; i < s->n_hops; i++) {
         const dr_token_hop_t *hop = &m->program->hops[s->first_hop + i];
-        if (hop->module == m->id) {
+        if (hop->sender == m->id) {
             return hop->connector;
         }
     }
