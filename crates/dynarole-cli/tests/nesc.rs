@@ -107,6 +107,23 @@ fn events(trace: &str) -> Vec<&str> {
         .collect()
 }
 
+/// Each table is in the AVR build's program memory (`.progmem*`), not copied to RAM.
+fn tables_in_flash(dir: &Path, name: &str, tables: &[&str]) {
+    let out = Command::new("avr-objdump")
+        .arg("-t")
+        .arg(dir.join("build/nesc-atmega128/dr_program.o"))
+        .output()
+        .expect("avr-objdump runs");
+    let symbols = text(&out.stdout);
+    for table in tables {
+        let line = symbols
+            .lines()
+            .find(|l| l.ends_with(&format!(" {table}")))
+            .unwrap_or_else(|| panic!("{name}: no {table} in\n{symbols}"));
+        assert!(line.contains(" .progmem"), "{name}: {line}");
+    }
+}
+
 struct Case {
     name: &'static str,
     file: &'static str,
@@ -114,7 +131,11 @@ struct Case {
     extra: &'static [&'static str],
     /// Module IDs for the harness; None: the protocol needs connectors (token), compile only.
     ids: Option<&'static str>,
+    /// Constant tables of the program that must stay in the ATmega128's flash.
+    tables: &'static [&'static str],
 }
+
+const LATTICE_TABLES: &[&str] = &["dr_program_statements", "dr_program_deps"];
 
 const CASES: [Case; 5] = [
     Case {
@@ -123,6 +144,7 @@ const CASES: [Case; 5] = [
         sequence: "eight2car",
         extra: &[],
         ids: Some("0 1 2 3 4 5 6"),
+        tables: LATTICE_TABLES,
     },
     Case {
         name: "eight2car-lattice-no-nv",
@@ -130,6 +152,7 @@ const CASES: [Case; 5] = [
         sequence: "eight2car",
         extra: &["--no-nv"],
         ids: Some("0 1 2 3 4 5 6"),
+        tables: LATTICE_TABLES,
     },
     Case {
         name: "eight2car-paper",
@@ -137,6 +160,7 @@ const CASES: [Case; 5] = [
         sequence: "eight2car",
         extra: &["--protocol", "paper"],
         ids: Some("0 1 2 3 4 5 6"),
+        tables: &["dr_args_0", "dr_args_24"],
     },
     Case {
         name: "eight2car-token",
@@ -144,6 +168,7 @@ const CASES: [Case; 5] = [
         sequence: "eight2car",
         extra: &["--protocol", "token", "--from", "examples/atron/eight.json"],
         ids: None,
+        tables: &["dr_program_statements", "dr_program_hops"],
     },
     Case {
         name: "mtran-left2right-lattice",
@@ -151,6 +176,7 @@ const CASES: [Case; 5] = [
         sequence: "left2right",
         extra: &[],
         ids: Some("10 11 12 13"),
+        tables: LATTICE_TABLES,
     },
 ];
 
@@ -167,6 +193,7 @@ fn the_nesc_component_compiles_for_host_and_atmega128_and_runs_like_the_c_build(
             case.name,
             text(&avr.stdout)
         );
+        tables_in_flash(&dir, case.name, case.tables);
         let Some(ids) = case.ids else { continue };
         let nesc = text(&nesc_make(&nescc, &dir, &["harness"], ids).stdout);
         let c = c_harness(&dir, ids);

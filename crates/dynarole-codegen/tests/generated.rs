@@ -414,3 +414,57 @@ fn host_and_mcu_builds_do_not_share_objects() {
         "{stdout}"
     );
 }
+
+/// The symbols `dr_lattice.o` of a compiled directory needs from elsewhere (`cc -Os`, `nm -u`).
+fn lattice_imports(dir: &Path) -> String {
+    let object = dir.join("dr_lattice.o");
+    let status = Command::new("cc")
+        .args(STRICT)
+        .args(["-Os", "-c", "dr_lattice.c", "-o"])
+        .arg(&object)
+        .current_dir(dir)
+        .status()
+        .expect("cc runs");
+    assert!(status.success(), "dr_lattice.c does not build");
+    let out = Command::new("nm")
+        .arg("-u")
+        .arg(&object)
+        .output()
+        .expect("nm runs");
+    assert!(out.status.success());
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+/// The lattice runtime's way of surviving resets is fixed by the generated header, so an
+/// image carries one: with NV it reads and writes the store and never scans its connectors;
+/// with `no_nv` the reverse.
+#[test]
+fn the_nv_mode_is_chosen_at_compile_time() {
+    for no_nv in [false, true] {
+        let options = CompileOptions {
+            no_nv,
+            ..options(Protocol::Lattice)
+        };
+        let generated = compile(FIG5, "eight2car", &options);
+        let mode = if no_nv { "NONE" } else { "RECORD" };
+        assert!(file(&generated, "dr_program_conf.h")
+            .contains(&format!("#define DR_CONF_NV DR_CONF_NV_{mode}\n")));
+        let dir = out_dir(&format!("nv-mode-{mode}"));
+        write(&generated, &dir);
+        let imports = lattice_imports(&dir);
+        for (symbol, wanted) in [
+            ("dr_hal_nv_write", !no_nv),
+            ("dr_hal_nv_read", !no_nv),
+            ("dr_crc16", !no_nv),
+            ("dr_hal_connected", no_nv),
+        ] {
+            assert_eq!(
+                imports
+                    .lines()
+                    .any(|l| l.trim_start().ends_with(&format!(" {symbol}"))),
+                wanted,
+                "{mode}: {symbol}\n{imports}"
+            );
+        }
+    }
+}
