@@ -499,7 +499,9 @@ fn makefile(protocol: Protocol) -> String {
          CC = avr-gcc\n\
          AR = avr-ar\n\
          SIZE = avr-size\n\
-         CFLAGS = -Os -mmcu=$(MCU) $(WARN)\n\
+         # -mcall-prologues: functions share one register save/restore (about 200 B less\n\
+         # flash per runtime, a few cycles more per call).\n\
+         CFLAGS = -Os -mcall-prologues -mmcu=$(MCU) $(WARN)\n\
          ifneq ($(filter-out clean,$(or $(MAKECMDGOALS),all)),)\n\
          ifeq ($(shell command -v $(CC)),)\n\
          $(error $(CC) not found, needed for MCU=$(MCU): install it (Debian or Ubuntu: sudo apt-get install gcc-avr avr-libc), or build for the host without MCU)\n\
