@@ -61,6 +61,18 @@
 #define DR_CONF_CHANNELS 8
 #endif
 
+/* Lattice protocol: how a module survives a reset, fixed at compile time so that an image
+ * carries one way only: DR_CONF_NV_RECORD (its state kept in non-volatile storage),
+ * DR_CONF_NV_NONE (no NV storage: DR_PROGRAM_NO_NV's rules, the neighbours' copies), or
+ * DR_CONF_NV_EITHER (both, chosen per program at run time by DR_PROGRAM_NO_NV; the runtime's
+ * own tests). The compiler sets the one its program needs in dr_program_conf.h. */
+#define DR_CONF_NV_EITHER 0
+#define DR_CONF_NV_RECORD 1
+#define DR_CONF_NV_NONE 2
+#ifndef DR_CONF_NV
+#define DR_CONF_NV DR_CONF_NV_EITHER
+#endif
+
 /* Lattice protocol: where the persisted state lives in non-volatile storage (two copies, one
  * after the other). */
 #ifndef DR_CONF_LATTICE_NV_ADDR

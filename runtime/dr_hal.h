@@ -57,4 +57,21 @@ void dr_hal_leds(struct dr_module *m, uint8_t value);
 void dr_hal_nv_read(struct dr_module *m, uint16_t addr, uint8_t *buf, uint8_t len);
 void dr_hal_nv_write(struct dr_module *m, uint16_t addr, const uint8_t *buf, uint8_t len);
 
+/* Constant tables. The generated program's tables (statements, dependencies, routes,
+ * arguments) are declared DR_TABLE and the runtime reads them only through
+ * dr_hal_table_read(): on the AVR (separate program and data memories) they stay in flash and
+ * are read with avr-libc's memcpy_P, where avr-gcc would otherwise copy every `const` table
+ * to RAM at start-up; elsewhere they are ordinary constant data and the read is a memcpy. A
+ * program's top-level descriptor (dr_program) stays ordinary: it holds pointers to the
+ * tables and is read at every step. */
+#if defined(__AVR__)
+#include <avr/pgmspace.h>
+#define DR_TABLE PROGMEM
+#define dr_hal_table_read(dst, table, n) memcpy_P((dst), (table), (n))
+#else
+#include <string.h>
+#define DR_TABLE
+#define dr_hal_table_read(dst, table, n) memcpy((dst), (table), (n))
+#endif
+
 #endif /* DR_HAL_H */

@@ -71,7 +71,9 @@ void dr_hal_broadcast(struct dr_module *m, const uint8_t *bytes, uint8_t len)
     if (queue_len >= MAX_QUEUE || len > DR_CONF_MAX_PACKET) {
         return;
     }
-    queue[queue_len].from = (int)(m - modules);
+    /* By the platform, not by `m`: the nesC build runs its own copy of each module
+     * (runtime/nesc/harness_nesc.c). */
+    queue[queue_len].from = (int)(platform_of(m) - platforms);
     queue[queue_len].len = len;
     memcpy(queue[queue_len].bytes, bytes, len);
     queue_len++;

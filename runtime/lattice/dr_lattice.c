@@ -261,10 +261,21 @@ static dr_channels_t connected(dr_module_t *m)
     return set;
 }
 
+/* Whether this build runs without NV storage: fixed by DR_CONF_NV (dr_conf.h), so the other
+ * mode's code is left out of the image, or read from the program when the build has both. */
+static uint8_t no_nv(const dr_module_t *m)
+{
+    if (DR_CONF_NV == DR_CONF_NV_EITHER) {
+        return (uint8_t)(m->program->options & DR_PROGRAM_NO_NV);
+    }
+    return (uint8_t)(DR_CONF_NV == DR_CONF_NV_NONE);
+}
+
 static void issue(dr_module_t *m)
 {
-    const dr_statement_t *st = &m->program->statements[m->running];
-    dr_hal_op_start(m, m->running, st->op, st->index, st->args);
+    dr_statement_t st;
+    dr_hal_table_read(&st, &m->program->statements[m->running], sizeof st);
+    dr_hal_op_start(m, m->running, st.op, st.index, st.args);
 }
 
 /* Starts this module's first statement in the window that is not done and whose
@@ -272,10 +283,11 @@ static void issue(dr_module_t *m)
 static uint8_t start_next(dr_module_t *m)
 {
     const dr_program_t *p = m->program;
-    const dr_statement_t *st;
+    dr_statement_t st;
     dr_shared_t *sh = &m->shared;
     uint16_t i;
     uint16_t s;
+    uint16_t dep;
     uint8_t d;
     if (m->address >= DR_MANY_ADDRESSES || (p->n_epochs != 0u && sh->epoch >= p->n_epochs)) {
         return 0;
@@ -285,13 +297,18 @@ static uint8_t start_next(dr_module_t *m)
         if (s >= p->n_statements) {
             break;
         }
-        st = &p->statements[s];
-        if (st->address != m->address || bit(sh->done, i)) {
+        /* The tables may be in program memory: read through the HAL (dr_hal.h). */
+        dr_hal_table_read(&st, &p->statements[s], sizeof st);
+        if (st.address != m->address || bit(sh->done, i)) {
             continue;
         }
-        for (d = 0; d < st->n_deps && dr_shared_is_done(sh, p->deps[st->first_dep + d]); d++) {
+        for (d = 0; d < st.n_deps; d++) {
+            dr_hal_table_read(&dep, &p->deps[st.first_dep + d], sizeof dep);
+            if (!dr_shared_is_done(sh, dep)) {
+                break;
+            }
         }
-        if (d == st->n_deps) {
+        if (d == st.n_deps) {
             set_bit(sh->started, i);
             m->running = s;
             m->running_epoch = sh->epoch;
@@ -329,7 +346,7 @@ void dr_module_init(dr_module_t *m, const dr_program_t *program, void *platform)
     m->unechoed = DR_NONE;
     m->unheard = 0;
     m->heard = 0;
-    if (program->options & DR_PROGRAM_NO_NV) {
+    if (no_nv(m)) {
         /* Rule 1: act only once every neighbour connected now has been heard. */
         m->address = program->address_of(m);
         m->unheard = connected(m);
@@ -364,7 +381,7 @@ void dr_module_step(dr_module_t *m)
                     set_bit(m->shared.done, i);
                 }
                 dr_shared_normalise(&m->shared, m->program->n_statements);
-                if (!(m->program->options & DR_PROGRAM_NO_NV)) {
+                if (!no_nv(m)) {
                     persist(m);
                 } else if (connected(m)) {
                     /* Rule 2: not acted on (nothing starts here) until a neighbour echoes it;
@@ -378,7 +395,7 @@ void dr_module_step(dr_module_t *m)
             }
         }
     }
-    if (m->unheard != 0u && m->heard) {
+    if (no_nv(m) && m->unheard != 0u && m->heard) {
         m->unheard = (dr_channels_t)(m->unheard & connected(m)); /* unlatched meanwhile */
     }
     if (m->running == DR_NONE && m->unheard == 0u && m->unechoed == DR_NONE) {

@@ -23,7 +23,9 @@
  * connected at that moment and still connected (it waits as long as one stays silent, and
  * forgets one that unlatched only once it has heard another), and it starts nothing while
  * its own last completion has not been echoed back by a neighbour.
- * Survives one reset at a time, not two close together (README.md, "Without NV"). */
+ * Survives one reset at a time, not two close together (README.md, "Without NV").
+ * DR_CONF_NV (dr_conf.h, set by the generated header) fixes the mode at compile time; only
+ * with DR_CONF_NV_EITHER does the runtime follow this bit. */
 #define DR_PROGRAM_NO_NV 0x01u
 
 /* One statement of the compiled sequence (generated, constant). Statement indices are source

@@ -105,6 +105,14 @@ static void mark_started(dr_module_t *m, uint8_t s)
     m->started[low] = s;
 }
 
+void dr_paper_op_start(dr_module_t *m, uint16_t statement, uint8_t op, uint8_t part,
+                       const int16_t *table_args)
+{
+    int16_t args[DR_CONF_MAX_ARGS];
+    dr_hal_table_read(args, table_args, sizeof args);
+    dr_hal_op_start(m, statement, op, part, args);
+}
+
 void dr_paper_add_pending(dr_module_t *m, uint8_t state)
 {
     uint8_t i;

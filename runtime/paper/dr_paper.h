@@ -68,6 +68,10 @@ void dr_module_init(dr_module_t *m, const dr_paper_program_t *program, void *pla
  * "s4 a3 p{1,4} l255". Cost: O(pending). */
 
 /* Called by the generated state machine. */
+/* dr_hal_op_start with the arguments read from the program's table (DR_TABLE, dr_hal.h);
+ * `part` is its index (not `index`, which would shadow string.h's index() in nesC's check). */
+void dr_paper_op_start(dr_module_t *m, uint16_t statement, uint8_t op, uint8_t part,
+                       const int16_t *table_args);
 void dr_paper_add_pending(dr_module_t *m, uint8_t state);
 void dr_paper_remove_pending(dr_module_t *m, uint8_t state);
 uint8_t dr_paper_has_pending(const dr_module_t *m);

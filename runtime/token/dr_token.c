@@ -47,6 +47,19 @@ static void send_payload(dr_module_t *m, uint8_t channel, const uint8_t *payload
     m->packets_sent++;
 }
 
+/* Statement `s` of the program, read from its table (in program memory on the AVR: dr_hal.h). */
+static void statement(const dr_token_program_t *program, uint16_t s, dr_token_statement_t *out)
+{
+    dr_hal_table_read(out, &program->statements[s], sizeof *out);
+}
+
+static uint16_t holder(const dr_token_program_t *program, uint16_t s)
+{
+    dr_token_statement_t st;
+    statement(program, s, &st);
+    return st.holder;
+}
+
 /* Queues the token of `state` for sending on `channel`; the next step sends it at once. */
 static void enqueue(dr_module_t *m, uint16_t state, uint8_t channel)
 {
@@ -57,7 +70,7 @@ static void enqueue(dr_module_t *m, uint16_t state, uint8_t channel)
     }
     q = &m->queue[m->n_queued++];
     q->state = state;
-    q->target = m->program->statements[state].holder;
+    q->target = holder(m->program, state);
     q->channel = channel;
     q->counter = m->counter++;
     q->tries = 0;
@@ -83,12 +96,14 @@ static void remove_queued(dr_module_t *m, uint8_t i)
  * `state`; DR_CONF_CHANNELS when it is not. */
 static uint8_t route_channel(const dr_module_t *m, uint16_t state)
 {
-    const dr_token_statement_t *s = &m->program->statements[state];
+    dr_token_statement_t s;
+    dr_token_hop_t hop;
     uint8_t i;
-    for (i = 0; i < s->n_hops; i++) {
-        const dr_token_hop_t *hop = &m->program->hops[s->first_hop + i];
-        if (hop->module == m->id) {
-            return hop->connector;
+    statement(m->program, state, &s);
+    for (i = 0; i < s.n_hops; i++) {
+        dr_hal_table_read(&hop, &m->program->hops[s.first_hop + i], sizeof hop);
+        if (hop.sender == m->id) {
+            return hop.connector;
         }
     }
     return (uint8_t)DR_CONF_CHANNELS;
@@ -106,7 +121,7 @@ static void hand_over(dr_module_t *m)
         m->next_send_ms = dr_hal_now_ms(m);
         return;
     }
-    if (m->program->statements[next].holder == m->id) {
+    if (holder(m->program, next) == m->id) {
         m->holding = next;
         return;
     }
@@ -132,7 +147,7 @@ void dr_module_init(dr_module_t *m, const dr_token_program_t *program, void *pla
     m->address = program->address_of(m);
     m->id = dr_hal_id(m);
     m->holding = DR_NONE;
-    if (program->n_statements > 0u && program->statements[0].holder == m->id) {
+    if (program->n_statements > 0u && holder(program, 0) == m->id) {
         m->holding = 0; /* the first module (re)starts the whole sequence */
     }
     dr_hal_leds(m, m->address);
@@ -141,14 +156,14 @@ void dr_module_init(dr_module_t *m, const dr_token_program_t *program, void *pla
 
 static void run_held(dr_module_t *m)
 {
-    const dr_token_statement_t *s;
+    dr_token_statement_t s;
     enum dr_op_status status;
     if (m->holding == DR_NONE || m->holding >= m->program->n_statements) {
         return;
     }
-    s = &m->program->statements[m->holding];
     if (!m->running) {
-        dr_hal_op_start(m, m->holding, s->op, s->index, s->args);
+        statement(m->program, m->holding, &s);
+        dr_hal_op_start(m, m->holding, s.op, s.index, s.args);
         m->running = 1;
         return;
     }

@@ -38,9 +38,10 @@
 #error "the token runtime counts its queues in one byte"
 #endif
 
-/* One step of a route: module `module` (its ID) sends the token on connector `connector`. */
+/* One step of a route: module `sender` (its ID) sends the token on connector `connector`
+ * (not `module`: a keyword of nesC, whose compiler reads this header too). */
 typedef struct {
-    uint16_t module;
+    uint16_t sender;
     uint8_t connector;
 } dr_token_hop_t;
 

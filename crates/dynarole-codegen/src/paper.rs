@@ -50,7 +50,7 @@ fn args_tables(ir: &Ir) -> String {
         args.resize(ir.max_args.max(1), "0".into());
         let _ = writeln!(
             out,
-            "static const int16_t dr_args_{i}[DR_CONF_MAX_ARGS] = {{ {} }};",
+            "static const int16_t dr_args_{i}[DR_CONF_MAX_ARGS] DR_TABLE = {{ {} }};",
             args.join(", ")
         );
     }
@@ -62,7 +62,7 @@ fn start(ir: &Ir, i: usize) -> String {
     let s = &ir.statements[i];
     let (part, op) = &ir.operations[usize::from(s.op)];
     format!(
-        "        dr_hal_op_start(m, {i}u, DR_OP_{}_{}, {}u, dr_args_{i});\n",
+        "        dr_paper_op_start(m, {i}u, DR_OP_{}_{}, {}u, dr_args_{i});\n",
         part.to_uppercase(),
         op.to_uppercase(),
         s.index

@@ -48,7 +48,7 @@ pub fn token_tables(ir: &Ir, options: &CompileOptions) -> Result<String, LimitEr
     let mut out = String::from(
         "/* Hand-over routes: each hop is (module ID, connector it sends the token on). */\n",
     );
-    out.push_str("static const dr_token_hop_t dr_program_hops[] = {\n");
+    out.push_str("static const dr_token_hop_t dr_program_hops[] DR_TABLE = {\n");
     let mut first_hop = Vec::with_capacity(ir.statements.len());
     let mut count = 0usize;
     for (i, route) in routes.routes.iter().enumerate() {
@@ -65,7 +65,7 @@ pub fn token_tables(ir: &Ir, options: &CompileOptions) -> Result<String, LimitEr
     if count == 0 {
         out.push_str("    { 0u, 0u } /* no hand-over leaves a module */\n");
     }
-    out.push_str("};\n\nstatic const dr_token_statement_t dr_program_statements[] = {\n");
+    out.push_str("};\n\nstatic const dr_token_statement_t dr_program_statements[] DR_TABLE = {\n");
     for (i, s) in ir.statements.iter().enumerate() {
         let (part, op) = &ir.operations[usize::from(s.op)];
         let mut args: Vec<String> = s.args.iter().map(|a| a.to_string()).collect();
