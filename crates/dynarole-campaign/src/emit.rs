@@ -45,6 +45,15 @@ pub fn job_files(scheduler: Scheduler, jobs: &Jobs) -> Vec<JobFile> {
 
 /// Writes the job files into `jobs.dir` (and creates `logs/` there); returns their paths.
 pub fn write(scheduler: Scheduler, jobs: &Jobs) -> Result<Vec<PathBuf>, Error> {
+    let spaced = |p: &Path| p.to_string_lossy().contains(char::is_whitespace);
+    if scheduler == Scheduler::Htcondor && (spaced(&jobs.dir) || spaced(&jobs.campaign)) {
+        return Err(Error::Input(format!(
+            "{}, {}: HTCondor's submit and DAG files cannot name paths with spaces; \
+             choose others",
+            jobs.campaign.display(),
+            jobs.dir.display()
+        )));
+    }
     let logs = jobs.dir.join("logs");
     std::fs::create_dir_all(&logs).map_err(|e| Error::io(&logs, e))?;
     let mut written = Vec::new();
@@ -142,8 +151,8 @@ fn quote(word: &str) -> String {
 
 fn header(what: &str, jobs: &Jobs, words: &Words) -> String {
     format!(
-        "# {what} for the campaign {}, split into {} shards (written by\n\
-         # `dynarole campaign --emit`). Paths are relative to the directory it was written from:\n\
+        "# {what}: the campaign {} in {} shards.\n\
+         # Written by `dynarole campaign --emit`; paths are relative to the directory it ran in:\n\
          # submit from there. DYNAROLE names the dynarole program if it is not on the PATH.\n",
         words.campaign, jobs.shards
     )
@@ -170,7 +179,11 @@ fn slurm(jobs: &Jobs) -> Vec<JobFile> {
     let merge = format!(
         "#!/bin/bash\n{}#SBATCH --job-name=dynarole-{}-merge\n#SBATCH --output={}\n\
          set -euo pipefail\nexec {}\n",
-        header("The merge of the shards (after all of them)", jobs, &w),
+        header(
+            "The merge of the shards, once all of them succeeded",
+            jobs,
+            &w
+        ),
         w.name,
         w.at("logs/merge.out"),
         w.merge()
@@ -217,43 +230,38 @@ fn htcondor(jobs: &Jobs) -> Vec<JobFile> {
             w.check_directory()
         )
     };
-    let submit = |what: &str, executable: &str, arguments: &str, log: &str, extra: &str| {
+    // HTCondor's files take paths as they are (no shell quoting).
+    let at = |file: &str| format!("{}/{file}", w.dir_raw);
+    let submit = |what: &str, executable: &str, extra: &str, log: &str| {
         format!(
-            "{}universe = vanilla\nexecutable = {}\narguments = {arguments}\n\
-             getenv = true\nshould_transfer_files = NO\noutput = {}\nerror = {}\nlog = {}\n{extra}",
+            "{}universe = vanilla\nexecutable = {}\n{extra}getenv = true\n\
+             should_transfer_files = NO\noutput = {}\nerror = {}\nlog = {}\n",
             header(what, jobs, &w),
-            w.at(executable),
-            w.at(&format!("logs/{log}.out")),
-            w.at(&format!("logs/{log}.err")),
-            w.at("logs/condor.log"),
+            at(executable),
+            at(&format!("logs/{log}.out")),
+            at(&format!("logs/{log}.err")),
+            at("logs/condor.log"),
         )
     };
     let shards = submit(
         "One HTCondor job per shard",
         "shard.sh",
-        "$(Process)",
-        "shard-$(Process)",
         &format!(
-            "request_cpus = {}\nmax_materialize = {}\nqueue {}\n",
-            jobs.threads, jobs.throttle, jobs.shards
+            "arguments = $(Process)\nrequest_cpus = {}\nmax_materialize = {}\n",
+            jobs.threads, jobs.throttle
         ),
-    );
-    let merge = submit(
-        "The merge of the shards",
-        "merge.sh",
-        "",
-        "merge",
-        "queue\n",
-    );
+        "shard-$(Process)",
+    ) + &format!("queue {}\n", jobs.shards);
+    let merge = submit("The merge of the shards", "merge.sh", "", "merge") + "queue\n";
     let dag = format!(
         "{}JOB shards {}\nJOB merge {}\nPARENT shards CHILD merge\n",
         header(
-            "Run with condor_submit_dag: the shards, then the merge,",
+            "For condor_submit_dag: the shards, then the merge",
             jobs,
             &w
         ),
-        w.at("shards.sub"),
-        w.at("merge.sub")
+        at("shards.sub"),
+        at("merge.sub")
     );
     let threads = jobs.threads.to_string();
     vec![
@@ -294,7 +302,7 @@ fn parallel(jobs: &Jobs) -> Vec<JobFile> {
     let run = format!(
         "#!/bin/sh\n{}set -eu\n{}parallel --jobs {} --joblog {} --resume-failed < {}\nexec {}\n",
         header(
-            "Runs the shards with GNU parallel (again: only the failed ones), then merges,",
+            "Runs the shards with GNU parallel (run again: only the failed ones), then merges",
             jobs,
             &w
         ),
