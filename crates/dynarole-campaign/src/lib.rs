@@ -145,6 +145,19 @@ pub fn run(options: &Options) -> Result<Done, Error> {
     Ok(done)
 }
 
+/// The number of runs of the campaign in `path`, after checking it as `run` would (the file,
+/// the program, the configurations, the plan), without running anything.
+pub fn count_runs(path: &Path) -> Result<u64, Error> {
+    let sources = load::sources(path)?;
+    let inputs = load::inputs(&sources)?;
+    let planned = plan::plan(inputs.campaign).map_err(|error| Error::Spec {
+        path: path.to_path_buf(),
+        error: Box::new(error.locate(&sources.text)),
+        text: sources.text.clone(),
+    })?;
+    Ok(planned.len())
+}
+
 /// Runs what is left of `shard` (resuming its partial file), and once all of its runs are
 /// recorded, writes them in run order to its finished file.
 fn run_shard(

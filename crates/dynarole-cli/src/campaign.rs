@@ -130,12 +130,19 @@ fn input_failure(e: Error) -> Failure {
 
 /// `--emit`: the job files, and how to submit them.
 fn emit_jobs(args: &CampaignArgs, emit: &EmitArgs, dir: PathBuf) -> Result<ExitCode, Failure> {
-    if !args.file.is_file() {
-        return Err(Failure::Input(format!(
-            "{}: no such campaign file",
-            args.file.display()
-        )));
-    }
+    // A campaign that cannot run is refused here, not in each of N jobs.
+    let runs = match dynarole_campaign::count_runs(args.file) {
+        Ok(runs) => runs,
+        Err(Error::Diagnostics {
+            path,
+            source,
+            diagnostics,
+        }) => {
+            render::diagnostics(&path.display().to_string(), &source, &diagnostics);
+            return Ok(ExitCode::from(1));
+        }
+        Err(e) => return Err(input_failure(e)),
+    };
     let scheduler = match emit.scheduler {
         Emit::Slurm => Scheduler::Slurm,
         Emit::Htcondor => Scheduler::Htcondor,
@@ -158,6 +165,12 @@ fn emit_jobs(args: &CampaignArgs, emit: &EmitArgs, dir: PathBuf) -> Result<ExitC
         Scheduler::Htcondor => format!("condor_submit_dag {}", first("campaign.dag")),
         Scheduler::Parallel => first("run.sh"),
     };
+    println!(
+        "{runs} runs in {} shards of {} or {} runs",
+        emit.shards,
+        runs / emit.shards,
+        runs.div_ceil(emit.shards)
+    );
     println!("submit from this directory: {submit}");
     println!("progress: dynarole campaign status {}", jobs.dir.display());
     Ok(ExitCode::SUCCESS)

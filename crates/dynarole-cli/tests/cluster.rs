@@ -126,6 +126,10 @@ fn emit_writes_the_job_files_and_says_how_to_submit() {
         "{printed}"
     );
     assert!(printed.contains("submit from this directory:"), "{printed}");
+    assert!(
+        printed.contains("36 runs in 3 shards of 12 or 12 runs"),
+        "{printed}"
+    );
     let commands = std::fs::read_to_string(jobs.join("commands.txt")).expect("commands");
     assert_eq!(commands.lines().count(), 3);
     assert!(commands.contains("--shard \"2/3\""), "{commands}");
@@ -142,5 +146,6 @@ fn emit_writes_the_job_files_and_says_how_to_submit() {
         &root.join("cache"),
     );
     assert_eq!(missing.status.code(), Some(1));
-    assert!(text(&missing.stderr).contains("no/such.toml: no such campaign file"));
+    let err = text(&missing.stderr);
+    assert!(err.contains("no/such.toml: No such file"), "{err}");
 }
