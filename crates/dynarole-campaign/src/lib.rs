@@ -224,13 +224,17 @@ fn execute(
     }
     let label = shard.map_or("campaign".to_string(), |s| format!("shard {s}"));
     let sink = results::Sink::open(csv_path)?;
+    let total = shard.map_or(planned.len(), |s| s.size(planned.len()));
+    // Counted against the runs this command may do (`--max-runs` stops before the end).
+    let target = total.min(already + pending.len() as u64);
+    let progress = (label.as_str(), already, target);
     let new = exec::run_all(
         inputs,
         &pending,
         sink,
         options.jobs,
         options.progress,
-        &label,
+        progress,
     )?;
     let ran = new.len() as u64;
     rows.extend(new);
