@@ -118,11 +118,7 @@ pub fn run(options: &Options) -> Result<Done, Error> {
     let started = Instant::now();
     let sources = load::sources(&options.campaign)?;
     let inputs = load::inputs(&sources)?;
-    let planned = plan::plan(inputs.campaign).map_err(|error| Error::Spec {
-        path: options.campaign.clone(),
-        error: Box::new(error.locate(&sources.text)),
-        text: sources.text.clone(),
-    })?;
+    let planned = plan_of(&sources, inputs.campaign)?;
     std::fs::create_dir_all(&options.out_dir).map_err(|e| Error::io(&options.out_dir, e))?;
     let mut done = match options.shard {
         None => {
@@ -150,12 +146,16 @@ pub fn run(options: &Options) -> Result<Done, Error> {
 pub fn count_runs(path: &Path) -> Result<u64, Error> {
     let sources = load::sources(path)?;
     let inputs = load::inputs(&sources)?;
-    let planned = plan::plan(inputs.campaign).map_err(|error| Error::Spec {
-        path: path.to_path_buf(),
+    Ok(plan_of(&sources, inputs.campaign)?.len())
+}
+
+/// The plan of a loaded campaign; an error points into the campaign file.
+fn plan_of(sources: &load::Sources, campaign: &CampaignFile) -> Result<Plan, Error> {
+    plan::plan(campaign).map_err(|error| Error::Spec {
+        path: sources.path.clone(),
         error: Box::new(error.locate(&sources.text)),
         text: sources.text.clone(),
-    })?;
-    Ok(planned.len())
+    })
 }
 
 /// Runs what is left of `shard` (resuming its partial file), and once all of its runs are
