@@ -182,7 +182,7 @@ enum Command {
         #[arg(short = 'o', long = "output", value_name = "DIR")]
         out_dir: Option<PathBuf>,
         /// Do at most N of the runs not yet recorded, then stop (run again to go on).
-        #[arg(long, value_name = "N")]
+        #[arg(long, value_name = "N", conflicts_with = "emit")]
         max_runs: Option<u64>,
         /// Worker threads (default: one per core; with --emit: per shard, default 1).
         #[arg(short = 'j', long, value_name = "N")]
