@@ -98,19 +98,20 @@ pub fn prepare(inputs: &Inputs) -> Result<(), Error> {
 }
 
 /// Runs `pending` on `jobs` threads (all cores when `None`), appending each row to `sink` and
-/// showing progress on stderr; returns the new rows (in completion order).
+/// showing progress on stderr as `label`, `before` of `total` runs recorded earlier; returns the new rows (in completion order).
 pub fn run_all(
     inputs: &Inputs<'_>,
     pending: &[PlannedRun],
     sink: Sink,
     jobs: Option<usize>,
     progress: ProgressMode,
+    (label, before, total): (&str, u64, u64),
 ) -> Result<Vec<Row>, Error> {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(jobs.unwrap_or(0))
         .build()
         .map_err(|e| Error::Sim(format!("cannot start the worker threads: {e}")))?;
-    let bar = Progress::start(progress, "campaign", pending.len() as u64, "runs");
+    let bar = Progress::resume(progress, label, before, total, "runs");
     let shared = Mutex::new((sink, Vec::with_capacity(pending.len())));
     pool.install(|| {
         pending.par_iter().try_for_each_init(

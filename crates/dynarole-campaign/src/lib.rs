@@ -3,21 +3,25 @@
 //! parallel, streamed to `runs.csv` (resumable), summarised in `summary.csv` and plotted.
 //! See `README.md` for the file format and the outputs.
 
+mod emit;
 mod exec;
 mod load;
 mod plan;
 mod plot;
 mod progress;
 mod results;
+mod shard;
 mod spec;
 mod stats;
 mod tables;
 
+pub use emit::{job_files, write as write_job_files, JobFile, Jobs, Scheduler};
 pub use load::{read_limited, MAX_INPUT_BYTES};
 pub use plan::{plan, Axis, Faults, Plan, PlannedRun, MAX_RUNS};
 pub use plot::{bounds, rasterise_svg};
 pub use progress::{Progress, ProgressMode, INTERVAL_VARIABLE};
 pub use results::{Outcome, Row, COLUMNS};
+pub use shard::{status, Shard, Status, CAMPAIGN_COPY, MAX_SHARDS};
 pub use spec::{CampaignFile, Merge, ProtocolName, ProtocolOptions, Range, SpecError, Sweep};
 pub use stats::{median, summarise, wilson, PointSummary};
 
@@ -86,69 +90,179 @@ pub struct Options {
     pub progress: ProgressMode,
     /// Draw the plots (SVG and PNG).
     pub plots: bool,
+    /// Run only this shard (into `shard-K-of-N.csv`; no summary or plots).
+    pub shard: Option<Shard>,
 }
 
 /// What a campaign did.
 #[derive(Clone, Debug)]
 pub struct Done {
-    /// Runs in the campaign.
+    /// Runs in the campaign (or in the shard).
     pub total: u64,
-    /// Runs found in `runs.csv` at the start.
+    /// Runs found in `runs.csv` (or the shard's file) at the start.
     pub already: u64,
     /// Runs done now.
     pub ran: u64,
     /// Every recorded row, by run index.
     pub rows: Vec<Row>,
+    /// None for a shard (summaries come from the merge).
     pub summaries: Vec<PointSummary>,
-    /// `runs.csv`, `summary.csv` and the plots.
+    /// `runs.csv`, `summary.csv` and the plots (for a shard: its results file).
     pub files: Vec<PathBuf>,
     pub wall_seconds: f64,
 }
 
 /// Runs (or resumes) the campaign described by `options.campaign`, writing into
-/// `options.out_dir`.
+/// `options.out_dir`: all of it, or only `options.shard`.
 pub fn run(options: &Options) -> Result<Done, Error> {
     let started = Instant::now();
     let sources = load::sources(&options.campaign)?;
     let inputs = load::inputs(&sources)?;
-    let planned = plan::plan(inputs.campaign).map_err(|error| Error::Spec {
-        path: options.campaign.clone(),
+    let planned = plan_of(&sources, inputs.campaign)?;
+    std::fs::create_dir_all(&options.out_dir).map_err(|e| Error::io(&options.out_dir, e))?;
+    let mut done = match options.shard {
+        None => {
+            let csv_path = options.out_dir.join("runs.csv");
+            let (rows, already, ran) = execute(&inputs, &planned, &csv_path, None, options)?;
+            let (summaries, files) = write_outputs(&rows, &options.out_dir, options.plots)?;
+            Done {
+                total: planned.len(),
+                already,
+                ran,
+                rows,
+                summaries,
+                files,
+                wall_seconds: 0.0,
+            }
+        }
+        Some(shard) => run_shard(&inputs, &planned, &sources.text, shard, options)?,
+    };
+    done.wall_seconds = started.elapsed().as_secs_f64();
+    Ok(done)
+}
+
+/// The number of runs of the campaign in `path`, after checking it as `run` would (the file,
+/// the program, the configurations, the plan), without running anything.
+pub fn count_runs(path: &Path) -> Result<u64, Error> {
+    let sources = load::sources(path)?;
+    let inputs = load::inputs(&sources)?;
+    Ok(plan_of(&sources, inputs.campaign)?.len())
+}
+
+/// The plan of a loaded campaign; an error points into the campaign file.
+fn plan_of(sources: &load::Sources, campaign: &CampaignFile) -> Result<Plan, Error> {
+    plan::plan(campaign).map_err(|error| Error::Spec {
+        path: sources.path.clone(),
         error: Box::new(error.locate(&sources.text)),
         text: sources.text.clone(),
-    })?;
-    std::fs::create_dir_all(&options.out_dir).map_err(|e| Error::io(&options.out_dir, e))?;
-    let csv_path = options.out_dir.join("runs.csv");
-    let mut rows = recorded(&csv_path, &planned, inputs.campaign)?;
+    })
+}
+
+/// Runs what is left of `shard` (resuming its partial file), and once all of its runs are
+/// recorded, writes them in run order to its finished file.
+fn run_shard(
+    inputs: &load::Inputs,
+    planned: &Plan,
+    text: &str,
+    shard: Shard,
+    options: &Options,
+) -> Result<Done, Error> {
+    let dir = &options.out_dir;
+    if let Some(n) = shard::find(dir)?.count.filter(|&n| n != shard.count) {
+        return Err(Error::Results(format!(
+            "{}: holds shards of a split into {n}, not {}; write to another directory (-o)",
+            dir.display(),
+            shard.count
+        )));
+    }
+    shard::keep_campaign(dir, text)?;
+    let finished = dir.join(shard.file_name());
+    let partial = dir.join(shard.partial_name());
+    if finished.exists() {
+        // Checked and completed like a partial file (it may have been cut or edited).
+        std::fs::rename(&finished, &partial).map_err(|e| Error::io(&partial, e))?;
+    }
+    let (rows, already, ran) = execute(inputs, planned, &partial, Some(shard), options)?;
+    let total = shard.size(planned.len());
+    let mut files = vec![partial.clone()];
+    if rows.len() as u64 == total {
+        results::write_atomically(&finished, &rows)?;
+        std::fs::remove_file(&partial).map_err(|e| Error::io(&partial, e))?;
+        files = vec![finished];
+    }
+    Ok(Done {
+        total,
+        already,
+        ran,
+        rows,
+        summaries: Vec::new(),
+        files,
+        wall_seconds: 0.0,
+    })
+}
+
+/// Runs the runs of `shard` (all when `None`) not yet recorded in `csv_path`, at most
+/// `options.max_runs` of them, appending each to it; returns every recorded row in run order,
+/// how many were there before and how many ran now.
+fn execute(
+    inputs: &load::Inputs,
+    planned: &Plan,
+    csv_path: &Path,
+    shard: Option<Shard>,
+    options: &Options,
+) -> Result<(Vec<Row>, u64, u64), Error> {
+    let mut rows = recorded(csv_path, planned, inputs.campaign, shard)?;
     let already = rows.len() as u64;
     let done: std::collections::BTreeSet<u64> = rows.iter().map(|r| r.run).collect();
     let pending: Vec<PlannedRun> = planned
         .iter()
-        .filter(|r| !done.contains(&r.index))
+        .filter(|r| shard.is_none_or(|s| s.holds(r.index)) && !done.contains(&r.index))
         .take(options.max_runs.map_or(usize::MAX, |n| n as usize))
         .collect();
     if !pending.is_empty() {
-        exec::prepare(&inputs)?;
+        exec::prepare(inputs)?;
     }
-    let sink = results::Sink::open(&csv_path)?;
-    let new = exec::run_all(&inputs, &pending, sink, options.jobs, options.progress)?;
+    let label = shard.map_or("campaign".to_string(), |s| format!("shard {s}"));
+    let sink = results::Sink::open(csv_path)?;
+    let total = shard.map_or(planned.len(), |s| s.size(planned.len()));
+    // Counted against the runs this command may do (`--max-runs` stops before the end).
+    let target = total.min(already + pending.len() as u64);
+    let progress = (label.as_str(), already, target);
+    let new = exec::run_all(
+        inputs,
+        &pending,
+        sink,
+        options.jobs,
+        options.progress,
+        progress,
+    )?;
     let ran = new.len() as u64;
     rows.extend(new);
     rows.sort_by_key(|r| r.run);
-    let summaries = summarise(&rows);
-    let tables = options.out_dir.join("summary.md");
-    std::fs::write(&tables, tables::markdown(&summaries)).map_err(|e| Error::io(&tables, e))?;
-    let mut files = vec![
-        csv_path,
-        write_summary(&summaries, &options.out_dir)?,
-        tables,
-    ];
-    if options.plots {
-        files.extend(plot::write_all(&summaries, &options.out_dir)?);
-    }
+    Ok((rows, already, ran))
+}
+
+/// What `merge` was asked to do.
+#[derive(Clone, Debug)]
+pub struct MergeOptions {
+    /// The directory of the shards' results.
+    pub dir: PathBuf,
+    /// Where to write the merged outputs.
+    pub out_dir: PathBuf,
+    pub plots: bool,
+}
+
+/// Checks that the shards in `options.dir` hold every run of their campaign exactly once,
+/// then writes the same outputs as a one-machine run of it.
+pub fn merge(options: &MergeOptions) -> Result<Done, Error> {
+    let started = Instant::now();
+    let rows = shard::merged_rows(&options.dir)?;
+    std::fs::create_dir_all(&options.out_dir).map_err(|e| Error::io(&options.out_dir, e))?;
+    let (summaries, files) = write_outputs(&rows, &options.out_dir, options.plots)?;
     Ok(Done {
-        total: planned.len(),
-        already,
-        ran,
+        total: rows.len() as u64,
+        already: rows.len() as u64,
+        ran: 0,
         rows,
         summaries,
         files,
@@ -156,13 +270,46 @@ pub fn run(options: &Options) -> Result<Done, Error> {
     })
 }
 
-/// The rows already in `runs.csv`, each checked against the planned run of its index.
-fn recorded(path: &Path, planned: &plan::Plan, campaign: &CampaignFile) -> Result<Vec<Row>, Error> {
+/// The outputs of a campaign from its rows (in run order): `runs.csv`, `summary.csv`,
+/// `summary.md` and the plots. A one-machine run and a merge of shards both write through
+/// here, so that the same rows give the same bytes.
+fn write_outputs(
+    rows: &[Row],
+    dir: &Path,
+    plots: bool,
+) -> Result<(Vec<PointSummary>, Vec<PathBuf>), Error> {
+    let csv_path = dir.join("runs.csv");
+    results::write_atomically(&csv_path, rows)?;
+    let summaries = summarise(rows);
+    let tables = dir.join("summary.md");
+    std::fs::write(&tables, tables::markdown(&summaries)).map_err(|e| Error::io(&tables, e))?;
+    let mut files = vec![csv_path, write_summary(&summaries, dir)?, tables];
+    if plots {
+        files.extend(plot::write_all(&summaries, dir)?);
+    }
+    Ok((summaries, files))
+}
+
+/// The rows already in `path`, each checked against the planned run of its index (and, for a
+/// shard's file, against the shard).
+fn recorded(
+    path: &Path,
+    planned: &plan::Plan,
+    campaign: &CampaignFile,
+    shard: Option<Shard>,
+) -> Result<Vec<Row>, Error> {
     let rows = results::read_existing(path)?;
     let preset = campaign.scenario.network.preset.name();
     let timeout = campaign.scenario.timeout_ms;
     let mut seen = std::collections::BTreeSet::new();
     for row in &rows {
+        if let Some(s) = shard.filter(|s| !s.holds(row.run)) {
+            return Err(Error::Results(format!(
+                "{}: run {} does not belong to shard {s}",
+                path.display(),
+                row.run
+            )));
+        }
         let matches = planned
             .get(row.run)
             .is_some_and(|run| row.is_result_of(&run, preset, timeout));

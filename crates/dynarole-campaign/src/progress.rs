@@ -66,6 +66,9 @@ struct Shared {
     label: String,
     what: String,
     total: u64,
+    /// Units done before this command (a resumed campaign or shard): counted in the share
+    /// done, not in the rate.
+    before: u64,
     done: AtomicU64,
     started: Instant,
 }
@@ -73,10 +76,24 @@ struct Shared {
 impl Progress {
     /// Starts showing progress of `label` (the command) over `total` `what`.
     pub fn start(mode: ProgressMode, label: &str, total: u64, what: &str) -> Progress {
+        Progress::resume(mode, label, 0, total, what)
+    }
+
+    /// Starts showing progress of `label` over `total` `what` of which `before` were done
+    /// earlier (a resumed campaign or shard): the bar and the lines count from there, the rate
+    /// and the time left from the units done now.
+    pub fn resume(
+        mode: ProgressMode,
+        label: &str,
+        before: u64,
+        total: u64,
+        what: &str,
+    ) -> Progress {
         let shared = Arc::new(Shared {
             label: label.to_string(),
             what: what.to_string(),
             total,
+            before: before.min(total),
             done: AtomicU64::new(0),
             started: Instant::now(),
         });
@@ -88,7 +105,12 @@ impl Progress {
         };
         match mode {
             ProgressMode::Off => {}
-            ProgressMode::Bar => progress.bar = Some(bar(label, total, what)),
+            ProgressMode::Bar => {
+                let bar = bar(label, total, what);
+                bar.set_position(shared.before);
+                bar.reset_eta();
+                progress.bar = Some(bar);
+            }
             ProgressMode::Lines { every } => {
                 let (stop, stopped) = channel::<()>();
                 progress.stop = Some(stop);
@@ -141,10 +163,11 @@ impl Drop for Progress {
 impl Shared {
     /// `campaign: 1200 of 198000 runs (0.6 %), 24.1 runs/s, 50 s elapsed, about 2 h 16 min left`
     fn line(&self) -> String {
-        let done = self.done.load(Ordering::Relaxed);
+        let now = self.done.load(Ordering::Relaxed);
+        let done = self.before + now;
         let elapsed = self.started.elapsed().as_secs_f64();
         let rate = if elapsed > 0.0 {
-            done as f64 / elapsed
+            now as f64 / elapsed
         } else {
             0.0
         };
@@ -228,6 +251,7 @@ mod tests {
             label: "campaign".into(),
             what: "runs".into(),
             total: 200,
+            before: 0,
             done: AtomicU64::new(50),
             started: Instant::now() - Duration::from_secs(10),
         };
@@ -235,6 +259,25 @@ mod tests {
         assert!(
             line.starts_with(
                 "campaign: 50 of 200 runs (25.0 %), 5.0 runs/s, 10 s elapsed, about 30 s left"
+            ),
+            "{line}"
+        );
+    }
+
+    #[test]
+    fn a_resumed_count_starts_from_the_units_done_before() {
+        let shared = Shared {
+            label: "shard 3/8".into(),
+            what: "runs".into(),
+            total: 200,
+            before: 100,
+            done: AtomicU64::new(20),
+            started: Instant::now() - Duration::from_secs(10),
+        };
+        let line = shared.line();
+        assert!(
+            line.starts_with(
+                "shard 3/8: 120 of 200 runs (60.0 %), 2.0 runs/s, 10 s elapsed, about 40 s left"
             ),
             "{line}"
         );

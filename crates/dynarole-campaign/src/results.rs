@@ -186,6 +186,39 @@ pub fn read_existing(path: &Path) -> Result<Vec<Row>, Error> {
     parse_rows(complete, path)
 }
 
+/// The number of complete rows in `path` (0 if it does not exist), without changing the file:
+/// another process may be appending to it.
+pub fn count_complete(path: &Path) -> Result<u64, Error> {
+    let text = match std::fs::read_to_string(path) {
+        Ok(t) => t,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(0),
+        Err(e) => return Err(Error::io(path, e)),
+    };
+    let lines = text.bytes().filter(|&b| b == b'\n').count() as u64;
+    Ok(lines.saturating_sub(1))
+}
+
+/// Writes `rows` (header first) to `path` through a temporary file renamed into place, so that
+/// a reader sees the old file or the whole new one, never a part.
+pub fn write_atomically(path: &Path, rows: &[Row]) -> Result<(), Error> {
+    let name = path
+        .file_name()
+        .map_or("results".into(), |n| n.to_string_lossy().into_owned());
+    let temp = path.with_file_name(format!(".{name}.{}.tmp", std::process::id()));
+    let fail = |e: csv::Error| Error::Results(format!("{}: {e}", temp.display()));
+    let mut writer = csv::WriterBuilder::new()
+        .has_headers(false)
+        .from_path(&temp)
+        .map_err(fail)?;
+    writer.write_record(COLUMNS).map_err(fail)?;
+    for row in rows {
+        writer.serialize(row).map_err(fail)?;
+    }
+    writer.flush().map_err(|e| Error::io(&temp, e))?;
+    drop(writer);
+    std::fs::rename(&temp, path).map_err(|e| Error::io(path, e))
+}
+
 fn parse_rows(text: &str, path: &Path) -> Result<Vec<Row>, Error> {
     if text.is_empty() {
         return Ok(Vec::new());

@@ -17,6 +17,7 @@ fn options(out: &Path, max_runs: Option<u64>, plots: bool) -> Options {
         jobs: Some(2),
         progress: ProgressMode::Off,
         plots,
+        shard: None,
     }
 }
 

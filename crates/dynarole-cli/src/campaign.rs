@@ -1,10 +1,11 @@
 //! `dynarole campaign`: a sweep of simulated runs described by a TOML file, run in parallel,
 //! written to `DIR/runs.csv` (resumable), `DIR/summary.csv` and plots
-//! (`crates/dynarole-campaign/README.md`).
+//! (`crates/dynarole-campaign/README.md`); on a cluster, one shard per job, job files for the
+//! schedulers, the merge and the status of the shards (`docs/cluster.md`).
 
 use crate::load::Failure;
 use crate::render;
-use dynarole_campaign::{Done, Error, Options, ProgressMode};
+use dynarole_campaign::{Done, Error, Jobs, MergeOptions, Options, ProgressMode, Scheduler, Shard};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -15,6 +16,50 @@ pub struct CampaignArgs<'a> {
     pub max_runs: Option<u64>,
     pub jobs: Option<usize>,
     pub no_plots: bool,
+    pub shard: Option<Shard>,
+    /// Write job files instead of running.
+    pub emit: Option<EmitArgs>,
+}
+
+/// The schedulers `--emit` writes job files for.
+#[derive(Clone, Copy, Debug, clap::ValueEnum)]
+pub enum Emit {
+    /// A Slurm array job (`sbatch`), then the merge as a dependent job.
+    Slurm,
+    /// An HTCondor cluster and the merge under a DAG (`condor_submit_dag`).
+    Htcondor,
+    /// A GNU parallel command list (inside an allocation or on one big machine).
+    Parallel,
+}
+
+/// `--emit S --shards N --throttle T`.
+pub struct EmitArgs {
+    pub scheduler: Emit,
+    pub shards: u64,
+    pub throttle: u64,
+}
+
+/// The subcommands on a directory of shard results.
+#[derive(clap::Subcommand)]
+pub enum Action {
+    /// Check that the shards in DIR hold every run exactly once (else name the missing shards
+    /// and runs, exit 1), then write runs.csv, summary.csv, summary.md and the plots, byte for
+    /// byte as a one-machine run does.
+    Merge {
+        /// The output directory of the shards (`--shard K/N -o DIR`).
+        dir: PathBuf,
+        /// Where to write the merged outputs (default: DIR).
+        #[arg(short = 'o', long = "output", value_name = "OUT")]
+        out_dir: Option<PathBuf>,
+        /// Write no plots.
+        #[arg(long)]
+        no_plots: bool,
+    },
+    /// Count the runs the shards in DIR have recorded so far (reads only: jobs may be running).
+    Status {
+        /// The output directory of the shards.
+        dir: PathBuf,
+    },
 }
 
 pub fn run(args: &CampaignArgs) -> Result<ExitCode, Failure> {
@@ -22,6 +67,9 @@ pub fn run(args: &CampaignArgs) -> Result<ExitCode, Failure> {
         Some(d) => d.clone(),
         None => default_out_dir(args.file),
     };
+    if let Some(emit) = &args.emit {
+        return emit_jobs(args, emit, out_dir);
+    }
     let options = Options {
         campaign: args.file.to_path_buf(),
         out_dir,
@@ -29,8 +77,14 @@ pub fn run(args: &CampaignArgs) -> Result<ExitCode, Failure> {
         jobs: args.jobs,
         progress: ProgressMode::for_stderr().map_err(Failure::Usage)?,
         plots: !args.no_plots,
+        shard: args.shard,
     };
-    match dynarole_campaign::run(&options) {
+    finish(dynarole_campaign::run(&options))
+}
+
+/// Prints what a campaign, a shard or a merge did, or its error.
+fn finish(result: Result<Done, Error>) -> Result<ExitCode, Failure> {
+    match result {
         Ok(done) => {
             print_done(&done);
             Ok(ExitCode::SUCCESS)
@@ -43,9 +97,109 @@ pub fn run(args: &CampaignArgs) -> Result<ExitCode, Failure> {
             render::diagnostics(&path.display().to_string(), &source, &diagnostics);
             Ok(ExitCode::from(1))
         }
-        Err(Error::Spec { path, text, error }) => Err(Failure::toml(&path, text, *error)),
-        Err(e) => Err(Failure::Input(e.to_string())),
+        Err(e) => Err(input_failure(e)),
     }
+}
+
+/// `campaign merge DIR` and `campaign status DIR`.
+pub fn act(action: &Action) -> Result<ExitCode, Failure> {
+    match action {
+        Action::Merge {
+            dir,
+            out_dir,
+            no_plots,
+        } => finish(dynarole_campaign::merge(&MergeOptions {
+            dir: dir.clone(),
+            out_dir: out_dir.clone().unwrap_or_else(|| dir.clone()),
+            plots: !no_plots,
+        })),
+        Action::Status { dir } => {
+            let status = dynarole_campaign::status(dir).map_err(input_failure)?;
+            print_status(&status);
+            Ok(ExitCode::SUCCESS)
+        }
+    }
+}
+
+fn input_failure(e: Error) -> Failure {
+    match e {
+        Error::Spec { path, text, error } => Failure::toml(&path, text, *error),
+        other => Failure::Input(other.to_string()),
+    }
+}
+
+/// `--emit`: the job files, and how to submit them.
+fn emit_jobs(args: &CampaignArgs, emit: &EmitArgs, dir: PathBuf) -> Result<ExitCode, Failure> {
+    // A campaign that cannot run is refused here, not in each of N jobs.
+    let runs = match dynarole_campaign::count_runs(args.file) {
+        Ok(runs) => runs,
+        Err(Error::Diagnostics {
+            path,
+            source,
+            diagnostics,
+        }) => {
+            render::diagnostics(&path.display().to_string(), &source, &diagnostics);
+            return Ok(ExitCode::from(1));
+        }
+        Err(e) => return Err(input_failure(e)),
+    };
+    let scheduler = match emit.scheduler {
+        Emit::Slurm => Scheduler::Slurm,
+        Emit::Htcondor => Scheduler::Htcondor,
+        Emit::Parallel => Scheduler::Parallel,
+    };
+    let jobs = Jobs {
+        campaign: args.file.to_path_buf(),
+        dir,
+        shards: emit.shards,
+        throttle: emit.throttle,
+        threads: args.jobs.unwrap_or(1),
+    };
+    let files = dynarole_campaign::write_job_files(scheduler, &jobs).map_err(input_failure)?;
+    for f in &files {
+        println!("wrote {}", f.display());
+    }
+    let first = |name: &str| jobs.dir.join(name).display().to_string();
+    let submit = match scheduler {
+        Scheduler::Slurm => first("submit.sh"),
+        Scheduler::Htcondor => format!("condor_submit_dag {}", first("campaign.dag")),
+        Scheduler::Parallel => first("run.sh"),
+    };
+    println!(
+        "{runs} runs in {} shards of {} or {} runs",
+        emit.shards,
+        runs / emit.shards,
+        runs.div_ceil(emit.shards)
+    );
+    println!("submit from this directory: {submit}");
+    println!("progress: dynarole campaign status {}", jobs.dir.display());
+    Ok(ExitCode::SUCCESS)
+}
+
+/// One line per shard, then the total.
+fn print_status(status: &dynarole_campaign::Status) {
+    for &(shard, done, size, finished) in &status.per_shard {
+        let state = if finished {
+            "finished"
+        } else if done > 0 {
+            "running or stopped"
+        } else {
+            "not started"
+        };
+        println!("shard {shard}: {done} of {size} runs, {state}");
+    }
+    let done = status.done();
+    let percent = if status.total > 0 {
+        100.0 * done as f64 / status.total as f64
+    } else {
+        100.0
+    };
+    let finished = status.per_shard.iter().filter(|s| s.3).count();
+    println!(
+        "{done} of {} runs done ({percent:.1} %), {finished} of {} shards finished",
+        status.total,
+        status.shards.unwrap_or(0)
+    );
 }
 
 /// `out/NAME` for `NAME.toml`: generated files stay under `out/`, which git ignores.
@@ -65,11 +219,20 @@ fn print_done(done: &Done) {
         done.wall_seconds,
         done.total - done.already - done.ran
     );
+    if !done.summaries.is_empty() {
+        print_table(&done.summaries);
+    }
+    for f in &done.files {
+        println!("wrote {}", f.display());
+    }
+}
+
+fn print_table(summaries: &[dynarole_campaign::PointSummary]) {
     println!(
         "{:<18} {:>8} {:<8} {:>5} {:>8} {:>15} {:>12} {:>9}",
         "axis", "value", "protocol", "runs", "success", "95 % interval", "median (s)", "packets"
     );
-    for s in &done.summaries {
+    for s in summaries {
         let median = s
             .median_completion_ms
             .map_or("-".into(), |t| format!("{:.3}", t / 1000.0));
@@ -88,8 +251,5 @@ fn print_done(done: &Done) {
             median,
             s.mean_packets_sent
         );
-    }
-    for f in &done.files {
-        println!("wrote {}", f.display());
     }
 }

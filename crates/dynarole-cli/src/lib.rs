@@ -168,21 +168,40 @@ enum Command {
     },
     /// Run a sweep of simulations described by a TOML file, in parallel: DIR/runs.csv (one
     /// row per run; an interrupted campaign resumes where it stopped), summary.csv, plots.
+    /// On a cluster: --shard K/N per job, or --emit the job files; then `campaign merge`.
+    #[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
     Campaign {
+        #[command(subcommand)]
+        action: Option<campaign::Action>,
         /// The campaign file (TOML; see crates/dynarole-campaign/README.md).
-        file: PathBuf,
+        #[arg(required = true)]
+        file: Option<PathBuf>,
         /// The output directory (default: out/NAME for NAME.toml).
         #[arg(short = 'o', long = "output", value_name = "DIR")]
         out_dir: Option<PathBuf>,
         /// Do at most N of the runs not yet recorded, then stop (run again to go on).
-        #[arg(long, value_name = "N")]
+        #[arg(long, value_name = "N", conflicts_with = "emit")]
         max_runs: Option<u64>,
-        /// Worker threads (default: one per core).
+        /// Worker threads (default: one per core; with --emit: per shard, default 1).
         #[arg(short = 'j', long, value_name = "N")]
         jobs: Option<usize>,
         /// Write no plots.
         #[arg(long)]
         no_plots: bool,
+        /// Run only shard K (from 0) of N into DIR/shard-K-of-N.csv (resumable); the split
+        /// depends only on the campaign and N. Then `dynarole campaign merge DIR`.
+        #[arg(long, value_name = "K/N", conflicts_with = "emit")]
+        shard: Option<dynarole_campaign::Shard>,
+        /// Write job files into DIR that run the campaign as --shards N shards on this
+        /// scheduler, then merge them (docs/cluster.md).
+        #[arg(long, value_enum, requires = "shards")]
+        emit: Option<campaign::Emit>,
+        /// With --emit: the number of shards.
+        #[arg(long, value_name = "N", requires = "emit", value_parser = clap::value_parser!(u64).range(1..=dynarole_campaign::MAX_SHARDS))]
+        shards: Option<u64>,
+        /// With --emit: most shards running at once (default: all).
+        #[arg(long, value_name = "T", requires = "emit", value_parser = clap::value_parser!(u64).range(1..))]
+        throttle: Option<u64>,
     },
     /// Rewrite `.dr` files in the canonical layout (comments kept).
     Fmt {
@@ -293,18 +312,37 @@ pub fn main() -> ExitCode {
             plugins: &plugins,
         }),
         Command::Campaign {
+            action,
             file,
             out_dir,
             max_runs,
             jobs,
             no_plots,
-        } => campaign::run(&campaign::CampaignArgs {
-            file: &file,
-            out_dir: out_dir.as_ref(),
-            max_runs,
-            jobs,
-            no_plots,
-        }),
+            shard,
+            emit,
+            shards,
+            throttle,
+        } => match (action, file) {
+            (Some(action), _) => campaign::act(&action),
+            (None, Some(file)) => campaign::run(&campaign::CampaignArgs {
+                file: &file,
+                out_dir: out_dir.as_ref(),
+                max_runs,
+                jobs,
+                no_plots,
+                shard,
+                emit: emit
+                    .zip(shards)
+                    .map(|(scheduler, shards)| campaign::EmitArgs {
+                        scheduler,
+                        shards,
+                        throttle: throttle.unwrap_or(shards),
+                    }),
+            }),
+            (None, None) => Err(load::Failure::Usage(
+                "campaign: name a campaign file, or `merge DIR`, or `status DIR`".into(),
+            )),
+        },
         Command::Fmt {
             files,
             check,

@@ -97,17 +97,20 @@ fn cache_key(files: &[(String, String)], defines: &[String]) -> u64 {
     hash
 }
 
-/// Writes the files into a fresh temporary directory, compiles, then renames it into place
-/// (another process may have won the race: then its build is used).
+/// Writes the files into a fresh temporary directory, compiles, then renames it into place.
 fn build(files: &[(String, String)], defines: &[String], directory: &Path) -> Result<(), String> {
+    publish(directory, |temp| write_and_compile(files, defines, temp))
+}
+
+/// Makes `directory` with `make` so that no process ever sees it half made, however many
+/// build it at once (shards starting together on one node, or on nodes sharing the cache over
+/// a network file system): each makes its own temporary directory, then renames it into
+/// place; a loser of the race drops its copy and uses the winner's.
+fn publish(directory: &Path, make: impl FnOnce(&Path) -> Result<(), String>) -> Result<(), String> {
     let root = directory.parent().unwrap_or(directory);
     std::fs::create_dir_all(root).map_err(|e| format!("cannot create {}: {e}", root.display()))?;
-    let temp = root.join(format!(
-        "tmp-{}-{}",
-        std::process::id(),
-        TEMP_COUNTER.fetch_add(1, Ordering::Relaxed)
-    ));
-    let result = write_and_compile(files, defines, &temp);
+    let temp = fresh_directory(root)?;
+    let result = make(&temp);
     if result.is_ok() && std::fs::rename(&temp, directory).is_ok() {
         return Ok(());
     }
@@ -121,6 +124,27 @@ fn build(files: &[(String, String)], defines: &[String], directory: &Path) -> Re
             directory.display()
         ))
     }
+}
+
+/// A new, empty directory in `root` of this process alone: creating a directory fails when it
+/// exists (also over NFS), so two processes with the same id on two machines get two.
+fn fresh_directory(root: &Path) -> Result<PathBuf, String> {
+    let nanos = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.subsec_nanos());
+    for _ in 0..64 {
+        let n = TEMP_COUNTER.fetch_add(1, Ordering::Relaxed);
+        let temp = root.join(format!("tmp-{}-{nanos}-{n}", std::process::id()));
+        match std::fs::create_dir(&temp) {
+            Ok(()) => return Ok(temp),
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => continue,
+            Err(e) => return Err(format!("cannot create {}: {e}", temp.display())),
+        }
+    }
+    Err(format!(
+        "cannot create a build directory in {}",
+        root.display()
+    ))
 }
 
 fn write_and_compile(
@@ -196,4 +220,73 @@ fn load(path: &Path) -> Result<(libloading::Library, Entry), String> {
         module_size: module_size as usize,
     };
     Ok((lib, entry))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Where the child processes of the race test publish (set only for them).
+    const RACE_DIR: &str = "DYNAROLE_SIM_PUBLISH_RACE_DIR";
+
+    /// Run by `several_processes_publish_one_build` in each of its child processes: makes the
+    /// directory slowly, file by file, as a compiler would.
+    #[test]
+    #[ignore = "a child of several_processes_publish_one_build"]
+    fn publish_from_a_child_process() {
+        let Some(directory) = std::env::var_os(RACE_DIR).map(PathBuf::from) else {
+            return;
+        };
+        let me = std::process::id().to_string();
+        let made = publish(&directory, |temp| {
+            for name in ["a.c", "b.c", LIBRARY] {
+                std::thread::sleep(std::time::Duration::from_millis(30));
+                std::fs::write(temp.join(name), &me).map_err(|e| e.to_string())?;
+            }
+            Ok(())
+        });
+        assert_eq!(made, Ok(()));
+        let winner = std::fs::read_to_string(directory.join("a.c")).unwrap_or_default();
+        for name in ["b.c", LIBRARY] {
+            let text = std::fs::read_to_string(directory.join(name)).unwrap_or_default();
+            assert_eq!(text, winner, "{name} is from another build than a.c");
+        }
+    }
+
+    #[test]
+    fn several_processes_publish_one_build() {
+        let root = std::env::temp_dir().join(format!("dynarole-publish-{}", std::process::id()));
+        let directory = root.join("0123456789abcdef");
+        let _ = std::fs::remove_dir_all(&root);
+        let exe = std::env::current_exe().expect("the test binary");
+        let children: Vec<_> = (0..6)
+            .map(|_| {
+                std::process::Command::new(&exe)
+                    .args(["--exact", "build::tests::publish_from_a_child_process"])
+                    .args(["--ignored", "--quiet", "--test-threads=1"])
+                    .env(RACE_DIR, &directory)
+                    .stdout(std::process::Stdio::null())
+                    .spawn()
+                    .expect("a child process")
+            })
+            .collect();
+        for mut child in children {
+            assert!(child.wait().expect("the child ends").success());
+        }
+        let left: Vec<String> = std::fs::read_dir(&root)
+            .expect("the cache root")
+            .map(|e| {
+                e.expect("an entry")
+                    .file_name()
+                    .to_string_lossy()
+                    .into_owned()
+            })
+            .collect();
+        assert_eq!(
+            left,
+            ["0123456789abcdef"],
+            "temporary directories left behind"
+        );
+        let _ = std::fs::remove_dir_all(&root);
+    }
 }
