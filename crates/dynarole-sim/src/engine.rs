@@ -1,4 +1,4 @@
-//! The event loop: pops events in queue order (`state::Key`) and runs the generated C where
+//! The event loop: pops events in queue order (`queue::Key`) and runs the generated C where
 //! an event concerns a module (power-on and resets run its init, steps its step, arrivals
 //! its receive). Every module has its own zeroed context buffer. With the tickless stepping
 //! (`Scenario::stepping`) each module's next step is planned from its

@@ -15,6 +15,7 @@ mod engine;
 mod ffi;
 mod network;
 mod ops;
+mod queue;
 mod report;
 mod scenario;
 mod sequence;

@@ -3,6 +3,7 @@
 //! Operations live in `ops.rs`, the infrared network in `network.rs`.
 
 use crate::engine::{Describer, DESCRIPTION_BYTES};
+use crate::queue::{Key, Queue};
 use crate::report::{Counters, Refusal, Violation};
 use crate::scenario::{Preset, Scenario, Stepping};
 use crate::sequence::Sequence;
@@ -11,8 +12,7 @@ use dynarole_world::Port;
 use dynarole_world::View;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use std::cmp::{Ordering, Reverse};
-use std::collections::{BTreeMap, BTreeSet, BinaryHeap, VecDeque};
+use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write;
 use std::sync::Arc;
 
@@ -64,45 +64,6 @@ pub enum Event {
     Foreign {
         entry: usize,
     },
-}
-
-/// Where an event stands in the queue. Events at one time are ordered by when they were
-/// scheduled, then plain events before steps, then plain events by scheduling order
-/// (`tie`: a sequence number) and steps by their module's power-on order (`tie`: its rank).
-/// A step's key depends only on its module and instant (it counts as scheduled at its
-/// module's previous 5 ms instant, when the fixed stepping schedules it), never on when it
-/// was actually put in the queue: so a tickless run, which schedules its steps at other
-/// moments, dispatches every event in the same order as the fixed stepping.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
-pub struct Key {
-    time: u64,
-    scheduled: u64,
-    step: bool,
-    tie: u64,
-}
-
-/// An event and its place in the queue.
-#[derive(Debug)]
-struct Scheduled {
-    key: Key,
-    event: Event,
-}
-
-impl PartialEq for Scheduled {
-    fn eq(&self, other: &Self) -> bool {
-        self.key == other.key
-    }
-}
-impl Eq for Scheduled {}
-impl PartialOrd for Scheduled {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
-}
-impl Ord for Scheduled {
-    fn cmp(&self, other: &Self) -> Ordering {
-        self.key.cmp(&other.key)
-    }
 }
 
 /// The platform data of one module.
@@ -166,12 +127,7 @@ pub struct State {
     pub scenario: Scenario,
     pub preset: Preset,
     pub now: u64,
-    queue: BinaryHeap<Reverse<Scheduled>>,
-    /// The periodic steps of the fixed stepping (most of its events), outside the heap: each
-    /// is scheduled STEP_US after the current time, so they nearly always come in key order
-    /// and a FIFO keeps them sorted (one that would not goes to the heap). `pop` takes the
-    /// smaller of its front and the heap's top: the order is exactly that of a single queue.
-    steps: VecDeque<Scheduled>,
+    queue: Queue,
     next_seq: u64,
     /// Power-ons so far (each module's `rank`).
     next_rank: u64,
@@ -268,16 +224,10 @@ impl State {
             scenario,
             preset,
             now: 0,
-            queue: BinaryHeap::new(),
-            steps: VecDeque::new(),
+            queue: Queue::new(),
             next_seq: 0,
             next_rank: 0,
-            current: Key {
-                time: 0,
-                scheduled: 0,
-                step: false,
-                tie: 0,
-            },
+            current: Key::plain(0, 0, 0),
             op_waiters: BTreeSet::new(),
             world,
             links,
@@ -382,38 +332,18 @@ impl State {
     }
 
     pub fn schedule(&mut self, time: u64, event: Event) {
-        let key = Key {
-            time,
-            scheduled: self.now,
-            step: false,
-            tie: self.next_seq,
-        };
+        let key = Key::plain(time, self.now, self.next_seq);
         self.next_seq += 1;
-        self.queue.push(Reverse(Scheduled { key, event }));
+        self.queue.push(key, event);
     }
 
     /// The next event, and the clock moved to it; `None` when nothing is left before `until`.
     pub fn pop(&mut self, until: u64) -> Option<Event> {
-        let heap = self.queue.peek().map(|Reverse(e)| e.key);
-        let step = self.steps.front().map(|e| e.key);
-        let from_steps = match (heap, step) {
-            (_, None) => false,
-            (None, Some(_)) => true,
-            (Some(h), Some(s)) => s < h,
-        };
-        let key = if from_steps { step } else { heap }?;
-        if key.time > until {
-            return None;
-        }
-        let next = if from_steps {
-            self.steps.pop_front()?
-        } else {
-            self.queue.pop()?.0
-        };
-        self.now = next.key.time;
-        self.current = next.key;
+        let (key, event) = self.queue.pop(until)?;
+        self.now = key.time();
+        self.current = key;
         self.counters.events += 1;
-        Some(next.event)
+        Some(event)
     }
 
     /// The key of the event being dispatched.
@@ -574,12 +504,7 @@ impl State {
         } else {
             time.saturating_sub(STEP_US)
         };
-        Key {
-            time,
-            scheduled,
-            step: true,
-            tie: module.rank,
-        }
+        Key::step(time, scheduled, module.rank)
     }
 
     /// Puts module `m`'s step at `time` (one of its 5 ms instants) in the queue, as its next.
@@ -590,11 +515,11 @@ impl State {
             generation: self.modules[m].generation,
         };
         self.modules[m].next_step = Some(time);
-        if self.steps.back().is_some_and(|last| last.key > key) {
-            self.queue.push(Reverse(Scheduled { key, event }));
-            return;
+        if self.tickless() {
+            self.queue.push(key, event);
+        } else {
+            self.queue.push_periodic(key, event);
         }
-        self.steps.push_back(Scheduled { key, event });
     }
 
     /// The fixed stepping: the next periodic step of `m`, after STEP_US.
