@@ -122,8 +122,9 @@ impl Wheel {
                 slot += 1;
             }
             let index = (slot % SLOTS as u64) as usize;
-            // The emptied vector goes back to the ring, keeping its capacity.
-            std::mem::swap(&mut self.ready, &mut self.slots[index]);
+            // Taken, not swapped: a slot keeps no capacity once served, so the wheel's memory
+            // follows the events waiting, not the largest burst each slot ever held.
+            self.ready = std::mem::take(&mut self.slots[index]);
             self.waiting -= self.ready.len();
             self.ready.sort_unstable_by_key(|s| Reverse(s.key));
             self.served = slot;
