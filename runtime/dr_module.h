@@ -3,7 +3,9 @@
  * own header what these do for it and what they cost).
  *
  * A platform calls dr_program_init (generated, dr_program.h) at power-on and after a reset,
- * then dr_module_step every few milliseconds and dr_module_receive for each packet. */
+ * then dr_module_step every few milliseconds and dr_module_receive for each packet. A
+ * platform may instead step a module only when it needs it (tickless, or asleep on an MCU):
+ * dr_module_next_wakeup below says when. */
 #ifndef DR_MODULE_H
 #define DR_MODULE_H
 
@@ -23,5 +25,28 @@ uint8_t dr_module_finished(const struct dr_module *m);
  * prefix when it does not fit; nothing when cap is 0) and returns the length without the
  * NUL. No printf, no allocation. */
 uint8_t dr_module_describe(const struct dr_module *m, char *out, uint8_t cap);
+
+/* Bits of dr_module_next_wakeup's answer. */
+#define DR_WAKE_AT 0x01u /* at the first step instant whose dr_hal_now_ms() >= *at_ms */
+#define DR_WAKE_OP 0x02u /* at the first step instant at which dr_hal_op_status() is not
+                          * DR_OP_RUNNING (an operation completed or failed) */
+
+/* When the module next needs a dr_module_step, for a platform that steps it only then
+ * (the simulator's tickless stepping; an MCU that sleeps between steps and wakes on its
+ * timer, its infrared receiver or its actuator's end).
+ *
+ * The contract: let the answer be A (and *at_ms when A has DR_WAKE_AT). Until the module's
+ * next dr_module_receive, dr_module_init or dr_module_step, a dr_module_step at any instant
+ * that the bits of A do not name changes nothing in *m and calls no HAL function other than
+ * the queries (dr_hal_now_ms, dr_hal_op_status, dr_hal_connected, dr_hal_id,
+ * dr_hal_neighbour_id, dr_hal_joint): skipping it gives exactly the run that stepping every
+ * period gives. A == 0: only a packet can make a step useful. DR_WAKE_AT with *at_ms at or
+ * before now: at the next step instant. The answer is valid until the next call of one of
+ * those three entry points; ask again after each (a received packet may make a step useful
+ * at once, e.g. a dependency now complete). Packets are still handed over on arrival, as
+ * dr_module_receive has always required.
+ * Precondition: dr_module_init has run. No side effect: reads *m and dr_hal_now_ms only.
+ * Every protocol documents its own answer and cost in its header. */
+uint8_t dr_module_next_wakeup(struct dr_module *m, uint32_t *at_ms);
 
 #endif /* DR_MODULE_H */

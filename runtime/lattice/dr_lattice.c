@@ -278,19 +278,20 @@ static void issue(dr_module_t *m)
     dr_hal_op_start(m, m->running, st.op, st.index, st.args);
 }
 
-/* Starts this module's first statement in the window that is not done and whose
- * dependencies are all done (after a reset this re-enters an interrupted one). */
-static uint8_t start_next(dr_module_t *m)
+/* This module's first statement in the window that is not done and whose dependencies are
+ * all done, as its offset from the low-water mark; W when there is none (or the module has
+ * no single address, or the last epoch is over). Reads *m only. O(W * deps). */
+static uint16_t next_startable(const dr_module_t *m)
 {
     const dr_program_t *p = m->program;
     dr_statement_t st;
-    dr_shared_t *sh = &m->shared;
+    const dr_shared_t *sh = &m->shared;
     uint16_t i;
     uint16_t s;
     uint16_t dep;
     uint8_t d;
     if (m->address >= DR_MANY_ADDRESSES || (p->n_epochs != 0u && sh->epoch >= p->n_epochs)) {
-        return 0;
+        return W;
     }
     for (i = 0; i < W; i++) {
         s = (uint16_t)(sh->low + i);
@@ -309,14 +310,24 @@ static uint8_t start_next(dr_module_t *m)
             }
         }
         if (d == st.n_deps) {
-            set_bit(sh->started, i);
-            m->running = s;
-            m->running_epoch = sh->epoch;
-            issue(m);
-            return 1;
+            return i;
         }
     }
-    return 0;
+    return W;
+}
+
+/* Starts next_startable's statement (after a reset this re-enters an interrupted one). */
+static uint8_t start_next(dr_module_t *m)
+{
+    uint16_t i = next_startable(m);
+    if (i == W) {
+        return 0;
+    }
+    set_bit(m->shared.started, i);
+    m->running = (uint16_t)(m->shared.low + i);
+    m->running_epoch = m->shared.epoch;
+    issue(m);
+    return 1;
 }
 
 /* Cost: O(W) plus a read of the NV store (and a write when it holds no valid record); with
@@ -404,6 +415,27 @@ void dr_module_step(dr_module_t *m)
     if (changed || due) {
         broadcast(m, now);
     }
+}
+
+/* What the next dr_module_step looks at, in its order: the running operation's status (it
+ * waits for it: DR_WAKE_OP, a failed one retried when the broadcast is due), the channels
+ * still awaited once a neighbour was heard (re-read at every step: a step at once), a
+ * statement it could start now (at once), and the broadcast deadline (always). Cost:
+ * O(W * deps), one dr_hal_now_ms. */
+uint8_t dr_module_next_wakeup(dr_module_t *m, uint32_t *at_ms)
+{
+    uint8_t wake = DR_WAKE_AT;
+    uint32_t now = dr_hal_now_ms(m);
+    *at_ms = m->next_broadcast_ms;
+    if (m->running != DR_NONE) {
+        wake = (uint8_t)(wake | DR_WAKE_OP);
+    }
+    if ((m->unheard != 0u && m->heard) ||
+        (m->running == DR_NONE && m->unheard == 0u && m->unechoed == DR_NONE &&
+         next_startable(m) != W)) {
+        *at_ms = now;
+    }
+    return wake;
 }
 
 /* Cost: O(len + W). */

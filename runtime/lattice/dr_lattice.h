@@ -104,6 +104,13 @@ void dr_module_init(dr_module_t *m, const dr_program_t *program, void *platform)
  *   operation and broadcasts when due. Cost: O(statements).
  * - dr_module_receive: with DR_PROGRAM_NO_NV a valid packet counts as hearing that
  *   neighbour. Cost: O(len + W).
+ * - dr_module_next_wakeup: always DR_WAKE_AT the broadcast deadline (next_broadcast_ms,
+ *   however it is set), plus DR_WAKE_OP while an operation of its own runs (its completion;
+ *   a failed one is retried at the deadline), or DR_WAKE_AT now when the next step would act
+ *   at once: a statement can start (a received packet completed its dependencies), or, with
+ *   DR_PROGRAM_NO_NV, a neighbour is still awaited after another was heard (the step re-reads
+ *   the links). Between the broadcasts of an idle module nothing runs: on an MCU the
+ *   module sleeps until its timer, its receiver or its actuator wakes it. Cost: O(W * deps).
  * - dr_module_finished: the last epoch is complete. Cost: O(1).
  * - dr_module_describe: `e<epoch> low<low> done<window> run<statement>`, decimal except `done`, the completed set
  * of the window as a hexadecimal number (bit i: statement low + i; no leading zeros), and

@@ -280,6 +280,18 @@ void dr_module_step(dr_module_t *m)
     }
 }
 
+/* An idle module (no local state, nothing in the mailbox) only broadcasts when due: the
+ * generated switch has no case for DR_STATE_IDLE. Any other local state is stepped at every
+ * step instant: what it polls (operations, pending states) is the generated code's. O(1). */
+uint8_t dr_module_next_wakeup(dr_module_t *m, uint32_t *at_ms)
+{
+    *at_ms = m->next_broadcast_ms;
+    if (m->local_state != DR_STATE_IDLE || m->mailbox != DR_STATE_IDLE) {
+        *at_ms = dr_hal_now_ms(m);
+    }
+    return DR_WAKE_AT;
+}
+
 /* e.10, the part of init that every reset runs. Cost: O(N) plus address_of(). */
 static void start(dr_module_t *m)
 {

@@ -65,7 +65,11 @@ void dr_module_init(dr_module_t *m, const dr_paper_program_t *program, void *pla
 /* The entry points of dr_module.h, for this protocol: dr_module_finished is the end state
  * (254) held; dr_module_describe writes `s<state> a<address> p{<pending>} l<local_state>`, in
  * decimal, the non-empty pending slots in slot order separated by commas; e.g.
- * "s4 a3 p{1,4} l255". Cost: O(pending). */
+ * "s4 a3 p{1,4} l255". Cost: O(pending).
+ * dr_module_next_wakeup: DR_WAKE_AT the broadcast deadline while the module is idle (local
+ * state and mailbox DR_STATE_IDLE), else DR_WAKE_AT now: a running state polls at every
+ * step (the generated switch decides what it waits for). On an MCU an idle module sleeps
+ * between its broadcasts. Cost: O(1). */
 
 /* Called by the generated state machine. */
 /* dr_hal_op_start with the arguments read from the program's table (DR_TABLE, dr_hal.h);

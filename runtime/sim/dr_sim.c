@@ -1,7 +1,8 @@
 /* dr_sim.c - the simulator's platform: every function of dr_hal.h forwards to a callback of
  * the host simulator (registered once with dr_sim_register), and protocol-agnostic entry
  * points let the host run any compiled program on many module contexts in one process
- * (init, step, receive, finished, address, and describe: the protocol state as text).
+ * (init, step, receive, finished, address, describe: the protocol state as text, and
+ * next_wakeup: when the module next needs a step, for the tickless stepping).
  *
  * Built by dynarole-sim together with a `dynarole compile` output directory into a shared
  * library:  cc -std=c99 -O2 -shared -fPIC -I OUT OUT/dr_packet.c OUT/dr_<protocol>.c
@@ -39,6 +40,7 @@ void dr_sim_receive(void *m, uint8_t channel, const uint8_t *bytes, uint8_t len)
 uint8_t dr_sim_finished(void *m);
 uint8_t dr_sim_address(void *m);
 uint8_t dr_sim_describe(void *m, char *out, uint8_t cap);
+uint8_t dr_sim_next_wakeup(void *m, uint32_t *at_ms);
 
 static const struct dr_sim_callbacks *host;
 
@@ -108,6 +110,12 @@ uint8_t dr_sim_restamp(const uint8_t *in, uint8_t len, uint16_t robot, uint8_t *
 uint8_t dr_sim_describe(void *m, char *out, uint8_t cap)
 {
     return dr_module_describe((const dr_module_t *)m, out, cap);
+}
+
+/* dr_module_next_wakeup of the module's runtime (dr_module.h): DR_WAKE_* bits. */
+uint8_t dr_sim_next_wakeup(void *m, uint32_t *at_ms)
+{
+    return dr_module_next_wakeup((dr_module_t *)m, at_ms);
 }
 
 uint32_t dr_hal_now_ms(struct dr_module *m)

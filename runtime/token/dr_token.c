@@ -215,6 +215,22 @@ static void send_due(dr_module_t *m, uint32_t now)
     schedule_next_send(m, now);
 }
 
+/* A held statement not started yet starts at the next step; a started one waits for its
+ * operation (done: hand-over; failed: started again); the period's send is always due. O(1). */
+uint8_t dr_module_next_wakeup(dr_module_t *m, uint32_t *at_ms)
+{
+    uint8_t wake = DR_WAKE_AT;
+    *at_ms = m->next_send_ms;
+    if (m->holding != DR_NONE && m->holding < m->program->n_statements) {
+        if (m->running) {
+            wake = (uint8_t)(wake | DR_WAKE_OP);
+        } else {
+            *at_ms = dr_hal_now_ms(m);
+        }
+    }
+    return wake;
+}
+
 void dr_module_step(dr_module_t *m)
 {
     uint32_t now = dr_hal_now_ms(m);

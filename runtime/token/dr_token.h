@@ -123,6 +123,10 @@ void dr_module_init(dr_module_t *m, const dr_token_program_t *program, void *pla
  * - dr_module_receive: Cost: O(DR_CONF_TOKEN_SEEN + hops of one route).
  * - dr_module_finished: the last statement is known to be done.
  * - dr_module_describe: `tok<statement>` or `tok-`, `run` when its operation is started,
- *   `q<queued>`, `fin` once finished; e.g. "tok4 run q0". */
+ *   `q<queued>`, `fin` once finished; e.g. "tok4 run q0".
+ * - dr_module_next_wakeup: DR_WAKE_AT the next period's send (every period, even with
+ *   nothing queued: its jitter draws a random number), plus DR_WAKE_OP while the held
+ *   statement's operation runs, or DR_WAKE_AT now when a held statement has not started.
+ *   On an MCU a module without the token sleeps between its periods. Cost: O(1). */
 
 #endif /* DR_TOKEN_H */

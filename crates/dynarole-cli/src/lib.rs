@@ -150,6 +150,10 @@ enum Command {
         /// Per-packet loss at the receiving connector (overrides the scenario's).
         #[arg(long, value_name = "P")]
         loss: Option<f64>,
+        /// How modules are stepped (overrides the scenario's `stepping`): `fixed`, every
+        /// 5 ms; `tickless`, only when they need it (the default; the same run).
+        #[arg(long, value_name = "MODE", value_parser = ["fixed", "tickless"])]
+        stepping: Option<String>,
         /// Seed of every random draw (loss, faults, timing): the same seed and inputs give
         /// the same run, byte for byte.
         #[arg(long, default_value_t = 0)]
@@ -292,6 +296,7 @@ pub fn main() -> ExitCode {
             options,
             scenario,
             loss,
+            stepping,
             seed,
             repeat,
             trace,
@@ -305,6 +310,7 @@ pub fn main() -> ExitCode {
             options: &options,
             scenario: scenario.as_ref(),
             loss,
+            stepping: stepping.as_deref(),
             seed,
             repeat,
             trace: trace.as_ref(),

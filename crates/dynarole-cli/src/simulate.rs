@@ -6,7 +6,7 @@ use crate::load::{self, Failure, PluginArgs};
 use crate::render;
 use crate::world::read_configuration;
 use clap::ValueEnum;
-use dynarole_sim::{Report, Run, Scenario, SimError, Simulator};
+use dynarole_sim::{Report, Run, Scenario, SimError, Simulator, Stepping};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
@@ -20,6 +20,8 @@ pub struct SimulateArgs<'a> {
     pub options: &'a ProtocolOptions,
     pub scenario: Option<&'a PathBuf>,
     pub loss: Option<f64>,
+    /// `--stepping`: `fixed` or `tickless` (clap accepts no other value).
+    pub stepping: Option<&'a str>,
     pub seed: u64,
     pub repeat: u64,
     pub trace: Option<&'a PathBuf>,
@@ -109,6 +111,16 @@ fn scenario(args: &SimulateArgs) -> Result<(Scenario, Option<String>), Failure> 
         }
         scenario.network.loss = loss;
     }
+    match args.stepping {
+        Some("fixed") => scenario.stepping = Stepping::Fixed,
+        Some("tickless") => scenario.stepping = Stepping::Tickless,
+        Some(other) => {
+            return Err(Failure::Usage(format!(
+                "--stepping {other}: expected fixed or tickless"
+            )))
+        }
+        None => {}
+    }
     Ok((scenario, text))
 }
 
@@ -172,6 +184,9 @@ fn replay_command(args: &SimulateArgs, seed: u64) -> String {
     }
     if let Some(l) = args.loss {
         parts.push(format!("--loss {l}"));
+    }
+    if let Some(s) = args.stepping {
+        parts.push(format!("--stepping {s}"));
     }
     for p in &args.plugins.plugins {
         parts.push(format!("--plugin {}", quote(&p.display().to_string())));

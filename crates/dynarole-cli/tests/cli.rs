@@ -1012,3 +1012,29 @@ fn a_huge_plugin_count_names_the_field() {
         text(&out.stderr)
     );
 }
+
+#[test]
+fn simulate_gives_the_same_trace_with_fixed_and_tickless_stepping() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli-simulate-stepping");
+    std::fs::create_dir_all(&dir).expect("dir");
+    let mut traces = Vec::new();
+    for stepping in ["fixed", "tickless"] {
+        let trace = dir.join(format!("{stepping}.trace"));
+        let trace_arg = trace.to_str().expect("path");
+        let out = simulate(
+            &SCENARIOS[0],
+            &["--stepping", stepping, "--trace", trace_arg],
+        );
+        assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+        traces.push(std::fs::read_to_string(&trace).expect("trace"));
+    }
+    assert!(traces[0].lines().count() > 100, "{}", traces[0]);
+    assert_eq!(traces[0], traces[1]);
+    let out = simulate(&SCENARIOS[0], &["--stepping", "sometimes"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        text(&out.stderr).contains("--stepping"),
+        "{}",
+        text(&out.stderr)
+    );
+}

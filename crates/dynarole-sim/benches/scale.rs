@@ -5,7 +5,8 @@
 //! `cargo bench -p dynarole-sim --bench scale` (ussr at 1,000, 10,000 and 100,000 modules,
 //! atron at 1,000 and 10,000; other sizes as arguments, for every preset of
 //! `DYNAROLE_SCALE_PRESETS`, default `ussr,atron`:
-//! `DYNAROLE_SCALE_PRESETS=atron cargo bench -p dynarole-sim --bench scale -- 100000`). Each
+//! `DYNAROLE_SCALE_PRESETS=atron cargo bench -p dynarole-sim --bench scale -- 100000`), with
+//! the tickless stepping unless `DYNAROLE_SCALE_STEPPING=fixed` (the same run). Each
 //! row runs in a fresh process (the benchmark re-runs itself with `--row PRESET N`), so that
 //! its peak RSS is its own.
 //!
@@ -20,7 +21,7 @@ use dynarole_codegen::{CompileOptions, Protocol};
 use dynarole_core::expand::Plan;
 use dynarole_core::{analyze, parse, Program, RobotRegistry};
 use dynarole_replay::RobotWorld;
-use dynarole_sim::{Preset, Run, Scenario, Simulator};
+use dynarole_sim::{Preset, Run, Scenario, Simulator, Stepping};
 use dynarole_world::{compare, Configuration};
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write;
@@ -203,6 +204,15 @@ fn current_kib() -> Option<u64> {
     line.split_whitespace().nth(1)?.parse().ok()
 }
 
+/// `DYNAROLE_SCALE_STEPPING`: `fixed` or `tickless` (the default).
+fn stepping() -> Stepping {
+    match std::env::var("DYNAROLE_SCALE_STEPPING").as_deref() {
+        Ok("fixed") => Stepping::Fixed,
+        Ok("tickless") | Err(_) => Stepping::Tickless,
+        Ok(other) => panic!("unknown stepping {other} (fixed or tickless)"),
+    }
+}
+
 /// The rows to run: the given sizes (arguments) for every preset asked
 /// (`DYNAROLE_SCALE_PRESETS`, default both), else `SIZES`.
 fn rows() -> Vec<(Preset, usize)> {
@@ -250,6 +260,7 @@ fn row(sim: &Simulator, preset: Preset, n: usize) {
     scenario.network.preset = preset;
     scenario.network.loss = 0.0;
     scenario.timeout_ms = 600_000;
+    scenario.stepping = stepping();
     let before = if reset_peak() {
         current_kib()
     } else {
@@ -305,8 +316,9 @@ fn main() {
     check_against_eight();
     check_with_replay(&program, &plan);
     println!(
-        "scale: one statement on M0 at a corner (lattice protocol, no loss, seed 1); the run \
-         ends when every module has declared the end"
+        "scale: one statement on M0 at a corner (lattice protocol, no loss, seed 1, {:?} \
+         stepping); the run ends when every module has declared the end",
+        stepping()
     );
     println!(
         "| preset | modules | wall s | structure s | simulated s (first / all declared the end) | events | events / wall s | packets sent | C context B / module | peak RSS B / module |"

@@ -1,5 +1,7 @@
 //! Benchmark: the simulator on eight2car (`eight.json` to `car.json`), lattice and paper
-//! protocols, 0 % and 30 % loss (atron preset; the figures also with the ussr preset).
+//! protocols, 0 % and 30 % loss (atron preset; the figures also with the ussr preset), with
+//! the fixed 5 ms stepping and the tickless one (`Scenario::stepping`; same runs, fewer
+//! events).
 //! Criterion times one run; before that, the
 //! figures of `README.md` ("Figures") are printed: simulated seconds per wall second, events
 //! per second, completion time, and completion over the mechanical critical path (with and
@@ -10,7 +12,7 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use dynarole_codegen::{CompileOptions, Protocol};
 use dynarole_core::{analyze, parse, RobotRegistry};
-use dynarole_sim::{Preset, Run, Scenario, Simulator};
+use dynarole_sim::{Preset, Run, Scenario, Simulator, Stepping};
 use dynarole_world::Configuration;
 use std::time::Instant;
 
@@ -40,11 +42,21 @@ fn config(text: &str) -> Configuration {
     Configuration::from_json_str(text).expect("valid configuration")
 }
 
-fn scenario(preset: Preset, loss: f64) -> Scenario {
+fn scenario(preset: Preset, loss: f64, stepping: Stepping) -> Scenario {
     let mut s = Scenario::default();
     s.network.preset = preset;
     s.network.loss = loss;
+    s.stepping = stepping;
     s
+}
+
+/// CPU time of this thread so far (s), from `/proc/thread-self/schedstat` (Linux): on a
+/// shared machine it measures the work, where the wall time also measures the others' load.
+fn cpu_seconds() -> f64 {
+    std::fs::read_to_string("/proc/thread-self/schedstat")
+        .ok()
+        .and_then(|s| s.split_whitespace().next()?.parse::<f64>().ok())
+        .map_or(f64::NAN, |ns| ns / 1e9)
 }
 
 fn name(protocol: Protocol) -> &'static str {
@@ -55,12 +67,11 @@ fn name(protocol: Protocol) -> &'static str {
 fn figures(
     sim: &Simulator,
     protocol: Protocol,
-    preset: Preset,
-    loss: f64,
+    (preset, loss, stepping): (Preset, f64, Stepping),
     start: &Configuration,
     car: &Configuration,
 ) {
-    let scenario = scenario(preset, loss);
+    let scenario = scenario(preset, loss, stepping);
     let path = sim.critical_path(&scenario.timing);
     let bound_ms = path.with_handovers(BROADCAST_MS);
     let run = |seed| {
@@ -75,8 +86,10 @@ fn figures(
     };
     let _ = run(0); // builds or loads the C
     let started = Instant::now();
+    let cpu_started = cpu_seconds();
     let reports: Vec<_> = (0..SEEDS).map(run).collect();
     let wall = started.elapsed().as_secs_f64();
+    let cpu = cpu_seconds() - cpu_started;
     let successes = reports.iter().filter(|r| r.success).count();
     let simulated: f64 = reports.iter().map(|r| r.end_ms / 1000.0).sum();
     let events: u64 = reports.iter().map(|r| r.counters.events).sum();
@@ -85,13 +98,15 @@ fn figures(
     let min = completions.iter().copied().fold(f64::INFINITY, f64::min);
     let max = completions.iter().copied().fold(0.0, f64::max);
     println!(
-        "{} {:<7} loss {:>3.0} %: {successes}/{SEEDS} ok; {:>7.0} simulated s / wall s; {:>9.0} events/s ({:.0} events/run); \
+        "{} {:<8} {:<7} loss {:>3.0} %: {successes}/{SEEDS} ok; {:>7.0} simulated s / wall s ({:>7.0} / CPU s); {:>9.0} events/s ({:.0} events/run); \
          completion {:.3} s ({:.3}-{:.3}); critical path {:.3} s ({} statements, {} hand-overs) -> x{:.3}; \
          + {BROADCAST_MS} ms per hand-over {:.3} s -> x{:.3}",
         preset.name(),
+        format!("{stepping:?}").to_lowercase(),
         name(protocol),
         loss * 100.0,
         simulated / wall,
+        simulated / cpu,
         events as f64 / wall,
         events as f64 / SEEDS as f64,
         mean / 1000.0,
@@ -116,24 +131,31 @@ fn benches(c: &mut Criterion) {
     for preset in [Preset::Atron, Preset::Ussr] {
         for (protocol, sim) in &sims {
             for loss in [0.0, 0.3] {
-                figures(sim, *protocol, preset, loss, &start, &car);
+                for stepping in [Stepping::Fixed, Stepping::Tickless] {
+                    figures(sim, *protocol, (preset, loss, stepping), &start, &car);
+                }
             }
         }
     }
     for (protocol, sim) in &sims {
         for loss in [0.0, 0.3] {
-            let scenario = scenario(Preset::Atron, loss);
-            let run = Run {
-                start: &start,
-                expect: Some(&car),
-                scenario: &scenario,
-                seed: 1,
-                trace: false,
-            };
-            c.bench_function(
-                &format!("simulate eight2car, {}, loss {loss}", name(*protocol)),
-                |b| b.iter(|| sim.run(&run).expect("runs")),
-            );
+            for stepping in [Stepping::Fixed, Stepping::Tickless] {
+                let scenario = scenario(Preset::Atron, loss, stepping);
+                let run = Run {
+                    start: &start,
+                    expect: Some(&car),
+                    scenario: &scenario,
+                    seed: 1,
+                    trace: false,
+                };
+                c.bench_function(
+                    &format!(
+                        "simulate eight2car, {}, loss {loss}, {stepping:?}",
+                        name(*protocol)
+                    ),
+                    |b| b.iter(|| sim.run(&run).expect("runs")),
+                );
+            }
         }
     }
 }

@@ -25,6 +25,8 @@ pub type QueryFn = unsafe extern "C" fn(*mut c_void) -> u8;
 pub type DescribeFn = unsafe extern "C" fn(*mut c_void, *mut u8, u8) -> u8;
 /// `dr_sim_restamp(in, len, robot, out, cap)`: a frame under another robot's identity.
 pub type RestampFn = unsafe extern "C" fn(*const u8, u8, u16, *mut u8, u8) -> u8;
+/// `dr_sim_next_wakeup(m, &at_ms)`: `dr_module_next_wakeup`'s answer bits.
+pub type WakeFn = unsafe extern "C" fn(*mut c_void, *mut u32) -> u8;
 type SizeFn = unsafe extern "C" fn() -> u32;
 type RegisterFn = unsafe extern "C" fn(*const ffi::Callbacks);
 
@@ -39,6 +41,7 @@ pub struct Entry {
     /// `dr_sim_describe`: the protocol state as text (`dr_module_describe`).
     pub describe: DescribeFn,
     pub restamp: RestampFn,
+    pub next_wakeup: WakeFn,
     pub module_size: usize,
 }
 
@@ -217,6 +220,7 @@ fn load(path: &Path) -> Result<(libloading::Library, Entry), String> {
         address: symbol(&lib, "dr_sim_address")?,
         describe: symbol(&lib, "dr_sim_describe")?,
         restamp: symbol(&lib, "dr_sim_restamp")?,
+        next_wakeup: symbol(&lib, "dr_sim_next_wakeup")?,
         module_size: module_size as usize,
     };
     Ok((lib, entry))

@@ -1,6 +1,8 @@
-//! The event loop: pops events in (time, sequence) order and runs the generated C where an
-//! event concerns a module (power-on and resets run its init, steps its step, arrivals its
-//! receive). Every module has its own zeroed context buffer.
+//! The event loop: pops events in queue order (`queue::Key`) and runs the generated C where
+//! an event concerns a module (power-on and resets run its init, steps its step, arrivals
+//! its receive). Every module has its own zeroed context buffer. With the tickless stepping
+//! (`Scenario::stepping`) each module's next step is planned from its
+//! `dr_module_next_wakeup` after each of these (`wake.rs`).
 
 use crate::build::{DescribeFn, Entry};
 use crate::ffi::{self, Installed};
@@ -53,6 +55,25 @@ impl Contexts {
             (self.entry.step)(ctx);
             (self.entry.finished)(ctx) != 0
         }
+    }
+
+    /// `dr_module_next_wakeup`: the answer bits and the instant in the module's clock.
+    fn next_wakeup(&mut self, m: usize) -> (u8, u32) {
+        let Some(ctx) = self.ptr(m) else {
+            return (0, 0);
+        };
+        let mut at_ms = 0u32;
+        // SAFETY: an initialised context (asked only after its init); writes one u32.
+        let answer = unsafe { (self.entry.next_wakeup)(ctx, &mut at_ms) };
+        (answer, at_ms)
+    }
+
+    fn finished(&mut self, m: usize) -> bool {
+        let Some(ctx) = self.ptr(m) else {
+            return false;
+        };
+        // SAFETY: an initialised context; reads it only.
+        unsafe { (self.entry.finished)(ctx) != 0 }
     }
 
     fn receive(&mut self, packet: &Packet) {
@@ -176,6 +197,37 @@ fn init(state: &Rc<RefCell<State>>, contexts: &mut Contexts, m: usize) {
     }
 }
 
+/// Tickless: plans module `m`'s next step from its runtime's answer (after its init, a step
+/// or a packet; a module off is not planned).
+fn replan(state: &Rc<RefCell<State>>, contexts: &mut Contexts, m: usize) {
+    if !state.borrow().tickless() || !state.borrow().modules[m].powered {
+        return;
+    }
+    let (answer, at_ms) = contexts.next_wakeup(m);
+    state.borrow_mut().plan_wake(m, answer, at_ms);
+}
+
+/// Tickless, after module `m` received a packet: its plan, and a step at its next instant
+/// when the packet told it the end (the fixed stepping notes the end after a step).
+fn after_packet(state: &Rc<RefCell<State>>, contexts: &mut Contexts, m: usize) {
+    if !state.borrow().tickless() {
+        return;
+    }
+    replan(state, contexts, m);
+    let noted = state.borrow().modules[m].finished_at.is_some();
+    if !noted && contexts.finished(m) {
+        state.borrow_mut().wake_soon(m);
+    }
+}
+
+/// Tickless: operation statuses may have changed; modules waiting for theirs are woken.
+fn after_operations(state: &Rc<RefCell<State>>) {
+    let mut s = state.borrow_mut();
+    if s.tickless() {
+        s.wake_op_waiters();
+    }
+}
+
 fn dispatch(state: &Rc<RefCell<State>>, contexts: &mut Contexts, event: Event) {
     match event {
         Event::PowerOn { module } => {
@@ -183,25 +235,37 @@ fn dispatch(state: &Rc<RefCell<State>>, contexts: &mut Contexts, event: Event) {
                 init(state, contexts, module);
             }
         }
-        Event::PowerOff { module } => state.borrow_mut().power_off(module),
+        Event::PowerOff { module } => {
+            state.borrow_mut().power_off(module);
+            after_operations(state);
+        }
         Event::Step { module, generation } => {
-            if !state.borrow().step_due(module, generation) {
+            if !state.borrow_mut().step_due(module, generation) {
+                state.borrow_mut().uncount();
                 return;
             }
             let finished = contexts.step(module);
-            let mut s = state.borrow_mut();
-            s.note_finished(module, finished);
-            s.schedule_step(module, generation);
+            state.borrow_mut().note_finished(module, finished);
+            if state.borrow().tickless() {
+                replan(state, contexts, module);
+            } else {
+                state.borrow_mut().schedule_step(module);
+            }
         }
-        Event::OpDone { attempt } => state.borrow_mut().op_done(attempt),
+        Event::OpDone { attempt } => {
+            state.borrow_mut().op_done(attempt);
+            after_operations(state);
+        }
         Event::Arrival(packet) => {
             if state.borrow_mut().arrive(&packet) {
                 contexts.receive(&packet);
+                after_packet(state, contexts, packet.to.module);
             }
         }
         Event::Reset { module } => {
             if state.borrow_mut().reset(module) {
                 init(state, contexts, module);
+                replan(state, contexts, module);
             }
         }
         Event::Foreign { entry } => {
@@ -218,6 +282,7 @@ fn dispatch(state: &Rc<RefCell<State>>, contexts: &mut Contexts, event: Event) {
                     };
                     if state.borrow().modules[to.module].powered {
                         contexts.receive(&packet);
+                        after_packet(state, contexts, to.module);
                     }
                 }
             }
@@ -225,6 +290,7 @@ fn dispatch(state: &Rc<RefCell<State>>, contexts: &mut Contexts, event: Event) {
         Event::ResetCheck { module } => {
             if state.borrow_mut().reset_check(module) {
                 init(state, contexts, module);
+                replan(state, contexts, module);
             }
         }
     }

@@ -15,17 +15,19 @@ mod engine;
 mod ffi;
 mod network;
 mod ops;
+mod queue;
 mod report;
 mod scenario;
 mod sequence;
 mod state;
+mod wake;
 
 pub use build::cache_root;
 pub use critical::CriticalPath;
 pub use report::{Counters, ModuleReport, Refusal, Report, Violation};
 pub use scenario::{
     Block, Foreign, JointModel, Network, Power, Preset, RandomResets, Reset, Scenario,
-    ScenarioError, Timing,
+    ScenarioError, Stepping, Timing,
 };
 
 use build::Loaded;

@@ -35,7 +35,7 @@ pub struct OpCall<'a> {
 }
 
 const DONE: u8 = 1;
-const RUNNING: u8 = 0;
+pub const RUNNING: u8 = 0;
 const FAILED: u8 = 2;
 
 impl State {

@@ -156,6 +156,19 @@ pub struct RandomResets {
     pub probability: f64,
 }
 
+/// How the simulator runs each module's C between events (`stepping` in a scenario).
+/// Both give the same run, byte for byte (`docs/simulator.md`, "Stepping").
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Stepping {
+    /// A step every 5 ms on every powered module, as the controller of a real module runs.
+    Fixed,
+    /// A step only at the 5 ms instants the module asked for (`dr_module_next_wakeup`), after
+    /// a packet that made one useful, and after its operation completed.
+    #[default]
+    Tickless,
+}
+
 /// A whole scenario. Every field has a default, so an empty file is the fault-free run.
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields, default)]
@@ -170,6 +183,7 @@ pub struct Scenario {
     pub block: Vec<Block>,
     pub random_resets: Option<RandomResets>,
     pub foreign: Vec<Foreign>,
+    pub stepping: Stepping,
 }
 
 impl Default for Scenario {
@@ -184,6 +198,7 @@ impl Default for Scenario {
             block: Vec::new(),
             random_resets: None,
             foreign: Vec::new(),
+            stepping: Stepping::default(),
         }
     }
 }

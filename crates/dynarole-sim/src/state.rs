@@ -3,16 +3,16 @@
 //! Operations live in `ops.rs`, the infrared network in `network.rs`.
 
 use crate::engine::{Describer, DESCRIPTION_BYTES};
+use crate::queue::{Key, Queue};
 use crate::report::{Counters, Refusal, Violation};
-use crate::scenario::{Preset, Scenario};
+use crate::scenario::{Preset, Scenario, Stepping};
 use crate::sequence::Sequence;
 use dynarole_replay::RobotWorld;
 use dynarole_world::Port;
 use dynarole_world::View;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use std::cmp::{Ordering, Reverse};
-use std::collections::{BTreeMap, BinaryHeap, VecDeque};
+use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write;
 use std::sync::Arc;
 
@@ -66,31 +66,6 @@ pub enum Event {
     },
 }
 
-/// An event at a time; ties are broken by the order of scheduling.
-#[derive(Debug)]
-struct Scheduled {
-    time: u64,
-    seq: u64,
-    event: Event,
-}
-
-impl PartialEq for Scheduled {
-    fn eq(&self, other: &Self) -> bool {
-        (self.time, self.seq) == (other.time, other.seq)
-    }
-}
-impl Eq for Scheduled {}
-impl PartialOrd for Scheduled {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
-}
-impl Ord for Scheduled {
-    fn cmp(&self, other: &Self) -> Ordering {
-        (self.time, self.seq).cmp(&(other.time, other.seq))
-    }
-}
-
 /// The platform data of one module.
 #[derive(Clone, Debug)]
 pub struct Module {
@@ -99,6 +74,11 @@ pub struct Module {
     pub powered: bool,
     pub power_on_at: u64,
     pub generation: u64,
+    /// Order of the last power-on among all power-ons (orders steps at one instant).
+    pub rank: u64,
+    /// The instant of the step in the queue that is this module's next (stale ones are
+    /// skipped); `None` while it waits for a packet (tickless) or is off.
+    pub next_step: Option<u64>,
     /// The storage up to the last byte ever written (at most NV_BYTES): bytes beyond it have
     /// never been written and read as 0xFF.
     pub nv: Vec<u8>,
@@ -147,13 +127,15 @@ pub struct State {
     pub scenario: Scenario,
     pub preset: Preset,
     pub now: u64,
-    queue: BinaryHeap<Reverse<Scheduled>>,
-    /// The periodic steps (most events), outside the heap: each is scheduled STEP_US after
-    /// the current time with the next sequence number, so they come in (time, seq) order and
-    /// a FIFO keeps them sorted. `pop` takes the smaller of its front and the heap's top: the
-    /// order is exactly that of a single queue.
-    steps: VecDeque<Scheduled>,
+    queue: Queue,
     next_seq: u64,
+    /// Power-ons so far (each module's `rank`).
+    next_rank: u64,
+    /// The key of the event being dispatched.
+    current: Key,
+    /// Tickless: modules that wait for their operation's status to leave RUNNING
+    /// (`DR_WAKE_OP`), so that a completion or failure wakes them.
+    pub op_waiters: BTreeSet<usize>,
     /// The configuration; change it only through `apply` (the link cache depends on it).
     pub world: RobotWorld,
     /// Per module, where its broadcasts go (`network.rs`), while the world is unchanged.
@@ -220,6 +202,8 @@ impl State {
                 powered: false,
                 power_on_at: 0,
                 generation: 0,
+                rank: 0,
+                next_step: None,
                 nv: Vec::new(),
                 waiting: Vec::new(),
                 failed: false,
@@ -240,9 +224,11 @@ impl State {
             scenario,
             preset,
             now: 0,
-            queue: BinaryHeap::new(),
-            steps: VecDeque::new(),
+            queue: Queue::new(),
             next_seq: 0,
+            next_rank: 0,
+            current: Key::plain(0, 0, 0),
+            op_waiters: BTreeSet::new(),
             world,
             links,
             modules,
@@ -346,32 +332,33 @@ impl State {
     }
 
     pub fn schedule(&mut self, time: u64, event: Event) {
-        let seq = self.next_seq;
+        let key = Key::plain(time, self.now, self.next_seq);
         self.next_seq += 1;
-        self.queue.push(Reverse(Scheduled { time, seq, event }));
+        self.queue.push(key, event);
     }
 
     /// The next event, and the clock moved to it; `None` when nothing is left before `until`.
     pub fn pop(&mut self, until: u64) -> Option<Event> {
-        let heap = self.queue.peek().map(|Reverse(e)| (e.time, e.seq));
-        let step = self.steps.front().map(|e| (e.time, e.seq));
-        let from_steps = match (heap, step) {
-            (_, None) => false,
-            (None, Some(_)) => true,
-            (Some(h), Some(s)) => s < h,
-        };
-        let (time, _) = if from_steps { step } else { heap }?;
-        if time > until {
-            return None;
-        }
-        let next = if from_steps {
-            self.steps.pop_front()?
-        } else {
-            self.queue.pop()?.0
-        };
-        self.now = next.time;
+        let (key, event) = self.queue.pop(until)?;
+        self.now = key.time();
+        self.current = key;
         self.counters.events += 1;
-        Some(next.event)
+        Some(event)
+    }
+
+    /// The key of the event being dispatched.
+    pub(crate) fn current(&self) -> Key {
+        self.current
+    }
+
+    /// A stale step was popped (not due any more): it is not counted as an event.
+    pub fn uncount(&mut self) {
+        self.counters.events = self.counters.events.saturating_sub(1);
+    }
+
+    /// Whether modules are stepped only when they need it (`Scenario::stepping`).
+    pub fn tickless(&self) -> bool {
+        self.scenario.stepping == Stepping::Tickless
     }
 
     /// Whether faults (loss, blocks, resets) are still on.
@@ -445,15 +432,10 @@ impl State {
         module.powered = true;
         module.power_on_at = now;
         module.generation += 1;
-        let generation = module.generation;
+        module.rank = self.next_rank;
+        self.next_rank += 1;
         self.log(Some(m), "power-on", "");
-        self.schedule(
-            now,
-            Event::Step {
-                module: m,
-                generation,
-            },
-        );
+        self.put_step(m, now);
         true
     }
 
@@ -467,9 +449,11 @@ impl State {
         }
         module.powered = false;
         module.generation += 1;
+        module.next_step = None;
         module.stats.power_cycles += 1;
         self.counters.power_cycles += 1;
         self.log(Some(m), "power-off", "");
+        self.op_waiters.remove(&m);
         self.interrupt_operations(m);
     }
 
@@ -497,32 +481,50 @@ impl State {
         uniform(&mut self.rng_faults) < r.probability && self.reset(m)
     }
 
-    /// Whether a step of `m` in `generation` is still due (not cancelled by a power cycle).
-    pub fn step_due(&self, m: usize, generation: u64) -> bool {
-        self.modules
-            .get(m)
-            .is_some_and(|x| x.powered && x.generation == generation)
+    /// Whether a step of `m` in `generation` at the current time is still due (not
+    /// cancelled by a power cycle, nor replaced by another wake-up); a due step is consumed.
+    pub fn step_due(&mut self, m: usize, generation: u64) -> bool {
+        let now = self.now;
+        let Some(x) = self.modules.get_mut(m) else {
+            return false;
+        };
+        let due = x.powered && x.generation == generation && x.next_step == Some(now);
+        if due {
+            x.next_step = None;
+        }
+        due
     }
 
-    /// The next periodic step of `m`, after STEP_US (into the FIFO of steps; see `steps`).
-    pub fn schedule_step(&mut self, m: usize, generation: u64) {
-        let time = self.now + STEP_US;
-        let seq = self.next_seq;
+    /// The key of module `m`'s step at `time`, one of its 5 ms instants: the first one, at
+    /// power-on, counts as scheduled then; every later one at the instant before it.
+    pub(crate) fn step_key(&self, m: usize, time: u64) -> Key {
+        let module = &self.modules[m];
+        let scheduled = if time == module.power_on_at {
+            time
+        } else {
+            time.saturating_sub(STEP_US)
+        };
+        Key::step(time, scheduled, module.rank)
+    }
+
+    /// Puts module `m`'s step at `time` (one of its 5 ms instants) in the queue, as its next.
+    pub(crate) fn put_step(&mut self, m: usize, time: u64) {
+        let key = self.step_key(m, time);
         let event = Event::Step {
             module: m,
-            generation,
+            generation: self.modules[m].generation,
         };
-        if self
-            .steps
-            .back()
-            .is_some_and(|last| (last.time, last.seq) > (time, seq))
-        {
-            // Cannot happen (time never goes back), but the heap is always correct.
-            self.schedule(time, event);
-            return;
+        self.modules[m].next_step = Some(time);
+        if self.tickless() {
+            self.queue.push(key, event);
+        } else {
+            self.queue.push_periodic(key, event);
         }
-        self.next_seq += 1;
-        self.steps.push_back(Scheduled { time, seq, event });
+    }
+
+    /// The fixed stepping: the next periodic step of `m`, after STEP_US.
+    pub fn schedule_step(&mut self, m: usize) {
+        self.put_step(m, self.now + STEP_US);
     }
 
     /// After a step: the module says whether it knows the sequence is over (S3 is checked).
@@ -545,8 +547,7 @@ impl State {
     // ----- HAL answers -----
 
     pub fn now_ms(&self, m: usize) -> u32 {
-        let since = self.now.saturating_sub(self.modules[m].power_on_at) / 1000;
-        (since & u64::from(u32::MAX)) as u32
+        self.clock_at(m, self.now)
     }
 
     pub fn random(&mut self) -> u16 {

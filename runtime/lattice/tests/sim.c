@@ -4,6 +4,8 @@
 #include "check.h"
 
 sim_t sim;
+unsigned long sim_skippable_steps;
+unsigned long sim_skippable_acted;
 
 static sim_node_t *node_of(struct dr_module *m)
 {
@@ -66,6 +68,7 @@ uint32_t dr_hal_now_ms(struct dr_module *m)
 
 uint16_t dr_hal_random(struct dr_module *m)
 {
+    node_of(m)->effects++;
     return (uint16_t)(xorshift(&node_of(m)->rng) >> 8);
 }
 
@@ -73,6 +76,7 @@ void dr_hal_broadcast(struct dr_module *m, const uint8_t *bytes, uint8_t len)
 {
     sim_node_t *from = node_of(m);
     uint8_t i = (uint8_t)(from - sim.nodes);
+    from->effects++;
     uint8_t j;
     uint8_t copies;
     sim_node_t *to;
@@ -114,6 +118,7 @@ void dr_hal_op_start(struct dr_module *m, uint16_t statement, uint8_t op, uint8_
     sim_node_t *n = node_of(m);
     const dr_program_t *p = sim.program;
     uint16_t s = statement;
+    n->effects++;
     uint16_t r = m->running_epoch;
     uint16_t t;
     uint16_t d;
@@ -256,6 +261,7 @@ int16_t dr_hal_joint(struct dr_module *m, uint8_t joint)
 void dr_hal_leds(struct dr_module *m, uint8_t value)
 {
     node_of(m)->leds = value;
+    node_of(m)->effects++;
 }
 
 void dr_hal_nv_read(struct dr_module *m, uint16_t addr, uint8_t *buf, uint8_t len)
@@ -277,6 +283,7 @@ void dr_hal_nv_write(struct dr_module *m, uint16_t addr, const uint8_t *buf, uin
         return;
     }
     n->nv_writes++;
+    n->effects++;
     if (n->tear_in == 0) {
         /* Power fails half-way through this write. */
         n->tear_in = -1;
@@ -316,6 +323,7 @@ void sim_setup(const dr_program_t *program, uint8_t n, const uint8_t *addresses,
         /* Clocks close to the 32-bit wrap, each a little different. */
         nd->clock_offset = 0xFFFFFFFFu - 700u + 13u * i;
         nd->tear_in = -1;
+        nd->woken = 1;
         memset(nd->nv, 0xFF, SIM_NV);
         if (i > 0u) {
             sim.adj[i][i - 1u] = 1;
@@ -348,6 +356,7 @@ void sim_reset(uint8_t i)
     n->reset_at_set = 0;
     n->n_inbox = 0;
     n->tear_in = -1;
+    n->woken = 1;
     /* RAM is lost: scribble over the protocol state (the counters are kept for reports). */
     memset(&n->mod.shared, 0xA5, sizeof n->mod.shared);
     n->mod.address = 0xA5u;
@@ -367,11 +376,26 @@ static void deliver(sim_node_t *n)
     for (k = 0; k < n->n_inbox; k++) {
         if ((int32_t)(sim.time - n->inbox[k].at) >= 0) {
             dr_module_receive(&n->mod, n->inbox[k].from, n->inbox[k].bytes, n->inbox[k].len);
+            /* a tickless platform asks again after each packet (it need not step) */
+            n->wake = dr_module_next_wakeup(&n->mod, &n->wake_at);
         } else {
             n->inbox[kept++] = n->inbox[k];
         }
     }
     n->n_inbox = kept;
+}
+
+/* Whether a step now is one that n's last dr_module_next_wakeup answer lets a tickless
+ * platform skip: no packet or reset since, its deadline not reached, and (DR_WAKE_OP) its
+ * operation still running. */
+static uint8_t skippable(const sim_node_t *n)
+{
+    uint32_t now = sim.time + n->clock_offset;
+    uint8_t op_running = (uint8_t)(n->op_active && !n->op_failed && sim.time < n->op_until);
+    if (n->woken || ((n->wake & DR_WAKE_AT) && (int32_t)(now - n->wake_at) >= 0)) {
+        return 0;
+    }
+    return (uint8_t)(!(n->wake & DR_WAKE_OP) || op_running);
 }
 
 /* Returns 1 when the step was cut short by a torn NV write (power failure). */
@@ -381,6 +405,30 @@ static int guarded_step(sim_node_t *n)
         return 1;
     }
     dr_module_step(&n->mod);
+    return 0;
+}
+
+/* guarded_step, and a step that dr_module_next_wakeup said could be skipped is checked to
+ * change nothing (the module's whole state and every HAL effect): what a tickless
+ * platform's exactness rests on. Then the next answer is asked for. */
+static int checked_step(sim_node_t *n)
+{
+    uint8_t skip = skippable(n);
+    dr_module_t before = n->mod;
+    uint32_t effects = n->effects;
+    if (guarded_step(n)) {
+        return 1;
+    }
+    if (skip) {
+        sim_skippable_steps++;
+        if (memcmp(&before, &n->mod, sizeof before) != 0 || effects != n->effects) {
+            sim_skippable_acted++;
+            violation("tickless: a step next_wakeup let skip changed something",
+                      n->mod.shared.epoch, n->mod.running);
+        }
+    }
+    n->wake = dr_module_next_wakeup(&n->mod, &n->wake_at);
+    n->woken = 0;
     return 0;
 }
 
@@ -400,7 +448,7 @@ uint8_t sim_run(uint32_t max_ms)
             i = (uint8_t)((first + k) % sim.n_nodes);
             n = &sim.nodes[i];
             deliver(n);
-            if (guarded_step(n) || n->reset_now || (n->reset_at_set && sim.time >= n->reset_at)) {
+            if (checked_step(n) || n->reset_now || (n->reset_at_set && sim.time >= n->reset_at)) {
                 sim_reset(i);
             }
             if (n->mod.running != DR_NONE && n->mod.running_epoch == n->mod.shared.epoch &&

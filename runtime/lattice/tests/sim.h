@@ -50,6 +50,12 @@ typedef struct {
     uint32_t reset_at;
     int16_t tear_in;              /* tear the NV write this many writes from now; -1: never */
     uint8_t finished_seen;
+    /* tickless: the last dr_module_next_wakeup answer, and whether a reset came since it was
+     * given (then the next step may act; packets: the answer is asked again) */
+    uint8_t wake;
+    uint32_t wake_at;
+    uint8_t woken;
+    uint32_t effects;             /* HAL calls with an effect (sends, random, ops, LEDs, NV) */
 } sim_node_t;
 
 typedef struct {
@@ -92,6 +98,11 @@ typedef struct {
 } sim_t;
 
 extern sim_t sim;
+/* Over every run since the program started: the steps dr_module_next_wakeup said a tickless
+ * platform could skip (each is still run, and checked to change nothing), and those that
+ * changed something (must stay 0). */
+extern unsigned long sim_skippable_steps;
+extern unsigned long sim_skippable_acted;
 
 /* A statement of a test program: op 1, index 0, args[0] = its own index (the fake platform
  * uses it to know which statement an operation belongs to). */

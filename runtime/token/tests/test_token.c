@@ -55,6 +55,11 @@ typedef struct {
     uint8_t op_stmt_op;
     packet_t inbox[INBOX];
     uint8_t n_inbox;
+    /* tickless: the last dr_module_next_wakeup answer; whether a reset came since */
+    uint8_t wake;
+    uint32_t wake_at;
+    uint8_t woken;
+    uint32_t effects;  /* HAL calls with an effect: sends, random draws, operation starts */
 } node_t;
 
 static node_t nodes[NODES];
@@ -67,6 +72,10 @@ static const dr_token_program_t *program;
 /* Record of operation starts: the statement (by its `op`, which the tests make unique). */
 static uint8_t started[64];
 static uint8_t n_started;
+/* Steps dr_module_next_wakeup let a tickless platform skip (still run, and checked to change
+ * nothing), over every test; and those that changed something (must stay 0). */
+static unsigned long skippable_steps;
+static unsigned long skippable_acted;
 
 static uint32_t next_random(void)
 {
@@ -87,7 +96,7 @@ uint32_t dr_hal_now_ms(struct dr_module *m)
 
 uint16_t dr_hal_random(struct dr_module *m)
 {
-    (void)m;
+    node_of(m)->effects++;
     return (uint16_t)next_random();
 }
 
@@ -111,6 +120,7 @@ static void deliver(uint8_t to, uint8_t channel, const uint8_t *bytes, uint8_t l
 void dr_hal_send(struct dr_module *m, uint8_t channel, const uint8_t *bytes, uint8_t len)
 {
     uint8_t i = (uint8_t)(node_of(m) - nodes);
+    node_of(m)->effects++;
     if (channel == RIGHT && i + 1u < NODES && !cut[i]) {
         deliver((uint8_t)(i + 1u), LEFT, bytes, len);
     } else if (channel == LEFT && i > 0u && !cut[i - 1u]) {
@@ -135,6 +145,7 @@ void dr_hal_op_start(struct dr_module *m, uint16_t statement, uint8_t op, uint8_
     }
     (void)index;
     (void)args;
+    n->effects++;
     n->op_active = 1;
     n->op_until = now + OP_MS;
     n->op_stmt_op = op;
@@ -243,7 +254,35 @@ static void world_start(const dr_token_program_t *p, unsigned loss, unsigned dup
     for (i = 0; i < NODES; i++) {
         nodes[i].id = (uint16_t)(10u + i);
         dr_module_init(&nodes[i].mod, p, &nodes[i]);
+        nodes[i].woken = 1;
     }
+}
+
+/* Whether n's last dr_module_next_wakeup answer lets a tickless platform skip a step now. */
+static uint8_t skippable(const node_t *n)
+{
+    uint8_t op_running = (uint8_t)(n->op_active && now < n->op_until);
+    if (n->woken || ((n->wake & DR_WAKE_AT) && (int32_t)(now - n->wake_at) >= 0)) {
+        return 0;
+    }
+    return (uint8_t)(!(n->wake & DR_WAKE_OP) || op_running);
+}
+
+/* A step; one that could have been skipped must change nothing (state, HAL effects). */
+static void checked_step(node_t *n)
+{
+    uint8_t skip = skippable(n);
+    dr_module_t before = n->mod;
+    uint32_t effects = n->effects;
+    dr_module_step(&n->mod);
+    if (skip) {
+        skippable_steps++;
+        if (memcmp(&before, &n->mod, sizeof before) != 0 || effects != n->effects) {
+            skippable_acted++;
+        }
+    }
+    n->wake = dr_module_next_wakeup(&n->mod, &n->wake_at);
+    n->woken = 0;
 }
 
 static void tick(void)
@@ -258,11 +297,12 @@ static void tick(void)
                 n->inbox[k] = n->inbox[n->n_inbox - 1u];
                 n->n_inbox--;
                 dr_module_receive(&n->mod, p.channel, p.bytes, p.len);
+                n->wake = dr_module_next_wakeup(&n->mod, &n->wake_at);
             } else {
                 k++;
             }
         }
-        dr_module_step(&n->mod);
+        checked_step(n);
     }
     now += TICK_MS;
 }
@@ -403,6 +443,7 @@ static void test_resets(void)
     }
     CHECK_EQ(nodes[3].mod.holding, 1);
     dr_module_init(&nodes[3].mod, &safe, &nodes[3]);
+    nodes[3].woken = 1;
     CHECK_EQ(nodes[3].mod.resets, 1);
     CHECK_EQ(nodes[3].mod.holding, DR_NONE);
     run_until_end(60000);
@@ -412,6 +453,7 @@ static void test_resets(void)
         tick();
     }
     dr_module_init(&nodes[0].mod, &safe, &nodes[0]);
+    nodes[0].woken = 1;
     CHECK_EQ(nodes[0].mod.holding, 0);
     run_until_end(60000);
     CHECK_EQ(started[3], 0); /* statement 0 again, after statement 2 */
@@ -478,6 +520,10 @@ int main(void)
     test_resets();
     test_bad_packets();
     test_describe();
+    /* Every step of the runs above also checked dr_module_next_wakeup (checked_step). */
+    CHECK(skippable_steps > 1000ul);
+    CHECK_EQ(skippable_acted, 0);
+    printf("token runtime: %lu skippable steps checked\n", skippable_steps);
     printf("token runtime: %lu checks, %lu failures\n", checks, failures);
     return failures == 0u ? 0 : 1;
 }
