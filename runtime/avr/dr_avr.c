@@ -444,6 +444,7 @@ int main(void)
         random_state = 1u;
     }
     dr_program_init(&module, 0);
+    write_u8(DR_AVR_REG_ADDRESS, module.address); /* for the board's log */
     next_step = dr_hal_now_ms(&module);
     for (;;) {
         receive_all();
