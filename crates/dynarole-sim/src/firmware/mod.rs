@@ -56,3 +56,21 @@ impl Simulator {
         Ok((self.report(run, finished), firmware))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::max_args;
+
+    #[test]
+    fn max_args_comes_from_the_generated_configuration() {
+        let conf = |text: &str| vec![("dr_program_conf.h".to_string(), text.to_string())];
+        assert_eq!(
+            max_args(&conf(
+                "#define DR_CONF_WINDOW 8\n#define DR_CONF_MAX_ARGS 6\n"
+            )),
+            6
+        );
+        assert_eq!(max_args(&conf("#define DR_CONF_WINDOW 8\n")), 4);
+        assert_eq!(max_args(&[]), 4);
+    }
+}
