@@ -16,6 +16,12 @@
 #include "dr_avr_board.h"
 #include "dr_avr_emu.h"
 
+/* One byte on the infrared line (10 bits at DR_AVR_BAUD). */
+#define CYCLES_PER_BYTE (DR_AVR_F_CPU * 10u / DR_AVR_BAUD)
+/* The arbiter releases a frame by itself this long after its last byte (carrier gone) when
+ * the firmware did not, so that a frame the firmware missed cannot block the next ones. */
+#define ARBITER_MARGIN_BYTES 4u
+
 struct rx_frame {
     uint8_t channel;
     uint8_t len;
@@ -38,7 +44,8 @@ struct drav_core {
     struct rx_frame rx[DRAV_RX_QUEUE];
     uint32_t rx_head;
     uint32_t rx_count;
-    int locked; /* a frame is with the firmware (not released yet) */
+    int locked;          /* a frame is with the firmware (not released yet) */
+    uint64_t lock_until; /* ... at most until this cycle (the frame's air time and a margin) */
     uint64_t sleep_cycles;
 };
 
@@ -95,6 +102,7 @@ static void feed(struct drav_core *c)
         avr_raise_irq(c->uart_in, f->bytes[i]);
     }
     c->locked = 1;
+    c->lock_until = c->avr->cycle + ((uint64_t)f->len + ARBITER_MARGIN_BYTES) * CYCLES_PER_BYTE;
     c->rx_head = (c->rx_head + 1u) % DRAV_RX_QUEUE;
     c->rx_count--;
 }
@@ -284,6 +292,10 @@ int drav_run(struct drav_core *c, uint64_t cycle)
             return 1;
         }
         avr_run(c->avr);
+        if (c->locked && c->avr->cycle >= c->lock_until) {
+            c->locked = 0;
+            feed(c);
+        }
         if (state == cpu_Sleeping) {
             c->sleep_cycles += c->avr->cycle - before;
         }
