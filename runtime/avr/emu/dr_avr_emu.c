@@ -47,6 +47,7 @@ struct drav_core {
     int locked;          /* a frame is with the firmware (not released yet) */
     uint64_t lock_until; /* ... at most until this cycle (the frame's air time and a margin) */
     uint64_t sleep_cycles;
+    uint8_t eeprom_save[4096]; /* the EEPROM across a reset (the ATmega128 has 4 KB) */
 };
 
 uint32_t drav_event_size(void)
@@ -93,7 +94,7 @@ static void feed(struct drav_core *c)
 {
     const struct rx_frame *f;
     uint32_t i;
-    if (c->locked || c->rx_count == 0u) {
+    if (!c->avr || c->locked || c->rx_count == 0u) {
         return;
     }
     f = &c->rx[c->rx_head];
@@ -215,6 +216,23 @@ static void message(char *err, uint32_t cap, const char *what, const char *path)
     }
 }
 
+/* A fresh ATmega128 with the image in its flash, wired to the board. */
+static int boot(struct drav_core *c)
+{
+    c->avr = avr_make_mcu_by_name("atmega128");
+    if (!c->avr) {
+        return 0;
+    }
+    avr_init(c->avr);
+    c->avr->log = 0;
+    avr_load_firmware(c->avr, &c->firmware);
+    c->avr->frequency = (uint32_t)DR_AVR_F_CPU;
+    c->avr->sleep = no_sleep;
+    return wire(c);
+}
+
+static uint8_t *eeprom_bytes(struct drav_core *c);
+
 struct drav_core *drav_open(const char *path, char *err, uint32_t cap)
 {
     struct drav_core *c = calloc(1, sizeof *c);
@@ -235,24 +253,13 @@ struct drav_core *drav_open(const char *path, char *err, uint32_t cap)
         free(c);
         return NULL;
     }
-    c->avr = avr_make_mcu_by_name("atmega128");
-    if (!c->avr) {
-        message(err, cap, "simavr has no atmega128 core", path);
-        free(c);
-        return NULL;
-    }
-    avr_init(c->avr);
-    c->avr->log = 0;
-    avr_load_firmware(c->avr, &c->firmware);
-    c->avr->frequency = (uint32_t)DR_AVR_F_CPU;
-    c->avr->sleep = no_sleep;
-    if (!find_end(c) || !wire(c)) {
-        message(err, cap, "not a runtime/avr image (no _end symbol, or the board cannot be wired)",
+    if (!boot(c) || !find_end(c)) {
+        message(err, cap, "not a runtime/avr image for simavr's atmega128 (no _end symbol, or the board cannot be wired)",
                 path);
         drav_close(c);
         return NULL;
     }
-    drav_reset(c);
+    paint(c);
     return c;
 }
 
@@ -268,12 +275,30 @@ void drav_close(struct drav_core *c)
     free(c);
 }
 
+/* simavr's avr_reset leaves the core unable to sleep (an interrupt stays pending), so a
+ * reset replaces the core by a fresh one with the same image, EEPROM and cycle count. */
 void drav_reset(struct drav_core *c)
 {
     uint64_t cycle = c->avr->cycle;
-    avr_reset(c->avr);
+    uint8_t *ee = eeprom_bytes(c);
+    uint32_t ee_size = (uint32_t)c->avr->e2end + 1u;
+    if (ee_size > sizeof c->eeprom_save) {
+        ee_size = sizeof c->eeprom_save;
+    }
+    if (ee) {
+        memcpy(c->eeprom_save, ee, ee_size);
+    }
+    avr_terminate(c->avr);
+    free(c->avr);
+    c->avr = NULL;
+    if (!boot(c)) {
+        return;
+    }
+    ee = eeprom_bytes(c);
+    if (ee) {
+        memcpy(ee, c->eeprom_save, ee_size);
+    }
     c->avr->cycle = cycle;
-    c->avr->state = cpu_Running;
     c->reg = 0;
     c->portd = 0;
     c->rx_head = 0;
@@ -285,6 +310,9 @@ void drav_reset(struct drav_core *c)
 
 int drav_run(struct drav_core *c, uint64_t cycle)
 {
+    if (!c->avr) {
+        return 1; /* a reset could not boot a new core */
+    }
     while (c->avr->cycle < cycle) {
         int state = c->avr->state;
         uint64_t before = c->avr->cycle;
@@ -305,7 +333,7 @@ int drav_run(struct drav_core *c, uint64_t cycle)
 
 uint64_t drav_cycle(const struct drav_core *c)
 {
-    return c->avr->cycle;
+    return c->avr ? c->avr->cycle : 0u;
 }
 
 uint64_t drav_sleep_cycles(const struct drav_core *c)
@@ -352,6 +380,9 @@ int drav_rx(struct drav_core *c, uint8_t channel, const uint8_t *bytes, uint32_t
 uint32_t drav_stack_high_water(const struct drav_core *c)
 {
     uint32_t a;
+    if (!c->avr) {
+        return 0;
+    }
     for (a = c->paint_from; a <= c->avr->ramend; a++) {
         if (c->avr->data[a] != DR_AVR_PAINT) {
             return c->avr->ramend - a + 1u;
@@ -365,6 +396,9 @@ uint32_t drav_stack_high_water(const struct drav_core *c)
 static uint8_t *eeprom_bytes(struct drav_core *c)
 {
     avr_eeprom_desc_t desc;
+    if (!c->avr) {
+        return NULL;
+    }
     desc.ee = NULL;
     desc.offset = 0;
     desc.size = 0;

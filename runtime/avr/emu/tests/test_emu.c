@@ -72,6 +72,7 @@ int main(int argc, char **argv)
     uint8_t nv[4] = {1, 2, 3, 4};
     uint8_t back[4];
     uint32_t stack;
+    uint64_t asleep;
     uint32_t len;
     if (argc != 2) {
         printf("usage: test_emu FIRMWARE.elf\n");
@@ -122,6 +123,9 @@ int main(int argc, char **argv)
     memset(&s, 0, sizeof s);
     run(c, 20, &s);
     check(s.leds_writes == 1u, "the firmware starts again after a reset");
+    asleep = drav_sleep_cycles(c);
+    run(c, 100, &s);
+    check(drav_sleep_cycles(c) - asleep > 50u * CYCLES_PER_MS, "the MCU sleeps again after a reset");
     check(!drav_overflowed(c), "no log entry lost");
     drav_close(c);
     if (failures == 0) {
