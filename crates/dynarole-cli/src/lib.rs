@@ -167,6 +167,10 @@ enum Command {
         /// Print the report as JSON (one line per run).
         #[arg(long)]
         json: bool,
+        /// Run every module's firmware on an emulated microcontroller instead of the C
+        /// compiled for the host (docs/simulator.md; needs scripts/ensure-avr).
+        #[arg(long, value_name = "MCU")]
+        firmware: Option<simulate::FirmwareArg>,
         #[command(flatten)]
         plugins: load::PluginArgs,
     },
@@ -301,6 +305,7 @@ pub fn main() -> ExitCode {
             repeat,
             trace,
             json,
+            firmware,
             plugins,
         } => simulate::run(&simulate::SimulateArgs {
             file: &file,
@@ -315,6 +320,7 @@ pub fn main() -> ExitCode {
             repeat,
             trace: trace.as_ref(),
             json,
+            firmware,
             plugins: &plugins,
         }),
         Command::Campaign {

@@ -6,7 +6,7 @@ use crate::load::{self, Failure, PluginArgs};
 use crate::render;
 use crate::world::read_configuration;
 use clap::ValueEnum;
-use dynarole_sim::{Report, Run, Scenario, SimError, Simulator, Stepping};
+use dynarole_sim::{FirmwareReport, Report, Run, Scenario, SimError, Simulator, Stepping};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
@@ -26,7 +26,15 @@ pub struct SimulateArgs<'a> {
     pub repeat: u64,
     pub trace: Option<&'a PathBuf>,
     pub json: bool,
+    pub firmware: Option<FirmwareArg>,
     pub plugins: &'a PluginArgs,
+}
+
+/// `--firmware`: the microcontroller every module's firmware runs on, emulated.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum FirmwareArg {
+    /// The ATRON's ATmega128 at 16 MHz (simavr), running the image of runtime/avr
+    Avr,
 }
 
 pub fn run(args: &SimulateArgs) -> Result<ExitCode, Failure> {
@@ -63,18 +71,24 @@ pub fn run(args: &SimulateArgs) -> Result<ExitCode, Failure> {
         for k in 0..args.repeat.max(1) {
             let seed = args.seed.wrapping_add(k);
             let started = Instant::now();
-            let report = simulator
-                .run(&Run {
-                    start: &start,
-                    expect: expect.as_ref(),
-                    scenario: &scenario,
-                    seed,
-                    trace: args.trace.is_some(),
-                })
-                .map_err(|e| Failure::Input(e.to_string()))?;
+            let run = Run {
+                start: &start,
+                expect: expect.as_ref(),
+                scenario: &scenario,
+                seed,
+                trace: args.trace.is_some(),
+            };
+            let (report, firmware) = match args.firmware {
+                None => (simulator.run(&run), None),
+                Some(FirmwareArg::Avr) => match simulator.run_firmware(&run) {
+                    Ok((report, firmware)) => (Ok(report), Some(firmware)),
+                    Err(e) => (Err(e), None),
+                },
+            };
+            let report = report.map_err(|e| Failure::Input(e.to_string()))?;
             let wall = started.elapsed().as_secs_f64();
             progress.inc();
-            progress.suspend(|| output(args, &report, wall, k))?;
+            progress.suspend(|| output(args, &report, firmware.as_ref(), wall, k))?;
             if !report.success {
                 failed += 1;
                 progress.suspend(|| eprintln!("replay with: {}", replay_command(args, seed)));
@@ -124,7 +138,13 @@ fn scenario(args: &SimulateArgs) -> Result<(Scenario, Option<String>), Failure> 
     Ok((scenario, text))
 }
 
-fn output(args: &SimulateArgs, report: &Report, wall: f64, k: u64) -> Result<(), Failure> {
+fn output(
+    args: &SimulateArgs,
+    report: &Report,
+    firmware: Option<&FirmwareReport>,
+    wall: f64,
+    k: u64,
+) -> Result<(), Failure> {
     if let (Some(path), Some(trace)) = (args.trace, report.trace_file()) {
         let path = if args.repeat > 1 {
             PathBuf::from(format!("{}.{k}", path.display()))
@@ -135,8 +155,13 @@ fn output(args: &SimulateArgs, report: &Report, wall: f64, k: u64) -> Result<(),
             .map_err(|e| Failure::Input(format!("cannot write {}: {e}", path.display())))?;
     }
     if args.json {
-        let text = serde_json::to_string(report)
-            .map_err(|e| Failure::Input(format!("cannot serialise the report: {e}")))?;
+        let cannot =
+            |e: serde_json::Error| Failure::Input(format!("cannot serialise the report: {e}"));
+        let mut value = serde_json::to_value(report).map_err(cannot)?;
+        if let (Some(f), Some(object)) = (firmware, value.as_object_mut()) {
+            object.insert("firmware".into(), serde_json::to_value(f).map_err(cannot)?);
+        }
+        let text = serde_json::to_string(&value).map_err(cannot)?;
         println!("{text}");
         return Ok(());
     }
@@ -149,6 +174,9 @@ fn output(args: &SimulateArgs, report: &Report, wall: f64, k: u64) -> Result<(),
     if let Some(d) = &report.difference {
         println!("  difference from the expected configuration:\n{d}");
     }
+    if let Some(f) = firmware {
+        print!("{}", firmware_table(f));
+    }
     let speed = if wall > 0.0 {
         report.end_ms / 1000.0 / wall
     } else {
@@ -160,6 +188,41 @@ fn output(args: &SimulateArgs, report: &Report, wall: f64, k: u64) -> Result<(),
         wall
     );
     Ok(())
+}
+
+/// The image's footprint and what the emulator measured on each module.
+fn firmware_table(f: &FirmwareReport) -> String {
+    let mean = |total: u64, n: u64| total.checked_div(n).unwrap_or(0);
+    let mut out = format!(
+        "  firmware (ATmega128, 16 MHz): flash {} bytes (text {} + data {}), static RAM {} bytes (data {} + bss {})\n",
+        f.text + f.data,
+        f.text,
+        f.data,
+        f.data + f.bss,
+        f.data,
+        f.bss
+    );
+    out.push_str("  module  stack (B)  steps  cycles/step (mean max)  receives  cycles/receive (mean max)  asleep\n");
+    for m in &f.modules {
+        let asleep = if m.cycles == 0 {
+            0.0
+        } else {
+            100.0 * m.sleep_cycles as f64 / m.cycles as f64
+        };
+        out.push_str(&format!(
+            "  {:<6} {:>10} {:>6} {:>12} {:>10} {:>9} {:>14} {:>10} {:>6.1}%\n",
+            m.name,
+            m.stack_bytes,
+            m.steps,
+            mean(m.step_cycles, m.steps),
+            m.step_cycles_max,
+            m.receives,
+            mean(m.receive_cycles, m.receives),
+            m.receive_cycles_max,
+            asleep
+        ));
+    }
+    out
 }
 
 /// The command line that replays one run exactly.
@@ -190,6 +253,9 @@ fn replay_command(args: &SimulateArgs, seed: u64) -> String {
     }
     for p in &args.plugins.plugins {
         parts.push(format!("--plugin {}", quote(&p.display().to_string())));
+    }
+    if args.firmware == Some(FirmwareArg::Avr) {
+        parts.push("--firmware avr".into());
     }
     parts.push(format!("--seed {seed}"));
     parts.join(" ")

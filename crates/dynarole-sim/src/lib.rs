@@ -13,6 +13,7 @@ mod build;
 mod critical;
 mod engine;
 mod ffi;
+mod firmware;
 mod network;
 mod ops;
 mod queue;
@@ -24,6 +25,7 @@ mod wake;
 
 pub use build::cache_root;
 pub use critical::CriticalPath;
+pub use firmware::{FirmwareReport, ModuleFirmware};
 pub use report::{Counters, ModuleReport, Refusal, Report, Violation};
 pub use scenario::{
     Block, Foreign, JointModel, Network, Power, Preset, RandomResets, Reset, Scenario,
@@ -181,13 +183,7 @@ impl Simulator {
 
     /// One run: deterministic in the inputs and the seed.
     pub fn run(&self, run: &Run) -> Result<Report, SimError> {
-        let world =
-            RobotWorld::new(run.start.clone(), &self.sequence.robot).map_err(SimError::Input)?;
-        run.scenario
-            .check()
-            .map_err(|e| SimError::Input(e.to_string()))?;
-        Self::check_scenario_on(&world, run.scenario)
-            .map_err(|e| SimError::Input(format!("scenario: {e}")))?;
+        let world = self.world_for(run)?;
         let preset = run.scenario.network.preset;
         let library = self.library(preset)?;
         let foreign_frames = if run.scenario.foreign.is_empty() {
@@ -210,6 +206,18 @@ impl Simulator {
     /// The second robot of `Scenario::foreign`: the same program from the same start, run
     /// without faults (same network preset and timing), and the last frame each of its
     /// modules broadcast (the end, once it finished).
+    /// The start configuration's world, once the scenario is checked against it.
+    fn world_for(&self, run: &Run) -> Result<RobotWorld, SimError> {
+        let world =
+            RobotWorld::new(run.start.clone(), &self.sequence.robot).map_err(SimError::Input)?;
+        run.scenario
+            .check()
+            .map_err(|e| SimError::Input(e.to_string()))?;
+        Self::check_scenario_on(&world, run.scenario)
+            .map_err(|e| SimError::Input(format!("scenario: {e}")))?;
+        Ok(world)
+    }
+
     fn other_robots_frames(
         &self,
         run: &Run,

@@ -1,0 +1,469 @@
+/* dr_avr.c - the platform of dr_hal.h on an ATRON hemisphere board (ATmega128, 16 MHz), and
+ * the firmware's main loop. README.md describes the board (dr_avr_board.h: pins, registers).
+ *
+ * - Time: Timer1 in CTC mode interrupts every millisecond; dr_hal_now_ms reads the count.
+ * - Infrared: USART0 at DR_AVR_BAUD; PORTC selects the transmitters (all for a broadcast, one
+ *   for dr_hal_send). Frames go out from a small queue, interrupt driven; the transmitter
+ *   enables change only once the previous frame has left the shift register. Received
+ *   frames are delimited by their length byte (dr_packet.h: byte 1) and kept in two slots.
+ * - Operations and sensors: the board's controller, through an 8-bit bus (PORTB out, PINA
+ *   in, strobes on PORTD). A bus transaction runs with interrupts off (the receive
+ *   interrupt also uses the bus).
+ * - Non-volatile storage: the EEPROM (avr-libc's eeprom_read_block / eeprom_update_block).
+ * - main: initialises, then runs dr_module_receive for each frame and dr_module_step every
+ *   DR_AVR_STEP_MS, and sleeps (idle mode) until the next interrupt in between.
+ *
+ * Built with the generated program: avr-gcc -mmcu=atmega128 -Os -I OUT -I runtime/avr
+ * OUT/dr_packet.c OUT/dr_<protocol>.c OUT/dr_program.c dr_avr.c (runtime/avr/Makefile). */
+#include <avr/eeprom.h>
+#include <avr/interrupt.h>
+#include <avr/io.h>
+#include <avr/sleep.h>
+#include <stdint.h>
+#include "dr_avr_board.h"
+#include "dr_program.h"
+
+#if DR_CONF_MAX_ARGS > DR_AVR_MAX_ARGS
+#error "the board takes at most DR_AVR_MAX_ARGS operation arguments"
+#endif
+
+/* Frames waiting to be sent (a third send waits for the first to leave). */
+#define TX_FRAMES 2u
+/* Received frames waiting for dr_module_receive (a third waits at the board). */
+#define RX_SLOTS 2u
+/* Timer1 compare value: 16 MHz / 64 / 250 = 1 kHz. */
+#define TIMER_TOP (DR_AVR_F_CPU / 64u / 1000u - 1u)
+#define UBRR_VALUE (DR_AVR_F_CPU / 16u / DR_AVR_BAUD - 1u)
+
+struct tx_frame {
+    uint8_t mask;
+    uint8_t len;
+    uint8_t bytes[DR_CONF_MAX_PACKET];
+};
+
+struct rx_slot {
+    volatile uint8_t full;
+    uint8_t channel;
+    uint8_t len;
+    uint8_t bytes[DR_CONF_MAX_PACKET];
+};
+
+static dr_module_t module;
+static volatile uint32_t ms_now;
+static uint16_t random_state;
+
+static struct tx_frame tx[TX_FRAMES];
+static volatile uint8_t tx_head;
+static volatile uint8_t tx_count;
+static volatile uint8_t tx_pos;
+
+static struct rx_slot rx[RX_SLOTS];
+static uint8_t rx_fill; /* bytes of the frame being received (receive interrupt only) */
+static uint8_t rx_slot; /* the slot it goes to, or RX_SLOTS when it is dropped */
+
+/* --- the controller's bus (callers keep interrupts off) --- */
+
+static void strobe(uint8_t bit)
+{
+    PORTD = (uint8_t)(PORTD | (1u << bit));
+    PORTD = (uint8_t)(PORTD & ~(1u << bit));
+}
+
+static void bus_address(uint8_t reg)
+{
+    PORTB = reg;
+    strobe(DR_AVR_STROBE_ADDR);
+}
+
+static void bus_write(uint8_t reg, const uint8_t *bytes, uint8_t len)
+{
+    uint8_t i;
+    bus_address(reg);
+    for (i = 0; i < len; i++) {
+        PORTB = bytes[i];
+        strobe(DR_AVR_STROBE_WRITE);
+    }
+}
+
+static void bus_read(uint8_t reg, uint8_t *bytes, uint8_t len)
+{
+    uint8_t i;
+    bus_address(reg);
+    for (i = 0; i < len; i++) {
+        strobe(DR_AVR_STROBE_READ);
+        __asm__ __volatile__("nop"); /* the input synchroniser's latency */
+        bytes[i] = PINA;
+    }
+}
+
+static uint8_t read_u8(uint8_t reg)
+{
+    uint8_t v;
+    uint8_t sreg = SREG;
+    cli();
+    bus_read(reg, &v, 1);
+    SREG = sreg;
+    return v;
+}
+
+static uint16_t read_u16(uint8_t reg)
+{
+    uint8_t b[2];
+    uint8_t sreg = SREG;
+    cli();
+    bus_read(reg, b, 2);
+    SREG = sreg;
+    return (uint16_t)(b[0] | (uint16_t)((uint16_t)b[1] << 8));
+}
+
+static void write_u8(uint8_t reg, uint8_t v)
+{
+    uint8_t sreg = SREG;
+    cli();
+    bus_write(reg, &v, 1);
+    SREG = sreg;
+}
+
+/* --- interrupts --- */
+
+ISR(TIMER1_COMPA_vect)
+{
+    ms_now++;
+}
+
+static void tx_start(void)
+{
+    PORTC = tx[tx_head].mask;
+    tx_pos = 0;
+    UCSR0B = (uint8_t)(UCSR0B | (1u << UDRIE0));
+}
+
+ISR(USART0_UDRE_vect)
+{
+    const struct tx_frame *f = &tx[tx_head];
+    UDR0 = f->bytes[tx_pos];
+    tx_pos++;
+    if (tx_pos >= f->len) {
+        /* The last byte is loaded: wait until it has left before changing the enables. */
+        UCSR0B = (uint8_t)(UCSR0B & ~(1u << UDRIE0));
+        UCSR0A = (uint8_t)(UCSR0A | (1u << TXC0));
+        UCSR0B = (uint8_t)(UCSR0B | (1u << TXCIE0));
+    }
+}
+
+ISR(USART0_TX_vect)
+{
+    UCSR0B = (uint8_t)(UCSR0B & ~(1u << TXCIE0));
+    PORTC = 0;
+    tx_head = (uint8_t)((tx_head + 1u) % TX_FRAMES);
+    tx_count--;
+    if (tx_count != 0u) {
+        tx_start();
+    }
+}
+
+static uint8_t free_rx_slot(void)
+{
+    uint8_t i;
+    for (i = 0; i < RX_SLOTS; i++) {
+        if (!rx[i].full) {
+            return i;
+        }
+    }
+    return RX_SLOTS;
+}
+
+static void rx_end(void)
+{
+    rx_fill = 0;
+    PORTD = (uint8_t)(PORTD | (1u << DR_AVR_STROBE_RELEASE));
+    PORTD = (uint8_t)(PORTD & ~(1u << DR_AVR_STROBE_RELEASE));
+}
+
+ISR(USART0_RX_vect)
+{
+    uint8_t b = UDR0;
+    uint8_t len;
+    if (rx_fill == 0u) {
+        rx_slot = free_rx_slot();
+        if (rx_slot < RX_SLOTS) {
+            bus_read(DR_AVR_REG_RX_CHANNEL, &rx[rx_slot].channel, 1);
+        }
+    }
+    if (rx_slot < RX_SLOTS) {
+        rx[rx_slot].bytes[rx_fill] = b;
+    }
+    rx_fill++;
+    if (rx_fill < 2u) {
+        return;
+    }
+    len = rx_slot < RX_SLOTS ? rx[rx_slot].bytes[1] : DR_CONF_MAX_PACKET;
+    if (len < 2u || len > DR_CONF_MAX_PACKET) {
+        rx_end(); /* no frame of ours: dropped (README.md: framing) */
+        return;
+    }
+    if (rx_fill >= len) {
+        if (rx_slot < RX_SLOTS) {
+            rx[rx_slot].len = len;
+            rx[rx_slot].full = 1;
+        }
+        rx_end();
+    }
+}
+
+/* --- dr_hal.h --- */
+
+uint32_t dr_hal_now_ms(struct dr_module *m)
+{
+    uint32_t v;
+    uint8_t sreg = SREG;
+    (void)m;
+    cli();
+    v = ms_now;
+    SREG = sreg;
+    return v;
+}
+
+uint16_t dr_hal_random(struct dr_module *m)
+{
+    (void)m;
+    /* xorshift16 (7, 9, 8): period 65535 over the non-zero states. */
+    random_state ^= (uint16_t)(random_state << 7);
+    random_state ^= (uint16_t)(random_state >> 9);
+    random_state ^= (uint16_t)(random_state << 8);
+    return random_state;
+}
+
+static void enqueue(uint8_t mask, const uint8_t *bytes, uint8_t len)
+{
+    struct tx_frame *f;
+    uint8_t i;
+    if (len == 0u || len > DR_CONF_MAX_PACKET) {
+        return;
+    }
+    while (tx_count >= TX_FRAMES) {
+        /* the transmit interrupts free a frame within its air time */
+    }
+    f = &tx[(uint8_t)((uint8_t)(tx_head + tx_count) % TX_FRAMES)];
+    f->mask = mask;
+    f->len = len;
+    for (i = 0; i < len; i++) {
+        f->bytes[i] = bytes[i];
+    }
+    cli();
+    tx_count++;
+    if (tx_count == 1u) {
+        tx_start();
+    }
+    sei();
+}
+
+void dr_hal_broadcast(struct dr_module *m, const uint8_t *bytes, uint8_t len)
+{
+    (void)m;
+    enqueue((uint8_t)((1u << DR_AVR_CHANNELS) - 1u), bytes, len);
+}
+
+void dr_hal_send(struct dr_module *m, uint8_t channel, const uint8_t *bytes, uint8_t len)
+{
+    (void)m;
+    if (channel < DR_AVR_CHANNELS) {
+        enqueue((uint8_t)(1u << channel), bytes, len);
+    }
+}
+
+void dr_hal_op_start(struct dr_module *m, uint16_t statement, uint8_t op, uint8_t index,
+                     const int16_t *args)
+{
+    uint8_t head[5];
+    uint8_t a[2 * DR_CONF_MAX_ARGS];
+    uint8_t i;
+    uint8_t sreg;
+    head[0] = (uint8_t)(statement & 0xFFu);
+    head[1] = (uint8_t)(statement >> 8);
+    head[2] = op;
+    head[3] = index;
+    head[4] = m->address;
+    for (i = 0; i < DR_CONF_MAX_ARGS; i++) {
+        a[2 * i] = (uint8_t)((uint16_t)args[i] & 0xFFu);
+        a[2 * i + 1] = (uint8_t)((uint16_t)args[i] >> 8);
+    }
+    sreg = SREG;
+    cli();
+    bus_write(DR_AVR_REG_ARGS, a, (uint8_t)sizeof a);
+    bus_write(DR_AVR_REG_STATEMENT, head, (uint8_t)sizeof head);
+    bus_write(DR_AVR_REG_GO, head, 1);
+    SREG = sreg;
+}
+
+enum dr_op_status dr_hal_op_status(struct dr_module *m)
+{
+    uint8_t s;
+    (void)m;
+    s = read_u8(DR_AVR_REG_STATUS);
+    if (s == (uint8_t)DR_OP_DONE) {
+        return DR_OP_DONE;
+    }
+    return s == (uint8_t)DR_OP_RUNNING ? DR_OP_RUNNING : DR_OP_FAILED;
+}
+
+uint16_t dr_hal_id(struct dr_module *m)
+{
+    (void)m;
+    return read_u16(DR_AVR_REG_ID);
+}
+
+uint8_t dr_hal_connected(struct dr_module *m, uint8_t connector)
+{
+    (void)m;
+    if (connector >= DR_AVR_CHANNELS) {
+        return 0;
+    }
+    return (uint8_t)((uint8_t)(read_u8(DR_AVR_REG_CONNECTED) >> connector) & 1u);
+}
+
+int16_t dr_hal_neighbour_id(struct dr_module *m, uint8_t connector)
+{
+    (void)m;
+    if (connector >= DR_AVR_CHANNELS) {
+        return -1;
+    }
+    return (int16_t)read_u16((uint8_t)(DR_AVR_REG_NEIGHBOUR + 2u * connector));
+}
+
+int16_t dr_hal_joint(struct dr_module *m, uint8_t joint)
+{
+    (void)m;
+    if (joint >= DR_AVR_JOINTS) {
+        return 0;
+    }
+    return (int16_t)read_u16((uint8_t)(DR_AVR_REG_JOINT + 2u * joint));
+}
+
+void dr_hal_leds(struct dr_module *m, uint8_t value)
+{
+    (void)m;
+    write_u8(DR_AVR_REG_LEDS, value);
+}
+
+/* Whether [addr, addr + len) lies in the EEPROM. */
+static uint8_t in_eeprom(uint16_t addr, uint8_t len)
+{
+    return (uint8_t)((uint32_t)addr + len <= (uint32_t)E2END + 1u);
+}
+
+void dr_hal_nv_read(struct dr_module *m, uint16_t addr, uint8_t *buf, uint8_t len)
+{
+    uint8_t i;
+    (void)m;
+    if (!in_eeprom(addr, len)) {
+        for (i = 0; i < len; i++) {
+            buf[i] = 0xFFu;
+        }
+        return;
+    }
+    eeprom_read_block(buf, (const void *)(uintptr_t)addr, len);
+}
+
+void dr_hal_nv_write(struct dr_module *m, uint16_t addr, const uint8_t *buf, uint8_t len)
+{
+    (void)m;
+    if (in_eeprom(addr, len)) {
+        eeprom_update_block(buf, (void *)(uintptr_t)addr, len);
+    }
+}
+
+/* --- main --- */
+
+static void board_init(void)
+{
+    DDRA = 0x00;
+    DDRB = 0xFF;
+    DDRC = 0xFF;
+    PORTC = 0;
+    DDRD = (uint8_t)((1u << DR_AVR_STROBE_ADDR) | (1u << DR_AVR_STROBE_WRITE) |
+                     (1u << DR_AVR_STROBE_READ) | (1u << DR_AVR_STROBE_RELEASE));
+    DDRE = (uint8_t)((1u << DR_AVR_PIN_STEP) | (1u << DR_AVR_PIN_RECEIVE) |
+                     (1u << DR_AVR_PIN_FINISHED));
+    OCR1A = (uint16_t)TIMER_TOP;
+    TCCR1B = (uint8_t)((1u << WGM12) | (1u << CS11) | (1u << CS10));
+    TIMSK = (uint8_t)(TIMSK | (1u << OCIE1A));
+    UBRR0H = (uint8_t)(UBRR_VALUE >> 8);
+    UBRR0L = (uint8_t)(UBRR_VALUE & 0xFFu);
+    UCSR0C = (uint8_t)((1u << UCSZ01) | (1u << UCSZ00));
+    UCSR0B = (uint8_t)((1u << RXEN0) | (1u << TXEN0) | (1u << RXCIE0));
+    /* Idle sleep mode (SM2..SM0 = 0): the timer and the USART keep running. */
+    MCUCR = (uint8_t)(MCUCR & ~((1u << SM0) | (1u << SM1) | (1u << SM2)));
+}
+
+/* Hands every received frame to the runtime (PE3 high meanwhile). */
+static void receive_all(void)
+{
+    uint8_t i;
+    for (i = 0; i < RX_SLOTS; i++) {
+        if (rx[i].full) {
+            PORTE = (uint8_t)(PORTE | (1u << DR_AVR_PIN_RECEIVE));
+            dr_module_receive(&module, rx[i].channel, rx[i].bytes, rx[i].len);
+            PORTE = (uint8_t)(PORTE & ~(1u << DR_AVR_PIN_RECEIVE));
+            rx[i].full = 0;
+        }
+    }
+}
+
+static uint8_t any_received(void)
+{
+    uint8_t i;
+    for (i = 0; i < RX_SLOTS; i++) {
+        if (rx[i].full) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/* One step (PE2 high meanwhile); PE4 shows whether the module knows the sequence ended. */
+static void step(void)
+{
+    PORTE = (uint8_t)(PORTE | (1u << DR_AVR_PIN_STEP));
+    dr_module_step(&module);
+    if (dr_module_finished(&module)) {
+        PORTE = (uint8_t)(PORTE | (1u << DR_AVR_PIN_FINISHED));
+    } else {
+        PORTE = (uint8_t)(PORTE & ~(1u << DR_AVR_PIN_FINISHED));
+    }
+    PORTE = (uint8_t)(PORTE & ~(1u << DR_AVR_PIN_STEP));
+}
+
+int main(void)
+{
+    uint32_t next_step;
+    board_init();
+    sei();
+    random_state = (uint16_t)(read_u16(DR_AVR_REG_ID) ^ 0xACE1u);
+    if (random_state == 0u) {
+        random_state = 1u;
+    }
+    dr_program_init(&module, 0);
+    write_u8(DR_AVR_REG_ADDRESS, module.address); /* for the board's log */
+    next_step = dr_hal_now_ms(&module);
+    for (;;) {
+        receive_all();
+        if ((int32_t)(dr_hal_now_ms(&module) - next_step) >= 0) {
+            step();
+            next_step += DR_AVR_STEP_MS;
+            if ((int32_t)(dr_hal_now_ms(&module) - next_step) >= 0) {
+                next_step = dr_hal_now_ms(&module) + DR_AVR_STEP_MS; /* fell behind */
+            }
+        }
+        /* Sleep until the next interrupt (the millisecond tick at the latest) unless a frame
+         * is waiting; sei takes effect after the next instruction, so no wake-up is lost. */
+        cli();
+        if (!any_received() && (int32_t)(ms_now - next_step) < 0) {
+            sleep_enable();
+            sei();
+            sleep_cpu();
+            sleep_disable();
+        }
+        sei();
+    }
+}

@@ -1,0 +1,135 @@
+/* test_emu.c - the emulated board (dr_avr_emu.c) running a real firmware image (argv[1], the
+ * eight2car image of runtime/avr): timer, stepping, sending with the transmitter enables,
+ * the controller's bus, receiving through the arbiter, sleep, the painted stack, and a reset
+ * that clears RAM and keeps the EEPROM. */
+#include <stdio.h>
+#include <string.h>
+#include "dr_avr_board.h"
+#include "dr_avr_emu.h"
+
+#define CYCLES_PER_MS (DR_AVR_F_CPU / 1000u)
+
+static int failures;
+
+static void check(int ok, const char *what)
+{
+    if (!ok) {
+        printf("FAIL: %s\n", what);
+        failures++;
+    }
+}
+
+struct seen {
+    uint32_t step_edges;
+    uint64_t first_step;
+    uint64_t last_step;
+    uint32_t tx_bytes;
+    uint8_t tx_mask;
+    uint8_t first_frame[DRAV_MAX_FRAME];
+    uint32_t releases;
+    uint32_t leds_writes;
+};
+
+/* Runs `ms` milliseconds and tallies the log. */
+static void run(struct drav_core *c, uint32_t ms, struct seen *s)
+{
+    struct drav_event ev[256];
+    uint32_t n;
+    uint32_t i;
+    uint8_t pins = 0;
+    check(drav_run(c, drav_cycle(c) + (uint64_t)ms * CYCLES_PER_MS) == 0, "the core runs");
+    while ((n = drav_take(c, ev, 256)) > 0u) {
+        for (i = 0; i < n; i++) {
+            if (ev[i].kind == DRAV_EV_PINS) {
+                if ((ev[i].a & (1u << DR_AVR_PIN_STEP)) && !(pins & (1u << DR_AVR_PIN_STEP))) {
+                    if (s->step_edges == 1u) { /* the first step runs at init, off the tick */
+                        s->first_step = ev[i].cycle;
+                    }
+                    s->last_step = ev[i].cycle;
+                    s->step_edges++;
+                }
+                pins = ev[i].a;
+            } else if (ev[i].kind == DRAV_EV_TX) {
+                if (s->tx_bytes < DRAV_MAX_FRAME) {
+                    s->first_frame[s->tx_bytes] = ev[i].a;
+                }
+                s->tx_bytes++;
+                s->tx_mask = ev[i].b;
+            } else if (ev[i].kind == DRAV_EV_RELEASE) {
+                s->releases++;
+            } else if (ev[i].kind == DRAV_EV_WRITE && ev[i].a == DR_AVR_REG_LEDS) {
+                s->leds_writes++;
+            }
+        }
+    }
+}
+
+int main(int argc, char **argv)
+{
+    char err[256];
+    struct drav_core *c;
+    struct seen s;
+    uint8_t nv[4] = {1, 2, 3, 4};
+    uint8_t back[4];
+    uint32_t stack;
+    uint64_t asleep;
+    uint32_t len;
+    if (argc != 2) {
+        printf("usage: test_emu FIRMWARE.elf\n");
+        return 2;
+    }
+    check(drav_open("no/such/image.elf", err, sizeof err) == NULL, "a missing image is refused");
+    check(strstr(err, "no/such/image.elf") != NULL, "the error names the file");
+    c = drav_open(argv[1], err, sizeof err);
+    if (!c) {
+        printf("FAIL: %s\n", err);
+        return 1;
+    }
+    check(drav_event_size() == (uint32_t)sizeof(struct drav_event), "event layout");
+    drav_set_reg(c, DR_AVR_REG_ID, 3);
+    drav_set_reg(c, DR_AVR_REG_STATUS, 1);
+    memset(&s, 0, sizeof s);
+    run(c, 200, &s);
+    /* A step every 5 ms from the 1 ms timer: 40 in 200 ms, exactly 80000 cycles apart. */
+    check(s.step_edges >= 39u && s.step_edges <= 41u, "a step every 5 ms");
+    check(s.step_edges > 2u && (s.last_step - s.first_step) % (s.step_edges - 2u) == 0u &&
+              (s.last_step - s.first_step) / (s.step_edges - 2u) ==
+                  (uint64_t)DR_AVR_STEP_MS * CYCLES_PER_MS,
+          "steps are 80000 cycles apart");
+    check(s.leds_writes >= 1u, "init shows the address on the LEDs through the bus");
+    /* Broadcasts (every 100 ms): whole frames, on every transmitter, byte 1 the length. */
+    check(s.tx_bytes > 0u, "the module broadcasts");
+    check(s.tx_mask == 0xFFu, "a broadcast enables every transmitter");
+    len = s.first_frame[1];
+    check(len >= 8u && s.tx_bytes % len == 0u, "frames are whole");
+    check(drav_sleep_cycles(c) > 100u * CYCLES_PER_MS, "the MCU sleeps most of the time");
+    stack = drav_stack_high_water(c);
+    check(stack > 16u && stack < 1024u, "the painted stack shows a plausible depth");
+    /* Its own frame comes back on channel 2: the firmware takes it and releases the arbiter,
+     * twice (the second waits for the first). */
+    check(drav_rx(c, 2, s.first_frame, len) == 0, "a frame is queued");
+    check(drav_rx(c, 2, s.first_frame, len) == 0, "a second frame is queued");
+    memset(&s, 0, sizeof s);
+    run(c, 100, &s);
+    check(s.releases == 2u, "both frames were received and released");
+    check(drav_rx(c, 0, back, DRAV_MAX_FRAME + 1u) == -1, "an over-long frame is refused");
+    /* EEPROM survives a reset; the steps start again from scratch. */
+    check(drav_eeprom_write(c, 4000, nv, 4) == 0, "EEPROM write");
+    check(drav_eeprom_write(c, 4094, nv, 4) == -1, "EEPROM bounds");
+    drav_reset(c);
+    check(drav_eeprom_read(c, 4000, back, 4) == 0 && memcmp(nv, back, 4) == 0,
+          "EEPROM kept across a reset");
+    check(drav_stack_high_water(c) == 0u, "the stack is painted again at reset");
+    memset(&s, 0, sizeof s);
+    run(c, 20, &s);
+    check(s.leds_writes == 1u, "the firmware starts again after a reset");
+    asleep = drav_sleep_cycles(c);
+    run(c, 100, &s);
+    check(drav_sleep_cycles(c) - asleep > 50u * CYCLES_PER_MS, "the MCU sleeps again after a reset");
+    check(!drav_overflowed(c), "no log entry lost");
+    drav_close(c);
+    if (failures == 0) {
+        printf("test_emu: all checks passed\n");
+    }
+    return failures == 0 ? 0 : 1;
+}
