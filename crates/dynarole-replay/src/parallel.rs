@@ -5,14 +5,14 @@
 //! series-parallel blocks. Every form returned has been written out, parsed, replayed to the
 //! input's final configuration and checked for independence forward and in reverse.
 
-use crate::independence::check_independence;
-use crate::robot_world::RobotWorld;
+use crate::independence::{check_independence, simultaneous_turns};
+use crate::robot_world::{same_configuration, RobotWorld};
 use crate::roles::Assignment;
 use crate::run::replay;
-use dynarole_core::ast::{ElementKind, Item, SeparatorKind};
+use dynarole_core::ast::{ElementKind, Item};
 use dynarole_core::check::{resolve_statement, ResolvedStatement};
 use dynarole_core::diagnostic::{has_errors, Diagnostic, DiagnosticKind};
-use dynarole_core::expand::{Plan, PlanElement, PlanKind};
+use dynarole_core::expand::Plan;
 use dynarole_core::format::{format_items, statement as statement_text};
 use dynarole_core::{analyze, parse, Program, RobotRegistry, Span};
 use dynarole_world::{compare, Configuration, Port};
@@ -88,26 +88,8 @@ pub struct Request<'a> {
 /// replay (a refused step), or with a message when no form can be verified.
 pub fn parallelise(request: &Request) -> Result<Parallelised, ParalleliseError> {
     let program = request.program;
-    let plan = program.expand(request.sequence).ok_or_else(|| {
-        ParalleliseError::Message(format!("no sequence named `{}`", request.sequence))
-    })?;
-    let input = replay(
-        program,
-        std::slice::from_ref(&plan),
-        request.world.clone(),
-        request.assignment,
-    );
-    if input.n_rejected > 0 || has_errors(&input.diagnostics) {
-        return Err(ParalleliseError::Input(input.diagnostics));
-    }
-    let statements: Vec<ResolvedStatement> = plan.statements().into_iter().cloned().collect();
-    if statements.is_empty() {
-        return Err(ParalleliseError::Message(format!(
-            "`{}` has no statements: nothing to parallelise",
-            request.sequence
-        )));
-    }
-    let graph = Graph::build(request, &statements);
+    let (plan, input, statements) = input_statements(request)?;
+    let graph = Graph::build(request, &statements, false);
     let verifier = Verifier {
         request,
         header: header(program),
@@ -130,6 +112,45 @@ pub fn parallelise(request: &Request) -> Result<Parallelised, ParalleliseError> 
         header: verifier.header.clone(),
         notes,
     })
+}
+
+/// The dependency graph of `request.sequence` (transitively reduced edges between input
+/// indices), before any form is written. `exhaustive` runs every pair of statements both
+/// ways on copies of the world, as the reference; otherwise pairs that can be decided from
+/// the statements' footprints are (the same edges, faster).
+pub fn dependency_graph(
+    request: &Request,
+    exhaustive: bool,
+) -> Result<Vec<(usize, usize)>, ParalleliseError> {
+    let (_, _, statements) = input_statements(request)?;
+    Ok(Graph::build(request, &statements, exhaustive).edges)
+}
+
+/// The input expanded, replayed (it must replay without a refused step) and its statements.
+fn input_statements(
+    request: &Request,
+) -> Result<(Plan, crate::run::Replay, Vec<ResolvedStatement>), ParalleliseError> {
+    let program = request.program;
+    let plan = program.expand(request.sequence).ok_or_else(|| {
+        ParalleliseError::Message(format!("no sequence named `{}`", request.sequence))
+    })?;
+    let input = replay(
+        program,
+        std::slice::from_ref(&plan),
+        request.world.clone(),
+        request.assignment,
+    );
+    if input.n_rejected > 0 || has_errors(&input.diagnostics) {
+        return Err(ParalleliseError::Input(input.diagnostics));
+    }
+    let statements: Vec<ResolvedStatement> = plan.statements().into_iter().cloned().collect();
+    if statements.is_empty() {
+        return Err(ParalleliseError::Message(format!(
+            "`{}` has no statements: nothing to parallelise",
+            request.sequence
+        )));
+    }
+    Ok((plan, input, statements))
 }
 
 /// The candidates besides parallel groups: series-parallel blocks (unless the protocol is the
@@ -186,13 +207,20 @@ struct Graph {
 impl Graph {
     /// For each statement, from the nearest earlier one back: an edge when the pair must stay
     /// ordered and is not already ordered through the edges found. Parents found this way
-    /// never reach one another, so the result is already transitively reduced.
-    fn build(request: &Request, statements: &[ResolvedStatement]) -> Graph {
+    /// never reach one another, so the result is already transitively reduced. `exhaustive`
+    /// decides every pair by running it both ways (the reference the fast path is tested
+    /// against); otherwise pairs of turns whose moving sides overlap are decided from their
+    /// motions alone, without a copy of the world.
+    fn build(request: &Request, statements: &[ResolvedStatement], exhaustive: bool) -> Graph {
         let n = statements.len();
         let pre = pre_states(request, statements);
         let modules: Vec<Option<&str>> = statements
             .iter()
             .map(|s| request.assignment.get(&s.label).map(String::as_str))
+            .collect();
+        // Each turn's motion on the state it runs from in the input, computed once.
+        let motions: Vec<Option<MovingSide>> = (0..n)
+            .map(|i| MovingSide::of(request, &statements[i], modules[i], &pre[i]))
             .collect();
         let mut ancestors = vec![BitSet::new(n); n];
         let mut edges = Vec::new();
@@ -206,6 +234,11 @@ impl Graph {
                     a: &statements[i],
                     b: &statements[j],
                     modules: (modules[i], modules[j]),
+                    motion_a: if exhaustive {
+                        None
+                    } else {
+                        motions[i].as_ref()
+                    },
                 };
                 let beyond = request.window.is_some_and(|w| j - i > w);
                 if beyond || pair.must_stay_ordered(&pre[i], &pre[i + 1]) {
@@ -228,6 +261,28 @@ impl Graph {
     }
 }
 
+/// The modules an ATRON turn moves (by index in the configuration), on one state.
+struct MovingSide {
+    modules: BitSet,
+}
+
+impl MovingSide {
+    fn of(
+        request: &Request,
+        statement: &ResolvedStatement,
+        module: Option<&str>,
+        world: &RobotWorld,
+    ) -> Option<MovingSide> {
+        let motion = world.turn_motion(&request.program.robot, statement, module?)?;
+        let view = world.view();
+        let mut modules = BitSet::new(view.len());
+        for (name, _) in &motion.moving {
+            modules.insert(view.index(name)?);
+        }
+        Some(MovingSide { modules })
+    }
+}
+
 /// The world before each statement, in input order, and at the end.
 fn pre_states(request: &Request, statements: &[ResolvedStatement]) -> Vec<RobotWorld> {
     let mut world = request.world.clone();
@@ -243,23 +298,14 @@ fn pre_states(request: &Request, statements: &[ResolvedStatement]) -> Vec<RobotW
     out
 }
 
-/// The same configuration, exactly or up to rigid motion (what `check --from` compares).
-fn same_configuration(a: &RobotWorld, b: &RobotWorld) -> bool {
-    // Exact equality first, on the worlds' own configurations (no copy).
-    let equal = match (a, b) {
-        (RobotWorld::Atron(x), RobotWorld::Atron(y)) => x.configuration() == y.configuration(),
-        (RobotWorld::Mtran(x), RobotWorld::Mtran(y)) => x.configuration() == y.configuration(),
-        _ => false,
-    };
-    equal || compare(&a.configuration(), &b.configuration()).is_ok()
-}
-
 /// Two statements, the earlier first, and their modules.
 struct Pair<'a> {
     request: &'a Request<'a>,
     a: &'a ResolvedStatement,
     b: &'a ResolvedStatement,
     modules: (Option<&'a str>, Option<&'a str>),
+    /// The moving side of `a` on the state before it, when `a` is a turn (the fast path).
+    motion_a: Option<&'a MovingSide>,
 }
 
 impl Pair<'_> {
@@ -272,6 +318,9 @@ impl Pair<'_> {
             return true;
         };
         if ma == mb || self.same_latch(before, ma, mb) {
+            return true;
+        }
+        if self.overlapping_turns(before) {
             return true;
         }
         let robot = &self.request.program.robot;
@@ -288,14 +337,27 @@ impl Pair<'_> {
             // Only two turns have a motion check; the rest is what was just done.
             return false;
         }
-        let group = Plan {
-            elements: vec![
-                element(self.a, SeparatorKind::Parallel),
-                element(self.b, SeparatorKind::Sequential),
-            ],
+        // Both orders were just run and agree: what is left of the independence check of the
+        // pair as a group is the motion of the two turns done at the same time.
+        let (program, assignment) = (self.request.program, self.request.assignment);
+        simultaneous_turns(program, assignment, (self.a, self.b), before).is_some()
+    }
+
+    /// Two turns that, from `before`, would move a module in common: the exhaustive check
+    /// below ends the same way (a refused step, or "both turns move ..."), without running
+    /// either. `b`'s motion is taken on `before` (no copy); a turn it refuses is ordered too.
+    fn overlapping_turns(&self, before: &RobotWorld) -> bool {
+        let Some(side_a) = self.motion_a else {
+            return false;
         };
-        let program = self.request.program;
-        !check_independence(program, &[group], before.clone(), self.request.assignment).is_empty()
+        let robot = &self.request.program.robot;
+        if !part_is(robot, self.b, "Joint") {
+            return false;
+        }
+        match MovingSide::of(self.request, self.b, self.modules.1, before) {
+            Some(side_b) => side_a.modules.intersects(&side_b.modules),
+            None => true,
+        }
     }
 
     /// Connector operations on the two ends of one latch (made, or facing, before `a`).
@@ -349,14 +411,6 @@ fn partner(config: &Configuration, port: Port) -> Option<Port> {
     match config {
         Configuration::Atron(c) => c.latched_to(port).or_else(|| c.facing(port)),
         Configuration::Mtran(c) => c.latched_to(port).or_else(|| c.facing(port)),
-    }
-}
-
-fn element(statement: &ResolvedStatement, separator: SeparatorKind) -> PlanElement {
-    PlanElement {
-        kind: PlanKind::Op(statement.clone()),
-        separator,
-        span: statement.span,
     }
 }
 

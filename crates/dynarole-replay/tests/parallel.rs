@@ -4,8 +4,8 @@
 
 use dynarole_core::{analyze, parse, RobotRegistry};
 use dynarole_replay::{
-    assign_modules, check_independence, parallelise, replay, FormKind, Layout, Parallelised,
-    Request, RobotWorld,
+    assign_modules, check_independence, dependency_graph, parallelise, replay, FormKind, Layout,
+    Parallelised, Request, RobotWorld,
 };
 use dynarole_world::generated::atron_chain_json;
 use dynarole_world::{compare, Configuration, MtranJoint, MtranWorld, World};
@@ -14,9 +14,29 @@ use proptest::prelude::*;
 const EIGHT2CAR: &str = include_str!("../../../examples/atron/eight2car.dr");
 const FIG5: &str = include_str!("../../../examples/atron/fig5.dr");
 const EIGHT: &str = include_str!("../../../examples/atron/eight.json");
+const CAR: &str = include_str!("../../../examples/atron/car.json");
+const SNAKE: &str = include_str!("../../../examples/atron/snake.json");
+
+/// An ATRON structure to draw moves on: a chain of 3 to 7 modules, or one of the paper's
+/// seven-module shapes (which have loops, so latches can be made and released).
+fn atron_structure(pick: usize) -> (String, usize) {
+    match pick % 8 {
+        5 => (EIGHT.to_string(), 7),
+        6 => (CAR.to_string(), 7),
+        7 => (SNAKE.to_string(), 7),
+        n => (atron_chain_json(n + 3), n + 3),
+    }
+}
 
 /// Parallelises `sequence` of `source` from `config` (lattice forms, blocks allowed).
 fn run(source: &str, sequence: &str, config: &str) -> Parallelised {
+    with_request(source, sequence, config, |request| {
+        parallelise(request).unwrap_or_else(|e| panic!("{e:?}"))
+    })
+}
+
+/// Builds the request of `run` and hands it to `f`.
+fn with_request<T>(source: &str, sequence: &str, config: &str, f: impl Fn(&Request) -> T) -> T {
     let parsed = parse(source);
     let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
     let program = program.unwrap_or_else(|| panic!("{diagnostics:?}"));
@@ -33,7 +53,7 @@ fn run(source: &str, sequence: &str, config: &str) -> Parallelised {
         blocks: true,
         window: None,
     };
-    parallelise(&request).unwrap_or_else(|e| panic!("{e:?}"))
+    f(&request)
 }
 
 /// Replays `out` of `header + text` and its reverse, and checks independence on both: the
@@ -275,15 +295,28 @@ fn random_case(robot: &str, config: &str, moves: &[String]) -> Result<(), TestCa
     Ok(())
 }
 
+/// The fast dependency graph is the exhaustive one (every pair run both ways).
+fn same_graph(robot: &str, config: &str, moves: &[String]) -> Result<(), TestCaseError> {
+    let source = source_of(robot, moves);
+    let (fast, exhaustive) = with_request(&source, "s", config, |request| {
+        (
+            dependency_graph(request, false).unwrap_or_else(|e| panic!("{e:?}")),
+            dependency_graph(request, true).unwrap_or_else(|e| panic!("{e:?}")),
+        )
+    });
+    prop_assert_eq!(fast, exhaustive, "{}", source);
+    Ok(())
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 24, ..ProptestConfig::default() })]
 
     #[test]
     fn random_atron_sequences_replay_to_the_same_end(
-        n in 3usize..8,
+        structure in 0usize..8,
         picks in proptest::collection::vec((0usize..8, 0u8..3, 0u8..8), 1..40),
     ) {
-        let config = atron_chain_json(n);
+        let (config, n) = atron_structure(structure);
         let moves = atron_moves(&config, n, &picks);
         prop_assume!(!moves.is_empty());
         random_case("atron", &config, &moves)?;
@@ -298,5 +331,27 @@ proptest! {
         let moves = mtran_moves(&config, n, &picks);
         prop_assume!(!moves.is_empty());
         random_case("mtran", &config, &moves)?;
+    }
+
+    #[test]
+    fn the_fast_graph_is_the_exhaustive_one_on_atron(
+        structure in 0usize..8,
+        picks in proptest::collection::vec((0usize..8, 0u8..3, 0u8..8), 1..60),
+    ) {
+        let (config, n) = atron_structure(structure);
+        let moves = atron_moves(&config, n, &picks);
+        prop_assume!(!moves.is_empty());
+        same_graph("atron", &config, &moves)?;
+    }
+
+    #[test]
+    fn the_fast_graph_is_the_exhaustive_one_on_mtran(
+        n in 2usize..6,
+        picks in proptest::collection::vec((0usize..6, 0u8..3, 0u8..8), 1..40),
+    ) {
+        let config = mtran_snake(n);
+        let moves = mtran_moves(&config, n, &picks);
+        prop_assume!(!moves.is_empty());
+        same_graph("mtran", &config, &moves)?;
     }
 }
