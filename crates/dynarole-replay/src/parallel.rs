@@ -101,7 +101,7 @@ pub fn parallelise(request: &Request) -> Result<Parallelised, ParalleliseError> 
             .reverse_sequence(request.sequence, "r")
             .is_some_and(|r| r.is_ok()),
     };
-    let mut notes = Vec::new();
+    let mut notes = same_module_notes(&verifier.texts, &graph.same_module);
     let (edges, levels) = verifier.levels(graph.edges.clone(), statements.len(), &mut notes)?;
     let mut forms = vec![levels];
     other_forms(&verifier, &plan, &edges, &mut forms, &mut notes);
@@ -153,6 +153,30 @@ fn input_statements(
     Ok((plan, input, statements))
 }
 
+/// Notes for the pairs kept in order only because one module does both: the first few, then
+/// how many more.
+fn same_module_notes(texts: &[String], pairs: &[(usize, usize)]) -> Vec<String> {
+    const SHOWN: usize = 4;
+    let mut notes: Vec<String> = pairs
+        .iter()
+        .take(SHOWN)
+        .map(|&(i, j)| {
+            format!(
+                "kept `{}` before `{}`: independent on the model, but one module does both and a \
+                 module runs its operations one at a time, in order (`&` would gain nothing)",
+                texts[i], texts[j]
+            )
+        })
+        .collect();
+    if pairs.len() > SHOWN {
+        notes.push(format!(
+            "{} more pairs of one module's statements kept in order for the same reason",
+            pairs.len() - SHOWN
+        ));
+    }
+    notes
+}
+
 /// The candidates besides parallel groups: series-parallel blocks (unless the protocol is the
 /// paper's) and the input's own groups when it has any; those that verify are added.
 fn other_forms(
@@ -202,6 +226,8 @@ pub enum ParalleliseError {
 /// ordered, transitively reduced.
 struct Graph {
     edges: Vec<(usize, usize)>,
+    /// Pairs ordered only because one module does both (input indices).
+    same_module: Vec<(usize, usize)>,
 }
 
 impl Graph {
@@ -224,6 +250,7 @@ impl Graph {
             .collect();
         let mut ancestors = vec![BitSet::new(n); n];
         let mut edges = Vec::new();
+        let mut same_module = Vec::new();
         for j in 0..n {
             for i in (0..j).rev() {
                 if ancestors[j].contains(i) {
@@ -241,7 +268,15 @@ impl Graph {
                     },
                 };
                 let beyond = request.window.is_some_and(|w| j - i > w);
-                if beyond || pair.must_stay_ordered(&pre[i], &pre[i + 1]) {
+                let order = if beyond {
+                    Order::Model
+                } else {
+                    pair.order(&pre[i], &pre[i + 1])
+                };
+                if matches!(order, Order::SameModule) {
+                    same_module.push((i, j));
+                }
+                if !matches!(order, Order::Free) {
                     edges.push((i, j));
                     let above = ancestors[i].clone();
                     ancestors[j].union(&above);
@@ -257,7 +292,7 @@ impl Graph {
                 edges
             }
         };
-        Graph { edges }
+        Graph { edges, same_module }
     }
 }
 
@@ -298,6 +333,17 @@ fn pre_states(request: &Request, statements: &[ResolvedStatement]) -> Vec<RobotW
     out
 }
 
+/// Why a pair of statements stays ordered, if it does.
+enum Order {
+    /// Independent on the model: they may run side by side.
+    Free,
+    /// Independent on the model, but done by one module, which runs its operations one at a
+    /// time in source order: `&` between them would gain nothing (see `docs/parallelise.md`).
+    SameModule,
+    /// The model needs the order.
+    Model,
+}
+
 /// Two statements, the earlier first, and their modules.
 struct Pair<'a> {
     request: &'a Request<'a>,
@@ -309,15 +355,25 @@ struct Pair<'a> {
 }
 
 impl Pair<'_> {
-    /// Conservative: same module, same latch, a step refused in either order, different
-    /// results in the two orders, or two turns that may sweep through each other (decided
-    /// by `check_independence` on the pair as a group). `before` and `after` are the states
-    /// around `a` in the input.
-    fn must_stay_ordered(&self, before: &RobotWorld, after: &RobotWorld) -> bool {
+    /// Whether the pair must stay ordered, and why: by the model, or only because both are
+    /// done by one module (which runs one operation at a time). Conservative: the same latch,
+    /// a step refused in either order, different results in the two orders, or two turns
+    /// that may sweep through each other. `before` and `after` are the states around `a` in
+    /// the input.
+    fn order(&self, before: &RobotWorld, after: &RobotWorld) -> Order {
         let (Some(ma), Some(mb)) = self.modules else {
-            return true;
+            return Order::Model;
         };
-        if ma == mb || self.same_latch(before, ma, mb) {
+        match (self.model_orders(before, after, ma, mb), ma == mb) {
+            (true, _) => Order::Model,
+            (false, true) => Order::SameModule,
+            (false, false) => Order::Free,
+        }
+    }
+
+    /// The model's checks, whoever does the two statements.
+    fn model_orders(&self, before: &RobotWorld, after: &RobotWorld, ma: &str, mb: &str) -> bool {
+        if self.same_latch(before, ma, mb) {
             return true;
         }
         if self.overlapping_turns(before) {
