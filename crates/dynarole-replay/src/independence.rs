@@ -210,7 +210,7 @@ const MAX_DESCENTS: usize = 64;
 /// whole piece stays at least `d - length / 2` away. Pieces that cannot be decided that way
 /// are halved; a pair of points whose paths' exact bounding boxes are already apart by the
 /// limit is not looked at.
-fn closest_approach(a: &TurnMotion, b: &TurnMotion) -> Option<f64> {
+pub(crate) fn closest_approach(a: &TurnMotion, b: &TurnMotion) -> Option<f64> {
     // Once a conflict is found, the bar drops to it, so what is reported is the closest
     // approach of all pairs (to the precision of the halvings), not the first one found.
     let mut bar = a.limit.max(b.limit);

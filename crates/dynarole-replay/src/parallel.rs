@@ -19,8 +19,10 @@ use dynarole_world::{compare, Configuration, Port};
 use std::collections::BTreeMap;
 use std::fmt::Write;
 
+mod footprint;
 mod layout;
 
+use footprint::{Later, MovingSide};
 use layout::{ancestors, has_blocks, levels_layout, series_parallel, written_layout, BitSet};
 pub use layout::{transitive_reduction, Layout};
 
@@ -252,6 +254,7 @@ impl Graph {
         let mut edges = Vec::new();
         let mut same_module = Vec::new();
         for j in 0..n {
+            let later = Later::default();
             for i in (0..j).rev() {
                 if ancestors[j].contains(i) {
                     continue;
@@ -266,6 +269,8 @@ impl Graph {
                     } else {
                         motions[i].as_ref()
                     },
+                    index_a: i,
+                    later: &later,
                 };
                 let beyond = request.window.is_some_and(|w| j - i > w);
                 let order = if beyond {
@@ -293,28 +298,6 @@ impl Graph {
             }
         };
         Graph { edges, same_module }
-    }
-}
-
-/// The modules an ATRON turn moves (by index in the configuration), on one state.
-struct MovingSide {
-    modules: BitSet,
-}
-
-impl MovingSide {
-    fn of(
-        request: &Request,
-        statement: &ResolvedStatement,
-        module: Option<&str>,
-        world: &RobotWorld,
-    ) -> Option<MovingSide> {
-        let motion = world.turn_motion(&request.program.robot, statement, module?)?;
-        let view = world.view();
-        let mut modules = BitSet::new(view.len());
-        for (name, _) in &motion.moving {
-            modules.insert(view.index(name)?);
-        }
-        Some(MovingSide { modules })
     }
 }
 
@@ -352,6 +335,9 @@ struct Pair<'a> {
     modules: (Option<&'a str>, Option<&'a str>),
     /// The moving side of `a` on the state before it, when `a` is a turn (the fast path).
     motion_a: Option<&'a MovingSide>,
+    /// `a`'s input index, and what is known of `b` from the pairs visited before.
+    index_a: usize,
+    later: &'a Later,
 }
 
 impl Pair<'_> {
@@ -376,8 +362,8 @@ impl Pair<'_> {
         if self.same_latch(before, ma, mb) {
             return true;
         }
-        if self.overlapping_turns(before) {
-            return true;
+        if let Some(ordered) = self.turn_footprints(before) {
+            return ordered;
         }
         let robot = &self.request.program.robot;
         // `a` then `b` is `b` on the state after `a`; `b` then `a` from the state before.
@@ -399,21 +385,17 @@ impl Pair<'_> {
         simultaneous_turns(program, assignment, (self.a, self.b), before).is_some()
     }
 
-    /// Two turns that, from `before`, would move a module in common: the exhaustive check
-    /// below ends the same way (a refused step, or "both turns move ..."), without running
-    /// either. `b`'s motion is taken on `before` (no copy); a turn it refuses is ordered too.
-    fn overlapping_turns(&self, before: &RobotWorld) -> bool {
-        let Some(side_a) = self.motion_a else {
-            return false;
-        };
+    /// Two turns decided from their motions alone, without running them (see
+    /// `footprint.rs`): `Some(ordered)`, or `None` when the pair needs the full check.
+    fn turn_footprints(&self, before: &RobotWorld) -> Option<bool> {
+        let side_a = self.motion_a?;
         let robot = &self.request.program.robot;
         if !part_is(robot, self.b, "Joint") {
-            return false;
+            return None;
         }
-        match MovingSide::of(self.request, self.b, self.modules.1, before) {
-            Some(side_b) => side_a.modules.intersects(&side_b.modules),
-            None => true,
-        }
+        let b = (self.b, self.modules.1);
+        self.later
+            .decide(self.request, (side_a, self.index_a), b, before)
     }
 
     /// Connector operations on the two ends of one latch (made, or facing, before `a`).
