@@ -49,16 +49,20 @@ impl Later {
         world: &RobotWorld,
     ) -> Option<bool> {
         let cached = self.side.borrow().clone();
-        let side_b = match cached {
-            Some((k, side)) if k == i + 1 && side.pivot != a.pivot => side,
+        let (side_b, fresh) = match cached {
+            Some((k, side)) if k == i + 1 && side.pivot != a.pivot => (side, false),
             _ => match MovingSide::of(request, b, module, world) {
-                Some(side) => Rc::new(side),
+                Some(side) => (Rc::new(side), true),
                 // `b` is refused on `world` (a wrong angle, a locked joint): ordered.
                 None => return Some(true),
             },
         };
         let verdict = a.decide(&side_b, world, (i, &self.clear));
-        *self.side.borrow_mut() = Some((i, side_b));
+        // A side carried over is only right for `world` when `a` moved none of it, nor its
+        // module; otherwise the next pair computes it again.
+        let valid =
+            fresh || !(a.modules.intersects(&side_b.modules) || a.modules.contains(side_b.pivot));
+        *self.side.borrow_mut() = valid.then_some((i, side_b));
         verdict
     }
 }
