@@ -237,8 +237,8 @@ impl Graph {
     /// ordered and is not already ordered through the edges found. Parents found this way
     /// never reach one another, so the result is already transitively reduced. `exhaustive`
     /// decides every pair by running it both ways (the reference the fast path is tested
-    /// against); otherwise pairs of turns whose moving sides overlap are decided from their
-    /// motions alone, without a copy of the world.
+    /// against); otherwise pairs of turns are decided from their motions where
+    /// `footprint.rs` can, without a copy of the world.
     fn build(request: &Request, statements: &[ResolvedStatement], exhaustive: bool) -> Graph {
         let n = statements.len();
         let pre = pre_states(request, statements);
