@@ -2,16 +2,13 @@
 //! configuration in either order, and two joint turns done at the same time must not sweep
 //! through each other.
 
-use crate::robot_world::RobotWorld;
+use crate::robot_world::{same_configuration, RobotWorld};
 use crate::roles::Assignment;
+use dynarole_core::check::ResolvedStatement;
 use dynarole_core::diagnostic::{Diagnostic, DiagnosticKind};
 use dynarole_core::expand::{Plan, PlanElement, PlanKind};
 use dynarole_core::Program;
-use dynarole_world::{compare, TurnMotion, MIN_SWEEP_DISTANCE_LATTICE};
-
-/// Steps per turn when two turns are sampled against each other (1.5 degrees for a quarter
-/// turn). A warning, not a proof: the single-turn check of the world model is exact.
-const SWEEP_SAMPLES: u32 = 60;
+use dynarole_world::{compare, TurnMotion};
 
 /// Warnings for every pair of elements of a parallel group that are not independent, walking
 /// the plans from the world's configuration.
@@ -30,6 +27,25 @@ pub fn check_independence(
         checker.plan(plan, &mut world, &mut out);
     }
     out
+}
+
+/// Why two statements, both accepted in either order from `world` with the same result, may
+/// not be done at the same time: the motions of two turns (`None` for anything else).
+pub(crate) fn simultaneous_turns(
+    program: &Program,
+    assignment: &Assignment,
+    (a, b): (&ResolvedStatement, &ResolvedStatement),
+    world: &RobotWorld,
+) -> Option<String> {
+    let checker = Checker {
+        program,
+        assignment,
+    };
+    let motion = |s: &ResolvedStatement| {
+        let module = assignment.get(&s.label)?;
+        world.turn_motion(&program.robot, s, module)
+    };
+    checker.turns_apart(motion(a)?, motion(b)?)
 }
 
 struct Checker<'a> {
@@ -80,6 +96,9 @@ impl Checker<'_> {
             // Refused in both orders: the replay reports the step itself.
             (Err(_), Err(_)) => return None,
         }
+        if same_configuration(&ab, &ba) {
+            return self.simultaneous_turns(a, b, world);
+        }
         if let Err(difference) = compare(&ab.configuration(), &ba.configuration()) {
             let first_line = difference
                 .to_string()
@@ -102,7 +121,12 @@ impl Checker<'_> {
         b: &PlanElement,
         world: &RobotWorld,
     ) -> Option<String> {
-        let (ma, mb) = (self.motion(a, world)?, self.motion(b, world)?);
+        self.turns_apart(self.motion(a, world)?, self.motion(b, world)?)
+    }
+
+    /// Two turns done at the same time: a shared moving module, or a closest approach below
+    /// the limit for some relative timing.
+    fn turns_apart(&self, ma: TurnMotion, mb: TurnMotion) -> Option<String> {
         let shared: Vec<&str> = ma
             .moving
             .iter()
@@ -115,9 +139,13 @@ impl Checker<'_> {
                 shared.join(", ")
             ));
         }
-        let closest = closest_approach(&ma, &mb);
-        (closest < MIN_SWEEP_DISTANCE_LATTICE).then(|| {
-            format!("done at the same time, the turns bring modules within {closest:.3} lattice units of each other (limit {MIN_SWEEP_DISTANCE_LATTICE})")
+        let limit = ma.limit.max(mb.limit);
+        let unit = match self.program.robot.name.as_str() {
+            "mtran" => "block pitches",
+            _ => "lattice units",
+        };
+        closest_approach(&ma, &mb).map(|closest| {
+            format!("done at the same time, the turns bring modules within {closest:.3} {unit} of each other (limit {limit})")
         })
     }
 
@@ -165,63 +193,84 @@ fn groups(plan: &Plan) -> Vec<&[PlanElement]> {
         .collect()
 }
 
-/// Smallest distance between a module moved by `a` and one moved by `b`, over every pair of
-/// moments of the two turns. Each module's sampled path is computed once, and a pair of
-/// modules whose paths' bounding boxes are already farther apart than the closest pair found
-/// is skipped (the box distance is a lower bound): the same minimum, without comparing every
-/// moment of every pair of modules of two large moving sides.
-fn closest_approach(a: &TurnMotion, b: &TurnMotion) -> f64 {
-    let paths_a: Vec<Path> = a.moving.iter().map(|(_, p)| Path::of(a, *p)).collect();
-    let paths_b: Vec<Path> = b.moving.iter().map(|(_, p)| Path::of(b, *p)).collect();
-    let mut best = f64::INFINITY;
-    for pa in &paths_a {
-        for pb in &paths_b {
-            if pa.box_distance(pb) >= best {
-                continue;
-            }
-            for x in &pa.points {
-                for y in &pb.points {
-                    best = best.min(distance(*x, *y));
+/// Halvings of a piece of a path before a closest approach too near the limit to be decided
+/// is reported as a conflict: the piece is then shorter than 2^-40 of the path.
+const MAX_HALVINGS: u32 = 40;
+
+/// Times one pair of points is searched again for a closer approach below the one found.
+const MAX_DESCENTS: usize = 64;
+
+/// The closest approach below the limit that the two turns can bring two of their moving
+/// points to, for some relative timing; `None` when they are proven to stay apart.
+///
+/// Exact, not sampled. For one point of each side, the distance between the moving point of
+/// `a` at one moment and the whole path of the point of `b` is known in closed form
+/// ([`TurnMotion::distance_to_path`]); a piece of `a`'s path whose middle is at distance `d`
+/// from `b`'s path keeps every point within half the piece's length of that middle, so the
+/// whole piece stays at least `d - length / 2` away. Pieces that cannot be decided that way
+/// are halved; a pair of points whose paths' exact bounding boxes are already apart by the
+/// limit is not looked at.
+pub(crate) fn closest_approach(a: &TurnMotion, b: &TurnMotion) -> Option<f64> {
+    // Once a conflict is found, the bar drops to it, so what is reported is the closest
+    // approach of all pairs (to the precision of the halvings), not the first one found.
+    let mut bar = a.limit.max(b.limit);
+    let mut closest = None;
+    let boxes_b: Vec<_> = b.moving.iter().map(|(_, p)| b.path_box(*p)).collect();
+    for (_, pa) in &a.moving {
+        let box_a = a.path_box(*pa);
+        for ((_, pb), box_b) in b.moving.iter().zip(&boxes_b) {
+            for _ in 0..MAX_DESCENTS {
+                if box_distance(&box_a, box_b) >= bar {
+                    break;
+                }
+                match path_approach(a, *pa, b, *pb, bar) {
+                    Some(d) if d < bar => {
+                        closest = Some(d);
+                        bar = d;
+                    }
+                    _ => break,
                 }
             }
         }
     }
-    best
+    closest
 }
 
-/// A moving module's sampled positions during a turn, and their bounding box.
-struct Path {
-    points: Vec<[f64; 3]>,
-    low: [f64; 3],
-    high: [f64; 3],
-}
-
-impl Path {
-    fn of(turn: &TurnMotion, start: [f64; 3]) -> Path {
-        let points: Vec<[f64; 3]> = (0..=SWEEP_SAMPLES)
-            .map(|i| turn.position_at(start, f64::from(i) / f64::from(SWEEP_SAMPLES)))
-            .collect();
-        let (mut low, mut high) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-        for p in &points {
-            for k in 0..3 {
-                low[k] = low[k].min(p[k]);
-                high[k] = high[k].max(p[k]);
-            }
+/// Branch and bound over the path of `pa` (fractions of `a`'s turn) against the whole path of
+/// `pb`: the distance found below `limit`, or the lower bound of a piece that could not be
+/// decided after [`MAX_HALVINGS`] halvings; `None` when every piece stays at least `limit` away.
+fn path_approach(
+    a: &TurnMotion,
+    pa: [f64; 3],
+    b: &TurnMotion,
+    pb: [f64; 3],
+    limit: f64,
+) -> Option<f64> {
+    let length = a.path_length(pa);
+    // Pieces still to decide: (start, end, halvings). A stack: at most one piece per level
+    // waits, so it never holds more than MAX_HALVINGS + 1 pieces.
+    let mut pieces = vec![(0.0_f64, 1.0_f64, 0_u32)];
+    while let Some((start, end, halvings)) = pieces.pop() {
+        let middle = (start + end) / 2.0;
+        let d = b.distance_to_path(pb, a.position_at(pa, middle));
+        if d < limit {
+            return Some(d);
         }
-        Path { points, low, high }
+        let bound = d - length * (end - start) / 2.0;
+        if bound >= limit {
+            continue;
+        }
+        if halvings == MAX_HALVINGS {
+            return Some(bound.min(limit - f64::EPSILON));
+        }
+        pieces.push((middle, end, halvings + 1));
+        pieces.push((start, middle, halvings + 1));
     }
-
-    /// The distance between the two bounding boxes (0 when they overlap).
-    fn box_distance(&self, other: &Path) -> f64 {
-        let gap = |k: usize| {
-            (other.low[k] - self.high[k])
-                .max(self.low[k] - other.high[k])
-                .max(0.0)
-        };
-        (gap(0).powi(2) + gap(1).powi(2) + gap(2).powi(2)).sqrt()
-    }
+    None
 }
 
-fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+/// The distance between two boxes (low, high); 0 when they overlap.
+fn box_distance(a: &([f64; 3], [f64; 3]), b: &([f64; 3], [f64; 3])) -> f64 {
+    let gap = |k: usize| (b.0[k] - a.1[k]).max(a.0[k] - b.1[k]).max(0.0);
+    (gap(0).powi(2) + gap(1).powi(2) + gap(2).powi(2)).sqrt()
 }

@@ -14,8 +14,8 @@ mod topology;
 
 pub use independence::check_independence;
 pub use parallel::{
-    parallelise, transitive_reduction, Form, FormKind, Layout, ParalleliseError, Parallelised,
-    Request,
+    dependency_graph, parallelise, transitive_reduction, Form, FormKind, Layout, ParalleliseError,
+    Parallelised, Request,
 };
 pub use robot_world::{RobotWorld, StepOutcome};
 pub use roles::{assign_modules, Assignment};

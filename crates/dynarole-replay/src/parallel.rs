@@ -5,22 +5,24 @@
 //! series-parallel blocks. Every form returned has been written out, parsed, replayed to the
 //! input's final configuration and checked for independence forward and in reverse.
 
-use crate::independence::check_independence;
-use crate::robot_world::RobotWorld;
+use crate::independence::{check_independence, simultaneous_turns};
+use crate::robot_world::{same_configuration, RobotWorld};
 use crate::roles::Assignment;
 use crate::run::replay;
-use dynarole_core::ast::{ElementKind, Item, SeparatorKind};
+use dynarole_core::ast::{ElementKind, Item};
 use dynarole_core::check::{resolve_statement, ResolvedStatement};
 use dynarole_core::diagnostic::{has_errors, Diagnostic, DiagnosticKind};
-use dynarole_core::expand::{Plan, PlanElement, PlanKind};
+use dynarole_core::expand::Plan;
 use dynarole_core::format::{format_items, statement as statement_text};
 use dynarole_core::{analyze, parse, Program, RobotRegistry, Span};
 use dynarole_world::{compare, Configuration, Port};
 use std::collections::BTreeMap;
 use std::fmt::Write;
 
+mod footprint;
 mod layout;
 
+use footprint::{Later, MovingSide};
 use layout::{ancestors, has_blocks, levels_layout, series_parallel, written_layout, BitSet};
 pub use layout::{transitive_reduction, Layout};
 
@@ -88,6 +90,49 @@ pub struct Request<'a> {
 /// replay (a refused step), or with a message when no form can be verified.
 pub fn parallelise(request: &Request) -> Result<Parallelised, ParalleliseError> {
     let program = request.program;
+    let (plan, input, statements) = input_statements(request)?;
+    let graph = Graph::build(request, &statements, false);
+    let verifier = Verifier {
+        request,
+        header: header(program),
+        texts: statement_texts(program, &statements),
+        expected: input.final_configuration,
+        suspicious: suspicious_spans(&input.diagnostics),
+        spans: statements.iter().map(|s| s.span).collect(),
+        reversible: program
+            .reverse_sequence(request.sequence, "r")
+            .is_some_and(|r| r.is_ok()),
+    };
+    let mut notes = same_module_notes(&verifier.texts, &graph.same_module);
+    let (edges, levels) = verifier.levels(graph.edges.clone(), statements.len(), &mut notes)?;
+    let mut forms = vec![levels];
+    other_forms(&verifier, &plan, &edges, &mut forms, &mut notes);
+    Ok(Parallelised {
+        statements: verifier.texts.clone(),
+        edges,
+        forms,
+        header: verifier.header.clone(),
+        notes,
+    })
+}
+
+/// The dependency graph of `request.sequence` (transitively reduced edges between input
+/// indices), before any form is written. `exhaustive` runs every pair of statements both
+/// ways on copies of the world, as the reference; otherwise pairs that can be decided from
+/// the statements' footprints are (the same edges, faster).
+pub fn dependency_graph(
+    request: &Request,
+    exhaustive: bool,
+) -> Result<Vec<(usize, usize)>, ParalleliseError> {
+    let (_, _, statements) = input_statements(request)?;
+    Ok(Graph::build(request, &statements, exhaustive).edges)
+}
+
+/// The input expanded, replayed (it must replay without a refused step) and its statements.
+fn input_statements(
+    request: &Request,
+) -> Result<(Plan, crate::run::Replay, Vec<ResolvedStatement>), ParalleliseError> {
+    let program = request.program;
     let plan = program.expand(request.sequence).ok_or_else(|| {
         ParalleliseError::Message(format!("no sequence named `{}`", request.sequence))
     })?;
@@ -107,29 +152,31 @@ pub fn parallelise(request: &Request) -> Result<Parallelised, ParalleliseError> 
             request.sequence
         )));
     }
-    let graph = Graph::build(request, &statements);
-    let verifier = Verifier {
-        request,
-        header: header(program),
-        texts: statement_texts(program, &statements),
-        expected: input.final_configuration,
-        suspicious: suspicious_spans(&input.diagnostics),
-        spans: statements.iter().map(|s| s.span).collect(),
-        reversible: program
-            .reverse_sequence(request.sequence, "r")
-            .is_some_and(|r| r.is_ok()),
-    };
-    let mut notes = Vec::new();
-    let (edges, levels) = verifier.levels(graph.edges.clone(), statements.len(), &mut notes)?;
-    let mut forms = vec![levels];
-    other_forms(&verifier, &plan, &edges, &mut forms, &mut notes);
-    Ok(Parallelised {
-        statements: verifier.texts.clone(),
-        edges,
-        forms,
-        header: verifier.header.clone(),
-        notes,
-    })
+    Ok((plan, input, statements))
+}
+
+/// Notes for the pairs kept in order only because one module does both: the first few, then
+/// how many more.
+fn same_module_notes(texts: &[String], pairs: &[(usize, usize)]) -> Vec<String> {
+    const SHOWN: usize = 4;
+    let mut notes: Vec<String> = pairs
+        .iter()
+        .take(SHOWN)
+        .map(|&(i, j)| {
+            format!(
+                "kept `{}` before `{}`: independent on the model, but one module does both and a \
+                 module runs its operations one at a time, in order (`&` would gain nothing)",
+                texts[i], texts[j]
+            )
+        })
+        .collect();
+    if pairs.len() > SHOWN {
+        notes.push(format!(
+            "{} more pairs of one module's statements kept in order for the same reason",
+            pairs.len() - SHOWN
+        ));
+    }
+    notes
 }
 
 /// The candidates besides parallel groups: series-parallel blocks (unless the protocol is the
@@ -181,22 +228,33 @@ pub enum ParalleliseError {
 /// ordered, transitively reduced.
 struct Graph {
     edges: Vec<(usize, usize)>,
+    /// Pairs ordered only because one module does both (input indices).
+    same_module: Vec<(usize, usize)>,
 }
 
 impl Graph {
     /// For each statement, from the nearest earlier one back: an edge when the pair must stay
     /// ordered and is not already ordered through the edges found. Parents found this way
-    /// never reach one another, so the result is already transitively reduced.
-    fn build(request: &Request, statements: &[ResolvedStatement]) -> Graph {
+    /// never reach one another, so the result is already transitively reduced. `exhaustive`
+    /// decides every pair by running it both ways (the reference the fast path is tested
+    /// against); otherwise pairs of turns are decided from their motions where
+    /// `footprint.rs` can, without a copy of the world.
+    fn build(request: &Request, statements: &[ResolvedStatement], exhaustive: bool) -> Graph {
         let n = statements.len();
         let pre = pre_states(request, statements);
         let modules: Vec<Option<&str>> = statements
             .iter()
             .map(|s| request.assignment.get(&s.label).map(String::as_str))
             .collect();
+        // Each turn's motion on the state it runs from in the input, computed once.
+        let motions: Vec<Option<MovingSide>> = (0..n)
+            .map(|i| MovingSide::of(request, &statements[i], modules[i], &pre[i]))
+            .collect();
         let mut ancestors = vec![BitSet::new(n); n];
         let mut edges = Vec::new();
+        let mut same_module = Vec::new();
         for j in 0..n {
+            let later = Later::default();
             for i in (0..j).rev() {
                 if ancestors[j].contains(i) {
                     continue;
@@ -206,9 +264,24 @@ impl Graph {
                     a: &statements[i],
                     b: &statements[j],
                     modules: (modules[i], modules[j]),
+                    motion_a: if exhaustive {
+                        None
+                    } else {
+                        motions[i].as_ref()
+                    },
+                    index_a: i,
+                    later: &later,
                 };
                 let beyond = request.window.is_some_and(|w| j - i > w);
-                if beyond || pair.must_stay_ordered(&pre[i], &pre[i + 1]) {
+                let order = if beyond {
+                    Order::Model
+                } else {
+                    pair.order(&pre[i], &pre[i + 1])
+                };
+                if matches!(order, Order::SameModule) {
+                    same_module.push((i, j));
+                }
+                if !matches!(order, Order::Free) {
                     edges.push((i, j));
                     let above = ancestors[i].clone();
                     ancestors[j].union(&above);
@@ -224,7 +297,7 @@ impl Graph {
                 edges
             }
         };
-        Graph { edges }
+        Graph { edges, same_module }
     }
 }
 
@@ -243,15 +316,15 @@ fn pre_states(request: &Request, statements: &[ResolvedStatement]) -> Vec<RobotW
     out
 }
 
-/// The same configuration, exactly or up to rigid motion (what `check --from` compares).
-fn same_configuration(a: &RobotWorld, b: &RobotWorld) -> bool {
-    // Exact equality first, on the worlds' own configurations (no copy).
-    let equal = match (a, b) {
-        (RobotWorld::Atron(x), RobotWorld::Atron(y)) => x.configuration() == y.configuration(),
-        (RobotWorld::Mtran(x), RobotWorld::Mtran(y)) => x.configuration() == y.configuration(),
-        _ => false,
-    };
-    equal || compare(&a.configuration(), &b.configuration()).is_ok()
+/// Why a pair of statements stays ordered, if it does.
+enum Order {
+    /// Independent on the model: they may run side by side.
+    Free,
+    /// Independent on the model, but done by one module, which runs its operations one at a
+    /// time in source order: `&` between them would gain nothing (see `docs/parallelise.md`).
+    SameModule,
+    /// The model needs the order.
+    Model,
 }
 
 /// Two statements, the earlier first, and their modules.
@@ -260,19 +333,37 @@ struct Pair<'a> {
     a: &'a ResolvedStatement,
     b: &'a ResolvedStatement,
     modules: (Option<&'a str>, Option<&'a str>),
+    /// The moving side of `a` on the state before it, when `a` is a turn (the fast path).
+    motion_a: Option<&'a MovingSide>,
+    /// `a`'s input index, and what is known of `b` from the pairs visited before.
+    index_a: usize,
+    later: &'a Later,
 }
 
 impl Pair<'_> {
-    /// Conservative: same module, same latch, a step refused in either order, different
-    /// results in the two orders, or two turns that may sweep through each other (decided
-    /// by `check_independence` on the pair as a group). `before` and `after` are the states
-    /// around `a` in the input.
-    fn must_stay_ordered(&self, before: &RobotWorld, after: &RobotWorld) -> bool {
+    /// Whether the pair must stay ordered, and why: by the model, or only because both are
+    /// done by one module (which runs one operation at a time). Conservative: the same latch,
+    /// a step refused in either order, different results in the two orders, or two turns
+    /// that may sweep through each other. `before` and `after` are the states around `a` in
+    /// the input.
+    fn order(&self, before: &RobotWorld, after: &RobotWorld) -> Order {
         let (Some(ma), Some(mb)) = self.modules else {
-            return true;
+            return Order::Model;
         };
-        if ma == mb || self.same_latch(before, ma, mb) {
+        match (self.model_orders(before, after, ma, mb), ma == mb) {
+            (true, _) => Order::Model,
+            (false, true) => Order::SameModule,
+            (false, false) => Order::Free,
+        }
+    }
+
+    /// The model's checks, whoever does the two statements.
+    fn model_orders(&self, before: &RobotWorld, after: &RobotWorld, ma: &str, mb: &str) -> bool {
+        if self.same_latch(before, ma, mb) {
             return true;
+        }
+        if let Some(ordered) = self.turn_footprints(before) {
+            return ordered;
         }
         let robot = &self.request.program.robot;
         // `a` then `b` is `b` on the state after `a`; `b` then `a` from the state before.
@@ -288,14 +379,23 @@ impl Pair<'_> {
             // Only two turns have a motion check; the rest is what was just done.
             return false;
         }
-        let group = Plan {
-            elements: vec![
-                element(self.a, SeparatorKind::Parallel),
-                element(self.b, SeparatorKind::Sequential),
-            ],
-        };
-        let program = self.request.program;
-        !check_independence(program, &[group], before.clone(), self.request.assignment).is_empty()
+        // Both orders were just run and agree: what is left of the independence check of the
+        // pair as a group is the motion of the two turns done at the same time.
+        let (program, assignment) = (self.request.program, self.request.assignment);
+        simultaneous_turns(program, assignment, (self.a, self.b), before).is_some()
+    }
+
+    /// Two turns decided from their motions alone, without running them (see
+    /// `footprint.rs`): `Some(ordered)`, or `None` when the pair needs the full check.
+    fn turn_footprints(&self, before: &RobotWorld) -> Option<bool> {
+        let side_a = self.motion_a?;
+        let robot = &self.request.program.robot;
+        if !part_is(robot, self.b, "Joint") {
+            return None;
+        }
+        let b = (self.b, self.modules.1);
+        self.later
+            .decide(self.request, (side_a, self.index_a), b, before)
     }
 
     /// Connector operations on the two ends of one latch (made, or facing, before `a`).
@@ -349,14 +449,6 @@ fn partner(config: &Configuration, port: Port) -> Option<Port> {
     match config {
         Configuration::Atron(c) => c.latched_to(port).or_else(|| c.facing(port)),
         Configuration::Mtran(c) => c.latched_to(port).or_else(|| c.facing(port)),
-    }
-}
-
-fn element(statement: &ResolvedStatement, separator: SeparatorKind) -> PlanElement {
-    PlanElement {
-        kind: PlanKind::Op(statement.clone()),
-        separator,
-        span: statement.span,
     }
 }
 

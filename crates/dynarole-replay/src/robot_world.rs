@@ -4,7 +4,7 @@
 use dynarole_core::check::ResolvedStatement;
 use dynarole_core::robot::Value;
 use dynarole_core::RobotApi;
-use dynarole_world::{Configuration, MtranJoint, MtranWorld, Outcome, TurnMotion, World};
+use dynarole_world::{compare, Configuration, MtranJoint, MtranWorld, Outcome, TurnMotion, World};
 
 /// A robot being reconfigured, of either kind.
 #[derive(Clone, Debug)]
@@ -85,14 +85,7 @@ impl RobotWorld {
                 "rotateFromToBy",
                 Some(j),
                 [Value::Int(f), Value::Int(t), Value::Bool(d), _],
-            ) => {
-                let joint = if j == 0 {
-                    MtranJoint::North
-                } else {
-                    MtranJoint::South
-                };
-                w.rotate(module, joint, degrees(*f), degrees(*t), *d)
-            }
+            ) => w.rotate(module, mtran_joint(j), degrees(*f), degrees(*t), *d),
             _ => {
                 return Err(format!(
                     "the robot model has no operation `{part}.{op}` with these arguments"
@@ -102,26 +95,46 @@ impl RobotWorld {
         result.map_err(|e| e.to_string())
     }
 
-    /// The motion of an ATRON joint turn, without doing it; `None` for anything else.
+    /// The motion of a joint turn (ATRON or M-TRAN), without doing it; `None` for anything
+    /// else, or a turn the model refuses before moving (a wrong angle, a locked joint).
     pub fn turn_motion(
         &self,
         robot: &RobotApi,
         statement: &ResolvedStatement,
         module: &str,
     ) -> Option<TurnMotion> {
-        let RobotWorld::Atron(w) = self else {
-            return None;
-        };
-        match (names(robot, statement), statement.args.as_slice()) {
-            (("Joint", "rotateFromToBy"), [Value::Int(f), Value::Int(t), Value::Bool(d), _]) => {
-                w.turn_motion(module, units(*f), units(*t), *d).ok()
+        let index = statement.index.and_then(|i| u8::try_from(i).ok());
+        match (self, names(robot, statement), statement.args.as_slice()) {
+            (
+                RobotWorld::Atron(w),
+                ("Joint", "rotateFromToBy"),
+                [Value::Int(f), Value::Int(t), Value::Bool(d), _],
+            ) => w.turn_motion(module, units(*f), units(*t), *d).ok(),
+            (RobotWorld::Atron(w), ("Joint", "rotateToBy"), [Value::Int(t), Value::Bool(d), _]) => {
+                w.turn_motion(module, atron_joint(w, module), units(*t), *d)
+                    .ok()
             }
-            (("Joint", "rotateToBy"), [Value::Int(t), Value::Bool(d), _]) => w
-                .turn_motion(module, atron_joint(w, module), units(*t), *d)
+            (
+                RobotWorld::Mtran(w),
+                ("Joint", "rotateFromToBy"),
+                [Value::Int(f), Value::Int(t), Value::Bool(d), _],
+            ) => w
+                .turn_motion(module, mtran_joint(index?), degrees(*f), degrees(*t), *d)
                 .ok(),
             _ => None,
         }
     }
+}
+
+/// The same configuration, exactly or up to rigid motion (what `check --from` compares).
+pub(crate) fn same_configuration(a: &RobotWorld, b: &RobotWorld) -> bool {
+    // Exact equality first, on the worlds' own configurations (no copy).
+    let equal = match (a, b) {
+        (RobotWorld::Atron(x), RobotWorld::Atron(y)) => x.configuration() == y.configuration(),
+        (RobotWorld::Mtran(x), RobotWorld::Mtran(y)) => x.configuration() == y.configuration(),
+        _ => false,
+    };
+    equal || compare(&a.configuration(), &b.configuration()).is_ok()
 }
 
 fn names<'r>(robot: &'r RobotApi, statement: &ResolvedStatement) -> (&'r str, &'r str) {
@@ -131,6 +144,15 @@ fn names<'r>(robot: &'r RobotApi, statement: &ResolvedStatement) -> (&'r str, &'
         part.map_or("?", |p| p.name.as_str()),
         op.map_or("?", |o| o.name.as_str()),
     )
+}
+
+/// M-TRAN joint 0 is the north one, 1 the south one (the plugin allows no other index).
+fn mtran_joint(index: u8) -> MtranJoint {
+    if index == 0 {
+        MtranJoint::North
+    } else {
+        MtranJoint::South
+    }
 }
 
 fn atron_joint(world: &World, module: &str) -> u16 {

@@ -233,6 +233,12 @@ pub fn sweep_closest_approach(
     let mut best: Option<SweepApproach> = None;
     for (mi, m) in moving.iter().enumerate() {
         for (si, s) in still.iter().enumerate() {
+            // A lower bound first (the distance between the full circle and the point, in
+            // cylindrical coordinates about the axis): a pair that cannot beat the closest
+            // found is skipped, so the minimum, and which pair gives it, stay the same.
+            if best.is_some_and(|b| circle_lower_bound(pivot, a, *m, *s) >= b.distance) {
+                continue;
+            }
             let (distance, t) = arc_point_distance(pivot, a, total, *m, *s);
             let closer = match best {
                 Some(b) => distance < b.distance,
@@ -251,9 +257,21 @@ pub fn sweep_closest_approach(
     best
 }
 
+/// A lower bound on the distance from `s` to any point of the circle `m` describes about the
+/// unit axis `a` through `pivot`: the differences of the heights along the axis and of the
+/// radii from it, which every point of the circle keeps.
+fn circle_lower_bound(pivot: [f64; 3], a: [f64; 3], m: [f64; 3], s: [f64; 3]) -> f64 {
+    let (r, w) = (fsub(m, pivot), fsub(s, pivot));
+    let (hr, hw) = (fdot(a, r), fdot(a, w));
+    let radius = |v: [f64; 3], h: f64| (fdot(v, v) - h * h).max(0.0).sqrt();
+    let (dh, dr) = (hr - hw, radius(r, hr) - radius(w, hw));
+    // Shaved by a relative epsilon so rounding never makes the bound exceed the distance.
+    (dh * dh + dr * dr).sqrt() * (1.0 - 1e-12)
+}
+
 /// Minimum distance between point `m` turned by t in [0, total] about unit `a` through `pivot`
 /// and the fixed point `s`; returns (distance, t at the minimum).
-fn arc_point_distance(
+pub(crate) fn arc_point_distance(
     pivot: [f64; 3],
     a: [f64; 3],
     total: f64,

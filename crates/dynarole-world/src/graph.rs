@@ -2,7 +2,7 @@
 //! locked by a loop, and whether releasing a latch splits the robot.
 
 use crate::config::Latch;
-use std::collections::{BTreeMap, BTreeSet, VecDeque};
+use std::collections::BTreeSet;
 
 /// Modules reachable from `starts` through latches without entering `barrier`.
 pub(crate) fn reachable(
@@ -10,28 +10,47 @@ pub(crate) fn reachable(
     starts: &BTreeSet<usize>,
     barrier: Option<usize>,
 ) -> BTreeSet<usize> {
-    let mut seen: BTreeSet<usize> = starts
-        .iter()
-        .copied()
-        .filter(|m| Some(*m) != barrier)
-        .collect();
     // Adjacency first, so the search is linear in the size of the robot rather than
-    // (modules x latches).
-    let mut adjacent: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
+    // (modules x latches): indexed by module (the indices are dense), all neighbours in one
+    // vector with each module's start in `first` (few allocations: this runs for every turn).
+    let size = latches
+        .iter()
+        .map(|l| l.male.module.max(l.female.module) + 1)
+        .chain(starts.iter().map(|m| m + 1))
+        .max()
+        .unwrap_or(0);
+    let mut first = vec![0usize; size + 1];
+    for latch in latches {
+        first[latch.male.module + 1] += 1;
+        first[latch.female.module + 1] += 1;
+    }
+    for m in 0..size {
+        first[m + 1] += first[m];
+    }
+    let mut filled = first.clone();
+    let mut neighbours = vec![0usize; first[size]];
     for latch in latches {
         let (a, b) = (latch.male.module, latch.female.module);
-        adjacent.entry(a).or_default().push(b);
-        adjacent.entry(b).or_default().push(a);
+        neighbours[filled[a]] = b;
+        filled[a] += 1;
+        neighbours[filled[b]] = a;
+        filled[b] += 1;
     }
-    let mut queue: VecDeque<usize> = seen.iter().copied().collect();
-    while let Some(current) = queue.pop_front() {
-        for &next in adjacent.get(&current).map(Vec::as_slice).unwrap_or(&[]) {
-            if Some(next) != barrier && seen.insert(next) {
-                queue.push_back(next);
+    let mut seen = vec![false; size];
+    let mut pending: Vec<usize> = Vec::new();
+    for &m in starts.iter().filter(|m| Some(**m) != barrier) {
+        seen[m] = true;
+        pending.push(m);
+    }
+    while let Some(current) = pending.pop() {
+        for &next in &neighbours[first[current]..first[current + 1]] {
+            if Some(next) != barrier && !seen[next] {
+                seen[next] = true;
+                pending.push(next);
             }
         }
     }
-    seen
+    (0..size).filter(|m| seen[*m]).collect()
 }
 
 /// The modules latched directly to the connectors of `module` selected by `half`.

@@ -10,6 +10,7 @@ use crate::mtran::{
 };
 use crate::ops::{OpError, Outcome, Warning};
 use crate::structure::Structure;
+use crate::world::TurnMotion;
 use crate::world_common::{known_module, latch, release, sweep_verdict, warn, Latching};
 use std::collections::BTreeSet;
 
@@ -73,15 +74,7 @@ impl MtranWorld {
                 module: module.to_string(),
             }));
         }
-        let delta_quarters = i32::from(to_deg - from_deg) / 90;
-        let sides = split_at_joint(self.config.latches(), index, is_mtran_male, |c| {
-            !is_mtran_male(c)
-        })
-        .map_err(|loop_side| OpError::JointLocked {
-            module: module.to_string(),
-            loop_modules: self.names(&loop_side),
-        })?;
-        let (moving, turn_quarters, north_moves) = sides.moving(delta_quarters);
+        let (moving, turn_quarters, north_moves) = self.plan_turn(index, from_deg, to_deg)?;
         let (pivot, axis) = self.joint_pivot(index, joint);
         let closest =
             self.check_sweep(index, north_moves, &moving, (pivot, axis), turn_quarters)?;
@@ -106,6 +99,60 @@ impl MtranWorld {
             moved: self.names(&moved),
             closest_approach: closest,
         })
+    }
+
+    /// How a turn would move the robot, without doing it or checking its sweep: the pivot and
+    /// the centres of the blocks that turn, in block pitches. Fails like [`MtranWorld::rotate`]
+    /// for a wrong angle or a locked joint. Used to check two turns done at the same time.
+    pub fn turn_motion(
+        &self,
+        module: &str,
+        joint: MtranJoint,
+        from_deg: i16,
+        to_deg: i16,
+        positive: bool,
+    ) -> Result<TurnMotion, OpError> {
+        let index = known_module(&self.config.structure, module)?;
+        self.check_angles(index, joint, from_deg, to_deg, positive)?;
+        let (pivot, axis) = self.joint_pivot(index, joint);
+        let pitches = |v: Vec3| v.map(|c| f64::from(c) / 2.0);
+        let mut motion = TurnMotion {
+            pivot: pitches(pivot),
+            axis,
+            angle_deg: 0.0,
+            moving: Vec::new(),
+            limit: MTRAN_MIN_SWEEP_DISTANCE_BLOCKS,
+        };
+        if from_deg == to_deg {
+            return Ok(motion);
+        }
+        let (moving, turn_quarters, north_moves) = self.plan_turn(index, from_deg, to_deg)?;
+        let (blocks, _) = self.partition_blocks(index, north_moves, &moving);
+        motion.angle_deg = 90.0 * f64::from(turn_quarters);
+        motion.moving = blocks
+            .iter()
+            .map(|b| (self.name(b.module), pitches(b.centre)))
+            .collect();
+        Ok(motion)
+    }
+
+    /// The modules on the side that turns, its signed quarter turns and whether it is the
+    /// north side; fails when a loop of latches locks the joint.
+    fn plan_turn(
+        &self,
+        index: usize,
+        from_deg: i16,
+        to_deg: i16,
+    ) -> Result<(BTreeSet<usize>, i32, bool), OpError> {
+        let delta_quarters = i32::from(to_deg - from_deg) / 90;
+        let sides = split_at_joint(self.config.latches(), index, is_mtran_male, |c| {
+            !is_mtran_male(c)
+        })
+        .map_err(|loop_side| OpError::JointLocked {
+            module: self.name(index),
+            loop_modules: self.names(&loop_side),
+        })?;
+        Ok(sides.moving(delta_quarters))
     }
 
     /// Range, step, direction and start-angle checks.

@@ -31,6 +31,9 @@ impl BitSet {
             *w |= 1 << (i % 64);
         }
     }
+    pub(super) fn intersects(&self, other: &BitSet) -> bool {
+        self.0.iter().zip(&other.0).any(|(w, o)| w & o != 0)
+    }
     pub(super) fn union(&mut self, other: &BitSet) {
         for (w, o) in self.0.iter_mut().zip(&other.0) {
             *w |= o;
