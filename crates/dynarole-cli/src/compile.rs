@@ -6,7 +6,7 @@ use crate::render;
 use dynarole_codegen::{
     generate_c, generate_nesc, CompileOptions, PaperMerge, Protocol, TokenRetries,
 };
-use dynarole_core::{Diagnostic, DiagnosticKind};
+use dynarole_core::{driver, Diagnostic};
 use std::path::Path;
 use std::process::ExitCode;
 
@@ -174,24 +174,14 @@ pub fn run(args: &CompileArgs) -> Result<ExitCode, Failure> {
         let display = args.file.display().to_string();
         let names = load::select_sequences(program, &display, args.sequences)?;
         let plans = crate::world::plans(program, &display, &names)?;
-        for plan in &plans {
-            if let (ProtocolArg::Paper, Err(d)) = (args.options.protocol, plan.flatten_for_paper())
-            {
+        let mut options = args.options.compile_options(args.epochs, names.join(" + "));
+        let ir = match driver::lower(program, &plans, options.protocol.shape()) {
+            Ok(ir) => ir,
+            Err(d) => {
                 render::diagnostics(&display, source, &[d]);
                 return Ok(ExitCode::from(1));
             }
-        }
-        let limit_error = |e: dynarole_core::lower::LimitError| {
-            Diagnostic::new(DiagnosticKind::TargetLimit { message: e.message }, e.span)
         };
-        let ir = match program.lower(&plans) {
-            Ok(ir) => ir,
-            Err(e) => {
-                render::diagnostics(&display, source, &[limit_error(e)]);
-                return Ok(ExitCode::from(1));
-            }
-        };
-        let mut options = args.options.compile_options(args.epochs, names.join(" + "));
         if let Err(diagnostics) = add_token_routes(&mut options, program, &plans, args.from)? {
             render::diagnostics(&display, source, &diagnostics);
             return Ok(ExitCode::from(1));
@@ -203,7 +193,7 @@ pub fn run(args: &CompileArgs) -> Result<ExitCode, Failure> {
         let generated = match generate(&ir, &program.robot, &options) {
             Ok(g) => g,
             Err(e) => {
-                render::diagnostics(&display, source, &[limit_error(e)]);
+                render::diagnostics(&display, source, &[e.into()]);
                 return Ok(ExitCode::from(1));
             }
         };
