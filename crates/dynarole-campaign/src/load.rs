@@ -5,8 +5,9 @@
 use crate::spec::{CampaignFile, Merge, ProtocolName, SpecError};
 use crate::Error;
 use dynarole_codegen::{CompileOptions, PaperMerge, Protocol, TokenRetries};
+use dynarole_core::driver::{self, SelectError};
 use dynarole_core::expand::Plan;
-use dynarole_core::{Program, RobotApi, RobotRegistry};
+use dynarole_core::{Program, RobotApi};
 use dynarole_world::Configuration;
 use std::path::Path;
 
@@ -17,8 +18,8 @@ pub struct Sources {
     pub text: String,
     pub campaign: CampaignFile,
     pub source: String,
-    pub file: dynarole_core::ast::SourceFile,
-    syntax: Vec<dynarole_core::Diagnostic>,
+    /// The program's syntax tree and its syntax errors.
+    pub parsed: dynarole_core::Parsed,
     pub start: Configuration,
     pub expect: Option<Configuration>,
 }
@@ -84,8 +85,7 @@ pub fn sources(path: &Path) -> Result<Sources, Error> {
         text,
         campaign,
         source,
-        file: parsed.file,
-        syntax: parsed.diagnostics,
+        parsed,
         start,
         expect,
     })
@@ -95,13 +95,8 @@ pub fn sources(path: &Path) -> Result<Sources, Error> {
 pub fn inputs(sources: &Sources) -> Result<Inputs<'_>, Error> {
     let campaign = &sources.campaign;
     let program = program(sources)?;
-    let mut plans = Vec::new();
-    for (i, name) in campaign.sequences.iter().enumerate() {
-        let plan = program
-            .expand(name)
-            .ok_or_else(|| unknown_sequence(sources, &program, i, name))?;
-        plans.push(plan);
-    }
+    let plans = dynarole_core::driver::plans(&program, &campaign.sequences)
+        .map_err(|e| unknown_sequence(sources, &e))?;
     Ok(Inputs {
         campaign,
         source: &sources.source,
@@ -112,24 +107,19 @@ pub fn inputs(sources: &Sources) -> Result<Inputs<'_>, Error> {
     })
 }
 
-/// `sequences[i]` names no sequence of the program: the closest name and the program's list.
-fn unknown_sequence(sources: &Sources, program: &Program, i: usize, name: &str) -> Error {
-    let file = sources.campaign.file.display();
-    let declared: Vec<&str> = program
-        .file
-        .sequences()
-        .map(|d| d.name.name.as_str())
-        .collect();
-    let mut hint = match dynarole_core::suggest::did_you_mean(name, declared.iter().copied()) {
-        Some(hint) => format!("{hint} "),
-        None => String::new(),
+/// A sequence the campaign names that the program lacks: the field `sequences[i]`, with the
+/// closest name and the program's list.
+fn unknown_sequence(sources: &Sources, e: &SelectError) -> Error {
+    let file = sources.campaign.file.display().to_string();
+    let (field, message) = match e {
+        SelectError::Unknown { index, name, .. } => (
+            format!("sequences[{index}]"),
+            format!("no sequence `{name}` in {file}"),
+        ),
+        SelectError::NoSequence => ("sequences".to_string(), e.message(&file)),
     };
-    hint.push_str(&format!("sequences in {file}: {}", declared.join(", ")));
-    let mut error = SpecError::new(
-        format!("sequences[{i}]"),
-        format!("no sequence `{name}` in {file}"),
-    );
-    error.hint = Some(hint);
+    let mut error = SpecError::new(field, message);
+    error.hint = Some(e.detail(&file));
     Error::Spec {
         path: sources.path.clone(),
         error: Box::new(error.locate(&sources.text)),
@@ -144,31 +134,21 @@ fn configuration(path: &Path) -> Result<Configuration, Error> {
 
 fn program(sources: &Sources) -> Result<Program<'_>, Error> {
     let campaign = &sources.campaign;
-    let mut registry = RobotRegistry::builtin();
-    for path in &campaign.plugins {
-        registry.add(plugin(path)?);
-    }
-    let robot = sources.file.items.iter().find_map(|item| match item {
-        dynarole_core::ast::Item::Robot(decl) => Some(decl.name.name.as_str()),
-        _ => None,
-    });
-    if let Some(name) = robot {
-        let beside = campaign.file.with_file_name(format!("{name}.robot.toml"));
-        if registry.get(name).is_none() && beside.is_file() {
-            registry.add(plugin(&beside)?);
-        }
-    }
-    let (program, mut diagnostics) = dynarole_core::analyze(&sources.file, &registry);
-    diagnostics.extend(sources.syntax.iter().cloned());
-    diagnostics.sort_by_key(|d| d.span);
-    match program.filter(|_| !dynarole_core::diagnostic::has_errors(&diagnostics)) {
-        Some(program) => Ok(program),
-        None => Err(Error::Diagnostics {
-            path: campaign.file.clone(),
-            source: sources.source.clone(),
-            diagnostics,
-        }),
-    }
+    let plugins = campaign
+        .plugins
+        .iter()
+        .map(|path| plugin(path))
+        .collect::<Result<Vec<_>, _>>()?;
+    let robot = driver::robot_name(&sources.parsed.file);
+    let registry = driver::registry(robot, plugins, |file| {
+        let beside = campaign.file.with_file_name(file);
+        beside.is_file().then(|| plugin(&beside)).transpose()
+    })?;
+    driver::check(&sources.parsed, &registry).map_err(|diagnostics| Error::Diagnostics {
+        path: campaign.file.clone(),
+        source: sources.source.clone(),
+        diagnostics,
+    })
 }
 
 fn plugin(path: &Path) -> Result<RobotApi, Error> {

@@ -3,7 +3,7 @@
 use crate::load::{self, Failure, PluginArgs};
 use crate::render;
 use dynarole_core::diagnostic::has_errors;
-use dynarole_core::{analyze, parse, Diagnostic};
+use dynarole_core::{driver, parse, Diagnostic};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -60,8 +60,7 @@ pub fn check_one(
 ) -> Result<Vec<Diagnostic>, Failure> {
     let parsed = parse(source);
     let registry = load::registry(plugins, path, load::robot_name(&parsed.file))?;
-    let (program, mut diagnostics) = analyze(&parsed.file, &registry);
-    diagnostics.extend(parsed.diagnostics);
+    let (program, mut diagnostics) = driver::analyze_all(&parsed, &registry);
     if let (Some(program), Some(on)) = (&program, on) {
         diagnostics.extend(on_configuration(program, path, on, protocol)?);
     } else if protocol == Protocol::Token && program.is_some() {
@@ -114,27 +113,23 @@ fn on_configuration(
 
 /// What the generated code of each sequence could not encode, for the chosen protocol.
 fn target_limits(program: &dynarole_core::Program, protocol: Protocol) -> Vec<Diagnostic> {
+    let shape = match protocol {
+        Protocol::Paper => dynarole_codegen::Protocol::Paper,
+        Protocol::Lattice => dynarole_codegen::Protocol::Lattice,
+        Protocol::Token => dynarole_codegen::Protocol::Token,
+    }
+    .shape();
     let mut out = Vec::new();
     for decl in program.file.sequences() {
         let plan = program.expand(&decl.name.name).unwrap_or_default();
-        if let Protocol::Paper = protocol {
-            if let Err(d) = plan.flatten_for_paper() {
-                out.push(d);
-                continue;
-            }
-        }
-        let layout = program
-            .lower(std::slice::from_ref(&plan))
-            .and_then(|ir| match protocol {
-                Protocol::Paper => ir.paper_layout().map(|_| ()),
-                Protocol::Lattice | Protocol::Token => Ok(()),
-            });
-        if let Err(e) = layout {
-            out.push(Diagnostic::new(
-                dynarole_core::DiagnosticKind::TargetLimit { message: e.message },
-                e.span,
-            ));
-        }
+        let fits =
+            driver::lower(program, std::slice::from_ref(&plan), shape).and_then(
+                |ir| match protocol {
+                    Protocol::Paper => ir.paper_layout().map(|_| ()).map_err(Diagnostic::from),
+                    Protocol::Lattice | Protocol::Token => Ok(()),
+                },
+            );
+        out.extend(fits.err());
     }
     out
 }

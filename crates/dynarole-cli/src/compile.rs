@@ -6,7 +6,7 @@ use crate::render;
 use dynarole_codegen::{
     generate_c, generate_nesc, CompileOptions, PaperMerge, Protocol, TokenRetries,
 };
-use dynarole_core::{Diagnostic, DiagnosticKind};
+use dynarole_core::{driver, Diagnostic};
 use std::path::Path;
 use std::process::ExitCode;
 
@@ -174,27 +174,18 @@ pub fn run(args: &CompileArgs) -> Result<ExitCode, Failure> {
         let display = args.file.display().to_string();
         let names = load::select_sequences(program, &display, args.sequences)?;
         let plans = crate::world::plans(program, &display, &names)?;
-        for plan in &plans {
-            if let (ProtocolArg::Paper, Err(d)) = (args.options.protocol, plan.flatten_for_paper())
-            {
-                render::diagnostics(&display, source, &[d]);
-                return Ok(ExitCode::from(1));
-            }
-        }
-        let limit_error = |e: dynarole_core::lower::LimitError| {
-            Diagnostic::new(DiagnosticKind::TargetLimit { message: e.message }, e.span)
-        };
-        let ir = match program.lower(&plans) {
-            Ok(ir) => ir,
-            Err(e) => {
-                render::diagnostics(&display, source, &[limit_error(e)]);
-                return Ok(ExitCode::from(1));
-            }
-        };
         let mut options = args.options.compile_options(args.epochs, names.join(" + "));
+        // What the sequence cannot be compiled for is bad input (exit 1), shown in the source.
+        let refused = |diagnostics: &[Diagnostic]| {
+            render::diagnostics(&display, source, diagnostics);
+            Ok(ExitCode::from(1))
+        };
+        let ir = match driver::lower(program, &plans, options.protocol.shape()) {
+            Ok(ir) => ir,
+            Err(d) => return refused(&[d]),
+        };
         if let Err(diagnostics) = add_token_routes(&mut options, program, &plans, args.from)? {
-            render::diagnostics(&display, source, &diagnostics);
-            return Ok(ExitCode::from(1));
+            return refused(&diagnostics);
         }
         let generate = match args.target {
             Target::C | Target::Promela => generate_c,
@@ -202,10 +193,7 @@ pub fn run(args: &CompileArgs) -> Result<ExitCode, Failure> {
         };
         let generated = match generate(&ir, &program.robot, &options) {
             Ok(g) => g,
-            Err(e) => {
-                render::diagnostics(&display, source, &[limit_error(e)]);
-                return Ok(ExitCode::from(1));
-            }
+            Err(e) => return refused(&[e.into()]),
         };
         std::fs::create_dir_all(args.out_dir).map_err(|e| {
             Failure::Input(format!("cannot create {}: {e}", args.out_dir.display()))

@@ -1,5 +1,7 @@
 //! Reading inputs: source files and robot plugins, with errors that name the file.
 
+use dynarole_core::driver;
+pub use dynarole_core::driver::robot_name;
 use dynarole_core::robot::RobotApi;
 use dynarole_core::toml_error::TomlError;
 use dynarole_core::RobotRegistry;
@@ -61,36 +63,26 @@ pub fn read_source(path: &Path) -> Result<String, Failure> {
 }
 
 /// Built-in robots, then `--plugin` files, then a `NAME.robot.toml` beside `source_path`
-/// for a `robot NAME;` that is still unknown.
+/// for a `robot NAME;` that is still unknown (the order is the driver's).
 pub fn registry(
     args: &PluginArgs,
     source_path: &Path,
     robot_name: Option<&str>,
 ) -> Result<RobotRegistry, Failure> {
-    let mut registry = RobotRegistry::builtin();
-    for path in &args.plugins {
-        registry.add(load_plugin(path)?);
-    }
-    if let Some(name) = robot_name {
-        let beside = source_path.with_file_name(format!("{name}.robot.toml"));
-        if registry.get(name).is_none() && beside.is_file() {
-            registry.add(load_plugin(&beside)?);
-        }
-    }
-    Ok(registry)
+    let plugins = args
+        .plugins
+        .iter()
+        .map(|path| load_plugin(path))
+        .collect::<Result<Vec<_>, _>>()?;
+    driver::registry(robot_name, plugins, |file| {
+        let beside = source_path.with_file_name(file);
+        beside.is_file().then(|| load_plugin(&beside)).transpose()
+    })
 }
 
 fn load_plugin(path: &Path) -> Result<RobotApi, Failure> {
     let text = read_source(path)?;
     RobotApi::from_toml(&text).map_err(|e| Failure::toml(path, text.clone(), e))
-}
-
-/// The name in the file's first `robot NAME;`, if any.
-pub fn robot_name(file: &dynarole_core::ast::SourceFile) -> Option<&str> {
-    file.items.iter().find_map(|item| match item {
-        dynarole_core::ast::Item::Robot(decl) => Some(decl.name.name.as_str()),
-        _ => None,
-    })
 }
 
 /// Reads, parses and checks a source file: renders its errors and exits 1, or hands the checked
@@ -103,62 +95,32 @@ pub fn with_program(
     let source = read_source(path)?;
     let parsed = dynarole_core::parse(&source);
     let registry = registry(plugins, path, robot_name(&parsed.file))?;
-    let (program, mut diagnostics) = dynarole_core::analyze(&parsed.file, &registry);
-    diagnostics.extend(parsed.diagnostics);
-    diagnostics.sort_by_key(|d| d.span);
-    match program.filter(|_| !dynarole_core::diagnostic::has_errors(&diagnostics)) {
-        Some(program) => then(&program, &source),
-        None => {
+    match driver::check(&parsed, &registry) {
+        Ok(program) => then(&program, &source),
+        Err(diagnostics) => {
             crate::render::diagnostics(&path.display().to_string(), &source, &diagnostics);
             Ok(ExitCode::from(1))
         }
     }
 }
 
-/// The sequences a command runs: the named ones, or the first one the file declares when none
-/// is named. Every command that runs sequences (`check --from`, `compile`, `replay`,
-/// `simulate`, `verify`) decides here, so they agree on the default and on the errors.
+/// The sequences a command runs (`check --from`, `compile`, `replay`, `simulate`, `verify`):
+/// the named ones, or the first one the file declares when none is named.
 pub fn select_sequences(
     program: &dynarole_core::Program,
     display: &str,
     wanted: &[String],
 ) -> Result<Vec<String>, Failure> {
-    let declared = declared_sequences(program);
-    let Some(first) = declared.first() else {
-        return Err(Failure::Input(format!(
-            "{display} declares no sequence, so there is nothing to run; add `sequence NAME {{ ... }}`"
-        )));
-    };
-    if wanted.is_empty() {
-        return Ok(vec![first.to_string()]);
-    }
-    if let Some(unknown) = wanted.iter().find(|w| !declared.contains(&w.as_str())) {
-        return Err(unknown_sequence(program, display, unknown));
-    }
-    Ok(wanted.to_vec())
+    driver::select_sequences(program, wanted).map_err(|e| selection(&e, display))
 }
 
-/// `no sequence `x` in FILE; did you mean `y`? sequences in FILE: a, b` (bad input, exit 1:
-/// the name on the command line is well formed but the file has no such sequence).
+/// A sequence that cannot be run is bad input (exit 1): the name on the command line is well
+/// formed but the file has no such sequence.
+pub fn selection(error: &driver::SelectError, display: &str) -> Failure {
+    Failure::Input(error.message(display))
+}
+
+/// `no sequence `x` in FILE; did you mean `y`? sequences in FILE: a, b`.
 pub fn unknown_sequence(program: &dynarole_core::Program, display: &str, name: &str) -> Failure {
-    let declared = declared_sequences(program);
-    let mut message = format!("no sequence `{name}` in {display}");
-    match dynarole_core::suggest::did_you_mean(name, declared.iter().copied()) {
-        Some(hint) => message.push_str(&format!("; {hint} ")),
-        None => message.push_str("; "),
-    }
-    if declared.is_empty() {
-        message.push_str(&format!("{display} declares no sequence"));
-    } else {
-        message.push_str(&format!("sequences in {display}: {}", declared.join(", ")));
-    }
-    Failure::Input(message)
-}
-
-fn declared_sequences<'p>(program: &'p dynarole_core::Program) -> Vec<&'p str> {
-    program
-        .file
-        .sequences()
-        .map(|d| d.name.name.as_str())
-        .collect()
+    selection(&driver::unknown_sequence(program, 0, name), display)
 }

@@ -8,7 +8,7 @@ use crate::render;
 use crate::world::{prepare, read_configuration};
 use dynarole_codegen::{CompileOptions, Protocol as CodegenProtocol};
 use dynarole_core::expand::Plan;
-use dynarole_core::{analyze, parse, Program, RobotApi, RobotRegistry};
+use dynarole_core::{parse, Program, RobotApi};
 use dynarole_replay::{parallelise, Form, FormKind, ParalleliseError, Parallelised, Request};
 use dynarole_sim::{Simulator, Timing};
 use std::fmt::Write;
@@ -256,10 +256,7 @@ pub fn form_makespan(
 ) -> Result<u64, String> {
     let source = format!("{}\n{}", found.header, form.text);
     let parsed = parse(&source);
-    let mut registry = RobotRegistry::builtin();
-    registry.add(robot.clone());
-    let (program, diagnostics) = analyze(&parsed.file, &registry);
-    let program = program.ok_or_else(|| {
+    let program = dynarole_core::driver::check_for(&parsed, robot).map_err(|diagnostics| {
         format!(
             "the output does not check ({} diagnostics)",
             diagnostics.len()

@@ -62,12 +62,5 @@ pub fn prepare(
 
 /// The expanded plans of sequences chosen by [`load::select_sequences`].
 pub fn plans(program: &Program, display: &str, names: &[String]) -> Result<Vec<Plan>, Failure> {
-    names
-        .iter()
-        .map(|name| {
-            program
-                .expand(name)
-                .ok_or_else(|| load::unknown_sequence(program, display, name))
-        })
-        .collect()
+    dynarole_core::driver::plans(program, names).map_err(|e| load::selection(&e, display))
 }

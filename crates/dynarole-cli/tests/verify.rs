@@ -236,11 +236,12 @@ fn ab_c() -> (String, dynarole_core::lower::Ir) {
     let source = std::fs::read_to_string(repo_root().join(AB_C)).expect("source");
     let parsed = dynarole_core::parse(&source);
     let registry = dynarole_core::RobotRegistry::builtin();
-    let (program, diagnostics) = dynarole_core::analyze(&parsed.file, &registry);
+    let (program, diagnostics) = dynarole_core::driver::analyze_all(&parsed, &registry);
     assert!(diagnostics.is_empty(), "{diagnostics:?}");
     let program = program.expect("checked");
     let plan = program.expand("ab_c").expect("sequence");
-    let ir = program.lower(&[plan]).expect("lowered");
+    let ir = dynarole_core::driver::lower(&program, &[plan], dynarole_core::driver::Shape::Nested)
+        .expect("lowered");
     (source, ir)
 }
 

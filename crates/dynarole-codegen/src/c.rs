@@ -28,6 +28,14 @@ impl Protocol {
             Protocol::Token => "token",
         }
     }
+
+    /// What the protocol's code can run of a sequence: the paper's runs flat ones only.
+    pub fn shape(self) -> dynarole_core::driver::Shape {
+        match self {
+            Protocol::Paper => dynarole_core::driver::Shape::Flat,
+            Protocol::Lattice | Protocol::Token => dynarole_core::driver::Shape::Nested,
+        }
+    }
 }
 
 /// The three versions of the paper's merge (protocol notes, e.3).

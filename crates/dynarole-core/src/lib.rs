@@ -1,7 +1,8 @@
 //! The dynarole language core: from `.dr` source text to checked, reversible sequences.
 //!
 //! Pipeline: `source → lexer::lex → tokens → parser::parse → ast::SourceFile →
-//! check::analyze → check::Program → (reverse) → expand::Plan`.
+//! check::analyze → check::Program → (reverse) → expand::Plan → lower::Ir`; `driver` runs it
+//! for every caller (robot lookup, diagnostics in order, sequence selection, lowering).
 //!
 //! **Architecture invariant**: this crate does no IO. Sources, plugin texts and configurations
 //! come in as strings; results and diagnostics go out as data.
@@ -11,6 +12,7 @@
 pub mod ast;
 pub mod check;
 pub mod diagnostic;
+pub mod driver;
 pub mod expand;
 pub mod format;
 pub mod lexer;
@@ -30,9 +32,5 @@ pub use span::Span;
 
 /// Parses and checks `source`: the syntax and checking diagnostics together, in source order.
 pub fn check_source(source: &str, registry: &RobotRegistry) -> Vec<Diagnostic> {
-    let parsed = parse(source);
-    let (_, mut diagnostics) = analyze(&parsed.file, registry);
-    diagnostics.extend(parsed.diagnostics);
-    diagnostics.sort_by_key(|d| d.span);
-    diagnostics
+    driver::analyze_all(&parse(source), registry).1
 }

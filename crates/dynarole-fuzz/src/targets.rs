@@ -3,7 +3,7 @@
 use dynarole_campaign::{plan, CampaignFile};
 use dynarole_core::diagnostic::MAX_SHOWN;
 use dynarole_core::format::format_file;
-use dynarole_core::{analyze, parse, Diagnostic, RobotApi, RobotRegistry};
+use dynarole_core::{analyze, driver, parse, Diagnostic, RobotApi, RobotRegistry};
 use dynarole_sim::Scenario;
 use dynarole_world::Configuration;
 use std::path::Path;
@@ -299,8 +299,7 @@ fn verdict(clean: bool) -> Outcome {
 
 fn check(ctx: &Context, text: &str) -> Result<Outcome, String> {
     let parsed = parse(text);
-    let (program, mut diagnostics) = analyze(&parsed.file, &ctx.registry);
-    diagnostics.extend(parsed.diagnostics.iter().cloned());
+    let (program, diagnostics) = driver::analyze_all(&parsed, &ctx.registry);
     well_formed(text, &diagnostics)?;
     let Some(program) = program else {
         return Ok(Outcome::Rejected);

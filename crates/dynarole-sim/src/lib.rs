@@ -34,7 +34,7 @@ pub use scenario::{
 
 use build::Loaded;
 use dynarole_codegen::{generate_c, CompileOptions, Protocol};
-use dynarole_core::diagnostic::{Diagnostic, DiagnosticKind};
+use dynarole_core::diagnostic::Diagnostic;
 use dynarole_core::expand::Plan;
 use dynarole_core::Program;
 use dynarole_replay::RobotWorld;
@@ -95,19 +95,10 @@ impl Simulator {
         plans: &[Plan],
         options: &CompileOptions,
     ) -> Result<Simulator, SimError> {
-        if options.protocol == Protocol::Paper {
-            for plan in plans {
-                plan.flatten_for_paper().map_err(SimError::Diagnostic)?;
-            }
-        }
-        let limit = |e: dynarole_core::lower::LimitError| {
-            SimError::Diagnostic(Diagnostic::new(
-                DiagnosticKind::TargetLimit { message: e.message },
-                e.span,
-            ))
-        };
-        let ir = program.lower(plans).map_err(limit)?;
-        let generated = generate_c(&ir, &program.robot, options).map_err(limit)?;
+        let ir = dynarole_core::driver::lower(program, plans, options.protocol.shape())
+            .map_err(SimError::Diagnostic)?;
+        let generated =
+            generate_c(&ir, &program.robot, options).map_err(|e| SimError::Diagnostic(e.into()))?;
         let resolved = plans
             .iter()
             .flat_map(|p| p.statements().into_iter().cloned())

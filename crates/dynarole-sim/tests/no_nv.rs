@@ -8,7 +8,7 @@ mod common;
 
 use common::{config, EIGHT, EIGHT2CAR};
 use dynarole_codegen::{CompileOptions, Protocol};
-use dynarole_core::{analyze, parse, RobotRegistry};
+use dynarole_core::{driver, parse, RobotRegistry};
 use dynarole_sim::{Block, Power, Report, Reset, Run, Scenario, Simulator};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -16,12 +16,10 @@ use rand_chacha::ChaCha8Rng;
 /// eight2car then car2eight (50 statements, back to the eight), compiled with `no_nv`.
 fn there_and_back() -> Simulator {
     let parsed = parse(EIGHT2CAR);
-    let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
-    let program = program.unwrap_or_else(|| panic!("{diagnostics:?}"));
-    let plans: Vec<_> = ["eight2car", "car2eight"]
-        .iter()
-        .map(|s| program.expand(s).expect("sequence exists"))
-        .collect();
+    let program = driver::check(&parsed, &RobotRegistry::builtin())
+        .unwrap_or_else(|diagnostics| panic!("{diagnostics:?}"));
+    let names = ["eight2car", "car2eight"].map(String::from);
+    let plans = driver::plans(&program, &names).expect("sequences exist");
     let options = CompileOptions {
         protocol: Protocol::Lattice,
         no_nv: true,

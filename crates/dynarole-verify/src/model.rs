@@ -11,7 +11,7 @@ use dynarole_core::ast::SeparatorKind;
 use dynarole_core::check::Label;
 use dynarole_core::expand::Plan;
 use dynarole_core::lower::{Ir, LimitError};
-use dynarole_core::{Diagnostic, DiagnosticKind, Program};
+use dynarole_core::Program;
 use dynarole_replay::{communication_graph, Assignment, CommGraph, RobotWorld};
 use std::collections::BTreeSet;
 
@@ -109,21 +109,14 @@ pub fn modelled(protocol: Protocol) -> Result<(), VerifyError> {
 }
 
 fn limit_error(e: LimitError) -> VerifyError {
-    VerifyError::Source(vec![Diagnostic::new(
-        DiagnosticKind::TargetLimit { message: e.message },
-        e.span,
-    )])
+    VerifyError::Source(vec![e.into()])
 }
 
 /// Lowers and models the sequences on the configuration.
 pub fn build(inputs: &Inputs, options: &BuildOptions) -> Result<Built, VerifyError> {
-    if options.compile.protocol == Protocol::Paper {
-        for plan in inputs.plans {
-            plan.flatten_for_paper()
-                .map_err(|d| VerifyError::Source(vec![d]))?;
-        }
-    }
-    let ir = inputs.program.lower(inputs.plans).map_err(limit_error)?;
+    let shape = options.compile.protocol.shape();
+    let ir = dynarole_core::driver::lower(inputs.program, inputs.plans, shape)
+        .map_err(|d| VerifyError::Source(vec![d]))?;
     let graph = communication_graph(
         inputs.program,
         inputs.plans,

@@ -75,16 +75,16 @@ fn with_inputs<T>(then: impl FnOnce(&Inputs, &str) -> T) -> T {
     let text = std::fs::read_to_string(repo(SOURCE)).expect("source");
     let parsed = dynarole_core::parse(&text);
     let registry = dynarole_core::RobotRegistry::builtin();
-    let (program, diagnostics) = dynarole_core::analyze(&parsed.file, &registry);
+    let (program, diagnostics) = dynarole_core::driver::analyze_all(&parsed, &registry);
     assert!(diagnostics.is_empty(), "{diagnostics:?}");
     let program = program.expect("checked");
-    let plans = vec![program.expand("ab_c").expect("sequence")];
+    let names = vec!["ab_c".to_string()];
+    let plans = dynarole_core::driver::plans(&program, &names).expect("sequence");
     let json = std::fs::read_to_string(repo(LINE)).expect("configuration");
     let config = dynarole_world::Configuration::from_json_str(&json).expect("configuration");
     let assignment =
         dynarole_replay::assign_modules(&program, &plans, &config).expect("assignment");
     let world = dynarole_replay::RobotWorld::new(config, &program.robot).expect("world");
-    let names = vec!["ab_c".to_string()];
     let inputs = Inputs {
         program: &program,
         names: &names,

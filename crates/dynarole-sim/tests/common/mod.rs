@@ -2,7 +2,7 @@
 #![allow(dead_code)]
 
 use dynarole_codegen::{CompileOptions, Protocol};
-use dynarole_core::{analyze, parse, RobotRegistry};
+use dynarole_core::{driver, parse, RobotRegistry};
 use dynarole_sim::{Report, Run, Scenario, Simulator};
 use dynarole_world::Configuration;
 
@@ -24,12 +24,10 @@ pub fn config(text: &str) -> Configuration {
 
 pub fn simulator(source: &str, sequences: &[&str], protocol: Protocol) -> Simulator {
     let parsed = parse(source);
-    let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
-    let program = program.unwrap_or_else(|| panic!("{diagnostics:?}"));
-    let plans: Vec<_> = sequences
-        .iter()
-        .map(|s| program.expand(s).expect("sequence exists"))
-        .collect();
+    let program = driver::check(&parsed, &RobotRegistry::builtin())
+        .unwrap_or_else(|diagnostics| panic!("{diagnostics:?}"));
+    let names: Vec<String> = sequences.iter().map(|s| s.to_string()).collect();
+    let plans = driver::plans(&program, &names).expect("sequences exist");
     Simulator::new(&program, &plans, &options(protocol)).expect("compiles")
 }
 
