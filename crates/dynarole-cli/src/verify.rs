@@ -170,7 +170,7 @@ pub fn build(req: &Request, fault: Option<FaultArg>) -> Result<Result<Built, Exi
         }
     }
     let model_options = ModelOptions {
-        compile: options.compile_options(epochs, name.clone()),
+        compile: options.compile_options(epochs, name.clone())?,
         resets: model.resets,
         reset_modules,
         late: model.late,
