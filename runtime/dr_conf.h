@@ -53,7 +53,8 @@
  * copy lacks something ours has are sent at the next step, and bring the interval back to
  * DR_CONF_LATTICE_INTERVAL_MS; then the interval doubles at each broadcast, up to
  * DR_CONF_LATTICE_DOUBLINGS times, once every connected neighbour has been heard with a copy
- * at least ours (or after DR_CONF_LATTICE_RESENDS broadcasts without that). See
+ * at least ours (until then: DR_CONF_LATTICE_RESENDS broadcasts at the smallest interval,
+ * then at most DR_CONF_LATTICE_UNACKED_DOUBLINGS doublings). See
  * runtime/lattice/README.md ("Adaptive dissemination") for the measurements behind the values. */
 #ifndef DR_CONF_LATTICE_DISSEMINATION
 #define DR_CONF_LATTICE_DISSEMINATION DR_DISSEMINATION_ADAPTIVE
@@ -70,6 +71,11 @@
  * heard with a copy at least ours since ours last changed (its packet may have been lost). */
 #ifndef DR_CONF_LATTICE_RESENDS
 #define DR_CONF_LATTICE_RESENDS 3
+#endif
+/* Adaptive: after the resends, the most doublings while a connected neighbour still has not
+ * been heard with our copy (2: every 400 ms). */
+#ifndef DR_CONF_LATTICE_UNACKED_DOUBLINGS
+#define DR_CONF_LATTICE_UNACKED_DOUBLINGS 2
 #endif
 /* Adaptive: news and answers go out at the next step plus 0 to this many ms at random, so
  * that neighbours hearing the same news do not all send at once (their packets would collide

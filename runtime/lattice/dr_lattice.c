@@ -273,6 +273,8 @@ static dr_channels_t connected(dr_module_t *m)
 
 #if ADAPTIVE
 typedef char dr_lattice_check_doublings[(DR_CONF_LATTICE_DOUBLINGS <= 16 &&
+                                         DR_CONF_LATTICE_UNACKED_DOUBLINGS <=
+                                             DR_CONF_LATTICE_DOUBLINGS &&
                                          DR_CONF_LATTICE_INTERVAL_MS >= 1) ? 1 : -1];
 
 /* Back to the smallest interval, with every resend allowed again. */
@@ -285,9 +287,10 @@ static void restart_interval(dr_module_t *m)
 /* The adaptive counterpart of the fixed broadcast, called when a broadcast is due or the own
  * copy changed (`changed`: a local start or completion, always sent and a restart of the
  * interval). A due broadcast may be suppressed (DR_CONF_LATTICE_SUPPRESS). Then the next
- * one is scheduled: the interval doubles once every connected neighbour has been heard with
- * our copy, or once the resends at the smallest interval are used up (a neighbour whose
- * packets are lost, or a silent one: the floor of the longest interval still reaches it). */
+ * one is scheduled: while a connected neighbour has not been heard with our copy, first the
+ * resends at the smallest interval, then at most DR_CONF_LATTICE_UNACKED_DOUBLINGS
+ * doublings (its packets may be lost; a silent neighbour costs one packet per such interval);
+ * once all have, the interval doubles at each broadcast. */
 static void disseminate(dr_module_t *m, uint32_t now, uint8_t changed)
 {
     uint8_t all_acked;
@@ -314,6 +317,10 @@ static void disseminate(dr_module_t *m, uint32_t now, uint8_t changed)
     } else {
         if (m->doublings < DR_CONF_LATTICE_DOUBLINGS) {
             m->doublings++;
+        }
+        if (!all_acked && m->doublings > DR_CONF_LATTICE_UNACKED_DOUBLINGS) {
+            /* Still unacknowledged after the resends: keep trying, less often. */
+            m->doublings = DR_CONF_LATTICE_UNACKED_DOUBLINGS;
         }
         m->next_broadcast_ms = now + ((uint32_t)DR_CONF_LATTICE_INTERVAL_MS << m->doublings);
     }
