@@ -345,7 +345,8 @@ static uint8_t same_facts(const dr_shared_t *a, const dr_shared_t *b)
  * (our copy grew) and a sender that lacks something we hold (it is behind: answer it) are
  * sent at the next step, with the interval back to the smallest; a packet equal to our copy
  * acknowledges that channel. O(W). */
-static void heard_copy(dr_module_t *m, uint8_t channel, const dr_shared_t *before, dr_shared_t *in)
+static void heard_copy(dr_module_t *m, uint8_t channel, const dr_shared_t *before,
+                       dr_shared_t *in)
 {
     dr_channels_t bit_c = 0;
     uint32_t soon;
