@@ -5,6 +5,11 @@
 #ifndef DR_CONF_H
 #define DR_CONF_H
 
+/* Values of DR_CONF_LATTICE_DISSEMINATION (defined before the generated header, which may
+ * choose one). */
+#define DR_DISSEMINATION_FIXED 0
+#define DR_DISSEMINATION_ADAPTIVE 1
+
 #include "dr_program_conf.h"
 
 /* Most statements a compiled program may have (the compiler checks and sets it). */
@@ -36,6 +41,53 @@
 #endif
 #ifndef DR_CONF_BROADCAST_JITTER_MS
 #define DR_CONF_BROADCAST_JITTER_MS 0
+#endif
+
+/* Lattice protocol: how the state is disseminated (`dynarole compile --dissemination` sets
+ * it in dr_program_conf.h).
+ * DR_DISSEMINATION_FIXED: a broadcast every DR_CONF_BROADCAST_MS (+ jitter) for the whole
+ * run, and at once after a local start or completion (the behaviour before adaptive
+ * dissemination existed; its object code is the same as then).
+ * DR_DISSEMINATION_ADAPTIVE (the default): Trickle-like (RFC 6206). News (the copy grew: a
+ * local start or completion, or a join that added something) and hearing a neighbour whose
+ * copy lacks something ours has are sent at the next step, and bring the interval back to
+ * DR_CONF_LATTICE_INTERVAL_MS; then the interval doubles at each broadcast, up to
+ * DR_CONF_LATTICE_DOUBLINGS times, once every connected neighbour has been heard with a copy
+ * at least ours (until then: DR_CONF_LATTICE_RESENDS broadcasts at the smallest interval,
+ * then at most DR_CONF_LATTICE_UNACKED_DOUBLINGS doublings). See
+ * runtime/lattice/README.md ("Adaptive dissemination") for the measurements behind the values. */
+#ifndef DR_CONF_LATTICE_DISSEMINATION
+#define DR_CONF_LATTICE_DISSEMINATION DR_DISSEMINATION_ADAPTIVE
+#endif
+/* Adaptive: the smallest interval (ms); also the pace of a failed operation's retries. */
+#ifndef DR_CONF_LATTICE_INTERVAL_MS
+#define DR_CONF_LATTICE_INTERVAL_MS 100
+#endif
+/* Adaptive: how many times the interval may double (the longest is INTERVAL << DOUBLINGS). */
+#ifndef DR_CONF_LATTICE_DOUBLINGS
+#define DR_CONF_LATTICE_DOUBLINGS 5
+#endif
+/* Adaptive: broadcasts at the smallest interval while a connected neighbour has not been
+ * heard with a copy at least ours since ours last changed (its packet may have been lost). */
+#ifndef DR_CONF_LATTICE_RESENDS
+#define DR_CONF_LATTICE_RESENDS 3
+#endif
+/* Adaptive: after the resends, the most doublings while a connected neighbour still has not
+ * been heard with our copy (2: every 400 ms). */
+#ifndef DR_CONF_LATTICE_UNACKED_DOUBLINGS
+#define DR_CONF_LATTICE_UNACKED_DOUBLINGS 2
+#endif
+/* Adaptive: news and answers go out at the next step plus 0 to this many ms at random, so
+ * that neighbours hearing the same news do not all send at once (their packets would collide
+ * at the modules between them). */
+#ifndef DR_CONF_LATTICE_RELAY_JITTER_MS
+#define DR_CONF_LATTICE_RELAY_JITTER_MS 30
+#endif
+/* Adaptive: k, the suppression threshold: a periodic broadcast is skipped when k packets
+ * with a copy equal to ours were heard since the last one and every connected neighbour has
+ * our copy (0: never skipped). */
+#ifndef DR_CONF_LATTICE_SUPPRESS
+#define DR_CONF_LATTICE_SUPPRESS 1
 #endif
 
 /* Largest packet, in bytes (receive buffers are this big). */

@@ -1,7 +1,10 @@
 /* dr_lattice.c - the lattice protocol: semilattice state, statement scheduling, persistence
- * (or, with DR_PROGRAM_NO_NV, the two rules that stand in for it). */
+ * (or, with DR_PROGRAM_NO_NV, the two rules that stand in for it), and dissemination (fixed
+ * period or adaptive: DR_CONF_LATTICE_DISSEMINATION). */
 #include "dr_lattice.h"
 #include "dr_packet.h"
+
+#define ADAPTIVE (DR_CONF_LATTICE_DISSEMINATION == DR_DISSEMINATION_ADAPTIVE)
 
 
 /* DR_PROGRAM_NO_NV: after a (re)start a module acts only once it has heard a packet from every
@@ -173,8 +176,13 @@ uint8_t dr_shared_decode(dr_shared_t *s, const uint8_t *in, uint8_t len, uint16_
     return (uint8_t)!trim(s, n_statements);
 }
 
+#if ADAPTIVE
+/* Sends the state now (the adaptive schedule is set by disseminate, below). */
+static void send_state(dr_module_t *m)
+#else
 /* Sends the state now and schedules the next periodic broadcast. */
 static void broadcast(dr_module_t *m, uint32_t now)
+#endif
 {
     uint8_t frame[FRAME];
     uint8_t len;
@@ -184,9 +192,11 @@ static void broadcast(dr_module_t *m, uint32_t now)
                           frame + DR_PACKET_HEADER, PAYLOAD);
     dr_hal_broadcast(m, frame, len);
     m->packets_sent++;
+#if !ADAPTIVE
     m->next_broadcast_ms = now + DR_CONF_BROADCAST_MS;
 #if DR_CONF_BROADCAST_JITTER_MS > 0
     m->next_broadcast_ms += (uint32_t)(dr_hal_random(m) % (DR_CONF_BROADCAST_JITTER_MS + 1u));
+#endif
 #endif
 }
 
@@ -270,6 +280,124 @@ static uint8_t no_nv(const dr_module_t *m)
     }
     return (uint8_t)(DR_CONF_NV == DR_CONF_NV_NONE);
 }
+
+#if ADAPTIVE
+typedef char dr_lattice_check_doublings[(DR_CONF_LATTICE_DOUBLINGS <= 16 &&
+                                         DR_CONF_LATTICE_UNACKED_DOUBLINGS <=
+                                             DR_CONF_LATTICE_DOUBLINGS &&
+                                         DR_CONF_LATTICE_INTERVAL_MS >= 1) ? 1 : -1];
+
+/* Back to the smallest interval, with every resend allowed again. */
+static void restart_interval(dr_module_t *m)
+{
+    m->doublings = 0;
+    m->resends = DR_CONF_LATTICE_RESENDS;
+}
+
+/* The adaptive counterpart of the fixed broadcast, called when a broadcast is due or the own
+ * copy changed (`changed`: a local start or completion, always sent and a restart of the
+ * interval). A due broadcast may be suppressed (DR_CONF_LATTICE_SUPPRESS). Then the next
+ * one is scheduled: while a connected neighbour has not been heard with our copy, first the
+ * resends at the smallest interval, then at most DR_CONF_LATTICE_UNACKED_DOUBLINGS
+ * doublings (its packets may be lost; a silent neighbour costs one packet per such interval);
+ * once all have, the interval doubles at each broadcast. */
+static void disseminate(dr_module_t *m, uint32_t now, uint8_t changed)
+{
+    uint8_t all_acked;
+    if (changed) {
+        restart_interval(m);
+    }
+    all_acked = (uint8_t)((connected(m) & (dr_channels_t)~m->acked) == 0u);
+#if DR_CONF_LATTICE_SUPPRESS > 0
+    /* Never without NV: a neighbour in its rule-1 wait (or awaiting an echo) must hear us
+     * even when our copy is the same as its own. */
+    if (changed || m->answer || !all_acked || m->consistent < DR_CONF_LATTICE_SUPPRESS ||
+        no_nv(m)) {
+        send_state(m);
+    }
+#else
+    send_state(m);
+#endif
+    m->consistent = 0;
+    m->answer = 0;
+    if (!all_acked && m->resends > 0u) {
+        /* A neighbour may have missed it: again after the smallest interval. */
+        m->resends--;
+        m->next_broadcast_ms = now + DR_CONF_LATTICE_INTERVAL_MS;
+    } else {
+        if (m->doublings < DR_CONF_LATTICE_DOUBLINGS) {
+            m->doublings++;
+        }
+        if (!all_acked && m->doublings > DR_CONF_LATTICE_UNACKED_DOUBLINGS) {
+            /* Still unacknowledged after the resends: keep trying, less often. */
+            m->doublings = DR_CONF_LATTICE_UNACKED_DOUBLINGS;
+        }
+        m->next_broadcast_ms = now + ((uint32_t)DR_CONF_LATTICE_INTERVAL_MS << m->doublings);
+    }
+#if DR_CONF_BROADCAST_JITTER_MS > 0
+    m->next_broadcast_ms += (uint32_t)(dr_hal_random(m) % (DR_CONF_BROADCAST_JITTER_MS + 1u));
+#endif
+}
+
+/* Whether two normalised copies hold the same facts that decide anything (epoch, low, done;
+ * the started bits travel but decide nothing). O(W/8). */
+static uint8_t same_facts(const dr_shared_t *a, const dr_shared_t *b)
+{
+    uint8_t i;
+    uint8_t same = (uint8_t)(a->epoch == b->epoch && a->low == b->low);
+    for (i = 0; i < NBYTES; i++) {
+        same = (uint8_t)(same && a->done[i] == b->done[i]);
+    }
+    return same;
+}
+
+/* After the join of a packet `in` heard on `channel` (`before`: our copy before it). News
+ * (our copy grew) and a sender that lacks something we hold (it is behind: answer it) are
+ * sent at the next step, with the interval back to the smallest; a packet equal to our copy
+ * acknowledges that channel. O(W). */
+static void heard_copy(dr_module_t *m, uint8_t channel, const dr_shared_t *before,
+                       dr_shared_t *in)
+{
+    dr_channels_t bit_c = 0;
+    uint32_t soon;
+    uint8_t grew = (uint8_t)!same_facts(before, &m->shared);
+    uint8_t behind;
+    dr_shared_normalise(in, m->program->n_statements);
+    behind = (uint8_t)!same_facts(in, &m->shared);
+    if (channel < DR_CONF_CHANNELS) {
+        bit_c = (dr_channels_t)((dr_channels_t)1 << channel);
+    }
+    if (grew || behind) {
+        restart_interval(m);
+        soon = dr_hal_now_ms(m);
+#if DR_CONF_LATTICE_RELAY_JITTER_MS > 0
+        soon += (uint32_t)(dr_hal_random(m) % (DR_CONF_LATTICE_RELAY_JITTER_MS + 1u));
+#endif
+        if ((uint32_t)(m->next_broadcast_ms - soon) < 0x80000000u) {
+            m->next_broadcast_ms = soon; /* unless one is due sooner */
+        }
+        if (grew) {
+            m->acked = 0;
+        }
+    }
+    if (behind) {
+        m->answer = 1; /* never suppressed (the sender may be on a channel not connected) */
+        m->acked = (dr_channels_t)(m->acked & (dr_channels_t)~bit_c);
+    } else {
+        m->acked = (dr_channels_t)(m->acked | bit_c);
+        if (!grew) {
+            /* Heard nothing new: the interval doubles (the broadcast already scheduled keeps
+             * its time; the next one is scheduled with the longer interval). */
+            if (m->consistent < 0xFFu) {
+                m->consistent++;
+            }
+            if (m->doublings < DR_CONF_LATTICE_DOUBLINGS) {
+                m->doublings++;
+            }
+        }
+    }
+}
+#endif
 
 static void issue(dr_module_t *m)
 {
@@ -369,6 +497,13 @@ void dr_module_init(dr_module_t *m, const dr_program_t *program, void *platform)
     m->running = DR_NONE;
     m->running_epoch = 0;
     m->next_broadcast_ms = dr_hal_now_ms(m);
+#if ADAPTIVE
+    /* Speak at once (a restarted module's copy may be behind: its neighbours answer). */
+    restart_interval(m);
+    m->consistent = 0;
+    m->answer = 0;
+    m->acked = 0;
+#endif
 }
 
 /* Cost: O(W * deps) plus, on a completion, an NV write (with DR_PROGRAM_NO_NV: a scan of the
@@ -401,8 +536,14 @@ void dr_module_step(dr_module_t *m)
                 }
                 m->running = DR_NONE;
                 changed = 1;
+#if ADAPTIVE
+                m->acked = 0; /* a new fact: no neighbour is known to hold our copy */
+#endif
             } else if (due) {
                 issue(m); /* failed: retry, at the pace of the periodic broadcast */
+#if ADAPTIVE
+                restart_interval(m); /* which is the smallest interval while it fails */
+#endif
             }
         }
     }
@@ -413,7 +554,11 @@ void dr_module_step(dr_module_t *m)
         changed = (uint8_t)(changed | start_next(m));
     }
     if (changed || due) {
+#if ADAPTIVE
+        disseminate(m, now, changed);
+#else
         broadcast(m, now);
+#endif
     }
 }
 
@@ -445,6 +590,9 @@ void dr_module_receive(dr_module_t *m, uint8_t channel, const uint8_t *bytes, ui
     const uint8_t *payload;
     uint8_t payload_len;
     dr_shared_t in;
+#if ADAPTIVE
+    dr_shared_t before;
+#endif
     enum dr_packet_result r;
     m->packets_received++;
     r = dr_packet_unframe(bytes, len, &m->identity, DR_PACKET_LATTICE_STATE, &payload,
@@ -465,7 +613,13 @@ void dr_module_receive(dr_module_t *m, uint8_t channel, const uint8_t *bytes, ui
             (in.epoch == m->running_epoch && dr_shared_is_done(&in, m->unechoed))) {
             m->unechoed = DR_NONE; /* (is_done of DR_NONE is 0) */
         }
+#if ADAPTIVE
+        before = m->shared;
+#endif
         dr_shared_join(&m->shared, &in, p->n_statements);
+#if ADAPTIVE
+        heard_copy(m, channel, &before, &in);
+#endif
     }
 }
 

@@ -83,7 +83,21 @@ typedef struct dr_module {
                                           neighbour has sent back yet, or DR_NONE */
     dr_channels_t unheard;             /* channels connected at the (re)start, not heard yet */
     uint8_t heard;                     /* a state packet arrived since the (re)start */
-    uint32_t next_broadcast_ms;
+    uint32_t next_broadcast_ms;        /* the next broadcast, and (adaptive) the next retry
+                                          of a failed operation: the one timer of the runtime */
+#if DR_CONF_LATTICE_DISSEMINATION == DR_DISSEMINATION_ADAPTIVE
+    /* Adaptive dissemination (README.md): the interval is DR_CONF_LATTICE_INTERVAL_MS <<
+     * doublings; `acked` the channels heard with a copy at least ours since ours last changed
+     * (or a neighbour was heard behind); `resends` the broadcasts left at the smallest
+     * interval while one is missing; `consistent` the packets equal to our copy heard since
+     * our last broadcast (for suppression). */
+    uint8_t doublings;
+    uint8_t resends;
+    uint8_t consistent;
+    uint8_t answer;                    /* a neighbour was heard behind: the next broadcast
+                                          answers it and is never suppressed */
+    dr_channels_t acked;
+#endif
     /* counters, for reports */
     uint32_t packets_sent;
     uint32_t packets_received;

@@ -4,7 +4,7 @@
 
 use crate::spec::{CampaignFile, Merge, ProtocolName, SpecError};
 use crate::Error;
-use dynarole_codegen::{CompileOptions, PaperMerge, Protocol, TokenRetries};
+use dynarole_codegen::{CompileOptions, Dissemination, PaperMerge, Protocol, TokenRetries};
 use dynarole_core::driver::{self, SelectError};
 use dynarole_core::expand::Plan;
 use dynarole_core::{Program, RobotApi};
@@ -163,8 +163,14 @@ fn plugin(path: &Path) -> Result<RobotApi, Error> {
 /// The back-end's options for `protocol` and the campaign's `[options]`.
 pub fn compile_options(campaign: &CampaignFile, protocol: ProtocolName) -> CompileOptions {
     let o = &campaign.options;
+    let dissemination = match protocol {
+        ProtocolName::LatticeFixed => Dissemination::Fixed,
+        _ => Dissemination::Adaptive,
+    };
     let (protocol, token_retries) = match protocol {
-        ProtocolName::Lattice => (Protocol::Lattice, TokenRetries::Tries(32)),
+        ProtocolName::Lattice | ProtocolName::LatticeFixed => {
+            (Protocol::Lattice, TokenRetries::Tries(32))
+        }
         ProtocolName::Paper => (Protocol::Paper, TokenRetries::Tries(32)),
         ProtocolName::TokenPlain => (Protocol::Token, TokenRetries::Plain),
         ProtocolName::Token32 => (Protocol::Token, TokenRetries::Tries(32)),
@@ -182,9 +188,36 @@ pub fn compile_options(campaign: &CampaignFile, protocol: ProtocolName) -> Compi
         restart_pending: o.restart_pending,
         epochs: 1,
         no_nv: o.no_nv,
+        dissemination,
         token_retries,
         routes: None,
         name: campaign.sequences.join(" + "),
         ..CompileOptions::default()
+    }
+}
+
+#[cfg(test)]
+mod dissemination_tests {
+    use super::*;
+
+    /// `lattice-fixed` is the lattice protocol with the fixed period, named after the back-end's
+    /// own name of the mode; `lattice` is adaptive, like the command line's default.
+    #[test]
+    fn lattice_fixed_selects_the_fixed_dissemination() {
+        assert_eq!(
+            ProtocolName::LatticeFixed.name(),
+            format!("lattice-{}", Dissemination::Fixed.name())
+        );
+        let campaign: CampaignFile = toml::from_str(
+            "file = \"a.dr\"\nsequences = [\"s\"]\nfrom = \"a.json\"\nprotocols = [\"lattice\", \"lattice-fixed\"]\npreset = \"atron\"\nseeds = 1\n",
+        )
+        .expect("parses");
+        let fixed = compile_options(&campaign, ProtocolName::LatticeFixed);
+        assert_eq!(
+            (fixed.protocol, fixed.dissemination),
+            (Protocol::Lattice, Dissemination::Fixed)
+        );
+        let adaptive = compile_options(&campaign, ProtocolName::Lattice);
+        assert_eq!(adaptive.dissemination, Dissemination::Adaptive);
     }
 }

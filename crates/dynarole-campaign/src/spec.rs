@@ -10,11 +10,15 @@ use std::path::{Path, PathBuf};
 const MAX_POINTS_PER_AXIS: usize = 10_000;
 
 /// A protocol to compare. The token baseline comes in the original experiments' variants:
-/// each hop sent once (`token-plain`), or acknowledged with 32, 128 or unlimited tries.
+/// each hop sent once (`token-plain`), or acknowledged with 32, 128 or unlimited tries. The
+/// lattice protocol disseminates adaptively (`lattice`, the default of `dynarole simulate`) or
+/// at the fixed period (`lattice-fixed`), so the two meet the same seeds and faults.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Deserialize)]
 pub enum ProtocolName {
     #[serde(rename = "lattice")]
     Lattice,
+    #[serde(rename = "lattice-fixed")]
+    LatticeFixed,
     #[serde(rename = "paper")]
     Paper,
     #[serde(rename = "token-plain")]
@@ -31,6 +35,7 @@ impl ProtocolName {
     pub fn name(self) -> &'static str {
         match self {
             ProtocolName::Lattice => "lattice",
+            ProtocolName::LatticeFixed => "lattice-fixed",
             ProtocolName::Paper => "paper",
             ProtocolName::TokenPlain => "token-plain",
             ProtocolName::Token32 => "token-32",

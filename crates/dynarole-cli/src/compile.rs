@@ -4,7 +4,7 @@
 use crate::load::{self, Failure, PluginArgs};
 use crate::render;
 use dynarole_codegen::{
-    generate_c, generate_nesc, CompileOptions, PaperMerge, Protocol, TokenRetries,
+    generate_c, generate_nesc, CompileOptions, Dissemination, PaperMerge, Protocol, TokenRetries,
 };
 use dynarole_core::{driver, Diagnostic};
 use std::path::Path;
@@ -75,6 +75,11 @@ pub struct ProtocolOptions {
     /// Lattice protocol: the modules have no non-volatile storage (weaker reset guarantee).
     #[arg(long)]
     pub no_nv: bool,
+    /// Lattice protocol: `adaptive` (default: news at once, then an interval that doubles
+    /// while nothing is new) or `fixed` (a broadcast every 100 ms, as before). A usage error
+    /// with the paper or token protocol, which have their own fixed period.
+    #[arg(long, value_name = "MODE", value_parser = Dissemination::parse)]
+    pub dissemination: Option<Dissemination>,
     /// Token protocol: `plain` (sent once per hop), tries per hop (acknowledged; the
     /// original experiments used 32 and 128) or `unlimited`.
     #[arg(long, value_name = "TRIES", value_parser = parse_token_retries, default_value = "32")]
@@ -108,9 +113,17 @@ pub fn parse_key(text: &str) -> Result<[u8; 16], String> {
 }
 
 impl ProtocolOptions {
-    /// The back-end's options for these flags.
-    pub fn compile_options(&self, epochs: u16, name: String) -> CompileOptions {
-        CompileOptions {
+    /// The back-end's options for these flags; a usage error for `--dissemination` with a
+    /// protocol other than lattice (it would silently change nothing).
+    pub fn compile_options(&self, epochs: u16, name: String) -> Result<CompileOptions, Failure> {
+        if let (Some(d), false) = (self.dissemination, self.protocol_is_lattice()) {
+            return Err(Failure::Usage(format!(
+                "--dissemination {} applies to the lattice protocol only; the {} protocol has its own fixed broadcast period",
+                d.name(),
+                self.protocol_name()
+            )));
+        }
+        Ok(CompileOptions {
             protocol: match self.protocol {
                 ProtocolArg::Lattice => Protocol::Lattice,
                 ProtocolArg::Paper => Protocol::Paper,
@@ -125,12 +138,26 @@ impl ProtocolOptions {
             restart_pending: self.restart_pending,
             epochs,
             no_nv: self.no_nv,
+            dissemination: self.dissemination.unwrap_or_default(),
             token_retries: self.token_retries,
             routes: None,
             name,
             robot_id: self.robot_id,
             key: self.key,
-        }
+        })
+    }
+
+    fn protocol_is_lattice(&self) -> bool {
+        matches!(self.protocol, ProtocolArg::Lattice)
+    }
+
+    /// The protocol's name as the command line spells it.
+    fn protocol_name(&self) -> String {
+        use clap::ValueEnum;
+        self.protocol
+            .to_possible_value()
+            .map(|v| v.get_name().to_string())
+            .unwrap_or_default()
     }
 }
 
@@ -174,7 +201,9 @@ pub fn run(args: &CompileArgs) -> Result<ExitCode, Failure> {
         let display = args.file.display().to_string();
         let names = load::select_sequences(program, &display, args.sequences)?;
         let plans = crate::world::plans(program, &display, &names)?;
-        let mut options = args.options.compile_options(args.epochs, names.join(" + "));
+        let mut options = args
+            .options
+            .compile_options(args.epochs, names.join(" + "))?;
         // What the sequence cannot be compiled for is bad input (exit 1), shown in the source.
         let refused = |diagnostics: &[Diagnostic]| {
             render::diagnostics(&display, source, diagnostics);

@@ -45,7 +45,7 @@ pub fn run(args: &SimulateArgs) -> Result<ExitCode, Failure> {
         let (scenario, scenario_text) = scenario(args)?;
         let start = read_configuration(args.from)?;
         let expect = args.expect.map(|p| read_configuration(p)).transpose()?;
-        let mut options = args.options.compile_options(1, names.join(" + "));
+        let mut options = args.options.compile_options(1, names.join(" + "))?;
         let routed = add_token_routes(&mut options, program, &plans, Some(args.from))?;
         if let Err(diagnostics) = routed {
             render::diagnostics(&display, source, &diagnostics);
@@ -269,6 +269,9 @@ fn protocol_flags(options: &ProtocolOptions) -> Vec<String> {
             flags.push("--protocol lattice".into());
             if options.no_nv {
                 flags.push("--no-nv".into());
+            }
+            if let Some(d) = options.dissemination {
+                flags.push(format!("--dissemination {}", d.name()));
             }
         }
         ProtocolArg::Paper => {

@@ -85,9 +85,13 @@ pub struct Request<'a> {
 }
 
 /// The library's options for these arguments; the model is named after `names`.
-fn build_options(req: &Request, names: &[String], fault: Option<FaultArg>) -> BuildOptions {
-    BuildOptions {
-        compile: req.options.compile_options(req.epochs, names.join(" + ")),
+fn build_options(
+    req: &Request,
+    names: &[String],
+    fault: Option<FaultArg>,
+) -> Result<BuildOptions, Failure> {
+    Ok(BuildOptions {
+        compile: req.options.compile_options(req.epochs, names.join(" + "))?,
         method: match req.model.method {
             MethodArg::Auto => Method::Auto,
             MethodArg::Full => Method::Full,
@@ -100,7 +104,7 @@ fn build_options(req: &Request, names: &[String], fault: Option<FaultArg>) -> Bu
             FaultArg::JoinDropsDone => Fault::JoinDropsDone,
             FaultArg::JoinNoRebase => Fault::JoinNoRebase,
         }),
-    }
+    })
 }
 
 /// The exit code or failure of a library error; the source's problems are rendered here.
@@ -130,7 +134,7 @@ fn build(
             return Ok(Err(ExitCode::from(1)));
         }
     };
-    let options = build_options(req, &prepared.names, fault);
+    let options = build_options(req, &prepared.names, fault)?;
     let configuration = req.from.display().to_string();
     let inputs = Inputs {
         program: req.program,
@@ -149,7 +153,7 @@ fn build(
 pub fn run(args: &VerifyArgs) -> Result<ExitCode, Failure> {
     let protocol = args
         .options
-        .compile_options(args.epochs, String::new())
+        .compile_options(args.epochs, String::new())?
         .protocol;
     dynarole_verify::modelled(protocol).map_err(|e| Failure::Usage(e.to_string()))?;
     load::with_program(args.file, args.plugins, |program, source| {

@@ -1038,3 +1038,58 @@ fn simulate_gives_the_same_trace_with_fixed_and_tickless_stepping() {
         text(&out.stderr)
     );
 }
+
+/// `--dissemination`: `fixed` and `adaptive` compile the lattice protocol with that mode in its
+/// configuration; another name, or the flag with the paper or token protocol (which have their
+/// own fixed period), is a usage error naming what is wrong.
+#[test]
+fn dissemination_selects_the_lattice_mode_and_is_refused_elsewhere() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli-dissemination");
+    for (mode, macro_name) in [
+        ("fixed", "DR_DISSEMINATION_FIXED"),
+        ("adaptive", "DR_DISSEMINATION_ADAPTIVE"),
+    ] {
+        let out_dir = dir.join(mode);
+        let out_text = out_dir.display().to_string();
+        let out = dynarole(&[
+            "compile",
+            "examples/atron/eight2car.dr",
+            "--dissemination",
+            mode,
+            "-o",
+            &out_text,
+        ]);
+        assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+        let conf = std::fs::read_to_string(out_dir.join("dr_program_conf.h")).expect("conf");
+        assert!(
+            conf.contains(&format!(
+                "#define DR_CONF_LATTICE_DISSEMINATION {macro_name}"
+            )),
+            "{conf}"
+        );
+    }
+    let out = dynarole(&[
+        "compile",
+        "examples/atron/eight2car.dr",
+        "--dissemination",
+        "trickle",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(text(&out.stderr).contains("expected adaptive or fixed, found `trickle`"));
+    let out = dynarole(&[
+        "simulate",
+        "examples/atron/eight2car.dr",
+        "--from",
+        "examples/atron/eight.json",
+        "--protocol",
+        "paper",
+        "--dissemination",
+        "fixed",
+    ]);
+    assert_eq!(out.status.code(), Some(2), "{}", text(&out.stderr));
+    assert!(
+        text(&out.stderr).contains("--dissemination fixed applies to the lattice protocol only"),
+        "{}",
+        text(&out.stderr)
+    );
+}

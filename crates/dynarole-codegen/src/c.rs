@@ -38,6 +38,49 @@ impl Protocol {
     }
 }
 
+/// How the lattice protocol disseminates its state (`DR_CONF_LATTICE_DISSEMINATION`,
+/// runtime/dr_conf.h). The paper and token protocols have their own fixed period.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Dissemination {
+    /// Trickle-like: news at once, then an interval that doubles while nothing is new.
+    #[default]
+    Adaptive,
+    /// A broadcast every period for the whole run (the behaviour before adaptive existed).
+    Fixed,
+}
+
+impl Dissemination {
+    /// Every mode, in the order the command line lists them.
+    pub const ALL: [Dissemination; 2] = [Dissemination::Adaptive, Dissemination::Fixed];
+
+    /// The name used on the command line, in campaign files and in reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            Dissemination::Adaptive => "adaptive",
+            Dissemination::Fixed => "fixed",
+        }
+    }
+
+    /// The mode called `name`, or an error listing the names there are.
+    pub fn parse(name: &str) -> Result<Dissemination, String> {
+        Dissemination::ALL
+            .into_iter()
+            .find(|d| d.name() == name)
+            .ok_or_else(|| {
+                let names: Vec<&str> = Dissemination::ALL.iter().map(|d| d.name()).collect();
+                format!("expected {}, found `{name}`", names.join(" or "))
+            })
+    }
+
+    /// The value of `DR_CONF_LATTICE_DISSEMINATION` in the generated configuration.
+    fn c_macro(self) -> &'static str {
+        match self {
+            Dissemination::Adaptive => "DR_DISSEMINATION_ADAPTIVE",
+            Dissemination::Fixed => "DR_DISSEMINATION_FIXED",
+        }
+    }
+}
+
 /// The three versions of the paper's merge (protocol notes, e.3).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum PaperMerge {
@@ -62,6 +105,8 @@ pub struct CompileOptions {
     /// Lattice protocol: the hardware has no non-volatile storage; survive resets through the
     /// neighbours instead (a weaker guarantee, see runtime/lattice/README.md).
     pub no_nv: bool,
+    /// Lattice protocol: how the state is disseminated (ignored by the other protocols).
+    pub dissemination: Dissemination,
     /// Token baseline: how hand-overs are made reliable.
     pub token_retries: TokenRetries,
     /// Token baseline: where each statement runs and its hand-over routes (required by it).
@@ -76,7 +121,7 @@ pub struct CompileOptions {
 }
 
 impl Default for CompileOptions {
-    /// The lattice protocol, one run, NV storage; the paper's C-port merge; the safe token
+    /// The lattice protocol, one run, NV storage, adaptive dissemination; the paper's C-port merge; the safe token
     /// with 32 tries.
     fn default() -> CompileOptions {
         CompileOptions {
@@ -86,6 +131,7 @@ impl Default for CompileOptions {
             restart_pending: false,
             epochs: 1,
             no_nv: false,
+            dissemination: Dissemination::Adaptive,
             token_retries: TokenRetries::Tries(32),
             routes: None,
             name: String::new(),
@@ -285,6 +331,12 @@ fn program_conf(
         // program's DR_PROGRAM_NO_NV option says the same).
         let nv = if options.no_nv { "NONE" } else { "RECORD" };
         let _ = writeln!(out, "#define DR_CONF_NV DR_CONF_NV_{nv}");
+        let _ = writeln!(
+            out,
+            "#define DR_CONF_LATTICE_DISSEMINATION {} /* {} */",
+            options.dissemination.c_macro(),
+            options.dissemination.name()
+        );
     }
     if packet_bytes > DEFAULT_MAX_PACKET {
         let _ = writeln!(out, "#define DR_CONF_MAX_PACKET {packet_bytes}");

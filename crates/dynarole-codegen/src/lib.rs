@@ -13,7 +13,9 @@ mod promela;
 mod runtime;
 mod token;
 
-pub use c::{generate_c, generate_nesc, CompileOptions, Generated, PaperMerge, Protocol};
+pub use c::{
+    generate_c, generate_nesc, CompileOptions, Dissemination, Generated, PaperMerge, Protocol,
+};
 pub use promela::{
     generate_compositional, generate_promela, liveness_graph, Fault, LivenessGraph, Model,
     ModelOptions, Topology, TopologyLink, TopologyModule, MAX_MODEL_MODULES, MAX_MODEL_WINDOW,

@@ -565,8 +565,14 @@ impl Gen<'_> {
             let _ = writeln!(out, "    :: d_step {{ deliver({}, {}) }}", l.from, l.to);
         }
         out.push_str("    od\n}\n#endif\n\n");
+        let adaptive = self.options.compile.protocol == crate::Protocol::Lattice
+            && self.options.compile.dissemination == crate::Dissemination::Adaptive;
         for l in &self.topology.links {
-            let up = stage_condition(&l.fair_stages);
+            let mut up = stage_condition(&l.fair_stages);
+            if adaptive {
+                // Adaptive dissemination: only deliveries that carry something are owed.
+                let _ = write!(up, " && WANTS({}, {})", l.from, l.to);
+            }
             let _ = writeln!(
                 out,
                 "/* The link {} -> {}: delivers the sender's current copy at any time (a packet not\n * delivered yet is a lost one). With LIVENESS: only in the stages where the link surely\n * exists, and then eventually (weak fairness). */\nproctype link_{}_{}() {{\n    do\n#ifdef LIVENESS\n    :: d_step {{ {up} -> deliver({}, {}) }}\n#else\n    :: d_step {{ deliver({}, {}) }}\n#endif\n    od\n}}\n",

@@ -3,7 +3,7 @@
 //! modules of eight2car over a perfect network for both protocols.
 
 use dynarole_codegen::{
-    generate_c, CompileOptions, Generated, Protocol, TokenRetries, TokenRoutes,
+    generate_c, CompileOptions, Dissemination, Generated, Protocol, TokenRetries, TokenRoutes,
 };
 use dynarole_core::{analyze, parse, RobotRegistry};
 use std::path::{Path, PathBuf};
@@ -179,9 +179,14 @@ fn both_protocols_run_eight2car_in_dependency_order() {
         no_nv: true,
         ..options(Protocol::Lattice)
     };
+    let fixed = CompileOptions {
+        dissemination: Dissemination::Fixed,
+        ..options(Protocol::Lattice)
+    };
     for (name, options) in [
         ("lattice", options(Protocol::Lattice)),
         ("lattice-no-nv", no_nv),
+        ("lattice-fixed", fixed),
         ("paper", options(Protocol::Paper)),
     ] {
         let generated = compile(FIG5, "eight2car", &options);
@@ -437,12 +442,14 @@ fn lattice_imports(dir: &Path) -> String {
 
 /// The lattice runtime's way of surviving resets is fixed by the generated header, so an
 /// image carries one: with NV it reads and writes the store and never scans its connectors;
-/// with `no_nv` the reverse.
+/// with `no_nv` the reverse. (With the fixed dissemination: the adaptive one asks which
+/// neighbours are connected in both modes, to know who has acknowledged its copy.)
 #[test]
 fn the_nv_mode_is_chosen_at_compile_time() {
     for no_nv in [false, true] {
         let options = CompileOptions {
             no_nv,
+            dissemination: Dissemination::Fixed,
             ..options(Protocol::Lattice)
         };
         let generated = compile(FIG5, "eight2car", &options);
@@ -467,4 +474,28 @@ fn the_nv_mode_is_chosen_at_compile_time() {
             );
         }
     }
+}
+
+/// The dissemination is chosen in the generated configuration, for the lattice protocol only;
+/// its names parse back, and anything else is refused with the names there are.
+#[test]
+fn dissemination_is_configured_for_the_lattice_protocol_only() {
+    let conf = |options: &CompileOptions| {
+        file(&compile(FIG5, "eight2car", options), "dr_program_conf.h").to_string()
+    };
+    let adaptive = conf(&options(Protocol::Lattice));
+    assert!(adaptive.contains("#define DR_CONF_LATTICE_DISSEMINATION DR_DISSEMINATION_ADAPTIVE"));
+    let fixed = conf(&CompileOptions {
+        dissemination: Dissemination::Fixed,
+        ..options(Protocol::Lattice)
+    });
+    assert!(fixed.contains("#define DR_CONF_LATTICE_DISSEMINATION DR_DISSEMINATION_FIXED"));
+    assert!(!conf(&options(Protocol::Paper)).contains("DISSEMINATION"));
+    for mode in Dissemination::ALL {
+        assert_eq!(Dissemination::parse(mode.name()), Ok(mode));
+    }
+    assert_eq!(
+        Dissemination::parse("trickle"),
+        Err("expected adaptive or fixed, found `trickle`".to_string())
+    );
 }

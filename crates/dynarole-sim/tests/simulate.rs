@@ -72,8 +72,38 @@ fn eight2car_lattice_reaches_the_car_without_violations() {
         assert_success(&report);
         assert!(report.violations.is_empty(), "{}", report.summary());
         assert_eq!(report.counters.ops_started, 25);
-        assert!(report.counters.packets_sent > 1000);
+        assert!(report.counters.packets_sent > 100);
     }
+}
+
+/// The same run with both disseminations: the fixed period sends a broadcast every 100 ms for
+/// the whole run (over 1,000 packets on eight2car), adaptive at least three times fewer, and
+/// both reach the car without violations.
+#[test]
+fn adaptive_dissemination_sends_fewer_packets_than_the_fixed_period() {
+    let parsed = dynarole_core::parse(EIGHT2CAR);
+    let (program, _) =
+        dynarole_core::analyze(&parsed.file, &dynarole_core::RobotRegistry::builtin());
+    let program = program.expect("eight2car analyses");
+    let plans = vec![program.expand("eight2car").expect("eight2car")];
+    let sent = |dissemination| {
+        let options = dynarole_codegen::CompileOptions {
+            dissemination,
+            ..options(Protocol::Lattice)
+        };
+        let sim = dynarole_sim::Simulator::new(&program, &plans, &options).expect("compiles");
+        let report = run(&sim, EIGHT, Some(CAR), &Scenario::default(), 1);
+        assert_success(&report);
+        assert!(report.violations.is_empty(), "{}", report.summary());
+        report.counters.packets_sent
+    };
+    let fixed = sent(dynarole_codegen::Dissemination::Fixed);
+    let adaptive = sent(dynarole_codegen::Dissemination::Adaptive);
+    assert!(fixed > 1000, "fixed sent {fixed}");
+    assert!(
+        adaptive * 3 < fixed,
+        "adaptive sent {adaptive}, fixed {fixed}"
+    );
 }
 
 #[test]

@@ -2,7 +2,7 @@
 //! from a checked source, checked with the report streamed to an observer, and the
 //! counterexample available as data.
 
-use dynarole_codegen::{CompileOptions, PaperMerge, Protocol, TokenRetries};
+use dynarole_codegen::{CompileOptions, Dissemination, PaperMerge, Protocol, TokenRetries};
 use dynarole_verify::{
     BuildOptions, Check, Entry, Event, Header, Inputs, Method, Observer, Phase, Source, Verdict,
     VerifyError, VerifyOptions,
@@ -27,6 +27,7 @@ fn options(protocol: Protocol, merge: PaperMerge) -> BuildOptions {
             restart_pending: false,
             epochs: 1,
             no_nv: false,
+            dissemination: Dissemination::Adaptive,
             token_retries: TokenRetries::Plain,
             routes: None,
             name: "ab_c".into(),

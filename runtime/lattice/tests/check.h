@@ -39,5 +39,6 @@ void test_laws(void);
 void test_packets(void);
 void test_sim(void);
 void test_describe(void);
+void test_dissemination(void);
 
 #endif /* CHECK_H */

@@ -16,6 +16,16 @@
 #define SIM_TICK_MS 5u
 #define SIM_NONE 0xFFFFu
 
+/* The longest gap between two broadcasts of a module that hears nothing new (jitter aside),
+ * and the pace of a failed operation's retries, for the chosen dissemination. */
+#if DR_CONF_LATTICE_DISSEMINATION == DR_DISSEMINATION_ADAPTIVE
+#define SIM_LONGEST_GAP_MS ((uint32_t)DR_CONF_LATTICE_INTERVAL_MS << DR_CONF_LATTICE_DOUBLINGS)
+#define SIM_RETRY_MS ((uint32_t)DR_CONF_LATTICE_INTERVAL_MS)
+#else
+#define SIM_LONGEST_GAP_MS ((uint32_t)DR_CONF_BROADCAST_MS)
+#define SIM_RETRY_MS ((uint32_t)DR_CONF_BROADCAST_MS)
+#endif
+
 typedef struct {
     uint32_t at;
     uint8_t from;                 /* the sender's node number: the channel it arrives on */

@@ -11,7 +11,11 @@ int main(void)
     test_packets();
     test_sim();
     test_describe();
-    printf("lattice tests (window %d): %lu checks, %lu failed\n", DR_CONF_WINDOW, check_count,
+    test_dissemination();
+    printf("lattice tests (window %d, %s dissemination): %lu checks, %lu failed\n",
+           DR_CONF_WINDOW,
+           DR_CONF_LATTICE_DISSEMINATION == DR_DISSEMINATION_ADAPTIVE ? "adaptive" : "fixed",
+           check_count,
            check_failures);
     return check_failures == 0u ? 0 : 1;
 }

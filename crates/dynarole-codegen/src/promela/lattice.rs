@@ -7,7 +7,9 @@
 //! corrupted, which is a loss); the periodic broadcast is "a link may deliver the sender's
 //! current copy at any time"; operations never fail (`DR_OP_FAILED` is not modelled); the NV
 //! record is written atomically (the runtime's two copies make a reset during the write the
-//! same as a reset just before or just after it).
+//! same as a reset just before or just after it). Adaptive dissemination changes only when
+//! packets go out, so safety is checked as before (any link may deliver at any time); for L
+//! the fair links owe only the deliveries the C makes sure of (`WANTS`).
 
 use super::{Fault, Gen};
 use std::fmt::Write;
@@ -77,6 +79,11 @@ pub(crate) fn write(g: &Gen, out: &mut String) {
             out,
             "/* connected(m): the neighbours latched to m throughout the reconfiguration (bit k =\n * module k). */\n#define CONNECTED(m) {connected}\n"
         );
+    }
+
+    // The full model's fair links (the compositional one has its own delivery rule).
+    if g.options.compile.dissemination == crate::Dissemination::Adaptive && g.checked.is_none() {
+        wants(no_nv, out);
     }
 
     // dr_module_step
@@ -150,4 +157,19 @@ pub(crate) fn write(g: &Gen, out: &mut String) {
         out,
         "/* The first dr_module_init of every module: the bottom state (zero), nothing running. */\ninline initialise() {{\n{init}    skip\n}}\n"
     );
+}
+
+/// `WANTS(f, t)`: the deliveries from f to t that adaptive dissemination makes sure of, the
+/// timers abstracted. A copy that holds something the other lacks goes out eventually (news is
+/// sent at once and resent while a neighbour has not been heard with it; a neighbour heard
+/// behind is answered). Without NV also: a module in its rule-1 wait hears each neighbour
+/// (broadcasts never stop: at worst one per longest interval, and never suppressed without NV),
+/// and one awaiting an echo hears the neighbour that learnt its completion (news to that one).
+fn wants(no_nv: bool, out: &mut String) {
+    out.push_str("/* Adaptive dissemination (DR_DISSEMINATION_ADAPTIVE), timers abstracted: AHEAD(f, t) =\n * f's copy holds a fact t's lacks (news f sends, or t is behind and is answered). */\n#define AHEAD(f, t) (epoch[f] > epoch[t] || (epoch[f] == epoch[t] && (low[f] > low[t] || (SHIFT(done[f], low[t] - low[f]) & ~done[t]) != 0)))\n");
+    if no_nv {
+        out.push_str("/* Without NV: t waits to hear f (rule 1) or for an echo (rule 2). */\n#define WANTS(f, t) (AHEAD(f, t) || ((unheard[t] >> (f)) & 1) || unechoed[t] != NONE)\n\n");
+    } else {
+        out.push_str("#define WANTS(f, t) AHEAD(f, t)\n\n");
+    }
 }
