@@ -16,6 +16,7 @@ pub mod show;
 pub mod simulate;
 pub mod spin;
 pub mod verify;
+pub mod view;
 pub mod world;
 
 use clap::{Parser, Subcommand};
@@ -166,7 +167,21 @@ enum Command {
         #[arg(long)]
         json: bool,
         #[command(flatten)]
+        record: view::RecordArgs,
+        #[command(flatten)]
         plugins: load::PluginArgs,
+    },
+    /// Replay a recording in the browser: write one self-contained HTML page (or print
+    /// poses at given times).
+    View {
+        /// The recording (JSON, written by `--record`).
+        recording: PathBuf,
+        /// The page to write.
+        #[arg(short = 'o', long = "output", value_name = "FILE.html")]
+        output: Option<PathBuf>,
+        /// Print every module's pose at these times (milliseconds, comma-separated), as JSON.
+        #[arg(long, value_name = "MS,...", value_delimiter = ',')]
+        poses_at: Vec<f64>,
     },
     /// Run a sweep of simulations described by a TOML file, in parallel: DIR/runs.csv (one
     /// row per run; an interrupted campaign resumes where it stopped), summary.csv, plots.
@@ -279,6 +294,7 @@ pub fn main() -> ExitCode {
             repeat,
             trace,
             json,
+            record,
             plugins,
         } => simulate::run(&simulate::SimulateArgs {
             file: &file,
@@ -292,7 +308,17 @@ pub fn main() -> ExitCode {
             repeat,
             trace: trace.as_ref(),
             json,
+            record: &record,
             plugins: &plugins,
+        }),
+        Command::View {
+            recording,
+            output,
+            poses_at,
+        } => view::run(&view::ViewArgs {
+            recording: &recording,
+            output: output.as_ref(),
+            poses_at: &poses_at,
         }),
         Command::Campaign {
             file,

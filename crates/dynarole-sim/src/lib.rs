@@ -15,6 +15,7 @@ mod engine;
 mod ffi;
 mod network;
 mod ops;
+mod record;
 mod report;
 mod scenario;
 mod sequence;
@@ -22,6 +23,7 @@ mod state;
 
 pub use build::cache_root;
 pub use critical::CriticalPath;
+pub use record::Recorded;
 pub use report::{Counters, ModuleReport, Refusal, Report, Violation};
 pub use scenario::{
     Block, Foreign, JointModel, Network, Power, Preset, RandomResets, Reset, Scenario,
@@ -287,6 +289,7 @@ impl Simulator {
             final_configuration: serde_json::from_str(&final_configuration.to_json_string())
                 .unwrap_or(serde_json::Value::Null),
             trace: state.trace.take(),
+            recorded: run.trace.then(|| std::mem::take(&mut state.recorded)),
         };
         report.failures = failures(&report, run.scenario.timeout_ms);
         report.success = report.failures.is_empty();
