@@ -226,6 +226,9 @@ function start() {
   const recording = JSON.parse(data.textContent);
   const viewer = new Viewer(recording);
   window.dynaroleViewer = viewer;
+  // `#t=MS` opens the page at that time (links to a moment, screenshots).
+  const at = /[#&]t=([0-9.]+)/.exec(window.location.hash);
+  if (at) viewer.seek(Number(at[1]));
   runProbe(viewer);
 }
 
