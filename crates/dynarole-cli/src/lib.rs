@@ -116,6 +116,8 @@ enum Command {
         #[arg(long, value_enum, hide = true)]
         fault: Option<verify::FaultArg>,
         #[command(flatten)]
+        record: view::RecordArgs,
+        #[command(flatten)]
         plugins: load::PluginArgs,
     },
     /// Draw a configuration (JSON) as an SVG or PNG picture.
@@ -135,6 +137,8 @@ enum Command {
         /// Write the final configuration (JSON) here.
         #[arg(long, value_name = "CONFIG")]
         out: Option<PathBuf>,
+        #[command(flatten)]
+        record: view::RecordArgs,
         #[command(flatten)]
         plugins: load::PluginArgs,
     },
@@ -275,6 +279,7 @@ pub fn main() -> ExitCode {
             file,
             run,
             out,
+            record,
             plugins,
         } => replay::run(&replay::ReplayArgs {
             file: &file,
@@ -282,6 +287,7 @@ pub fn main() -> ExitCode {
             from: &run.from,
             expect: run.expect.as_ref(),
             out: out.as_ref(),
+            record: &record,
             plugins: &plugins,
         }),
         Command::Simulate {
@@ -372,6 +378,7 @@ pub fn main() -> ExitCode {
             safety_only,
             keep,
             fault,
+            record,
             plugins,
         } => verify::run(&verify::VerifyArgs {
             file: &file,
@@ -386,6 +393,7 @@ pub fn main() -> ExitCode {
             safety_only,
             keep: keep.as_deref(),
             fault,
+            record: &record,
             plugins: &plugins,
         }),
         Command::Show { config, output } => show::run(&config, &output),

@@ -76,6 +76,7 @@ pub struct VerifyArgs<'a> {
     pub safety_only: bool,
     pub keep: Option<&'a Path>,
     pub fault: Option<FaultArg>,
+    pub record: &'a crate::view::RecordArgs,
     pub plugins: &'a PluginArgs,
 }
 
@@ -86,6 +87,10 @@ pub struct Built {
     pub topology: Topology,
     pub graph: CommGraph,
     pub name: String,
+    /// The statements as lowered (the model's statement numbers) and the start, for a
+    /// counterexample's recording.
+    pub statements: Vec<dynarole_core::check::ResolvedStatement>,
+    pub start: dynarole_world::Configuration,
 }
 
 /// The full model, or one compositional model per module.
@@ -199,12 +204,19 @@ pub fn build(req: &Request, fault: Option<FaultArg>) -> Result<Result<Built, Exi
             return Ok(Err(ExitCode::from(1)));
         }
     };
+    let statements = prepared
+        .plans
+        .iter()
+        .flat_map(|p| p.statements().into_iter().cloned())
+        .collect();
     Ok(Ok(Built {
         ir,
         models,
         topology,
         graph,
         name,
+        statements,
+        start: prepared.world.configuration(),
     }))
 }
 
@@ -338,7 +350,7 @@ pub fn run(args: &VerifyArgs) -> Result<ExitCode, Failure> {
         };
         std::fs::create_dir_all(&dir)
             .map_err(|e| Failure::Internal(format!("cannot create {}: {e}", dir.display())))?;
-        let result = verify_in(&dir, args, &built, &display, source);
+        let result = verify_in(&dir, args, &built, &display, source, &program.robot);
         if args.keep.is_none() {
             let _ = std::fs::remove_dir_all(&dir);
         }
@@ -367,12 +379,18 @@ fn verify_in(
     built: &Built,
     display: &str,
     source: &str,
+    robot: &dynarole_core::robot::RobotApi,
 ) -> Result<ExitCode, Failure> {
     print_header(args, built);
     let explain_with = Explain {
         ir: &built.ir,
         display,
         source,
+        record: args.record.wanted().then_some(Recorder {
+            args: args.record,
+            robot,
+            built,
+        }),
     };
     let verdicts = match &built.models {
         Models::Full(model) => {
@@ -411,6 +429,64 @@ struct Explain<'a> {
     ir: &'a Ir,
     display: &'a str,
     source: &'a str,
+    /// Where a counterexample's recording goes, when one is asked for.
+    record: Option<Recorder<'a>>,
+}
+
+/// What a counterexample's recording is made from.
+struct Recorder<'a> {
+    args: &'a crate::view::RecordArgs,
+    robot: &'a dynarole_core::robot::RobotApi,
+    built: &'a Built,
+}
+
+impl Recorder<'_> {
+    /// The trail's steps on the robot, the broken property marked where it breaks.
+    fn write(
+        &self,
+        events: &[Event],
+        names: &[String],
+        cx: &Explain,
+        explained: &str,
+    ) -> Result<(), Failure> {
+        use crate::view::Step;
+        let name = |m: &usize| names.get(*m).cloned().unwrap_or_default();
+        let mut broken = Vec::new();
+        let steps: Vec<Step> = events
+            .iter()
+            .filter_map(|e| match e {
+                Event::Issue { m, s, .. } => Some(Step::Issue(*s, name(m))),
+                Event::Done { m, s } => Some(Step::Done(*s, name(m))),
+                Event::Reset { m } => Some(Step::Reset(name(m))),
+                Event::Violation { property, m, s } => {
+                    broken.push(property.clone());
+                    let text = cx.ir.statements.get(*s).map_or("", |st| st.text.as_str());
+                    Some(Step::Violation(
+                        name(m),
+                        format!("#{s} {text}: {property} broken here"),
+                    ))
+                }
+                _ => None,
+            })
+            .collect();
+        let title = format!("counterexample of {} ({})", self.built.name, cx.display);
+        let mut notes = vec![format!("VIOLATED: {}", broken.join(", "))];
+        notes.extend(explained.lines().map(str::to_string));
+        let recording = crate::view::ModelRun {
+            kind: "counterexample",
+            title: &title,
+            robot: self.robot,
+            steps: &steps,
+            statements: &self.built.statements,
+            start: &self.built.start,
+            source: Some(dynarole_recording::Source {
+                name: cx.display,
+                text: cx.source,
+            }),
+        }
+        .record(notes)?;
+        self.args.write(&recording)
+    }
 }
 
 /// The compositional method: the modules one at a time (each model in its own directory),
@@ -679,8 +755,12 @@ fn explain_violation(
         path: explain_with.display,
         source: explain_with.source,
     };
+    let explained = explain(&events, &cx);
     println!();
-    print!("{}", explain(&events, &cx));
+    print!("{explained}");
+    if let Some(recorder) = &explain_with.record {
+        recorder.write(&events, &model.module_names, explain_with, &explained)?;
+    }
     Ok(())
 }
 

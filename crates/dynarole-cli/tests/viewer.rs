@@ -74,19 +74,53 @@ fn numbers(v: &Value) -> Vec<f64> {
         .collect()
 }
 
-/// A recorded simulation: its page, its recording and the simulator's poses at `times`.
+/// A recorded run: its page, its recording and the poses the command printed at `times`.
 struct Simulated {
     page: PathBuf,
     recording: Value,
     poses: Vec<Value>,
 }
 
-fn simulate(dir: &Path, times: &[f64]) -> Simulated {
+/// Runs `dynarole ARGS --html --record [--poses-at TIMES]` and reads what it wrote.
+fn recorded(dir: &Path, command: &[&str], times: &[f64], expected_exit: i32) -> Simulated {
     let page = dir.join("run.html");
     let record = dir.join("run.json");
     let list: Vec<String> = times.iter().map(|t| format!("{t}")).collect();
     let joined = list.join(",");
-    let mut args = vec![
+    let mut args = command.to_vec();
+    args.extend([
+        "--html",
+        page.to_str().expect("utf-8 path"),
+        "--record",
+        record.to_str().expect("utf-8 path"),
+    ]);
+    if !times.is_empty() {
+        args.extend(["--poses-at", &joined]);
+    }
+    let out = dynarole(&args);
+    assert_eq!(
+        out.status.code(),
+        Some(expected_exit),
+        "{}",
+        text(&out.stderr)
+    );
+    let stdout = text(&out.stdout);
+    let poses = stdout
+        .lines()
+        .filter(|l| l.starts_with("{\"modules\""))
+        .map(|l| serde_json::from_str(l).expect("a pose line"))
+        .collect();
+    let recording = serde_json::from_str(&std::fs::read_to_string(&record).expect("recording"))
+        .expect("recording JSON");
+    Simulated {
+        page,
+        recording,
+        poses,
+    }
+}
+
+fn simulate(dir: &Path, times: &[f64]) -> Simulated {
+    let command = [
         "simulate",
         PROGRAM,
         "--sequence",
@@ -99,29 +133,8 @@ fn simulate(dir: &Path, times: &[f64]) -> Simulated {
         SCENARIO,
         "--seed",
         "3",
-        "--html",
-        page.to_str().expect("utf-8 path"),
-        "--record",
-        record.to_str().expect("utf-8 path"),
     ];
-    if !times.is_empty() {
-        args.extend(["--poses-at", &joined]);
-    }
-    let out = dynarole(&args);
-    assert!(out.status.success(), "{}", text(&out.stderr));
-    let stdout = text(&out.stdout);
-    let poses = stdout
-        .lines()
-        .filter(|l| l.starts_with('{'))
-        .map(|l| serde_json::from_str(l).expect("a pose line"))
-        .collect();
-    let recording = serde_json::from_str(&std::fs::read_to_string(&record).expect("recording"))
-        .expect("recording JSON");
-    Simulated {
-        page,
-        recording,
-        poses,
-    }
+    recorded(dir, &command, times, 0)
 }
 
 /// Times to look at: the start, the middle of the first turns (modules in motion), the
@@ -160,7 +173,16 @@ fn the_page_shows_the_simulated_world_at_every_time() {
     let Some(browser) = chromium() else { return };
     let times = interesting_times();
     let run = simulate(&scratch("sim"), &times);
-    let shown = probe(&browser, &run.page, &times);
+    let shown = check_page(&browser, &run, &times, PROGRAM);
+    let samples = shown["samples"].as_array().expect("samples");
+    let end = run.recording["end_ms"].as_f64().expect("end");
+    check_marker(&samples[0], "reset", RESET_MS, "M4", end);
+}
+
+/// Opens the page at `times` and checks what it shows against the command's poses and the
+/// recording; returns what the page reported.
+fn check_page(browser: &Path, run: &Simulated, times: &[f64], program: &str) -> Value {
+    let shown = probe(browser, &run.page, times);
     // Nothing was requested: every resource the page loaded, and every blocked one.
     assert_eq!(
         shown["resources"],
@@ -178,7 +200,7 @@ fn the_page_shows_the_simulated_world_at_every_time() {
     let samples = shown["samples"].as_array().expect("samples");
     assert_eq!(samples.len(), times.len());
     let mut moved = false;
-    for ((sample, expected), t) in samples.iter().zip(&run.poses).zip(&times) {
+    for ((sample, expected), t) in samples.iter().zip(&run.poses).zip(times) {
         assert_eq!(sample["time_ms"].as_f64(), Some(*t));
         let modules = expected["modules"].as_array().expect("modules");
         let positions = sample["positions"].as_array().expect("positions");
@@ -194,21 +216,25 @@ fn the_page_shows_the_simulated_world_at_every_time() {
             }
             moved |= sim.iter().any(|x| x.fract().abs() > 1e-3);
         }
-        check_highlight(&run.recording, sample, *t);
+        check_highlight(&run.recording, sample, *t, program);
         check_state_panel(&run.recording, sample, *t);
     }
     assert!(moved, "no sample caught a module between lattice sites");
-    let end = run.recording["end_ms"].as_f64().expect("end");
-    check_reset_marker(&samples[0], end);
+    shown
 }
 
 /// The highlighted statements are those running at `t`, shown with their source text.
-fn check_highlight(recording: &Value, sample: &Value, t: f64) {
+fn check_highlight(recording: &Value, sample: &Value, t: f64, program: &str) {
     let mut running: Vec<u64> = recording["motions"]
         .as_array()
         .expect("motions")
         .iter()
-        .filter(|m| m["start_ms"].as_f64() <= Some(t) && Some(t) < m["end_ms"].as_f64())
+        .filter(|m| {
+            let (a, b) = (m["start_ms"].as_f64(), m["end_ms"].as_f64());
+            // An operation still running when the run stopped has no end.
+            let open = m["outcome"] == "running";
+            a <= Some(t) && (Some(t) < b || open)
+        })
         .filter_map(|m| m["statement"].as_u64())
         .collect();
     running.sort_unstable();
@@ -220,7 +246,7 @@ fn check_highlight(recording: &Value, sample: &Value, t: f64) {
         .collect();
     shown.sort_unstable();
     assert_eq!(shown, running, "highlight at {t} ms");
-    let source = std::fs::read_to_string(repo_root().join(PROGRAM)).expect("source");
+    let source = std::fs::read_to_string(repo_root().join(program)).expect("source");
     for s in &running {
         let st = &recording["statements"][*s as usize];
         let (a, b) = (st["start"].as_u64(), st["end"].as_u64());
@@ -250,21 +276,96 @@ fn check_state_panel(recording: &Value, sample: &Value, t: f64) {
     }
 }
 
-/// The scenario's reset is marked on the timeline at its time, on M4.
-fn check_reset_marker(sample: &Value, end: f64) {
+/// A marker of `kind` at `at_ms` naming `module`, drawn at its place on the timeline.
+fn check_marker(sample: &Value, kind: &str, at_ms: f64, module: &str, end: f64) {
     let markers = sample["markers"].as_array().expect("markers");
-    let reset = markers
+    let marker = markers
         .iter()
-        .find(|m| m["kind"] == "reset")
-        .unwrap_or_else(|| panic!("no reset marker in {markers:?}"));
-    let at = reset["time_ms"].as_f64().expect("time");
-    assert!((at - RESET_MS).abs() < 1.0, "reset marked at {at} ms");
-    assert!(reset["label"].as_str().expect("label").contains("M4"));
-    let fraction = reset["fraction"].as_f64().expect("fraction");
+        .find(|m| m["kind"] == kind)
+        .unwrap_or_else(|| panic!("no {kind} marker in {markers:?}"));
+    let at = marker["time_ms"].as_f64().expect("time");
+    assert!((at - at_ms).abs() < 1.0, "{kind} marked at {at} ms");
+    let label = marker["label"].as_str().expect("label");
+    assert!(label.contains(module), "{label}");
+    let fraction = marker["fraction"].as_f64().expect("fraction");
     assert!(
         (fraction - at / end).abs() < 0.01,
         "drawn at {fraction} of the timeline"
     );
+}
+
+/// Samples every `step` milliseconds of a recording, plus the middle of each turn.
+fn sample_times(recording: &Value) -> Vec<f64> {
+    let end = recording["end_ms"].as_f64().expect("end");
+    let mut times: Vec<f64> = (0..8).map(|k| end * f64::from(k) / 8.0).collect();
+    for m in recording["motions"].as_array().expect("motions") {
+        if !m["turn"].is_null() && m["outcome"] == "done" {
+            let (a, b) = (m["start_ms"].as_f64(), m["end_ms"].as_f64());
+            if let (Some(a), Some(b)) = (a, b) {
+                times.push(a + (b - a) * 0.61);
+            }
+        }
+    }
+    times
+}
+
+#[test]
+fn a_replay_on_the_model_plays_in_the_page() {
+    let Some(browser) = chromium() else { return };
+    let command = [
+        "replay",
+        PROGRAM,
+        "--sequence",
+        "eight2car",
+        "--from",
+        "examples/atron/eight.json",
+        "--expect",
+        "examples/atron/car.json",
+    ];
+    let first = recorded(&scratch("replay-times"), &command, &[], 0);
+    let times = sample_times(&first.recording);
+    let run = recorded(&scratch("replay"), &command, &times, 0);
+    assert_eq!(run.recording["kind"], "replay");
+    check_page(&browser, &run, &times, PROGRAM);
+}
+
+/// The paper protocol's race on `A & B; C;`: the trail's steps on the robot, and S1 named
+/// where it breaks.
+#[test]
+fn a_counterexample_plays_in_the_page_with_the_broken_property() {
+    let Some(browser) = chromium() else { return };
+    let spin = Command::new(repo_root().join("scripts/ensure-spin")).status();
+    if !matches!(spin, Ok(s) if s.success()) {
+        eprintln!("SKIPPED: spin could not be installed (scripts/ensure-spin failed)");
+        return;
+    }
+    let program = "examples/verify/ab_c.dr";
+    let command = [
+        "verify",
+        program,
+        "--from",
+        "examples/verify/line3.json",
+        "--protocol",
+        "paper",
+    ];
+    let first = recorded(&scratch("verify-times"), &command, &[], 1);
+    let times = sample_times(&first.recording);
+    let run = recorded(&scratch("verify"), &command, &times, 1);
+    assert_eq!(run.recording["kind"], "counterexample");
+    let summary = run.recording["summary"][0].as_str().expect("summary");
+    assert_eq!(summary, "VIOLATED: S1");
+    let shown = check_page(&browser, &run, &times, program);
+    let violation = run.recording["markers"]
+        .as_array()
+        .expect("markers")
+        .iter()
+        .find(|m| m["kind"] == "violation")
+        .expect("a violation marker");
+    let at = violation["time_ms"].as_f64().expect("time");
+    let end = run.recording["end_ms"].as_f64().expect("end");
+    let samples = shown["samples"].as_array().expect("samples");
+    check_marker(&samples[0], "violation", at, "S1", end);
+    check_marker(&samples[0], "violation", at, "M2", end);
 }
 
 /// The README's picture: eight2car mid-run in the page, as the browser shows it. Written to

@@ -129,6 +129,51 @@ impl<'r> Builder<'r> {
         });
     }
 
+    /// One operation on a model without time (replay, a counterexample's trail): module `m`
+    /// does statement `s` from `start_ms` for `duration(s, turn)` milliseconds; the world
+    /// performs it or refuses it. Returns when it ends and the world's reason for a refusal.
+    pub fn operation(
+        &mut self,
+        start_ms: f64,
+        m: usize,
+        s: usize,
+        duration: &dyn Fn(usize, Option<&Turn>) -> f64,
+    ) -> (f64, Option<String>) {
+        let label = format!("#{s} {}", self.statement_text(s));
+        self.event(start_ms, Some(m), "start", "-", &label);
+        let turn = self.recording.motions.last().and_then(|x| x.turn.clone());
+        let end_ms = start_ms + duration(s, turn.as_ref());
+        let refusal = self.statements.get(s).and_then(|statement| {
+            let mut trial = self.world.clone();
+            trial
+                .apply(self.robot, statement, &self.module_name(m))
+                .err()
+        });
+        match &refusal {
+            None => self.event(end_ms, Some(m), "done", "-", &label),
+            Some(reason) => self.event(
+                end_ms,
+                Some(m),
+                "refused",
+                "-",
+                &format!("{label}: {reason}"),
+            ),
+        }
+        (end_ms, refusal)
+    }
+
+    /// The turn of the operation started last, if it is one.
+    pub fn last_turn(&self) -> Option<Turn> {
+        self.recording.motions.last().and_then(|x| x.turn.clone())
+    }
+
+    fn statement_text(&self, s: usize) -> String {
+        self.recording
+            .statements
+            .get(s)
+            .map_or_else(String::new, |x| x.text.clone())
+    }
+
     /// A packet between two connectors (delivered or dropped).
     pub fn packet(&mut self, arc: PacketArc) {
         self.recording.packets.push(arc);

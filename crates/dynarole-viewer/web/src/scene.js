@@ -85,7 +85,7 @@ export class Scene {
     const box = new THREE.Box3();
     for (const p of poses) box.expandByPoint(new THREE.Vector3(...p.centre));
     const centre = box.getCenter(new THREE.Vector3());
-    const size = Math.max(2, box.getSize(new THREE.Vector3()).length());
+    const size = Math.max(4, box.getSize(new THREE.Vector3()).length());
     this.camera.position.copy(centre).add(new THREE.Vector3(0.9, 0.8, 1.2).multiplyScalar(size));
     this.controls.target.copy(centre);
     this.controls.update();
