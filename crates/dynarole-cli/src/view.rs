@@ -85,14 +85,14 @@ pub struct ViewArgs<'a> {
 }
 
 pub fn run(args: &ViewArgs) -> Result<ExitCode, Failure> {
-    let text = load::read_source(args.recording)?;
-    let recording = Recording::from_json(&text)
-        .map_err(|e| Failure::Input(format!("{}: {e}", args.recording.display())))?;
     if args.output.is_none() && args.poses_at.is_empty() {
         return Err(Failure::Usage(
             "nothing to do: give -o FILE.html or --poses-at".into(),
         ));
     }
+    let text = load::read_source(args.recording)?;
+    let recording = Recording::from_json(&text)
+        .map_err(|e| Failure::Input(format!("{}: {e}", args.recording.display())))?;
     if let Some(path) = args.output {
         write_html(&recording, path)?;
     }

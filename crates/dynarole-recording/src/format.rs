@@ -159,21 +159,15 @@ impl Recording {
         struct Header {
             format: u32,
         }
-        let header: Header = serde_json::from_str(text).map_err(|e| {
-            format!(
-                "not a recording (line {}, column {}): {e}",
-                e.line(),
-                e.column()
-            )
-        })?;
+        let header: Header =
+            serde_json::from_str(text).map_err(|e| format!("not a recording: {}", located(&e)))?;
         if header.format != FORMAT_VERSION {
             return Err(format!(
                 "field `format`: recording format {} is not the supported {FORMAT_VERSION}",
                 header.format
             ));
         }
-        let recording: Recording = serde_json::from_str(text)
-            .map_err(|e| format!("line {}, column {}: {e}", e.line(), e.column()))?;
+        let recording: Recording = serde_json::from_str(text).map_err(|e| located(&e))?;
         recording.check()?;
         Ok(recording)
     }
@@ -228,6 +222,14 @@ impl Recording {
         }
         Ok(())
     }
+}
+
+/// `line 3, column 14: missing field `robot``: the position first, said once.
+fn located(e: &serde_json::Error) -> String {
+    let message = e.to_string();
+    let suffix = format!(" at line {} column {}", e.line(), e.column());
+    let what = message.strip_suffix(&suffix).unwrap_or(&message);
+    format!("line {}, column {}: {what}", e.line(), e.column())
 }
 
 fn check_latches(latches: &[LatchLink], n: usize, c: usize, field: &str) -> Result<(), String> {
