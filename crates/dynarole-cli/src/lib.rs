@@ -16,6 +16,8 @@ pub mod show;
 pub mod simulate;
 pub mod spin;
 pub mod verify;
+#[cfg(unix)]
+pub mod video;
 pub mod view;
 pub mod world;
 
@@ -186,6 +188,15 @@ enum Command {
         /// Print every module's pose at these times (milliseconds, comma-separated), as JSON.
         #[arg(long, value_name = "MS,...", value_delimiter = ',')]
         poses_at: Vec<f64>,
+        /// Render the run as a video (MP4; headless chromium and ffmpeg).
+        #[arg(long, value_name = "FILE.mp4")]
+        video: Option<PathBuf>,
+        /// Frames per second of the video.
+        #[arg(long, default_value_t = 25)]
+        fps: u32,
+        /// Run seconds per video second.
+        #[arg(long, default_value_t = 1.0)]
+        speed: f64,
     },
     /// Run a sweep of simulations described by a TOML file, in parallel: DIR/runs.csv (one
     /// row per run; an interrupted campaign resumes where it stopped), summary.csv, plots.
@@ -321,10 +332,16 @@ pub fn main() -> ExitCode {
             recording,
             output,
             poses_at,
+            video,
+            fps,
+            speed,
         } => view::run(&view::ViewArgs {
             recording: &recording,
             output: output.as_ref(),
             poses_at: &poses_at,
+            video: video.as_deref(),
+            fps,
+            speed,
         }),
         Command::Campaign {
             file,

@@ -82,12 +82,20 @@ pub struct ViewArgs<'a> {
     pub recording: &'a Path,
     pub output: Option<&'a PathBuf>,
     pub poses_at: &'a [f64],
+    pub video: Option<&'a Path>,
+    pub fps: u32,
+    pub speed: f64,
 }
 
 pub fn run(args: &ViewArgs) -> Result<ExitCode, Failure> {
-    if args.output.is_none() && args.poses_at.is_empty() {
+    if args.output.is_none() && args.poses_at.is_empty() && args.video.is_none() {
         return Err(Failure::Usage(
-            "nothing to do: give -o FILE.html or --poses-at".into(),
+            "nothing to do: give -o FILE.html, --video FILE.mp4 or --poses-at".into(),
+        ));
+    }
+    if args.fps == 0 || !(args.speed.is_finite() && args.speed > 0.0) {
+        return Err(Failure::Usage(
+            "--fps and --speed must be more than 0".into(),
         ));
     }
     let text = load::read_source(args.recording)?;
@@ -97,7 +105,40 @@ pub fn run(args: &ViewArgs) -> Result<ExitCode, Failure> {
         write_html(&recording, path)?;
     }
     print_poses(&recording, args.poses_at)?;
+    if let Some(out) = args.video {
+        video(&recording, out, args)?;
+        eprintln!("wrote {}", out.display());
+    }
     Ok(ExitCode::SUCCESS)
+}
+
+#[cfg(unix)]
+fn video(recording: &Recording, out: &Path, args: &ViewArgs) -> Result<(), Failure> {
+    // The page goes to a scratch folder the browser reads it from.
+    let nanos = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.subsec_nanos());
+    let dir = std::env::temp_dir().join(format!("dynarole-video-{}-{nanos}", std::process::id()));
+    std::fs::create_dir_all(&dir)
+        .map_err(|e| Failure::Internal(format!("cannot create {}: {e}", dir.display())))?;
+    let page = dir.join("page.html");
+    let result = dynarole_viewer::html(recording)
+        .map_err(Failure::Internal)
+        .and_then(|text| write(&page, &text))
+        .and_then(|()| {
+            let options = crate::video::VideoOptions {
+                fps: args.fps,
+                speed: args.speed,
+            };
+            crate::video::render(recording, &page, out, options)
+        });
+    let _ = std::fs::remove_dir_all(&dir);
+    result
+}
+
+#[cfg(not(unix))]
+fn video(_: &Recording, _: &Path, _: &ViewArgs) -> Result<(), Failure> {
+    Err(Failure::Usage("--video needs a Unix system".into()))
 }
 
 /// One step of a run on the model, with module names as in the configuration.

@@ -395,3 +395,56 @@ fn screenshot_of_eight2car_mid_run() {
         std::fs::write(&to, &png).expect("write the picture");
     }
 }
+
+/// `view --video`: one frame per 1/fps video second (speed run seconds each), encoded.
+#[test]
+fn a_recording_becomes_a_video() {
+    if chromium().is_none() {
+        return;
+    }
+    let ffmpeg = Command::new(repo_root().join("scripts/ensure-chromium"))
+        .arg("--ffmpeg")
+        .status();
+    if !matches!(ffmpeg, Ok(s) if s.success()) {
+        eprintln!("SKIPPED: ffmpeg could not be installed (scripts/ensure-chromium --ffmpeg)");
+        return;
+    }
+    let dir = scratch("video");
+    let command = [
+        "replay",
+        PROGRAM,
+        "--sequence",
+        "eight2car",
+        "--from",
+        "examples/atron/eight.json",
+    ];
+    let run = recorded(&dir, &command, &[], 0);
+    let video = dir.join("run.mp4");
+    let _ = std::fs::remove_file(&video);
+    let record = dir.join("run.json");
+    let out = dynarole(&[
+        "view",
+        record.to_str().expect("utf-8 path"),
+        "--video",
+        video.to_str().expect("utf-8 path"),
+        "--fps",
+        "2",
+        "--speed",
+        "8",
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let probe = Command::new("ffprobe")
+        .args(["-v", "error", "-count_frames", "-select_streams", "v:0"])
+        .args([
+            "-show_entries",
+            "stream=codec_name,nb_read_frames",
+            "-of",
+            "csv=p=0",
+        ])
+        .arg(&video)
+        .output()
+        .expect("ffprobe runs");
+    let end = run.recording["end_ms"].as_f64().expect("end");
+    let frames = (end / 4000.0).ceil() as u64 + 1;
+    assert_eq!(text(&probe.stdout).trim(), format!("h264,{frames}"));
+}
