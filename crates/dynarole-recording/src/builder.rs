@@ -13,8 +13,16 @@ use dynarole_replay::RobotWorld;
 use dynarole_world::geometry::to_f64;
 use dynarole_world::{Configuration, View};
 
-/// Keyframes every second of run time: a seek replays at most a second of motions.
+/// Keyframes every second of run time in which the world changed: a seek replays at most a
+/// second of motions (a keyframe is left out while nothing moves; the last one still holds).
 pub const KEYFRAME_INTERVAL_MS: f64 = 1000.0;
+/// Packets kept in a recording; the rest are counted (`omitted_packets`), so that the page
+/// of a long or large run stays small enough to load.
+pub const MAX_PACKETS: usize = 200_000;
+/// Trace lines of dropped packets kept (the other trace lines are always kept).
+pub const MAX_PACKET_EVENTS: usize = 200_000;
+/// The trace's events for a packet that did not arrive.
+const PACKET_EVENTS: [&str; 6] = ["lost", "dead-link", "collision", "blocked", "broken", "off"];
 
 /// The sequence's source file, for the statement highlight.
 #[derive(Clone, Copy, Debug)]
@@ -32,6 +40,11 @@ pub struct Builder<'r> {
     /// Per (event, link) of the faults that strike every packet, the time of its last drop.
     last_link_drop: Vec<(String, f64)>,
     powered_once: Vec<bool>,
+    /// Interval keyframes written so far (some left out), and whether the world changed
+    /// since the last one written.
+    intervals: usize,
+    changed: bool,
+    packet_events: usize,
 }
 
 impl<'r> Builder<'r> {
@@ -84,6 +97,8 @@ impl<'r> Builder<'r> {
             packets: Vec::new(),
             markers: Vec::new(),
             summary: Vec::new(),
+            omitted_packets: 0,
+            omitted_packet_events: 0,
         };
         let n = view.len();
         let mut builder = Builder {
@@ -93,6 +108,9 @@ impl<'r> Builder<'r> {
             recording,
             last_link_drop: Vec::new(),
             powered_once: vec![false; n],
+            intervals: 0,
+            changed: true,
+            packet_events: 0,
         };
         builder.keyframes_until(0.0, true);
         Ok(builder)
@@ -119,6 +137,13 @@ impl<'r> Builder<'r> {
             }
         }
         self.mark(time_ms, module, event, statement, detail);
+        if PACKET_EVENTS.contains(&event) {
+            if self.packet_events >= MAX_PACKET_EVENTS {
+                self.recording.omitted_packet_events += 1;
+                return;
+            }
+            self.packet_events += 1;
+        }
         self.recording.events.push(Event {
             time_ms,
             module,
@@ -176,7 +201,11 @@ impl<'r> Builder<'r> {
 
     /// A packet between two connectors (delivered or dropped).
     pub fn packet(&mut self, arc: PacketArc) {
-        self.recording.packets.push(arc);
+        if self.recording.packets.len() < MAX_PACKETS {
+            self.recording.packets.push(arc);
+        } else {
+            self.recording.omitted_packets += 1;
+        }
     }
 
     /// The recording, with keyframes up to `end_ms`.
@@ -280,6 +309,7 @@ impl<'r> Builder<'r> {
             return (Vec::new(), Vec::new(), Vec::new());
         }
         let after = self.world.configuration();
+        self.changed = true;
         let (old, new) = (latches(&before), latches(&after));
         let latched = new.iter().filter(|l| !old.contains(l)).copied().collect();
         let released = old.iter().filter(|l| !new.contains(l)).copied().collect();
@@ -296,7 +326,7 @@ impl<'r> Builder<'r> {
     /// `inclusive`).
     fn keyframes_until(&mut self, time_ms: f64, inclusive: bool) {
         loop {
-            let next = self.recording.keyframes.len() as f64 * KEYFRAME_INTERVAL_MS;
+            let next = self.intervals as f64 * KEYFRAME_INTERVAL_MS;
             let due = if inclusive {
                 next <= time_ms
             } else {
@@ -305,6 +335,11 @@ impl<'r> Builder<'r> {
             if !due {
                 break;
             }
+            self.intervals += 1;
+            if !self.changed {
+                continue;
+            }
+            self.changed = false;
             let config = self.world.configuration();
             self.recording.keyframes.push(Keyframe {
                 time_ms: next,

@@ -32,6 +32,12 @@ pub struct Recording {
     pub markers: Vec<Marker>,
     /// The run's summary lines (verdict, figures).
     pub summary: Vec<String>,
+    /// Packets beyond `builder::MAX_PACKETS`, counted and not kept.
+    #[serde(default)]
+    pub omitted_packets: u64,
+    /// Trace lines of dropped packets beyond `builder::MAX_PACKET_EVENTS`, counted and not kept.
+    #[serde(default)]
+    pub omitted_packet_events: u64,
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

@@ -61,6 +61,12 @@ class Viewer {
     const header = element('header');
     header.appendChild(element('h1', {}, this.rec.title));
     header.appendChild(element('span', { id: 'summary' }, this.rec.summary[0] || ''));
+    const omitted = this.rec.omitted_packets || 0;
+    const omittedEvents = this.rec.omitted_packet_events || 0;
+    if (omitted || omittedEvents) {
+      const note = `not recorded: ${omitted} packets, ${omittedEvents} trace lines of dropped packets (the recording keeps the first ones)`;
+      header.appendChild(element('span', { id: 'omitted' }, note));
+    }
     this.view = element('div', { id: 'view' });
     const controls = element('div', { id: 'controls' });
     const button = (id, text, title, action) => {
@@ -229,7 +235,8 @@ function start() {
   // `#t=MS` opens the page at that time (links to a moment, screenshots).
   const at = /[#&]t=([0-9.]+)/.exec(window.location.hash);
   if (at) viewer.seek(Number(at[1]));
-  runProbe(viewer);
+  // Time from the start of navigation to a page ready to play (read by the tests).
+  runProbe(viewer, performance.now());
 }
 
 start();

@@ -27,9 +27,21 @@ function colourCounts(canvas) {
   return { north, south, pixels: data.length / 4 };
 }
 
-export function runProbe(viewer) {
+// `#bench=K`: the cost of K frames (seek through the run, draw, wait for the GPU) in ms.
+function frameCost(viewer, frames) {
+  const gl = viewer.scene.renderer.getContext();
+  const start = performance.now();
+  for (let k = 0; k < frames; k++) {
+    viewer.seek((viewer.rec.end_ms * k) / frames);
+    gl.finish();
+  }
+  return (performance.now() - start) / frames;
+}
+
+export function runProbe(viewer, readyMs) {
   const match = /probe=([0-9.,]+)/.exec(window.location.hash);
   if (!match) return;
+  const bench = /bench=([0-9]+)/.exec(window.location.hash);
   const violations = [];
   document.addEventListener('securitypolicyviolation', (e) => violations.push(e.blockedURI));
   const samples = match[1]
@@ -45,6 +57,8 @@ export function runProbe(viewer) {
     resources: performance.getEntriesByType('resource').map((r) => r.name),
     violations,
     modules: viewer.rec.modules.length,
+    ready_ms: readyMs,
+    frame_ms: bench ? frameCost(viewer, Number(bench[1])) : null,
   };
   const out = document.createElement('pre');
   out.id = 'probe';
