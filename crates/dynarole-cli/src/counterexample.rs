@@ -215,7 +215,8 @@ impl Context<'_> {
         }
     }
 
-    fn copy(&self, fields: &[i64]) -> String {
+    /// A module's copy of the shared state in the user's terms.
+    pub fn copy(&self, fields: &[i64]) -> String {
         if self.paper_states.is_empty() {
             // Lattice: epoch, low, done bits above low.
             let (epoch, low, bits) = (

@@ -447,6 +447,7 @@ impl Recorder<'_> {
         events: &[Event],
         names: &[String],
         cx: &Explain,
+        context: &Context,
         explained: &str,
     ) -> Result<(), Failure> {
         use crate::view::Step;
@@ -458,6 +459,7 @@ impl Recorder<'_> {
                 Event::Issue { m, s, .. } => Some(Step::Issue(*s, name(m))),
                 Event::Done { m, s } => Some(Step::Done(*s, name(m))),
                 Event::Reset { m } => Some(Step::Reset(name(m))),
+                Event::Copy { m, fields } => Some(Step::Copy(name(m), context.copy(fields))),
                 Event::Violation { property, m, s } => {
                     broken.push(property.clone());
                     let text = cx.ir.statements.get(*s).map_or("", |st| st.text.as_str());
@@ -759,7 +761,7 @@ fn explain_violation(
     println!();
     print!("{explained}");
     if let Some(recorder) = &explain_with.record {
-        recorder.write(&events, &model.module_names, explain_with, &explained)?;
+        recorder.write(&events, &model.module_names, explain_with, &cx, &explained)?;
     }
     Ok(())
 }

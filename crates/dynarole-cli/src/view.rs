@@ -151,6 +151,8 @@ pub enum Step {
     /// ... and it completes physically.
     Done(usize, String),
     Reset(String),
+    /// The module's copy of the shared protocol state is now this (the state panel).
+    Copy(String, String),
     /// A property broken at this step: its name and what the trail explains.
     Violation(String, String),
 }
@@ -197,6 +199,8 @@ impl ModelRun<'_> {
                 .ok_or_else(|| Failure::Internal(format!("no module {name} in the configuration")))
         };
         let mut now = 0.0;
+        // Each module's last copy of the shared state, shown with each of its events.
+        let mut states = vec!["-".to_string(); view.len()];
         // Per statement, when its operation was issued (a trail's completions follow later).
         let mut issued: Vec<(usize, f64, f64)> = Vec::new();
         for step in self.steps {
@@ -207,7 +211,8 @@ impl ModelRun<'_> {
                 }
                 Step::Issue(s, module) => {
                     let label = format!("#{s} {}", texts.get(*s).map_or("", String::as_str));
-                    builder.event(now, Some(index(module)?), "start", "-", &label);
+                    let m = index(module)?;
+                    builder.event(now, Some(m), "start", &states[m], &label);
                     let turn = builder.last_turn();
                     issued.retain(|(x, _, _)| x != s);
                     issued.push((*s, now, duration(*s, turn.as_ref())));
@@ -218,15 +223,23 @@ impl ModelRun<'_> {
                         now = now.max(at + length);
                     }
                     let label = format!("#{s} {}", texts.get(*s).map_or("", String::as_str));
-                    builder.event(now, Some(index(module)?), "done", "-", &label);
+                    let m = index(module)?;
+                    builder.event(now, Some(m), "done", &states[m], &label);
                     now += MODEL_GAP_MS;
                 }
                 Step::Reset(module) => {
-                    builder.event(now, Some(index(module)?), "reset", "-", "");
+                    let m = index(module)?;
+                    builder.event(now, Some(m), "reset", &states[m], "");
                     now += MODEL_GAP_MS;
                 }
+                Step::Copy(module, state) => {
+                    let m = index(module)?;
+                    state.clone_into(&mut states[m]);
+                    builder.event(now, Some(m), "copy", state, "");
+                }
                 Step::Violation(module, what) => {
-                    builder.event(now, Some(index(module)?), "violation", "-", what);
+                    let m = index(module)?;
+                    builder.event(now, Some(m), "violation", &states[m], what);
                     now += MODEL_GAP_MS;
                 }
             }

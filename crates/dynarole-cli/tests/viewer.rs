@@ -366,6 +366,22 @@ fn a_counterexample_plays_in_the_page_with_the_broken_property() {
     let samples = shown["samples"].as_array().expect("samples");
     check_marker(&samples[0], "violation", at, "S1", end);
     check_marker(&samples[0], "violation", at, "M2", end);
+    // The state panel shows the modules' copies of the shared state from the trail.
+    let latest = samples
+        .iter()
+        .max_by(|a, b| {
+            a["time_ms"]
+                .as_f64()
+                .partial_cmp(&b["time_ms"].as_f64())
+                .expect("times")
+        })
+        .expect("a sample");
+    let rows = latest["state"].as_array().expect("rows");
+    let copies = rows
+        .iter()
+        .filter(|r| r["state"].as_str().is_some_and(|x| x.starts_with("state ")))
+        .count();
+    assert!(copies >= 2, "{rows:?}");
 }
 
 /// The README's picture: eight2car mid-run in the page, as the browser shows it. Written to
