@@ -14,6 +14,9 @@ pub mod reverse;
 pub mod show;
 pub mod simulate;
 pub mod verify;
+#[cfg(unix)]
+pub mod video;
+pub mod view;
 pub mod world;
 
 use clap::{Parser, Subcommand};
@@ -113,6 +116,8 @@ enum Command {
         #[arg(long, value_enum, hide = true)]
         fault: Option<verify::FaultArg>,
         #[command(flatten)]
+        record: view::RecordArgs,
+        #[command(flatten)]
         plugins: load::PluginArgs,
     },
     /// Draw a configuration (JSON) as an SVG or PNG picture.
@@ -132,6 +137,8 @@ enum Command {
         /// Write the final configuration (JSON) here.
         #[arg(long, value_name = "CONFIG")]
         out: Option<PathBuf>,
+        #[command(flatten)]
+        record: view::RecordArgs,
         #[command(flatten)]
         plugins: load::PluginArgs,
     },
@@ -172,7 +179,30 @@ enum Command {
         #[arg(long, value_name = "MCU")]
         firmware: Option<simulate::FirmwareArg>,
         #[command(flatten)]
+        record: view::RecordArgs,
+        #[command(flatten)]
         plugins: load::PluginArgs,
+    },
+    /// Replay a recording in the browser: write one self-contained HTML page (or print
+    /// poses at given times).
+    View {
+        /// The recording (JSON, written by `--record`).
+        recording: PathBuf,
+        /// The page to write.
+        #[arg(short = 'o', long = "output", value_name = "FILE.html")]
+        output: Option<PathBuf>,
+        /// Print every module's pose at these times (milliseconds, comma-separated), as JSON.
+        #[arg(long, value_name = "MS,...", value_delimiter = ',')]
+        poses_at: Vec<f64>,
+        /// Render the run as a video (MP4; headless chromium and ffmpeg).
+        #[arg(long, value_name = "FILE.mp4")]
+        video: Option<PathBuf>,
+        /// Frames per second of the video.
+        #[arg(long, default_value_t = 25)]
+        fps: u32,
+        /// Run seconds per video second.
+        #[arg(long, default_value_t = 1.0)]
+        speed: f64,
     },
     /// Run a sweep of simulations described by a TOML file, in parallel: DIR/runs.csv (one
     /// row per run; an interrupted campaign resumes where it stopped), summary.csv, plots.
@@ -285,6 +315,7 @@ pub fn main() -> ExitCode {
             file,
             run,
             out,
+            record,
             plugins,
         } => replay::run(&replay::ReplayArgs {
             file: &file,
@@ -292,6 +323,7 @@ pub fn main() -> ExitCode {
             from: &run.from,
             expect: run.expect.as_ref(),
             out: out.as_ref(),
+            record: &record,
             plugins: &plugins,
         }),
         Command::Simulate {
@@ -306,6 +338,7 @@ pub fn main() -> ExitCode {
             trace,
             json,
             firmware,
+            record,
             plugins,
         } => simulate::run(&simulate::SimulateArgs {
             file: &file,
@@ -321,7 +354,23 @@ pub fn main() -> ExitCode {
             trace: trace.as_ref(),
             json,
             firmware,
+            record: &record,
             plugins: &plugins,
+        }),
+        Command::View {
+            recording,
+            output,
+            poses_at,
+            video,
+            fps,
+            speed,
+        } => view::run(&view::ViewArgs {
+            recording: &recording,
+            output: output.as_ref(),
+            poses_at: &poses_at,
+            video: video.as_deref(),
+            fps,
+            speed,
         }),
         Command::Campaign {
             action,
@@ -394,6 +443,7 @@ pub fn main() -> ExitCode {
             safety_only,
             keep,
             fault,
+            record,
             plugins,
         } => verify::run(&verify::VerifyArgs {
             file: &file,
@@ -408,6 +458,7 @@ pub fn main() -> ExitCode {
             safety_only,
             keep: keep.as_deref(),
             fault,
+            record: &record,
             plugins: &plugins,
         }),
         Command::Show { config, output } => show::run(&config, &output),

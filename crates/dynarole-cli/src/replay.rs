@@ -15,6 +15,7 @@ pub struct ReplayArgs<'a> {
     pub from: &'a Path,
     pub expect: Option<&'a PathBuf>,
     pub out: Option<&'a PathBuf>,
+    pub record: &'a crate::view::RecordArgs,
     pub plugins: &'a PluginArgs,
 }
 
@@ -32,9 +33,12 @@ pub fn run(args: &ReplayArgs) -> Result<ExitCode, Failure> {
         let result = dynarole_replay::replay(
             program,
             &prepared.plans,
-            prepared.world,
+            prepared.world.clone(),
             &prepared.assignment,
         );
+        if args.record.wanted() {
+            record(args, program, &prepared, &display, source)?;
+        }
         render::diagnostics(&display, source, &result.diagnostics);
         println!(
             "replayed {} from {}: {} statements, {} rejected, {} warnings",
@@ -56,6 +60,46 @@ pub fn run(args: &ReplayArgs) -> Result<ExitCode, Failure> {
         };
         Ok(ExitCode::from(u8::from(result.n_rejected > 0 || !matches)))
     })
+}
+
+/// The replay as a recording: the statements in the order the model does them.
+fn record(
+    args: &ReplayArgs,
+    program: &dynarole_core::Program,
+    prepared: &crate::world::Prepared,
+    display: &str,
+    source: &str,
+) -> Result<(), Failure> {
+    let statements: Vec<_> = prepared
+        .plans
+        .iter()
+        .flat_map(|p| p.statements().into_iter().cloned())
+        .collect();
+    // A label without a module was reported by the replay; it does nothing.
+    let steps: Vec<crate::view::Step> = statements
+        .iter()
+        .enumerate()
+        .filter_map(|(i, s)| {
+            let module = prepared.assignment.get(&s.label)?;
+            Some(crate::view::Step::Operation(i, module.clone()))
+        })
+        .collect();
+    let start = prepared.world.configuration();
+    let title = format!("replay of {} ({display})", prepared.names.join(" + "));
+    let recording = crate::view::ModelRun {
+        kind: "replay",
+        title: &title,
+        robot: &program.robot,
+        steps: &steps,
+        statements: &statements,
+        start: &start,
+        source: Some(dynarole_recording::Source {
+            name: display,
+            text: source,
+        }),
+    }
+    .record(vec![title.clone()])?;
+    args.record.write(&recording)
 }
 
 fn expect(actual: &Configuration, path: &Path) -> Result<bool, Failure> {

@@ -6,6 +6,7 @@ use crate::load::{self, Failure, PluginArgs};
 use crate::render;
 use crate::world::read_configuration;
 use clap::ValueEnum;
+use dynarole_recording::Source;
 use dynarole_sim::{FirmwareReport, Report, Run, Scenario, SimError, Simulator, Stepping};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -27,6 +28,7 @@ pub struct SimulateArgs<'a> {
     pub trace: Option<&'a PathBuf>,
     pub json: bool,
     pub firmware: Option<FirmwareArg>,
+    pub record: &'a crate::view::RecordArgs,
     pub plugins: &'a PluginArgs,
 }
 
@@ -64,6 +66,11 @@ pub fn run(args: &SimulateArgs) -> Result<ExitCode, Failure> {
                 .check_scenario(&scenario, &start)
                 .map_err(|e| Failure::toml(path, text, e))?;
         }
+        if args.record.wanted() && args.repeat > 1 {
+            return Err(Failure::Usage(
+                "--record, --html and --poses-at record one run: not with --repeat".into(),
+            ));
+        }
         let mode = dynarole_campaign::ProgressMode::for_stderr().map_err(Failure::Usage)?;
         let progress =
             dynarole_campaign::Progress::start(mode, "simulate", args.repeat.max(1), "runs");
@@ -76,7 +83,7 @@ pub fn run(args: &SimulateArgs) -> Result<ExitCode, Failure> {
                 expect: expect.as_ref(),
                 scenario: &scenario,
                 seed,
-                trace: args.trace.is_some(),
+                trace: args.trace.is_some() || args.record.wanted(),
             };
             let (report, firmware) = match args.firmware {
                 None => (simulator.run(&run), None),
@@ -89,6 +96,21 @@ pub fn run(args: &SimulateArgs) -> Result<ExitCode, Failure> {
             let wall = started.elapsed().as_secs_f64();
             progress.inc();
             progress.suspend(|| output(args, &report, firmware.as_ref(), wall, k))?;
+            if args.record.wanted() {
+                let title = format!("{} ({}, seed {seed})", names.join(" + "), display);
+                let recording = simulator
+                    .recording(
+                        &run,
+                        &report,
+                        &title,
+                        Some(Source {
+                            name: &display,
+                            text: source,
+                        }),
+                    )
+                    .map_err(|e| Failure::Internal(e.to_string()))?;
+                args.record.write(&recording)?;
+            }
             if !report.success {
                 failed += 1;
                 progress.suspend(|| eprintln!("replay with: {}", replay_command(args, seed)));

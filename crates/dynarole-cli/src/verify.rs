@@ -9,8 +9,8 @@ use crate::world::{prepare, read_configuration};
 use dynarole_campaign::ProgressMode;
 use dynarole_codegen::Fault;
 use dynarole_verify::{
-    BuildOptions, Built, Entry, Header, Inputs, Method, Models, Observer, Phase, Source, Verdict,
-    VerifyError, VerifyOptions,
+    BuildOptions, Built, Entry, Event, Header, Inputs, Method, Models, Observer, Phase, Source,
+    Verdict, VerifyError, VerifyOptions,
 };
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::{Path, PathBuf};
@@ -69,7 +69,15 @@ pub struct VerifyArgs<'a> {
     pub safety_only: bool,
     pub keep: Option<&'a Path>,
     pub fault: Option<FaultArg>,
+    pub record: &'a crate::view::RecordArgs,
     pub plugins: &'a PluginArgs,
+}
+
+/// What a counterexample's recording is drawn on: the statements as lowered (the model's
+/// statement numbers) and the start configuration.
+struct Scene {
+    statements: Vec<dynarole_core::check::ResolvedStatement>,
+    start: dynarole_world::Configuration,
 }
 
 /// What a model is made from: a checked source, its sequences, a configuration, options.
@@ -125,7 +133,7 @@ fn failed(error: VerifyError, req: &Request) -> Result<ExitCode, Failure> {
 fn build(
     req: &Request,
     fault: Option<FaultArg>,
-) -> Result<Result<(Built, BuildOptions), ExitCode>, Failure> {
+) -> Result<Result<(Built, BuildOptions, Scene), ExitCode>, Failure> {
     let config = read_configuration(req.from)?;
     let prepared = match prepare(req.program, req.display, req.sequences, config)? {
         Ok(p) => p,
@@ -144,8 +152,16 @@ fn build(
         world: &prepared.world,
         configuration: &configuration,
     };
+    let scene = Scene {
+        statements: prepared
+            .plans
+            .iter()
+            .flat_map(|p| p.statements().into_iter().cloned())
+            .collect(),
+        start: prepared.world.configuration(),
+    };
     match dynarole_verify::build(&inputs, &options) {
-        Ok(built) => Ok(Ok((built, options))),
+        Ok(built) => Ok(Ok((built, options, scene))),
         Err(e) => failed(e, req).map(Err),
     }
 }
@@ -169,7 +185,7 @@ pub fn run(args: &VerifyArgs) -> Result<ExitCode, Failure> {
             epochs: args.epochs,
         };
         match build(&request, args.fault)? {
-            Ok((built, options)) => check(args, &request, &built, &options),
+            Ok((built, options, scene)) => check(args, &request, &built, &options, &scene),
             Err(code) => Ok(code),
         }
     })
@@ -182,6 +198,7 @@ fn check(
     request: &Request,
     built: &Built,
     options: &BuildOptions,
+    scene: &Scene,
 ) -> Result<ExitCode, Failure> {
     let dir = match args.keep {
         Some(d) => d.to_path_buf(),
@@ -211,16 +228,79 @@ fn check(
     if args.keep.is_none() {
         let _ = std::fs::remove_dir_all(&dir);
     }
-    let verdict = match report {
-        Ok(report) => report.verdict,
+    let report = match report {
+        Ok(report) => report,
         Err(e) => return failed(e, request),
     };
+    if args.record.wanted() {
+        record(args.record, request, built, scene, &report)?;
+    }
+    let verdict = report.verdict;
     print!("{verdict}");
     Ok(ExitCode::from(match verdict {
         Verdict::Verified => 0,
         Verdict::Violated => 1,
         Verdict::Inconclusive => 3,
     }))
+}
+
+/// `--record`/`--html`: the counterexample's steps on the robot, the broken property marked
+/// where it breaks; without a counterexample there is nothing to show (said on stderr).
+fn record(
+    args: &crate::view::RecordArgs,
+    request: &Request,
+    built: &Built,
+    scene: &Scene,
+    report: &dynarole_verify::Report,
+) -> Result<(), Failure> {
+    use crate::view::Step;
+    let Some(cx) = report.counterexample() else {
+        eprintln!("note: no counterexample, so no recording was written");
+        return Ok(());
+    };
+    let name = |m: &usize| cx.module_names.get(*m).cloned().unwrap_or_default();
+    let mut broken = Vec::new();
+    let steps: Vec<Step> = cx
+        .events
+        .iter()
+        .enumerate()
+        .filter_map(|(k, e)| match e {
+            Event::Issue { m, s, .. } => Some(Step::Issue(*s, name(m))),
+            Event::Done { m, s } => Some(Step::Done(*s, name(m))),
+            Event::Reset { m } => Some(Step::Reset(name(m))),
+            Event::Copy { m, .. } => Some(Step::Copy(name(m), cx.copies.get(&k)?.clone())),
+            Event::Violation { property, m, s } => {
+                broken.push(property.clone());
+                let text = built
+                    .ir
+                    .statements
+                    .get(*s)
+                    .map_or("", |st| st.text.as_str());
+                Some(Step::Violation(
+                    name(m),
+                    format!("#{s} {text}: {property} broken here"),
+                ))
+            }
+            _ => None,
+        })
+        .collect();
+    let title = format!("counterexample of {} ({})", built.name, request.display);
+    let mut notes = vec![format!("VIOLATED: {}", broken.join(", "))];
+    notes.extend(cx.text.lines().map(str::to_string));
+    let recording = crate::view::ModelRun {
+        kind: "counterexample",
+        title: &title,
+        robot: &request.program.robot,
+        steps: &steps,
+        statements: &scene.statements,
+        start: &scene.start,
+        source: Some(dynarole_recording::Source {
+            name: request.display,
+            text: request.source,
+        }),
+    }
+    .record(notes)?;
+    args.write(&recording)
 }
 
 fn scratch_dir() -> PathBuf {
@@ -336,7 +416,7 @@ impl Drop for Ticker {
 /// `dynarole compile --target promela`: writes DIR/model.pml (the compositional method:
 /// DIR/model-MODULE.pml for each module).
 pub fn write_model(req: &Request, out_dir: &Path) -> Result<ExitCode, Failure> {
-    let (built, _) = match build(req, None)? {
+    let (built, _, _) = match build(req, None)? {
         Ok(b) => b,
         Err(code) => return Ok(code),
     };

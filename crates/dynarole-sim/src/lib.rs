@@ -17,6 +17,7 @@ mod firmware;
 mod network;
 mod ops;
 mod queue;
+mod record;
 mod report;
 mod scenario;
 mod sequence;
@@ -26,6 +27,7 @@ mod wake;
 pub use build::cache_root;
 pub use critical::CriticalPath;
 pub use firmware::{FirmwareReport, ModuleFirmware};
+pub use record::Recorded;
 pub use report::{Counters, ModuleReport, Refusal, Report, Violation};
 pub use scenario::{
     Block, Foreign, JointModel, Network, Power, Preset, RandomResets, Reset, Scenario,
@@ -288,6 +290,7 @@ impl Simulator {
             final_configuration: serde_json::from_str(&final_configuration.to_json_string())
                 .unwrap_or(serde_json::Value::Null),
             trace: state.trace.take(),
+            recorded: run.trace.then(|| std::mem::take(&mut state.recorded)),
         };
         report.failures = failures(&report, run.scenario.timeout_ms);
         report.success = report.failures.is_empty();

@@ -182,6 +182,7 @@ impl State {
     pub fn arrive(&mut self, packet: &Packet) -> bool {
         let fate = self.fate(packet);
         self.prune_air(packet.to.module);
+        self.record_packet(packet, fate.name());
         if fate == Fate::Delivered {
             self.counters.delivered += 1;
             self.modules[packet.to.module].stats.received += 1;

@@ -109,6 +109,9 @@ pub struct Report {
     pub final_configuration: serde_json::Value,
     #[serde(skip)]
     pub trace: Option<String>,
+    /// The trace as data, for the viewer's recording (`Simulator::recording`).
+    #[serde(skip)]
+    pub recorded: Option<crate::record::Recorded>,
 }
 
 impl Report {

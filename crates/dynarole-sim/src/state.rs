@@ -164,6 +164,8 @@ pub struct State {
     pub last_frames: Option<Vec<Option<Vec<u8>>>>,
     /// What the second robot's modules broadcast last (from that run), by module.
     pub foreign_frames: Vec<Option<Vec<u8>>>,
+    /// The trace as data for the viewer's recording (kept with the trace, `record.rs`).
+    pub recorded: crate::record::Recorded,
     /// Modules that have declared the end (`finished_at` set), so that `all_finished`, asked
     /// after every event, does not walk every module.
     finished: usize,
@@ -248,6 +250,7 @@ impl State {
             first_finished: None,
             last_frames: None,
             foreign_frames: Vec::new(),
+            recorded: crate::record::Recorded::default(),
             finished: 0,
         };
         state.schedule_start(&mut setup);
@@ -402,6 +405,8 @@ impl State {
         );
         trace.truncate(trace.trim_end_matches(' ').len());
         trace.push('\n');
+        self.recorded
+            .row(self.now, module, event, state, detail.as_ref());
     }
 
     pub fn statement_label(&self, s: usize) -> String {

@@ -398,9 +398,18 @@ impl Run<'_> {
             source: self.source.text,
         };
         let explanation = tell(&events, &cx);
+        let copies = events
+            .iter()
+            .enumerate()
+            .filter_map(|(k, e)| match e {
+                Event::Copy { fields, .. } => Some((k, cx.copy(fields))),
+                _ => None,
+            })
+            .collect();
         Ok(Counterexample {
             check,
             module,
+            copies,
             text: explanation.to_string(),
             explanation,
             module_names: model.module_names.clone(),

@@ -21,6 +21,9 @@ pub struct Counterexample {
     pub explanation: Explanation,
     /// The explanation as printed.
     pub text: String,
+    /// For each `Copy` event (by its index in `events`), the module's copy of the shared
+    /// state in the user's terms (what a viewer's state panel shows).
+    pub copies: BTreeMap<usize, String>,
 }
 
 /// The violated property and the steps that lead to it.
@@ -138,7 +141,7 @@ impl Context<'_> {
         }
     }
 
-    fn copy(&self, fields: &[i64]) -> String {
+    pub(crate) fn copy(&self, fields: &[i64]) -> String {
         if self.paper_states.is_empty() {
             // Lattice: epoch, low, done bits above low.
             let (epoch, low, bits) = (

@@ -1,0 +1,449 @@
+//! Builds a recording from a run's events, replaying its operations on the world model: a
+//! turn's motion is what `RobotWorld::turn_motion` says when it starts, an operation's effect
+//! what `RobotWorld::apply` does when it completes, exactly as the simulator does them.
+
+use crate::format::{
+    ConnectorInfo, Event, Keyframe, LatchLink, Marker, ModuleInfo, Motion, PacketArc, Pose,
+    Recording, SourceText, StatementInfo, Turn, FORMAT_VERSION,
+};
+use crate::pose::{latches, poses};
+use dynarole_core::check::ResolvedStatement;
+use dynarole_core::robot::RobotApi;
+use dynarole_replay::RobotWorld;
+use dynarole_world::geometry::to_f64;
+use dynarole_world::{Configuration, View};
+
+/// Keyframes every second of run time in which the world changed: a seek replays at most a
+/// second of motions (a keyframe is left out while nothing moves; the last one still holds).
+pub const KEYFRAME_INTERVAL_MS: f64 = 1000.0;
+/// Packets kept in a recording; the rest are counted (`omitted_packets`), so that the page
+/// of a long or large run stays small enough to load.
+pub const MAX_PACKETS: usize = 200_000;
+/// Trace lines of dropped packets kept (the other trace lines are always kept).
+pub const MAX_PACKET_EVENTS: usize = 200_000;
+/// The trace's events for a packet that did not arrive.
+const PACKET_EVENTS: [&str; 6] = ["lost", "dead-link", "collision", "blocked", "broken", "off"];
+
+/// The sequence's source file, for the statement highlight.
+#[derive(Clone, Copy, Debug)]
+pub struct Source<'a> {
+    pub name: &'a str,
+    pub text: &'a str,
+}
+
+/// A recording under construction; feed it the run's events in time order.
+pub struct Builder<'r> {
+    robot: &'r RobotApi,
+    statements: &'r [ResolvedStatement],
+    world: RobotWorld,
+    recording: Recording,
+    /// Per (event, link) of the faults that strike every packet, the time of its last drop.
+    last_link_drop: Vec<(String, f64)>,
+    powered_once: Vec<bool>,
+    /// Interval keyframes written so far (some left out), and whether the world changed
+    /// since the last one written.
+    intervals: usize,
+    changed: bool,
+    packet_events: usize,
+}
+
+impl<'r> Builder<'r> {
+    /// `texts` are the statements as executed (one per resolved statement).
+    pub fn new(
+        kind: &str,
+        title: &str,
+        start: &Configuration,
+        robot: &'r RobotApi,
+        statements: &'r [ResolvedStatement],
+        texts: &[String],
+        source: Option<Source>,
+    ) -> Result<Builder<'r>, String> {
+        let world = RobotWorld::new(start.clone(), robot)?;
+        let view = View::of(start);
+        let statements_info = statements
+            .iter()
+            .zip(texts)
+            .map(|(s, text)| statement_info(s, text, source))
+            .collect();
+        let recording = Recording {
+            format: FORMAT_VERSION,
+            kind: kind.into(),
+            title: title.into(),
+            robot: start.robot().name().to_lowercase(),
+            start: serde_json::from_str(&start.to_json_string())
+                .map_err(|e| format!("the start configuration: {e}"))?,
+            modules: (0..view.len())
+                .map(|m| ModuleInfo {
+                    name: view.name(m),
+                    id: view.id(m),
+                })
+                .collect(),
+            connectors: (0..view.connectors())
+                .map(|c| ConnectorInfo {
+                    male: view.is_male(c),
+                    half: u8::from(view.hemisphere(c) == 1),
+                })
+                .collect(),
+            statements: statements_info,
+            source: source.map(|s| SourceText {
+                name: s.name.into(),
+                text: s.text.into(),
+            }),
+            end_ms: 0.0,
+            keyframe_interval_ms: KEYFRAME_INTERVAL_MS,
+            keyframes: Vec::new(),
+            events: Vec::new(),
+            motions: Vec::new(),
+            packets: Vec::new(),
+            markers: Vec::new(),
+            summary: Vec::new(),
+            omitted_packets: 0,
+            omitted_packet_events: 0,
+        };
+        let n = view.len();
+        let mut builder = Builder {
+            robot,
+            statements,
+            world,
+            recording,
+            last_link_drop: Vec::new(),
+            powered_once: vec![false; n],
+            intervals: 0,
+            changed: true,
+            packet_events: 0,
+        };
+        builder.keyframes_until(0.0, true);
+        Ok(builder)
+    }
+
+    /// One trace line. Operation events (`start`, `retry`, `reissue`, `done`, `refused`,
+    /// `interrupt`) name their statement as `#N` at the start of `detail`.
+    pub fn event(
+        &mut self,
+        time_ms: f64,
+        module: Option<usize>,
+        event: &str,
+        state: &str,
+        detail: &str,
+    ) {
+        self.keyframes_until(time_ms, false);
+        let statement = statement_of(detail).filter(|s| *s < self.statements.len());
+        if let (Some(m), Some(s)) = (module, statement) {
+            match event {
+                "start" | "retry" | "reissue" => self.op_start(time_ms, m, s),
+                "done" => self.op_end(time_ms, m, s, "done"),
+                "refused" | "interrupt" => self.op_end(time_ms, m, s, event),
+                _ => {}
+            }
+        }
+        self.mark(time_ms, module, event, statement, detail);
+        if PACKET_EVENTS.contains(&event) {
+            if self.packet_events >= MAX_PACKET_EVENTS {
+                self.recording.omitted_packet_events += 1;
+                return;
+            }
+            self.packet_events += 1;
+        }
+        self.recording.events.push(Event {
+            time_ms,
+            module,
+            event: event.into(),
+            state: state.into(),
+            detail: detail.into(),
+            statement,
+        });
+    }
+
+    /// One operation on a model without time (replay, a counterexample's trail): module `m`
+    /// does statement `s` from `start_ms` for `duration(s, turn)` milliseconds; the world
+    /// performs it or refuses it. Returns when it ends and the world's reason for a refusal.
+    pub fn operation(
+        &mut self,
+        start_ms: f64,
+        m: usize,
+        s: usize,
+        duration: &dyn Fn(usize, Option<&Turn>) -> f64,
+    ) -> (f64, Option<String>) {
+        let label = format!("#{s} {}", self.statement_text(s));
+        self.event(start_ms, Some(m), "start", "-", &label);
+        let turn = self.recording.motions.last().and_then(|x| x.turn.clone());
+        let end_ms = start_ms + duration(s, turn.as_ref());
+        let refusal = self.statements.get(s).and_then(|statement| {
+            let mut trial = self.world.clone();
+            trial
+                .apply(self.robot, statement, &self.module_name(m))
+                .err()
+        });
+        match &refusal {
+            None => self.event(end_ms, Some(m), "done", "-", &label),
+            Some(reason) => self.event(
+                end_ms,
+                Some(m),
+                "refused",
+                "-",
+                &format!("{label}: {reason}"),
+            ),
+        }
+        (end_ms, refusal)
+    }
+
+    /// The turn of the operation started last, if it is one.
+    pub fn last_turn(&self) -> Option<Turn> {
+        self.recording.motions.last().and_then(|x| x.turn.clone())
+    }
+
+    fn statement_text(&self, s: usize) -> String {
+        self.recording
+            .statements
+            .get(s)
+            .map_or_else(String::new, |x| x.text.clone())
+    }
+
+    /// A packet between two connectors (delivered or dropped).
+    pub fn packet(&mut self, arc: PacketArc) {
+        if self.recording.packets.len() < MAX_PACKETS {
+            self.recording.packets.push(arc);
+        } else {
+            self.recording.omitted_packets += 1;
+        }
+    }
+
+    /// The recording, with keyframes up to `end_ms`.
+    pub fn finish(mut self, end_ms: f64, summary: Vec<String>) -> Recording {
+        self.keyframes_until(end_ms, true);
+        self.recording.end_ms = end_ms;
+        self.recording.summary = summary;
+        self.recording
+    }
+
+    /// The world's configuration as the recording has replayed it so far.
+    pub fn configuration(&self) -> Configuration {
+        self.world.configuration()
+    }
+
+    fn module_name(&self, m: usize) -> String {
+        self.world.view().name(m)
+    }
+
+    fn op_start(&mut self, time_ms: f64, m: usize, s: usize) {
+        let turn = self.turn(m, s);
+        self.recording.motions.push(Motion {
+            statement: s,
+            module: m,
+            start_ms: time_ms,
+            end_ms: time_ms,
+            outcome: "running".into(),
+            turn,
+            latched: Vec::new(),
+            released: Vec::new(),
+            after: Vec::new(),
+        });
+    }
+
+    /// The turn a statement starts, as the world model plans it (`None` for other operations).
+    fn turn(&self, m: usize, s: usize) -> Option<Turn> {
+        let statement = self.statements.get(s)?;
+        let name = self.module_name(m);
+        let motion = self.world.turn_motion(self.robot, statement, &name)?;
+        let view = self.world.view();
+        let moving = motion
+            .moving
+            .iter()
+            .filter_map(|(n, _)| view.index(n))
+            .collect();
+        // Which half of the turning module moves: the one whose connectors the completed
+        // turn (done on a copy of the world) carries elsewhere.
+        let mut after = self.world.clone();
+        after.apply(self.robot, statement, &name).ok()?;
+        let before = poses(&self.world.configuration());
+        let moved = poses(&after.configuration());
+        let half = match (before.get(m), moved.get(m)) {
+            (Some(b), Some(a)) if b.connectors.first() != a.connectors.first() => 0,
+            _ => 1,
+        };
+        Some(Turn {
+            pivot: motion.pivot,
+            axis: to_f64(motion.axis),
+            angle_deg: motion.angle_deg,
+            moving,
+            half,
+        })
+    }
+
+    fn op_end(&mut self, time_ms: f64, m: usize, s: usize, outcome: &str) {
+        let Some(index) = self
+            .recording
+            .motions
+            .iter()
+            .rposition(|x| x.statement == s && x.module == m && x.outcome == "running")
+        else {
+            return;
+        };
+        let (latched, released, after) = if outcome == "done" {
+            self.apply(m, s)
+        } else {
+            (Vec::new(), Vec::new(), Vec::new())
+        };
+        if let Some(motion) = self.recording.motions.get_mut(index) {
+            motion.end_ms = time_ms;
+            motion.outcome = outcome.into();
+            motion.latched = latched;
+            motion.released = released;
+            motion.after = after;
+        }
+    }
+
+    /// Applies statement `s` by module `m` (a joint already at its target changes nothing,
+    /// as in the simulator) and returns what changed.
+    fn apply(
+        &mut self,
+        m: usize,
+        s: usize,
+    ) -> (Vec<LatchLink>, Vec<LatchLink>, Vec<(usize, Pose)>) {
+        let Some(statement) = self.statements.get(s) else {
+            return (Vec::new(), Vec::new(), Vec::new());
+        };
+        let before = self.world.configuration();
+        let name = self.module_name(m);
+        if self.world.apply(self.robot, statement, &name).is_err() {
+            return (Vec::new(), Vec::new(), Vec::new());
+        }
+        let after = self.world.configuration();
+        self.changed = true;
+        let (old, new) = (latches(&before), latches(&after));
+        let latched = new.iter().filter(|l| !old.contains(l)).copied().collect();
+        let released = old.iter().filter(|l| !new.contains(l)).copied().collect();
+        let (old_poses, new_poses) = (poses(&before), poses(&after));
+        let moved = new_poses
+            .into_iter()
+            .enumerate()
+            .filter(|(i, p)| old_poses.get(*i) != Some(p))
+            .collect();
+        (latched, released, moved)
+    }
+
+    /// Keyframes of the settled world at every interval before `time_ms` (and at it when
+    /// `inclusive`).
+    fn keyframes_until(&mut self, time_ms: f64, inclusive: bool) {
+        loop {
+            let next = self.intervals as f64 * KEYFRAME_INTERVAL_MS;
+            let due = if inclusive {
+                next <= time_ms
+            } else {
+                next < time_ms
+            };
+            if !due {
+                break;
+            }
+            self.intervals += 1;
+            if !self.changed {
+                continue;
+            }
+            self.changed = false;
+            let config = self.world.configuration();
+            self.recording.keyframes.push(Keyframe {
+                time_ms: next,
+                poses: poses(&config),
+                latches: latches(&config),
+            });
+        }
+    }
+
+    /// Faults and violations on the timeline; the faults that strike every packet (blocked
+    /// and dead links) once a second per module.
+    fn mark(
+        &mut self,
+        time_ms: f64,
+        module: Option<usize>,
+        event: &str,
+        statement: Option<usize>,
+        detail: &str,
+    ) {
+        let Some(m) = module else { return };
+        let kind = match event {
+            "power-on" => {
+                let first = !self.powered_once.get(m).copied().unwrap_or(true);
+                if let Some(p) = self.powered_once.get_mut(m) {
+                    *p = true;
+                }
+                if first {
+                    return;
+                }
+                "power"
+            }
+            "power-off" => "power",
+            "reset" => "reset",
+            "S1" | "S2" | "S3" | "violation" => "violation",
+            "refused" => "refused",
+            "blocked" | "dead-link" => {
+                if !self.new_link_episode(event, detail, time_ms) {
+                    return;
+                }
+                "link"
+            }
+            _ => return,
+        };
+        let what = match statement {
+            Some(_) if event != "refused" => {
+                format!("{event} on {}: {detail}", self.module_name(m))
+            }
+            Some(s) => format!("refused #{s} on {}", self.module_name(m)),
+            None => format!("{event} on {} {detail}", self.module_name(m)),
+        };
+        self.recording.markers.push(Marker {
+            time_ms,
+            kind: kind.into(),
+            modules: vec![m],
+            label: what.trim_end().into(),
+        });
+    }
+}
+
+impl Builder<'_> {
+    /// Whether a blocked or dead link's drop starts an episode (no drop of the same kind on
+    /// the same link in the last `LINK_EPISODE_GAP_MS`): one marker per episode, not per packet.
+    fn new_link_episode(&mut self, event: &str, detail: &str, time_ms: f64) -> bool {
+        // The detail is `M3.C0 <- M5.C1 (17 bytes)`: the link is what precedes the size.
+        let link = detail.split(" (").next().unwrap_or(detail);
+        let key = format!("{event} {link}");
+        let slot = self.last_link_drop.iter_mut().find(|(k, _)| *k == key);
+        match slot {
+            Some((_, last)) => {
+                let new = time_ms - *last > LINK_EPISODE_GAP_MS;
+                *last = time_ms;
+                new
+            }
+            None => {
+                self.last_link_drop.push((key, time_ms));
+                true
+            }
+        }
+    }
+}
+
+/// Drops on one link closer than this belong to one fault episode.
+const LINK_EPISODE_GAP_MS: f64 = 3000.0;
+
+/// `#12 M3.Joint...` names statement 12.
+fn statement_of(detail: &str) -> Option<usize> {
+    let rest = detail.strip_prefix('#')?;
+    let digits: String = rest.chars().take_while(char::is_ascii_digit).collect();
+    digits.parse().ok()
+}
+
+fn statement_info(s: &ResolvedStatement, text: &str, source: Option<Source>) -> StatementInfo {
+    let start = s.span.start as usize;
+    let end = s.span.end as usize;
+    let line = source.map_or(0, |src| {
+        1 + src
+            .text
+            .get(..start.min(src.text.len()))
+            .map_or(0, |before| before.matches('\n').count())
+    });
+    StatementInfo {
+        text: text.into(),
+        start,
+        end,
+        line,
+    }
+}

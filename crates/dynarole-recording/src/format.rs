@@ -1,0 +1,251 @@
+//! The recording's serde types: the schema documented in `docs/viewer.md`.
+
+use serde::{Deserialize, Serialize};
+
+/// Version of the format; a reader refuses any other.
+pub const FORMAT_VERSION: u32 = 1;
+
+/// Everything the viewer shows of one run.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Recording {
+    pub format: u32,
+    /// `simulation`, `replay` or `counterexample`.
+    pub kind: String,
+    pub title: String,
+    /// `atron` or `mtran`.
+    pub robot: String,
+    /// The start configuration, in the data-file JSON format.
+    pub start: serde_json::Value,
+    pub modules: Vec<ModuleInfo>,
+    /// Per connector number: whether it is male and which half (0 or 1) it sits on.
+    pub connectors: Vec<ConnectorInfo>,
+    pub statements: Vec<StatementInfo>,
+    /// The sequence's source text, for the statement highlight.
+    pub source: Option<SourceText>,
+    pub end_ms: f64,
+    pub keyframe_interval_ms: f64,
+    pub keyframes: Vec<Keyframe>,
+    pub events: Vec<Event>,
+    pub motions: Vec<Motion>,
+    pub packets: Vec<PacketArc>,
+    /// Faults and violations to mark on the timeline.
+    pub markers: Vec<Marker>,
+    /// The run's summary lines (verdict, figures).
+    pub summary: Vec<String>,
+    /// Packets beyond `builder::MAX_PACKETS`, counted and not kept.
+    #[serde(default)]
+    pub omitted_packets: u64,
+    /// Trace lines of dropped packets beyond `builder::MAX_PACKET_EVENTS`, counted and not kept.
+    #[serde(default)]
+    pub omitted_packet_events: u64,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ModuleInfo {
+    pub name: String,
+    pub id: Option<u32>,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct ConnectorInfo {
+    pub male: bool,
+    pub half: u8,
+}
+
+/// A statement of the sequence and where it is written.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct StatementInfo {
+    pub text: String,
+    /// Byte range in the source text.
+    pub start: usize,
+    pub end: usize,
+    /// 1-based line of its first byte.
+    pub line: usize,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SourceText {
+    pub name: String,
+    pub text: String,
+}
+
+/// Where a module is: its centre, its two halves (ATRON hemispheres with the direction their
+/// dome points; M-TRAN blocks with their joint axis) and every connector's face, in lattice
+/// units (ATRON) or block pitches (M-TRAN).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Pose {
+    pub centre: [f64; 3],
+    pub halves: [Half; 2],
+    pub connectors: Vec<[f64; 3]>,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Half {
+    pub centre: [f64; 3],
+    pub up: [f64; 3],
+}
+
+/// Two connectors held together: `[module, connector, module, connector]` (module indices).
+pub type LatchLink = [usize; 4];
+
+/// The settled world at a time: every module's pose and the latches.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Keyframe {
+    pub time_ms: f64,
+    pub poses: Vec<Pose>,
+    pub latches: Vec<LatchLink>,
+}
+
+/// One line of the trace.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Event {
+    pub time_ms: f64,
+    /// Module index (`None`: the whole run, e.g. `timeout`).
+    pub module: Option<usize>,
+    pub event: String,
+    /// The module's protocol state as its runtime describes it (`-`: none).
+    pub state: String,
+    pub detail: String,
+    /// The statement the event concerns, if any.
+    pub statement: Option<usize>,
+}
+
+/// One operation as the world performed it (or refused it).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Motion {
+    pub statement: usize,
+    pub module: usize,
+    pub start_ms: f64,
+    pub end_ms: f64,
+    /// `done`, `refused`, `interrupt` or `running` (the run stopped first).
+    pub outcome: String,
+    /// For a turn: the joint axis (through `pivot`), the signed angle, the modules that move
+    /// as a whole and the half of the turning module that moves.
+    pub turn: Option<Turn>,
+    /// Latches made and released when the operation completed.
+    pub latched: Vec<LatchLink>,
+    pub released: Vec<LatchLink>,
+    /// Poses of the modules the operation moved, once done (module index, pose).
+    pub after: Vec<(usize, Pose)>,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Turn {
+    pub pivot: [f64; 3],
+    pub axis: [f64; 3],
+    pub angle_deg: f64,
+    pub moving: Vec<usize>,
+    pub half: u8,
+}
+
+/// A packet between two connectors: delivered or why not.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PacketArc {
+    pub start_ms: f64,
+    pub end_ms: f64,
+    pub from: [usize; 2],
+    pub to: [usize; 2],
+    /// `delivered`, or the trace's drop event (`lost`, `collision`...).
+    pub fate: String,
+}
+
+/// A fault or violation on the timeline, with the modules it hit.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Marker {
+    pub time_ms: f64,
+    pub kind: String,
+    pub modules: Vec<usize>,
+    pub label: String,
+}
+
+impl Recording {
+    /// Reads a recording file's text; errors name the line and column, or the version.
+    pub fn from_json(text: &str) -> Result<Recording, String> {
+        #[derive(Deserialize)]
+        struct Header {
+            format: u32,
+        }
+        let header: Header =
+            serde_json::from_str(text).map_err(|e| format!("not a recording: {}", located(&e)))?;
+        if header.format != FORMAT_VERSION {
+            return Err(format!(
+                "field `format`: recording format {} is not the supported {FORMAT_VERSION}",
+                header.format
+            ));
+        }
+        let recording: Recording = serde_json::from_str(text).map_err(|e| located(&e))?;
+        recording.check()?;
+        Ok(recording)
+    }
+
+    /// The indices the viewer follows all point at something.
+    fn check(&self) -> Result<(), String> {
+        let n = self.modules.len();
+        let c = self.connectors.len();
+        if self.keyframes.is_empty() {
+            return Err("field `keyframes`: a recording needs at least one keyframe".into());
+        }
+        for (k, frame) in self.keyframes.iter().enumerate() {
+            if frame.poses.len() != n || frame.poses.iter().any(|p| p.connectors.len() != c) {
+                return Err(format!(
+                    "field `keyframes[{k}].poses`: expected {n} modules with {c} connectors each"
+                ));
+            }
+            check_latches(&frame.latches, n, c, &format!("keyframes[{k}].latches"))?;
+        }
+        for (k, m) in self.motions.iter().enumerate() {
+            let bad_turn = m
+                .turn
+                .as_ref()
+                .is_some_and(|t| t.half > 1 || t.moving.iter().any(|i| *i >= n));
+            if m.module >= n
+                || bad_turn
+                || m.after
+                    .iter()
+                    .any(|(i, p)| *i >= n || p.connectors.len() != c)
+            {
+                return Err(format!(
+                    "field `motions[{k}]`: a module or half out of range"
+                ));
+            }
+            check_latches(&m.latched, n, c, &format!("motions[{k}].latched"))?;
+            check_latches(&m.released, n, c, &format!("motions[{k}].released"))?;
+        }
+        for (k, p) in self.packets.iter().enumerate() {
+            if p.from[0] >= n || p.to[0] >= n || p.from[1] >= c || p.to[1] >= c {
+                return Err(format!(
+                    "field `packets[{k}]`: a module or connector out of range"
+                ));
+            }
+        }
+        if self.events.iter().any(|e| e.module.is_some_and(|m| m >= n))
+            || self
+                .markers
+                .iter()
+                .any(|m| m.modules.iter().any(|i| *i >= n))
+        {
+            return Err("field `events` or `markers`: a module out of range".into());
+        }
+        Ok(())
+    }
+}
+
+/// `line 3, column 14: missing field `robot``: the position first, said once.
+fn located(e: &serde_json::Error) -> String {
+    let message = e.to_string();
+    let suffix = format!(" at line {} column {}", e.line(), e.column());
+    let what = message.strip_suffix(&suffix).unwrap_or(&message);
+    format!("line {}, column {}: {what}", e.line(), e.column())
+}
+
+fn check_latches(latches: &[LatchLink], n: usize, c: usize, field: &str) -> Result<(), String> {
+    if latches
+        .iter()
+        .any(|l| l[0] >= n || l[2] >= n || l[1] >= c || l[3] >= c)
+    {
+        return Err(format!(
+            "field `{field}`: a module or connector out of range"
+        ));
+    }
+    Ok(())
+}

@@ -1,0 +1,133 @@
+//! The trace kept as data when a run is traced, and the viewer's recording built from it
+//! (`dynarole_recording::Builder` replays the operations on the world model).
+
+use crate::report::Report;
+use crate::state::State;
+use crate::{Run, SimError, Simulator};
+use dynarole_recording::{Builder, PacketArc, Recording, Source};
+
+/// One trace line as data (time in microseconds).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Row {
+    pub time_us: u64,
+    pub module: Option<usize>,
+    pub event: String,
+    pub state: String,
+    pub detail: String,
+}
+
+/// One packet: (start, end) in microseconds, sender and receiver (module, connector), fate.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PacketRow {
+    pub start_us: u64,
+    pub end_us: u64,
+    pub from: [usize; 2],
+    pub to: [usize; 2],
+    pub fate: &'static str,
+}
+
+/// What a traced run keeps for its recording.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Recorded {
+    pub rows: Vec<Row>,
+    pub packets: Vec<PacketRow>,
+}
+
+impl Recorded {
+    pub fn row(
+        &mut self,
+        time_us: u64,
+        module: Option<usize>,
+        event: &str,
+        state: &str,
+        detail: &str,
+    ) {
+        self.rows.push(Row {
+            time_us,
+            module,
+            event: event.into(),
+            state: state.into(),
+            detail: detail.into(),
+        });
+    }
+}
+
+impl State {
+    /// Notes a packet's fate for the recording (traced runs only).
+    pub fn record_packet(&mut self, packet: &crate::state::Packet, fate: &'static str) {
+        if !self.tracing() {
+            return;
+        }
+        self.recorded.packets.push(PacketRow {
+            start_us: packet.start,
+            end_us: packet.end,
+            from: [packet.from.module, usize::from(packet.from.connector)],
+            to: [packet.to.module, usize::from(packet.to.connector)],
+            fate,
+        });
+    }
+}
+
+fn ms(us: u64) -> f64 {
+    us as f64 / 1000.0
+}
+
+impl Simulator {
+    /// The viewer's recording of a traced run (`run.trace` must have been set).
+    pub fn recording(
+        &self,
+        run: &Run,
+        report: &Report,
+        title: &str,
+        source: Option<Source>,
+    ) -> Result<Recording, SimError> {
+        let recorded = report
+            .recorded
+            .as_ref()
+            .ok_or_else(|| SimError::Input("the run kept no trace to record".into()))?;
+        let texts: Vec<String> = (0..self.sequence.len())
+            .map(|s| self.sequence.text(s).to_string())
+            .collect();
+        let mut builder = Builder::new(
+            "simulation",
+            title,
+            run.start,
+            &self.sequence.robot,
+            &self.sequence.resolved,
+            &texts,
+            source,
+        )
+        .map_err(SimError::Input)?;
+        for row in &recorded.rows {
+            builder.event(
+                ms(row.time_us),
+                row.module,
+                &row.event,
+                &row.state,
+                &row.detail,
+            );
+        }
+        for p in &recorded.packets {
+            builder.packet(PacketArc {
+                start_ms: ms(p.start_us),
+                end_ms: ms(p.end_us),
+                from: p.from,
+                to: p.to,
+                fate: p.fate.into(),
+            });
+        }
+        // The replayed world must end where the simulator's did: else the recording would
+        // show another run.
+        let replayed = builder.configuration().to_json_string();
+        let simulated = report.final_configuration.to_string();
+        let same = serde_json::from_str::<serde_json::Value>(&replayed)
+            .is_ok_and(|v| v == report.final_configuration);
+        if !same {
+            return Err(SimError::Build(format!(
+                "the recording's world ended elsewhere than the simulator's: {replayed} != {simulated}"
+            )));
+        }
+        let summary = report.summary().lines().map(str::to_string).collect();
+        Ok(builder.finish(report.end_ms, summary))
+    }
+}

@@ -1,0 +1,183 @@
+// The 3D scene: ATRON modules as two hemispheres (north blue, south orange, the colours of
+// `dynarole show`) with the joint line, male connectors extended when latched, latches drawn
+// between connectors; M-TRAN modules as two blocks; packets as short arcs.
+import * as THREE from 'three';
+import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
+
+export const NORTH = 0x3478be;
+export const SOUTH = 0xf0911e;
+const LATCH = 0x1e1e1e;
+const DELIVERED = 0x22aa44;
+const DROPPED = 0xdd2222;
+const Y = new THREE.Vector3(0, 1, 0);
+
+export class Scene {
+  constructor(container, recording) {
+    this.rec = recording;
+    this.renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+    this.renderer.setPixelRatio(window.devicePixelRatio || 1);
+    container.appendChild(this.renderer.domElement);
+    this.container = container;
+    this.scene = new THREE.Scene();
+    this.scene.background = new THREE.Color(0xf4f4f4);
+    this.scene.add(new THREE.HemisphereLight(0xffffff, 0x888888, 2.2));
+    const sun = new THREE.DirectionalLight(0xffffff, 1.6);
+    sun.position.set(5, 10, 7);
+    this.scene.add(sun);
+    this.camera = new THREE.PerspectiveCamera(45, 1, 0.05, 2000);
+    this.controls = new OrbitControls(this.camera, this.renderer.domElement);
+    this.atron = recording.robot === 'atron';
+    this.buildModules();
+    this.latchGroup = new THREE.Group();
+    this.packetGroup = new THREE.Group();
+    this.scene.add(this.latchGroup, this.packetGroup);
+    this.resize();
+    this.resetCamera(recording.keyframes[0].poses);
+  }
+
+  buildModules() {
+    const rec = this.rec;
+    const many = rec.modules.length > 200;
+    const segments = many ? 10 : 28;
+    const dome = this.atron
+      ? new THREE.SphereGeometry(0.48, segments, segments / 2, 0, Math.PI * 2, 0, Math.PI / 2)
+      : new THREE.BoxGeometry(0.9, 0.9, 0.9);
+    const ring = new THREE.TorusGeometry(0.485, 0.025, 6, segments);
+    const prong = new THREE.CylinderGeometry(0.05, 0.05, 1, 8);
+    prong.translate(0, 0.5, 0);
+    const socket = new THREE.CylinderGeometry(0.07, 0.07, 0.02, 10);
+    this.materials = [NORTH, SOUTH].map((c) => rec.modules.map(() => new THREE.MeshStandardMaterial({ color: c, roughness: 0.6 })));
+    const ringMaterial = new THREE.MeshStandardMaterial({ color: 0x222222 });
+    const maleMaterial = new THREE.MeshStandardMaterial({ color: 0x666666 });
+    const femaleMaterial = new THREE.MeshStandardMaterial({ color: 0x222222 });
+    this.modules = rec.modules.map((info, i) => {
+      const anchor = new THREE.Object3D();
+      anchor.name = info.name;
+      const halves = [0, 1].map((h) => {
+        const mesh = new THREE.Mesh(dome, this.materials[h][i]);
+        mesh.userData.module = i;
+        this.scene.add(mesh);
+        return mesh;
+      });
+      const joint = this.atron ? new THREE.Mesh(ring, ringMaterial) : null;
+      if (joint) this.scene.add(joint);
+      const connectors = many
+        ? []
+        : rec.connectors.map((c) => {
+            const mesh = new THREE.Mesh(c.male ? prong : socket, c.male ? maleMaterial : femaleMaterial);
+            this.scene.add(mesh);
+            return mesh;
+          });
+      this.scene.add(anchor);
+      return { anchor, halves, joint, connectors };
+    });
+  }
+
+  resize() {
+    const w = this.container.clientWidth || 800;
+    const h = this.container.clientHeight || 600;
+    this.renderer.setSize(w, h, false);
+    this.camera.aspect = w / h;
+    this.camera.updateProjectionMatrix();
+  }
+
+  resetCamera(poses) {
+    const box = new THREE.Box3();
+    for (const p of poses) box.expandByPoint(new THREE.Vector3(...p.centre));
+    const centre = box.getCenter(new THREE.Vector3());
+    const size = Math.max(4, box.getSize(new THREE.Vector3()).length());
+    this.camera.position.copy(centre).add(new THREE.Vector3(0.9, 0.8, 1.2).multiplyScalar(size));
+    this.controls.target.copy(centre);
+    this.controls.update();
+  }
+
+  // Places every part at the poses of `state` (from World.at).
+  show(state, flashing, latchedMales) {
+    const v = new THREE.Vector3();
+    this.modules.forEach((m, i) => {
+      const pose = state.poses[i];
+      m.anchor.position.set(...pose.centre);
+      m.halves.forEach((mesh, h) => {
+        const half = pose.halves[h];
+        mesh.position.set(...half.centre);
+        const up = v.set(...half.up).normalize();
+        mesh.quaternion.setFromUnitVectors(Y, this.atron ? up : Y);
+        if (!this.atron) mesh.scale.setScalar(1);
+        const flash = flashing.has(i);
+        this.materials[h][i].emissive.setHex(flash ? 0xff2020 : 0x000000);
+      });
+      if (m.joint) {
+        m.joint.position.set(...pose.centre);
+        m.joint.quaternion.setFromUnitVectors(new THREE.Vector3(0, 0, 1), v.set(...pose.halves[0].up).normalize());
+      }
+      m.connectors.forEach((mesh, k) => this.placeConnector(mesh, pose, k, latchedMales.has(i * 64 + k)));
+    });
+    this.showLatches(state);
+  }
+
+  placeConnector(mesh, pose, k, extended) {
+    const info = this.rec.connectors[k];
+    const at = new THREE.Vector3(...pose.connectors[k]);
+    const from = new THREE.Vector3(...pose.halves[info.half].centre);
+    const out = at.clone().sub(from).normalize();
+    mesh.quaternion.setFromUnitVectors(Y, out);
+    if (info.male) {
+      // Retracted: the hooks stay inside the shell; extended: they reach the neighbour.
+      const length = extended ? 0.3 : 0.08;
+      mesh.position.copy(at).addScaledVector(out, -0.2);
+      mesh.scale.set(1, length + 0.2, 1);
+    } else {
+      mesh.position.copy(at).addScaledVector(out, -0.23);
+    }
+  }
+
+  showLatches(state) {
+    this.latchGroup.clear();
+    const material = new THREE.LineBasicMaterial({ color: LATCH });
+    const points = [];
+    for (const [a, ca, b, cb] of state.latches) {
+      points.push(new THREE.Vector3(...state.poses[a].connectors[ca]), new THREE.Vector3(...state.poses[b].connectors[cb]));
+    }
+    if (points.length) {
+      const geometry = new THREE.BufferGeometry().setFromPoints(points);
+      this.latchGroup.add(new THREE.LineSegments(geometry, material));
+    }
+  }
+
+  showPackets(state, packets) {
+    this.packetGroup.clear();
+    for (const p of packets) {
+      const a = new THREE.Vector3(...state.poses[p.from[0]].connectors[p.from[1]]);
+      const b = new THREE.Vector3(...state.poses[p.to[0]].connectors[p.to[1]]);
+      const mid = a.clone().add(b).multiplyScalar(0.5);
+      const lift = new THREE.Vector3(...state.poses[p.from[0]].centre).sub(a).normalize().multiplyScalar(-0.3);
+      const curve = new THREE.QuadraticBezierCurve3(a, mid.add(lift).add(new THREE.Vector3(0, 0.25, 0)), b);
+      const geometry = new THREE.BufferGeometry().setFromPoints(curve.getPoints(8));
+      const colour = p.fate === 'delivered' ? DELIVERED : DROPPED;
+      this.packetGroup.add(new THREE.Line(geometry, new THREE.LineBasicMaterial({ color: colour })));
+    }
+  }
+
+  render() {
+    this.renderer.render(this.scene, this.camera);
+  }
+
+  // Screen position (CSS pixels) of module i's centre, for labels.
+  screen(i) {
+    const v = this.modules[i].anchor.position.clone().project(this.camera);
+    const w = this.container.clientWidth;
+    const h = this.container.clientHeight;
+    return { x: ((v.x + 1) / 2) * w, y: ((1 - v.y) / 2) * h, visible: v.z < 1 };
+  }
+
+  // The module under a mouse position, if any.
+  pick(x, y) {
+    const ray = new THREE.Raycaster();
+    const w = this.container.clientWidth;
+    const h = this.container.clientHeight;
+    ray.setFromCamera(new THREE.Vector2((x / w) * 2 - 1, 1 - (y / h) * 2), this.camera);
+    const meshes = this.modules.flatMap((m) => m.halves);
+    const hit = ray.intersectObjects(meshes, false)[0];
+    return hit ? hit.object.userData.module : null;
+  }
+}
