@@ -204,8 +204,10 @@ fn output(
     } else {
         0.0
     };
+    // Emulated firmware runs slower than real time: two decimals there, whole numbers above.
+    let digits = if speed < 10.0 { 2 } else { 0 };
     println!(
-        "  simulated {:.3} s in {:.3} s of wall time ({speed:.0} x real time)",
+        "  simulated {:.3} s in {:.3} s of wall time ({speed:.digits$} x real time)",
         report.end_ms / 1000.0,
         wall
     );
