@@ -11,7 +11,7 @@ use dynarole_core::check::ResolvedStatement;
 use dynarole_core::robot::RobotApi;
 use dynarole_replay::RobotWorld;
 use dynarole_world::geometry::to_f64;
-use dynarole_world::{Configuration, View};
+use dynarole_world::{Configuration, TurnMotion, View};
 
 /// Keyframes every second of run time in which the world changed: a seek replays at most a
 /// second of motions (a keyframe is left out while nothing moves; the last one still holds).
@@ -246,27 +246,47 @@ impl<'r> Builder<'r> {
         let name = self.module_name(m);
         let motion = self.world.turn_motion(self.robot, statement, &name)?;
         let view = self.world.view();
-        let moving = motion
+        // The model lists moving blocks (M-TRAN: two per module, and the turner's own moving
+        // block); the recording lists each other module once and the turner's half apart.
+        let mut moving: Vec<usize> = motion
             .moving
             .iter()
             .filter_map(|(n, _)| view.index(n))
+            .filter(|&i| i != m)
             .collect();
-        // Which half of the turning module moves: the one whose connectors the completed
-        // turn (done on a copy of the world) carries elsewhere.
-        let mut after = self.world.clone();
-        after.apply(self.robot, statement, &name).ok()?;
-        let before = poses(&self.world.configuration());
-        let moved = poses(&after.configuration());
-        let half = match (before.get(m), moved.get(m)) {
-            (Some(b), Some(a)) if b.connectors.first() != a.connectors.first() => 0,
-            _ => 1,
-        };
+        moving.sort_unstable();
+        moving.dedup();
+        let half = self.moving_half(m, statement, &name, &motion)?;
         Some(Turn {
             pivot: motion.pivot,
             axis: to_f64(motion.axis),
             angle_deg: motion.angle_deg,
             moving,
             half,
+        })
+    }
+
+    /// Which half of the turning module moves: the block the model lists as moving (M-TRAN),
+    /// else the half whose connectors the completed turn (done on a copy of the world)
+    /// carries elsewhere (ATRON, whose hemispheres share a centre).
+    fn moving_half(
+        &self,
+        m: usize,
+        statement: &ResolvedStatement,
+        name: &str,
+        motion: &TurnMotion,
+    ) -> Option<u8> {
+        let before = poses(&self.world.configuration());
+        let own = motion.moving.iter().find(|(n, _)| n == name);
+        if let (Some((_, centre)), Some(pose)) = (own, before.get(m)) {
+            return Some(u8::from(pose.halves[1].centre == *centre));
+        }
+        let mut after = self.world.clone();
+        after.apply(self.robot, statement, name).ok()?;
+        let moved = poses(&after.configuration());
+        Some(match (before.get(m), moved.get(m)) {
+            (Some(b), Some(a)) if b.connectors.first() != a.connectors.first() => 0,
+            _ => 1,
         })
     }
 

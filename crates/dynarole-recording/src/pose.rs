@@ -158,7 +158,11 @@ fn turn_half(
         h.centre = point(h.centre);
         h.up = direction(h.up);
     }
-    // ATRON connectors 0-3 are on the north half (0), 4-7 on the south half (1).
+    // The centre lies between the halves (an M-TRAN block moves it; ATRON halves share it).
+    let [a, b] = [pose.halves[0].centre, pose.halves[1].centre];
+    pose.centre = std::array::from_fn(|i| (a[i] + b[i]) / 2.0);
+    // The first half of the connectors is on half 0 (ATRON 0-3 north, M-TRAN 0-2 the north
+    // block), the rest on half 1.
     let per_half = pose.connectors.len() / 2;
     for (k, c) in pose.connectors.iter_mut().enumerate() {
         if k / per_half.max(1) == half {

@@ -9,19 +9,41 @@ use dynarole_world::Configuration;
 
 const SOURCE: &str = "robot atron;\nsequence s {\n    M0.Connector[0].retract();\n    M3.Connector[4].retract();\n    M3.Joint.rotateFromToBy(0, 324, false, 150);\n}\n";
 const EIGHT: &str = include_str!("../../../examples/atron/eight.json");
+const MOVE_MODULE: &str = include_str!("../../../examples/mtran/move_module.dr");
+const SNAKE4: &str = include_str!("../../../examples/mtran/mtran-snake4.json");
 
 fn recording() -> Recording {
-    let parsed = parse(SOURCE);
+    let events = [
+        (0.0, 0, "start", "#0 retract"),
+        (2.0, 3, "start", "#1 retract"),
+        (50.0, 0, "done", "#0 retract"),
+        (52.0, 3, "done", "#1 retract"),
+        (100.0, 3, "start", "#2 turn"),
+        (650.0, 3, "done", "#2 turn"),
+    ];
+    built(SOURCE, "s", EIGHT, &events, 2000.0)
+}
+
+/// A recording of `sequence` of `source` from `start`, fed `events` (time, module, event,
+/// detail).
+fn built(
+    source: &str,
+    sequence: &str,
+    start: &str,
+    events: &[(f64, usize, &str, &str)],
+    end_ms: f64,
+) -> Recording {
+    let parsed = parse(source);
     let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
     assert!(diagnostics.is_empty(), "{diagnostics:?}");
     let program = program.expect("a program");
-    let plan = program.expand("s").expect("sequence s");
+    let plan = program.expand(sequence).expect("the sequence");
     let statements: Vec<_> = plan.statements().into_iter().cloned().collect();
     let texts: Vec<String> = statements
         .iter()
         .map(|s| s.describe(&program.robot))
         .collect();
-    let start = Configuration::from_json_str(EIGHT).expect("the eight");
+    let start = Configuration::from_json_str(start).expect("the start");
     let mut builder = Builder::new(
         "replay",
         "t",
@@ -32,13 +54,10 @@ fn recording() -> Recording {
         None,
     )
     .expect("builder");
-    builder.event(0.0, Some(0), "start", "-", "#0 retract");
-    builder.event(2.0, Some(3), "start", "-", "#1 retract");
-    builder.event(50.0, Some(0), "done", "-", "#0 retract");
-    builder.event(52.0, Some(3), "done", "-", "#1 retract");
-    builder.event(100.0, Some(3), "start", "-", "#2 turn");
-    builder.event(650.0, Some(3), "done", "-", "#2 turn");
-    builder.finish(2000.0, Vec::new())
+    for (time, module, event, detail) in events {
+        builder.event(*time, Some(*module), event, "-", detail);
+    }
+    builder.finish(end_ms, Vec::new())
 }
 
 #[test]
@@ -87,4 +106,66 @@ fn the_reader_names_the_field_that_points_nowhere() {
     assert!(Recording::from_json(&text)
         .expect_err("refused")
         .contains("keyframes"));
+}
+
+/// M-TRAN: the world model lists moving blocks, the turner's own among them; the recording
+/// names each other module once and the turner's moving block as its half, so that every
+/// turn ends (fraction 1) exactly where the world model puts the robot after it.
+#[test]
+fn mtran_turns_move_their_blocks_and_end_where_the_world_does() {
+    // The four bends, one after the other, each by its own module (M10..M13 are 0..3).
+    let events: Vec<(f64, usize, &str, String)> = (0u32..4)
+        .flat_map(|k| {
+            let t = 1000.0 * f64::from(k);
+            let m = k as usize;
+            [
+                (t, m, "start", format!("#{k} turn")),
+                (t + 550.0, m, "done", format!("#{k} turn")),
+            ]
+        })
+        .collect();
+    let events: Vec<_> = events
+        .iter()
+        .map(|(t, m, e, d)| (*t, *m, *e, d.as_str()))
+        .collect();
+    let r = built(MOVE_MODULE, "left2right", SNAKE4, &events, 5000.0);
+    for motion in &r.motions {
+        let turn = motion
+            .turn
+            .as_ref()
+            .expect("an M-TRAN joint turn has a motion");
+        assert_eq!(turn.angle_deg.abs(), 90.0);
+        assert!(!turn.moving.contains(&motion.module), "{turn:?}");
+        assert!(turn.moving.windows(2).all(|w| w[0] < w[1]), "{turn:?}");
+        let near_end = poses_at(&r, motion.end_ms - 1e-9).expect("poses");
+        let after = poses_at(&r, motion.end_ms).expect("poses");
+        let before = poses_at(&r, motion.start_ms).expect("poses");
+        let middle = poses_at(&r, (motion.start_ms + motion.end_ms) / 2.0).expect("poses");
+        for (m, (a, b)) in near_end.iter().zip(&after).enumerate() {
+            let mut points = vec![(a.centre, b.centre)];
+            points.extend(
+                a.halves
+                    .iter()
+                    .zip(&b.halves)
+                    .map(|(x, y)| (x.centre, y.centre)),
+            );
+            points.extend(
+                a.connectors
+                    .iter()
+                    .copied()
+                    .zip(b.connectors.iter().copied()),
+            );
+            for (x, y) in points {
+                let gap = (0..3).map(|i| (x[i] - y[i]).abs()).fold(0.0, f64::max);
+                assert!(
+                    gap < 1e-6,
+                    "module {m} at the end of {motion:?}: {x:?} vs {y:?}"
+                );
+            }
+        }
+        // Mid-turn the turner's moving block is between its places before and after.
+        let connectors = |p: &[dynarole_recording::Pose]| p[motion.module].connectors.clone();
+        assert_ne!(connectors(&middle), connectors(&before));
+        assert_ne!(connectors(&middle), connectors(&after));
+    }
 }

@@ -219,7 +219,7 @@ class Viewer {
   probe() {
     return {
       time_ms: this.time,
-      positions: this.scene.modules.map((m) => m.anchor.position.toArray()),
+      positions: this.scene.centres.map((c) => c.toArray()),
       highlighted: this.source.highlighted(),
       state: this.state.rows(),
       markers: this.timeline.markerPositions(),

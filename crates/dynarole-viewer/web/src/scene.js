@@ -1,6 +1,6 @@
 // The 3D scene: ATRON modules as two hemispheres (north blue, south orange, the colours of
 // `dynarole show`) with the joint line, male connectors extended when latched, latches drawn
-// between connectors; M-TRAN modules as two blocks; packets as short arcs.
+// between connectors; M-TRAN modules as two blocks; packets as short arcs. Parts are instanced.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 
@@ -10,6 +10,7 @@ const LATCH = 0x1e1e1e;
 const DELIVERED = 0x22aa44;
 const DROPPED = 0xdd2222;
 const Y = new THREE.Vector3(0, 1, 0);
+const Z = new THREE.Vector3(0, 0, 1);
 
 export class Scene {
   constructor(container, recording) {
@@ -35,9 +36,12 @@ export class Scene {
     this.resetCamera(recording.keyframes[0].poses);
   }
 
+  // One instanced mesh per kind of part (north halves, south halves, joint rings, male and
+  // female connectors): a handful of draw calls whatever the robot's size.
   buildModules() {
     const rec = this.rec;
-    const many = rec.modules.length > 200;
+    const n = rec.modules.length;
+    const many = n > 200;
     const segments = many ? 10 : 28;
     const dome = this.atron
       ? new THREE.SphereGeometry(0.48, segments, segments / 2, 0, Math.PI * 2, 0, Math.PI / 2)
@@ -46,31 +50,27 @@ export class Scene {
     const prong = new THREE.CylinderGeometry(0.05, 0.05, 1, 8);
     prong.translate(0, 0.5, 0);
     const socket = new THREE.CylinderGeometry(0.07, 0.07, 0.02, 10);
-    this.materials = [NORTH, SOUTH].map((c) => rec.modules.map(() => new THREE.MeshStandardMaterial({ color: c, roughness: 0.6 })));
-    const ringMaterial = new THREE.MeshStandardMaterial({ color: 0x222222 });
-    const maleMaterial = new THREE.MeshStandardMaterial({ color: 0x666666 });
-    const femaleMaterial = new THREE.MeshStandardMaterial({ color: 0x222222 });
-    this.modules = rec.modules.map((info, i) => {
-      const anchor = new THREE.Object3D();
-      anchor.name = info.name;
-      const halves = [0, 1].map((h) => {
-        const mesh = new THREE.Mesh(dome, this.materials[h][i]);
-        mesh.userData.module = i;
-        this.scene.add(mesh);
-        return mesh;
-      });
-      const joint = this.atron ? new THREE.Mesh(ring, ringMaterial) : null;
-      if (joint) this.scene.add(joint);
-      const connectors = many
-        ? []
-        : rec.connectors.map((c) => {
-            const mesh = new THREE.Mesh(c.male ? prong : socket, c.male ? maleMaterial : femaleMaterial);
-            this.scene.add(mesh);
-            return mesh;
-          });
-      this.scene.add(anchor);
-      return { anchor, halves, joint, connectors };
-    });
+    const instanced = (geometry, colour, count) => {
+      const mesh = new THREE.InstancedMesh(geometry, new THREE.MeshStandardMaterial({ color: colour, roughness: 0.6 }), count);
+      // Instances move every frame; their bounds are not worth recomputing for culling.
+      mesh.frustumCulled = false;
+      this.scene.add(mesh);
+      return mesh;
+    };
+    // Halves take their colour per instance (white material), so that a module can flash.
+    this.halves = [NORTH, SOUTH].map(() => instanced(dome, 0xffffff, n));
+    this.halfColours = [new THREE.Color(NORTH), new THREE.Color(SOUTH)];
+    this.flashColour = new THREE.Color(0xff3030);
+    this.joints = this.atron ? instanced(ring, 0x222222, n) : null;
+    const perModule = many ? [] : rec.connectors.map((c, k) => k);
+    const males = perModule.filter((k) => rec.connectors[k].male);
+    const females = perModule.filter((k) => !rec.connectors[k].male);
+    this.connectorParts = [
+      { kinds: males, mesh: instanced(prong, 0x666666, Math.max(1, n * males.length)) },
+      { kinds: females, mesh: instanced(socket, 0x222222, Math.max(1, n * females.length)) },
+    ];
+    this.connectorParts.forEach((part) => (part.mesh.count = n * part.kinds.length));
+    this.centres = rec.modules.map(() => new THREE.Vector3());
   }
 
   resize() {
@@ -94,40 +94,59 @@ export class Scene {
   // Places every part at the poses of `state` (from World.at).
   show(state, flashing, latchedMales) {
     const v = new THREE.Vector3();
-    this.modules.forEach((m, i) => {
+    const part = new THREE.Object3D();
+    const place = (mesh, index) => {
+      part.updateMatrix();
+      mesh.setMatrixAt(index, part.matrix);
+    };
+    this.centres.forEach((centre, i) => {
       const pose = state.poses[i];
-      m.anchor.position.set(...pose.centre);
-      m.halves.forEach((mesh, h) => {
+      centre.set(...pose.centre);
+      this.halves.forEach((mesh, h) => {
         const half = pose.halves[h];
-        mesh.position.set(...half.centre);
-        const up = v.set(...half.up).normalize();
-        mesh.quaternion.setFromUnitVectors(Y, this.atron ? up : Y);
-        if (!this.atron) mesh.scale.setScalar(1);
-        const flash = flashing.has(i);
-        this.materials[h][i].emissive.setHex(flash ? 0xff2020 : 0x000000);
+        part.position.set(...half.centre);
+        part.quaternion.setFromUnitVectors(Y, this.atron ? v.set(...half.up).normalize() : Y);
+        part.scale.setScalar(1);
+        place(mesh, i);
+        mesh.setColorAt(i, flashing.has(i) ? this.flashColour : this.halfColours[h]);
       });
-      if (m.joint) {
-        m.joint.position.set(...pose.centre);
-        m.joint.quaternion.setFromUnitVectors(new THREE.Vector3(0, 0, 1), v.set(...pose.halves[0].up).normalize());
+      if (this.joints) {
+        part.position.copy(centre);
+        part.quaternion.setFromUnitVectors(Z, v.set(...pose.halves[0].up).normalize());
+        part.scale.setScalar(1);
+        place(this.joints, i);
       }
-      m.connectors.forEach((mesh, k) => this.placeConnector(mesh, pose, k, latchedMales.has(i * 64 + k)));
+      for (const { kinds, mesh } of this.connectorParts) {
+        kinds.forEach((k, j) => {
+          this.placeConnector(part, pose, k, latchedMales.has(i * 64 + k));
+          place(mesh, i * kinds.length + j);
+        });
+      }
     });
+    const meshes = [...this.halves, ...this.connectorParts.map((p) => p.mesh)];
+    if (this.joints) meshes.push(this.joints);
+    for (const mesh of meshes) {
+      mesh.instanceMatrix.needsUpdate = true;
+      if (mesh.instanceColor) mesh.instanceColor.needsUpdate = true;
+    }
     this.showLatches(state);
   }
 
-  placeConnector(mesh, pose, k, extended) {
+  // Sets `part` (position, direction, length) to connector k of `pose`.
+  placeConnector(part, pose, k, extended) {
     const info = this.rec.connectors[k];
     const at = new THREE.Vector3(...pose.connectors[k]);
     const from = new THREE.Vector3(...pose.halves[info.half].centre);
     const out = at.clone().sub(from).normalize();
-    mesh.quaternion.setFromUnitVectors(Y, out);
+    part.quaternion.setFromUnitVectors(Y, out);
     if (info.male) {
       // Retracted: the hooks stay inside the shell; extended: they reach the neighbour.
       const length = extended ? 0.3 : 0.08;
-      mesh.position.copy(at).addScaledVector(out, -0.2);
-      mesh.scale.set(1, length + 0.2, 1);
+      part.position.copy(at).addScaledVector(out, -0.2);
+      part.scale.set(1, length + 0.2, 1);
     } else {
-      mesh.position.copy(at).addScaledVector(out, -0.23);
+      part.position.copy(at).addScaledVector(out, -0.23);
+      part.scale.setScalar(1);
     }
   }
 
@@ -164,7 +183,7 @@ export class Scene {
 
   // Screen position (CSS pixels) of module i's centre, for labels.
   screen(i) {
-    const v = this.modules[i].anchor.position.clone().project(this.camera);
+    const v = this.centres[i].clone().project(this.camera);
     const w = this.container.clientWidth;
     const h = this.container.clientHeight;
     return { x: ((v.x + 1) / 2) * w, y: ((1 - v.y) / 2) * h, visible: v.z < 1 };
@@ -176,8 +195,7 @@ export class Scene {
     const w = this.container.clientWidth;
     const h = this.container.clientHeight;
     ray.setFromCamera(new THREE.Vector2((x / w) * 2 - 1, 1 - (y / h) * 2), this.camera);
-    const meshes = this.modules.flatMap((m) => m.halves);
-    const hit = ray.intersectObjects(meshes, false)[0];
-    return hit ? hit.object.userData.module : null;
+    const hit = ray.intersectObjects(this.halves, false)[0];
+    return hit ? hit.instanceId : null;
   }
 }

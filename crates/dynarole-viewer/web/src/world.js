@@ -97,6 +97,9 @@ function turnPoses(poses, turner, turn, fraction) {
   const h = p.halves[turn.half];
   h.centre = point(h.centre);
   h.up = direction(h.up);
+  // The centre lies between the halves (an M-TRAN block moves it; ATRON halves share it).
+  const [a, b] = [p.halves[0].centre, p.halves[1].centre];
+  p.centre = [0, 1, 2].map((i) => (a[i] + b[i]) / 2);
   const perHalf = p.connectors.length / 2;
   p.connectors = p.connectors.map((c, k) => (Math.floor(k / perHalf) === turn.half ? point(c) : c));
 }
