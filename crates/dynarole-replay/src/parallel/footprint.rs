@@ -3,7 +3,8 @@
 //!
 //! Two turns `a` (statement `i`) and `b` (a later one), on the state `W` before `a`:
 //! - moving sides that share a module: ordered (the full check says "both turns move ...");
-//! - on ATRON, disjoint sides, neither pivot moved by the other turn: the two orders give
+//! - on ATRON, disjoint sides, neither pivot moved by the other turn (or the one moved
+//!   turns no module, as at a free end of a chain): the two orders give
 //!   the same configuration (each module is turned by at most one of them, about an axis the
 //!   other does not move). If the two turns done at the same time can come closer than the
 //!   limit, ordered (the full check's last test). Otherwise every moving module of one turn
@@ -123,7 +124,13 @@ impl MovingSide {
         let RobotWorld::Atron(w) = world else {
             return None;
         };
-        if self.modules.contains(b.pivot) || b.modules.contains(self.pivot) {
+        // A turn that moves no module (a free end's joint) leaves every position where it
+        // was, so carrying its module along changes nothing it does; else moving the other's
+        // module changes the other's motion, and the full check decides.
+        let carries = |x: &MovingSide, y: &MovingSide| {
+            x.modules.contains(y.pivot) && !y.motion.moving.is_empty()
+        };
+        if carries(self, b) || carries(b, self) {
             return None;
         }
         if closest_approach(&self.motion, &b.motion).is_some() {
