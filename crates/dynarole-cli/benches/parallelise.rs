@@ -260,6 +260,7 @@ fn cases() -> Vec<Case> {
 
 fn benches(c: &mut Criterion) {
     let cases = cases();
+    write_inputs(&cases);
     println!("| sequence | statements | groups | critical path: shipped | all `;` | parallelised | simulated: shipped | all `;` | parallelised | time |");
     println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     for case in &cases {
@@ -285,6 +286,32 @@ fn benches(c: &mut Criterion) {
         c.bench_function(&format!("parallelise {}", case.name), |b| {
             b.iter(|| run(&source, case.sequence, &case.config, case.window))
         });
+    }
+}
+
+/// Writes the generated chains (and their 100-module start) under `target/parallelise-bench/`,
+/// so the command itself can be timed on them (`docs/benchmarks.md`).
+fn write_inputs(cases: &[Case]) {
+    let dir =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../target/parallelise-bench");
+    let mut files = vec![("chain100.json".to_string(), atron_chain_json(100))];
+    for case in cases
+        .iter()
+        .filter(|c| c.sequence == "chain" && c.window.is_none())
+    {
+        files.push((
+            format!("chain{}.dr", case.source.matches(");").count()),
+            case.source.clone(),
+        ));
+    }
+    let written = std::fs::create_dir_all(&dir).and_then(|()| {
+        files
+            .iter()
+            .try_for_each(|(name, text)| std::fs::write(dir.join(name), text))
+    });
+    match written {
+        Ok(()) => println!("inputs written to {}", dir.display()),
+        Err(e) => println!("inputs not written to {}: {e}", dir.display()),
     }
 }
 

@@ -2,6 +2,7 @@
 //! configuration in either order, and two joint turns done at the same time must not sweep
 //! through each other.
 
+use crate::parallel::footprint::MovingSide;
 use crate::robot_world::{same_configuration, RobotWorld};
 use crate::roles::Assignment;
 use dynarole_core::check::ResolvedStatement;
@@ -11,16 +12,39 @@ use dynarole_core::Program;
 use dynarole_world::{compare, TurnMotion};
 
 /// Warnings for every pair of elements of a parallel group that are not independent, walking
-/// the plans from the world's configuration.
+/// the plans from the world's configuration. Pairs of ATRON turns that their motions prove
+/// independent (`parallel/footprint.rs`) are not run both ways; every other pair is.
 pub fn check_independence(
+    program: &Program,
+    plans: &[Plan],
+    world: RobotWorld,
+    assignment: &Assignment,
+) -> Vec<Diagnostic> {
+    independence(program, plans, world, assignment, false)
+}
+
+/// The same check running every pair both ways on copies of the world: the reference the
+/// motions' shortcut is tested against (the same warnings).
+pub fn check_independence_exhaustive(
+    program: &Program,
+    plans: &[Plan],
+    world: RobotWorld,
+    assignment: &Assignment,
+) -> Vec<Diagnostic> {
+    independence(program, plans, world, assignment, true)
+}
+
+fn independence(
     program: &Program,
     plans: &[Plan],
     mut world: RobotWorld,
     assignment: &Assignment,
+    exhaustive: bool,
 ) -> Vec<Diagnostic> {
     let checker = Checker {
         program,
         assignment,
+        exhaustive,
     };
     let mut out = Vec::new();
     for plan in plans {
@@ -40,6 +64,7 @@ pub(crate) fn simultaneous_turns(
     let checker = Checker {
         program,
         assignment,
+        exhaustive: true,
     };
     let motion = |s: &ResolvedStatement| {
         let module = assignment.get(&s.label)?;
@@ -51,13 +76,21 @@ pub(crate) fn simultaneous_turns(
 struct Checker<'a> {
     program: &'a Program<'a>,
     assignment: &'a Assignment,
+    /// Run every pair both ways, even turns their motions prove independent.
+    exhaustive: bool,
 }
 
 impl Checker<'_> {
     fn plan(&self, plan: &Plan, world: &mut RobotWorld, out: &mut Vec<Diagnostic>) {
         for group in groups(plan) {
+            let sides = self.sides(group, world);
             for (i, a) in group.iter().enumerate() {
-                for b in &group[i + 1..] {
+                for (k, b) in group.iter().enumerate().skip(i + 1) {
+                    if let (Some(sa), Some(sb)) = (&sides[i], &sides[k]) {
+                        if sa.proven_independent(sb, world) {
+                            continue;
+                        }
+                    }
                     if let Some(reason) = self.pair(a, b, world) {
                         let kind = DiagnosticKind::NotIndependent {
                             step: self.describe(a),
@@ -78,6 +111,21 @@ impl Checker<'_> {
                 let _ = self.apply(element, world);
             }
         }
+    }
+
+    /// Each element's turn motion on `world` (the state its group starts from), for the
+    /// pairs decided from motions; `None` for anything else, or all when exhaustive.
+    fn sides(&self, group: &[PlanElement], world: &RobotWorld) -> Vec<Option<MovingSide>> {
+        group
+            .iter()
+            .map(|element| match &element.kind {
+                PlanKind::Op(statement) if !self.exhaustive => {
+                    let module = self.assignment.get(&statement.label).map(String::as_str);
+                    MovingSide::of(&self.program.robot, statement, module, world)
+                }
+                _ => None,
+            })
+            .collect()
     }
 
     /// Why `a` and `b` are not independent, if they are not.

@@ -12,7 +12,7 @@ mod routes;
 mod run;
 mod topology;
 
-pub use independence::check_independence;
+pub use independence::{check_independence, check_independence_exhaustive};
 pub use parallel::{
     dependency_graph, parallelise, transitive_reduction, Form, FormKind, Layout, ParalleliseError,
     Parallelised, Request,

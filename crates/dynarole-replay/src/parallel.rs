@@ -19,7 +19,7 @@ use dynarole_world::{compare, Configuration, Port};
 use std::collections::BTreeMap;
 use std::fmt::Write;
 
-mod footprint;
+pub(crate) mod footprint;
 mod layout;
 
 use footprint::{Later, MovingSide};
@@ -248,7 +248,7 @@ impl Graph {
             .collect();
         // Each turn's motion on the state it runs from in the input, computed once.
         let motions: Vec<Option<MovingSide>> = (0..n)
-            .map(|i| MovingSide::of(request, &statements[i], modules[i], &pre[i]))
+            .map(|i| MovingSide::of(&request.program.robot, &statements[i], modules[i], &pre[i]))
             .collect();
         let mut ancestors = vec![BitSet::new(n); n];
         let mut edges = Vec::new();

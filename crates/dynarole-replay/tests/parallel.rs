@@ -4,8 +4,8 @@
 
 use dynarole_core::{analyze, parse, RobotRegistry};
 use dynarole_replay::{
-    assign_modules, check_independence, dependency_graph, parallelise, replay, FormKind, Layout,
-    Parallelised, Request, RobotWorld,
+    assign_modules, check_independence, check_independence_exhaustive, dependency_graph,
+    parallelise, replay, FormKind, Layout, Parallelised, Request, RobotWorld,
 };
 use dynarole_world::generated::atron_chain_json;
 use dynarole_world::{compare, Configuration, MtranJoint, MtranWorld, World};
@@ -308,6 +308,33 @@ fn same_graph(robot: &str, config: &str, moves: &[String]) -> Result<(), TestCas
     Ok(())
 }
 
+/// The independence check of `moves` joined by `&` where `joins` says so (else `;`), with
+/// turns decided from their motions, warns exactly like the one running every pair both ways.
+fn same_warnings(
+    robot: &str,
+    config: &str,
+    moves: &[String],
+    joins: &[bool],
+) -> Result<(), TestCaseError> {
+    let mut body = String::new();
+    for (k, m) in moves.iter().enumerate() {
+        let join = joins.get(k).copied().unwrap_or(false) && k + 1 < moves.len();
+        body.push_str(&format!("    {m}{}\n", if join { " &" } else { ";" }));
+    }
+    let source = format!("robot {robot};\nsequence s {{\n{body}}}\n");
+    let parsed = parse(&source);
+    let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
+    let program = program.unwrap_or_else(|| panic!("{source}\n{diagnostics:?}"));
+    let config = Configuration::from_json_str(config).expect("configuration");
+    let plans = vec![program.expand("s").expect("s")];
+    let assignment = assign_modules(&program, &plans, &config).expect("labels");
+    let world = RobotWorld::new(config, &program.robot).expect("world");
+    let fast = check_independence(&program, &plans, world.clone(), &assignment);
+    let exhaustive = check_independence_exhaustive(&program, &plans, world, &assignment);
+    prop_assert_eq!(format!("{fast:?}"), format!("{exhaustive:?}"), "{}", source);
+    Ok(())
+}
+
 #[test]
 fn a_turn_whose_sweep_is_blocked_before_an_earlier_turn_stays_after_it() {
     // On the car, M1's turn (statement 3) is accepted where the input runs it but refused (its
@@ -365,6 +392,20 @@ proptest! {
         let moves = atron_moves(&config, n, &picks);
         prop_assume!(!moves.is_empty());
         same_graph("atron", &config, &moves)?;
+    }
+
+    #[test]
+    fn the_fast_independence_check_is_the_exhaustive_one_on_atron(
+        structure in 0usize..8,
+        longer in 0usize..16,
+        picks in proptest::collection::vec((0usize..24, 0u8..3, 0u8..8), 1..60),
+        joins in proptest::collection::vec(proptest::bool::weighted(0.7), 60),
+    ) {
+        // Valid in order, joined into random groups: some groups are independent, some not.
+        let (config, n) = atron_structure(structure, longer);
+        let moves = atron_moves(&config, n, &picks);
+        prop_assume!(!moves.is_empty());
+        same_warnings("atron", &config, &moves, &joins)?;
     }
 
     #[test]

@@ -3,7 +3,8 @@
 //!
 //! Two turns `a` (statement `i`) and `b` (a later one), on the state `W` before `a`:
 //! - moving sides that share a module: ordered (the full check says "both turns move ...");
-//! - on ATRON, disjoint sides, neither pivot moved by the other turn: the two orders give
+//! - on ATRON, disjoint sides, neither pivot moved by the other turn (or the one moved
+//!   turns no module, as at a free end of a chain): the two orders give
 //!   the same configuration (each module is turned by at most one of them, about an axis the
 //!   other does not move). If the two turns done at the same time can come closer than the
 //!   limit, ordered (the full check's last test). Otherwise every moving module of one turn
@@ -17,10 +18,10 @@
 //! modules `a` moved: the others are where they were then, and so is `b`'s moving side.
 
 use super::layout::BitSet;
-use super::Request;
 use crate::independence::closest_approach;
 use crate::robot_world::RobotWorld;
 use dynarole_core::check::ResolvedStatement;
+use dynarole_core::RobotApi;
 use dynarole_world::geometry::{sweep_closest_approach, to_f64};
 use dynarole_world::TurnMotion;
 use std::cell::{Cell, RefCell};
@@ -43,7 +44,7 @@ impl Later {
     /// `b`'s joint nor, unless the sides meet, its modules); else it is computed on `world`.
     pub(super) fn decide(
         &self,
-        request: &Request,
+        request: &super::Request,
         (a, i): (&MovingSide, usize),
         (b, module): (&ResolvedStatement, Option<&str>),
         world: &RobotWorld,
@@ -51,7 +52,7 @@ impl Later {
         let cached = self.side.borrow().clone();
         let (side_b, fresh) = match cached {
             Some((k, side)) if k == i + 1 && side.pivot != a.pivot => (side, false),
-            _ => match MovingSide::of(request, b, module, world) {
+            _ => match MovingSide::of(&request.program.robot, b, module, world) {
                 Some(side) => (Rc::new(side), true),
                 // `b` is refused on `world` (a wrong angle, a locked joint): ordered.
                 None => return Some(true),
@@ -68,21 +69,21 @@ impl Later {
 }
 
 /// A turn's motion on one state, with the modules it moves and its own module (by index).
-pub(super) struct MovingSide {
+pub(crate) struct MovingSide {
     motion: TurnMotion,
     modules: BitSet,
     pivot: usize,
 }
 
 impl MovingSide {
-    pub(super) fn of(
-        request: &Request,
+    pub(crate) fn of(
+        robot: &RobotApi,
         statement: &ResolvedStatement,
         module: Option<&str>,
         world: &RobotWorld,
     ) -> Option<MovingSide> {
         let module = module?;
-        let motion = world.turn_motion(&request.program.robot, statement, module)?;
+        let motion = world.turn_motion(robot, statement, module)?;
         let view = world.view();
         let mut modules = BitSet::new(view.len());
         for (name, _) in &motion.moving {
@@ -94,6 +95,18 @@ impl MovingSide {
             modules,
             pivot,
         })
+    }
+
+    /// Two turns done from `world`, each accepted on it alone (checked here for both),
+    /// proven independent from their motions: both orders are accepted and end in the same
+    /// configuration, and done at the same time they stay the limit apart. `false` when
+    /// that is not proven (the full check decides).
+    pub(crate) fn proven_independent(&self, other: &MovingSide, world: &RobotWorld) -> bool {
+        // `decide` assumes the earlier turn is accepted on `world` and checks the later one's
+        // sweep; asked both ways round, both sweeps are checked.
+        let (first, second) = (Cell::new(None), Cell::new(None));
+        self.decide(other, world, (0, &first)) == Some(false)
+            && other.decide(self, world, (0, &second)) == Some(false)
     }
 
     /// `self` is `a` (statement `i`), `b` the later turn, both on `world` (the state before
@@ -111,7 +124,13 @@ impl MovingSide {
         let RobotWorld::Atron(w) = world else {
             return None;
         };
-        if self.modules.contains(b.pivot) || b.modules.contains(self.pivot) {
+        // A turn that moves no module (a free end's joint) leaves every position where it
+        // was, so carrying its module along changes nothing it does; else moving the other's
+        // module changes the other's motion, and the full check decides.
+        let carries = |x: &MovingSide, y: &MovingSide| {
+            x.modules.contains(y.pivot) && !y.motion.moving.is_empty()
+        };
+        if carries(self, b) || carries(b, self) {
             return None;
         }
         if closest_approach(&self.motion, &b.motion).is_some() {
