@@ -92,20 +92,26 @@ fn pipe() -> Result<(RawFd, RawFd), Failure> {
     Ok((fds[0], fds[1]))
 }
 
+/// The flags of every headless Chromium the project starts (the video export and the viewer's
+/// tests): no network services, no GPU, no first-run pages; pages from files may load files.
+pub const HEADLESS_FLAGS: &[&str] = &[
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--no-first-run",
+    "--allow-file-access-from-files",
+];
+
 impl Browser {
     fn start() -> Result<Browser, Failure> {
         let (request_read, request_write) = pipe()?;
         let (answer_read, answer_write) = pipe()?;
         let mut command = Command::new("chromium");
         command
+            .args(HEADLESS_FLAGS)
             .args([
-                "--headless",
-                "--no-sandbox",
-                "--disable-gpu",
-                "--disable-background-networking",
-                "--disable-component-update",
-                "--no-first-run",
-                "--allow-file-access-from-files",
                 "--hide-scrollbars",
                 "--window-size=1280,720",
                 "--remote-debugging-pipe",

@@ -30,24 +30,16 @@ fn chromium() -> Option<PathBuf> {
     Some(PathBuf::from("chromium"))
 }
 
-/// The flags of every headless run (no network services, no GPU, files may load files).
-const FLAGS: &[&str] = &[
-    "--headless",
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--no-first-run",
-    "--allow-file-access-from-files",
-    "--window-size=1200,800",
-];
+/// The window of every headless run (the rest: the flags the video export uses too).
+const WINDOW: &str = "--window-size=1200,800";
 
 /// Opens `page` at the given times and returns what its probe wrote.
 fn probe(browser: &Path, page: &Path, times: &[f64]) -> Value {
     let list: Vec<String> = times.iter().map(|t| format!("{t}")).collect();
     let url = format!("file://{}#probe={}", page.display(), list.join(","));
     let out = Command::new(browser)
-        .args(FLAGS)
+        .args(dynarole_cli::video::HEADLESS_FLAGS)
+        .arg(WINDOW)
         .arg("--dump-dom")
         .arg(&url)
         .output()
@@ -429,7 +421,8 @@ fn screenshot_of_eight2car_mid_run() {
     let _ = std::fs::remove_file(&shot);
     let url = format!("file://{}#t=16000", run.page.display());
     let out = Command::new(&browser)
-        .args(FLAGS)
+        .args(dynarole_cli::video::HEADLESS_FLAGS)
+        .arg(WINDOW)
         .arg(format!("--screenshot={}", shot.display()))
         .arg(&url)
         .output()
