@@ -64,7 +64,7 @@ impl<'a> Worker<'a> {
 }
 
 /// A simulator for `protocol`.
-pub fn simulator(inputs: &Inputs, protocol: crate::spec::ProtocolName) -> Result<Simulator, Error> {
+pub fn simulator(inputs: &Inputs, protocol: dynarole_codegen::Variant) -> Result<Simulator, Error> {
     let mut options = compile_options(inputs.campaign, protocol);
     if options.protocol == dynarole_codegen::Protocol::Token {
         let routes = dynarole_replay::token_routes(&inputs.program, &inputs.plans, inputs.start)

@@ -22,7 +22,7 @@ pub use plot::{bounds, rasterise_svg};
 pub use progress::{Progress, ProgressMode, INTERVAL_VARIABLE};
 pub use results::{Outcome, Row, COLUMNS};
 pub use shard::{status, Shard, Status, CAMPAIGN_COPY, MAX_SHARDS};
-pub use spec::{CampaignFile, Merge, ProtocolName, ProtocolOptions, Range, SpecError, Sweep};
+pub use spec::{CampaignFile, ProtocolOptions, Range, SpecError, Sweep};
 pub use stats::{median, summarise, wilson, PointSummary};
 
 use dynarole_core::Diagnostic;

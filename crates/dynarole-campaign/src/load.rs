@@ -2,9 +2,9 @@
 //! campaign's plugins, and a `NAME.robot.toml` beside the source), the sequences'
 //! plans and the configurations.
 
-use crate::spec::{CampaignFile, Merge, ProtocolName, SpecError};
+use crate::spec::{CampaignFile, SpecError};
 use crate::Error;
-use dynarole_codegen::{CompileOptions, Dissemination, PaperMerge, Protocol, TokenRetries};
+use dynarole_codegen::{CompileOptions, Variant};
 use dynarole_core::driver::{self, SelectError};
 use dynarole_core::expand::Plan;
 use dynarole_core::{Program, RobotApi};
@@ -161,35 +161,17 @@ fn plugin(path: &Path) -> Result<RobotApi, Error> {
 }
 
 /// The back-end's options for `protocol` and the campaign's `[options]`.
-pub fn compile_options(campaign: &CampaignFile, protocol: ProtocolName) -> CompileOptions {
+pub fn compile_options(campaign: &CampaignFile, protocol: Variant) -> CompileOptions {
     let o = &campaign.options;
-    let dissemination = match protocol {
-        ProtocolName::LatticeFixed => Dissemination::Fixed,
-        _ => Dissemination::Adaptive,
-    };
-    let (protocol, token_retries) = match protocol {
-        ProtocolName::Lattice | ProtocolName::LatticeFixed => {
-            (Protocol::Lattice, TokenRetries::Tries(32))
-        }
-        ProtocolName::Paper => (Protocol::Paper, TokenRetries::Tries(32)),
-        ProtocolName::TokenPlain => (Protocol::Token, TokenRetries::Plain),
-        ProtocolName::Token32 => (Protocol::Token, TokenRetries::Tries(32)),
-        ProtocolName::Token128 => (Protocol::Token, TokenRetries::Tries(128)),
-        ProtocolName::TokenUnlimited => (Protocol::Token, TokenRetries::Unlimited),
-    };
     CompileOptions {
-        protocol,
-        merge: match o.merge {
-            Merge::Printed => PaperMerge::Printed,
-            Merge::Java => PaperMerge::Java,
-            Merge::CPort => PaperMerge::CPort,
-        },
+        protocol: protocol.protocol(),
+        merge: o.merge,
         single_step_handover: o.single_step_handover,
         restart_pending: o.restart_pending,
         epochs: 1,
         no_nv: o.no_nv,
-        dissemination,
-        token_retries,
+        dissemination: protocol.dissemination(),
+        token_retries: protocol.token_retries(),
         routes: None,
         name: campaign.sequences.join(" + "),
         ..CompileOptions::default()
@@ -199,25 +181,23 @@ pub fn compile_options(campaign: &CampaignFile, protocol: ProtocolName) -> Compi
 #[cfg(test)]
 mod dissemination_tests {
     use super::*;
+    use dynarole_codegen::{Dissemination, Protocol};
 
-    /// `lattice-fixed` is the lattice protocol with the fixed period, named after the back-end's
-    /// own name of the mode; `lattice` is adaptive, like the command line's default.
+    /// `lattice-fixed` is the lattice protocol with the fixed period (its name is checked
+    /// against the mode's in the protocol table); `lattice` is adaptive, like the command
+    /// line's default.
     #[test]
     fn lattice_fixed_selects_the_fixed_dissemination() {
-        assert_eq!(
-            ProtocolName::LatticeFixed.name(),
-            format!("lattice-{}", Dissemination::Fixed.name())
-        );
         let campaign: CampaignFile = toml::from_str(
             "file = \"a.dr\"\nsequences = [\"s\"]\nfrom = \"a.json\"\nprotocols = [\"lattice\", \"lattice-fixed\"]\npreset = \"atron\"\nseeds = 1\n",
         )
         .expect("parses");
-        let fixed = compile_options(&campaign, ProtocolName::LatticeFixed);
+        let fixed = compile_options(&campaign, Variant::LatticeFixed);
         assert_eq!(
             (fixed.protocol, fixed.dissemination),
             (Protocol::Lattice, Dissemination::Fixed)
         );
-        let adaptive = compile_options(&campaign, ProtocolName::Lattice);
+        let adaptive = compile_options(&campaign, Variant::Lattice);
         assert_eq!(adaptive.dissemination, Dissemination::Adaptive);
     }
 }

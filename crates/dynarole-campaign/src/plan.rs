@@ -2,7 +2,8 @@
 //! value, protocol by protocol, seed by seed. A run's index is its place in this order, and a
 //! run depends only on its parameters and its seed.
 
-use crate::spec::{CampaignFile, ProtocolName, SpecError};
+use crate::spec::{CampaignFile, SpecError};
+use dynarole_codegen::Variant;
 use dynarole_sim::{RandomResets, Scenario};
 
 /// A swept fault axis.
@@ -64,7 +65,7 @@ pub struct PlannedRun {
     pub index: u64,
     pub axis: Axis,
     pub value: f64,
-    pub protocol: ProtocolName,
+    pub protocol: Variant,
     pub seed: u64,
     pub faults: Faults,
 }
@@ -97,7 +98,7 @@ pub const MAX_RUNS: u64 = 1_000_000;
 #[derive(Clone, Debug, PartialEq)]
 pub struct Plan {
     points: Vec<(Axis, f64, Faults)>,
-    protocols: Vec<ProtocolName>,
+    protocols: Vec<Variant>,
     seeds: u64,
     first_seed: u64,
 }

@@ -2,48 +2,14 @@
 //! field is documented in the crate's `README.md`; unknown fields are errors, and every error
 //! names its field.
 
+use dynarole_codegen::choice;
+use dynarole_codegen::{PaperMerge, Variant};
 use dynarole_sim::{Preset, Scenario};
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 
 /// The most points one axis may have (a typo in `step` should not plan a billion runs).
 const MAX_POINTS_PER_AXIS: usize = 10_000;
-
-/// A protocol to compare. The token baseline comes in the original experiments' variants:
-/// each hop sent once (`token-plain`), or acknowledged with 32, 128 or unlimited tries. The
-/// lattice protocol disseminates adaptively (`lattice`, the default of `dynarole simulate`) or
-/// at the fixed period (`lattice-fixed`), so the two meet the same seeds and faults.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Deserialize)]
-pub enum ProtocolName {
-    #[serde(rename = "lattice")]
-    Lattice,
-    #[serde(rename = "lattice-fixed")]
-    LatticeFixed,
-    #[serde(rename = "paper")]
-    Paper,
-    #[serde(rename = "token-plain")]
-    TokenPlain,
-    #[serde(rename = "token-32")]
-    Token32,
-    #[serde(rename = "token-128")]
-    Token128,
-    #[serde(rename = "token-unlimited")]
-    TokenUnlimited,
-}
-
-impl ProtocolName {
-    pub fn name(self) -> &'static str {
-        match self {
-            ProtocolName::Lattice => "lattice",
-            ProtocolName::LatticeFixed => "lattice-fixed",
-            ProtocolName::Paper => "paper",
-            ProtocolName::TokenPlain => "token-plain",
-            ProtocolName::Token32 => "token-32",
-            ProtocolName::Token128 => "token-128",
-            ProtocolName::TokenUnlimited => "token-unlimited",
-        }
-    }
-}
 
 /// `{ from, to, step }`, both ends included.
 #[derive(Clone, Debug, PartialEq, Deserialize)]
@@ -88,7 +54,11 @@ pub struct CampaignFile {
     pub sequences: Vec<String>,
     pub from: PathBuf,
     pub expect: Option<PathBuf>,
-    pub protocols: Vec<ProtocolName>,
+    /// The protocols to compare, as the protocol table names its variants
+    /// (`dynarole_codegen::Variant`): `lattice`, `lattice-fixed`, `paper`, `token-plain`,
+    /// `token-32`, `token-128`, `token-unlimited`.
+    #[serde(deserialize_with = "choice::deserialize_list")]
+    pub protocols: Vec<Variant>,
     pub preset: Option<Preset>,
     pub timeout_ms: Option<u64>,
     pub seeds: u64,
@@ -294,21 +264,13 @@ impl Range {
     }
 }
 
-/// The paper protocol's merge function (`dynarole simulate --merge`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Merge {
-    Printed,
-    Java,
-    #[default]
-    CPort,
-}
-
 /// Protocol options, as `dynarole simulate`'s flags.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct ProtocolOptions {
-    pub merge: Merge,
+    /// The paper protocol's merge function (`dynarole simulate --merge`).
+    #[serde(deserialize_with = "choice::deserialize")]
+    pub merge: PaperMerge,
     pub single_step_handover: bool,
     pub restart_pending: bool,
     pub no_nv: bool,

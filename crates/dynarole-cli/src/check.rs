@@ -2,21 +2,11 @@
 
 use crate::load::{self, Failure, PluginArgs};
 use crate::render;
+use dynarole_codegen::Protocol;
 use dynarole_core::diagnostic::has_errors;
 use dynarole_core::{driver, parse, Diagnostic};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
-pub enum Protocol {
-    /// The paper's protocol: one pending set, no nested blocks.
-    Paper,
-    /// dynarole's own protocol (runs every sequence the language accepts).
-    Lattice,
-    /// The token-passing baseline: with --from, every hand-over must have a chain of latched
-    /// modules to travel on.
-    Token,
-}
 
 /// `--from CONFIG [--sequence NAME...]`: run the sequences on a configuration too.
 pub struct OnConfiguration<'a> {
@@ -113,12 +103,7 @@ fn on_configuration(
 
 /// What the generated code of each sequence could not encode, for the chosen protocol.
 fn target_limits(program: &dynarole_core::Program, protocol: Protocol) -> Vec<Diagnostic> {
-    let shape = match protocol {
-        Protocol::Paper => dynarole_codegen::Protocol::Paper,
-        Protocol::Lattice => dynarole_codegen::Protocol::Lattice,
-        Protocol::Token => dynarole_codegen::Protocol::Token,
-    }
-    .shape();
+    let shape = protocol.shape();
     let mut out = Vec::new();
     for decl in program.file.sequences() {
         let plan = program.expand(&decl.name.name).unwrap_or_default();

@@ -3,8 +3,10 @@
 
 use crate::load::{self, Failure, PluginArgs};
 use crate::render;
+use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use dynarole_codegen::{
-    generate_c, generate_nesc, CompileOptions, Dissemination, PaperMerge, Protocol, TokenRetries,
+    generate_c, generate_nesc, Choice, CompileOptions, Dissemination, PaperMerge, Protocol,
+    Setting, TokenRetries,
 };
 use dynarole_core::{driver, Diagnostic};
 use std::path::Path;
@@ -21,51 +23,26 @@ pub enum Target {
     Promela,
 }
 
-#[derive(Clone, Copy, Debug, clap::ValueEnum)]
-pub enum ProtocolArg {
-    /// dynarole's protocol: shared state as a join-semilattice (default).
-    Lattice,
-    /// The paper's protocol, faithfully (for reproduction and comparison).
-    Paper,
-    /// The token-passing baseline the paper replaced: one token, routed explicitly from
-    /// module to module (needs --from: routes are computed on the configuration).
-    Token,
-}
-
-/// `--token-retries`: `plain` (each hop sends once, no acknowledgement), a number of tries
-/// per hop (acknowledged), or `unlimited`.
-pub fn parse_token_retries(text: &str) -> Result<TokenRetries, String> {
-    match text {
-        "plain" => Ok(TokenRetries::Plain),
-        "unlimited" => Ok(TokenRetries::Unlimited),
-        n => match n.parse::<u16>() {
-            Ok(tries) if tries >= 1 => Ok(TokenRetries::Tries(tries)),
-            _ => Err(format!(
-                "expected `plain`, `unlimited` or a number of tries from 1 to 65535, found `{n}`"
-            )),
-        },
-    }
-}
-
-#[derive(Clone, Copy, Debug, clap::ValueEnum)]
-pub enum MergeArg {
-    /// Fig. 3 as printed (`>` and `and`).
-    Printed,
-    /// The Java runtime of the original experiments (`>` and `or`).
-    Java,
-    /// The later C port, which the text and Fig. 4 need (`>=` and `or`).
-    CPort,
+/// The value parser of a flag that takes one of a set of names from the protocol table (or
+/// the simulator's stepping): clap lists the names in the help and suggests the closest one for
+/// a typo, and the table parses the value.
+pub fn choice<T: Choice + Send + Sync>() -> impl TypedValueParser<Value = T> {
+    let values = T::ALL.iter().map(|v| match v.help() {
+        "" => PossibleValue::new(v.name()),
+        help => PossibleValue::new(v.name()).help(help),
+    });
+    PossibleValuesParser::new(values).try_map(|name| dynarole_codegen::choice::parse::<T>(&name))
 }
 
 /// Options of the protocols, shared by `compile` and `simulate`.
 #[derive(Clone, Debug, clap::Args)]
 pub struct ProtocolOptions {
     /// The protocol that shares the state between the modules.
-    #[arg(long, value_enum, default_value_t = ProtocolArg::Lattice)]
-    pub protocol: ProtocolArg,
+    #[arg(long, value_parser = choice::<Protocol>(), default_value_t = Protocol::Lattice)]
+    pub protocol: Protocol,
     /// Paper protocol: which of the three historical merge functions to use.
-    #[arg(long, value_enum, default_value_t = MergeArg::CPort)]
-    pub merge: MergeArg,
+    #[arg(long, value_parser = choice::<PaperMerge>(), default_value_t = PaperMerge::CPort)]
+    pub merge: PaperMerge,
     /// Paper protocol: add the pending state and transfer control in one step.
     #[arg(long)]
     pub single_step_handover: bool,
@@ -75,14 +52,13 @@ pub struct ProtocolOptions {
     /// Lattice protocol: the modules have no non-volatile storage (weaker reset guarantee).
     #[arg(long)]
     pub no_nv: bool,
-    /// Lattice protocol: `adaptive` (default: news at once, then an interval that doubles
-    /// while nothing is new) or `fixed` (a broadcast every 100 ms, as before). A usage error
-    /// with the paper or token protocol, which have their own fixed period.
-    #[arg(long, value_name = "MODE", value_parser = Dissemination::parse)]
+    /// Lattice protocol: how the state is broadcast. A usage error with the paper or token
+    /// protocol, which have their own fixed period.
+    #[arg(long, value_name = "MODE", value_parser = choice::<Dissemination>())]
     pub dissemination: Option<Dissemination>,
     /// Token protocol: `plain` (sent once per hop), tries per hop (acknowledged; the
     /// original experiments used 32 and 128) or `unlimited`.
-    #[arg(long, value_name = "TRIES", value_parser = parse_token_retries, default_value = "32")]
+    #[arg(long, value_name = "TRIES", value_parser = str::parse::<TokenRetries>, default_value = "32")]
     pub token_retries: TokenRetries,
     /// The robot (or swarm) identity every packet carries: modules drop packets of another
     /// robot in range (a build can override it at flash time with -DDR_ROBOT_ID=N).
@@ -116,24 +92,19 @@ impl ProtocolOptions {
     /// The back-end's options for these flags; a usage error for `--dissemination` with a
     /// protocol other than lattice (it would silently change nothing).
     pub fn compile_options(&self, epochs: u16, name: String) -> Result<CompileOptions, Failure> {
-        if let (Some(d), false) = (self.dissemination, self.protocol_is_lattice()) {
+        if let (Some(d), false) = (
+            self.dissemination,
+            self.protocol.takes(Setting::Dissemination),
+        ) {
             return Err(Failure::Usage(format!(
-                "--dissemination {} applies to the lattice protocol only; the {} protocol has its own fixed broadcast period",
-                d.name(),
-                self.protocol_name()
+                "--dissemination {d} applies to the {} protocol only; the {} protocol has its own fixed broadcast period",
+                Protocol::taking(Setting::Dissemination).join(" and "),
+                self.protocol
             )));
         }
         Ok(CompileOptions {
-            protocol: match self.protocol {
-                ProtocolArg::Lattice => Protocol::Lattice,
-                ProtocolArg::Paper => Protocol::Paper,
-                ProtocolArg::Token => Protocol::Token,
-            },
-            merge: match self.merge {
-                MergeArg::Printed => PaperMerge::Printed,
-                MergeArg::Java => PaperMerge::Java,
-                MergeArg::CPort => PaperMerge::CPort,
-            },
+            protocol: self.protocol,
+            merge: self.merge,
             single_step_handover: self.single_step_handover,
             restart_pending: self.restart_pending,
             epochs,
@@ -145,19 +116,6 @@ impl ProtocolOptions {
             robot_id: self.robot_id,
             key: self.key,
         })
-    }
-
-    fn protocol_is_lattice(&self) -> bool {
-        matches!(self.protocol, ProtocolArg::Lattice)
-    }
-
-    /// The protocol's name as the command line spells it.
-    fn protocol_name(&self) -> String {
-        use clap::ValueEnum;
-        self.protocol
-            .to_possible_value()
-            .map(|v| v.get_name().to_string())
-            .unwrap_or_default()
     }
 }
 

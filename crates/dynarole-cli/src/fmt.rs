@@ -1,8 +1,9 @@
 //! `dynarole fmt`: rewrite files in the canonical layout, or check that they are.
 
-use crate::check::{check_one, Protocol};
+use crate::check::check_one;
 use crate::load::{self, Failure, PluginArgs};
 use crate::render;
+use dynarole_codegen::Protocol;
 use dynarole_core::diagnostic::has_errors;
 use dynarole_core::format::format_file;
 use dynarole_core::parse;

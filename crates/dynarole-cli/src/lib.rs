@@ -20,6 +20,8 @@ pub mod view;
 pub mod world;
 
 use clap::{Parser, Subcommand};
+use dynarole_codegen::Protocol;
+use dynarole_sim::Stepping;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -41,8 +43,8 @@ enum Command {
         #[command(flatten)]
         plugins: load::PluginArgs,
         /// Also report what the given protocol cannot run.
-        #[arg(long, value_enum, default_value_t = check::Protocol::Lattice)]
-        protocol: check::Protocol,
+        #[arg(long, value_parser = compile::choice::<Protocol>(), default_value_t = Protocol::Lattice)]
+        protocol: Protocol,
         /// Also run the sequences on this configuration: report refused and suspicious steps,
         /// and `&`-joined statements that are not independent.
         #[arg(long, value_name = "CONFIG")]
@@ -157,10 +159,9 @@ enum Command {
         /// Per-packet loss at the receiving connector (overrides the scenario's).
         #[arg(long, value_name = "P")]
         loss: Option<f64>,
-        /// How modules are stepped (overrides the scenario's `stepping`): `fixed`, every
-        /// 5 ms; `tickless`, only when they need it (the default; the same run).
-        #[arg(long, value_name = "MODE", value_parser = ["fixed", "tickless"])]
-        stepping: Option<String>,
+        /// How modules are stepped (overrides the scenario's `stepping`).
+        #[arg(long, value_name = "MODE", value_parser = compile::choice::<Stepping>())]
+        stepping: Option<Stepping>,
         /// Seed of every random draw (loss, faults, timing): the same seed and inputs give
         /// the same run, byte for byte.
         #[arg(long, default_value_t = 0)]
@@ -283,8 +284,8 @@ enum Command {
         #[arg(short = 'o', long = "output", value_name = "OUT.dr")]
         out: Option<PathBuf>,
         /// `paper`: parallel groups only (no blocks), what the paper's protocol can run.
-        #[arg(long, value_enum, default_value_t = check::Protocol::Lattice)]
-        protocol: check::Protocol,
+        #[arg(long, value_parser = compile::choice::<Protocol>(), default_value_t = Protocol::Lattice)]
+        protocol: Protocol,
         /// Check only statements at most N apart in the input; farther ones stay ordered
         /// (faster on long sequences, less parallel). Default: every pair.
         #[arg(long, value_name = "N")]
@@ -348,7 +349,7 @@ pub fn main() -> ExitCode {
             options: &options,
             scenario: scenario.as_ref(),
             loss,
-            stepping: stepping.as_deref(),
+            stepping,
             seed,
             repeat,
             trace: trace.as_ref(),

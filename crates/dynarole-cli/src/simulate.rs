@@ -1,11 +1,12 @@
 //! `dynarole simulate`: the generated C on every module, over lossy infrared links, with the
 //! faults of a scenario; exit 0 on success, 3 when the goal was not reached.
 
-use crate::compile::{add_token_routes, ProtocolArg, ProtocolOptions};
+use crate::compile::{add_token_routes, ProtocolOptions};
 use crate::load::{self, Failure, PluginArgs};
 use crate::render;
 use crate::world::read_configuration;
 use clap::ValueEnum;
+use dynarole_codegen::{Choice, Protocol};
 use dynarole_recording::Source;
 use dynarole_sim::{FirmwareReport, Report, Run, Scenario, SimError, Simulator, Stepping};
 use std::path::{Path, PathBuf};
@@ -21,8 +22,8 @@ pub struct SimulateArgs<'a> {
     pub options: &'a ProtocolOptions,
     pub scenario: Option<&'a PathBuf>,
     pub loss: Option<f64>,
-    /// `--stepping`: `fixed` or `tickless` (clap accepts no other value).
-    pub stepping: Option<&'a str>,
+    /// `--stepping`: replaces the scenario's.
+    pub stepping: Option<Stepping>,
     pub seed: u64,
     pub repeat: u64,
     pub trace: Option<&'a PathBuf>,
@@ -147,15 +148,8 @@ fn scenario(args: &SimulateArgs) -> Result<(Scenario, Option<String>), Failure> 
         }
         scenario.network.loss = loss;
     }
-    match args.stepping {
-        Some("fixed") => scenario.stepping = Stepping::Fixed,
-        Some("tickless") => scenario.stepping = Stepping::Tickless,
-        Some(other) => {
-            return Err(Failure::Usage(format!(
-                "--stepping {other}: expected fixed or tickless"
-            )))
-        }
-        None => {}
+    if let Some(stepping) = args.stepping {
+        scenario.stepping = stepping;
     }
     Ok((scenario, text))
 }
@@ -273,7 +267,7 @@ fn replay_command(args: &SimulateArgs, seed: u64) -> String {
         parts.push(format!("--loss {l}"));
     }
     if let Some(s) = args.stepping {
-        parts.push(format!("--stepping {s}"));
+        parts.push(format!("--stepping {}", s.name()));
     }
     for p in &args.plugins.plugins {
         parts.push(format!("--plugin {}", quote(&p.display().to_string())));
@@ -289,7 +283,7 @@ fn replay_command(args: &SimulateArgs, seed: u64) -> String {
 fn protocol_flags(options: &ProtocolOptions) -> Vec<String> {
     let mut flags = Vec::new();
     match options.protocol {
-        ProtocolArg::Lattice => {
+        Protocol::Lattice => {
             flags.push("--protocol lattice".into());
             if options.no_nv {
                 flags.push("--no-nv".into());
@@ -298,12 +292,9 @@ fn protocol_flags(options: &ProtocolOptions) -> Vec<String> {
                 flags.push(format!("--dissemination {}", d.name()));
             }
         }
-        ProtocolArg::Paper => {
+        Protocol::Paper => {
             flags.push("--protocol paper".into());
-            let merge = options.merge.to_possible_value();
-            if let Some(merge) = merge {
-                flags.push(format!("--merge {}", merge.get_name()));
-            }
+            flags.push(format!("--merge {}", options.merge));
             if options.single_step_handover {
                 flags.push("--single-step-handover".into());
             }
@@ -311,7 +302,7 @@ fn protocol_flags(options: &ProtocolOptions) -> Vec<String> {
                 flags.push("--restart-pending".into());
             }
         }
-        ProtocolArg::Token => {
+        Protocol::Token => {
             flags.push("--protocol token".into());
             flags.push(format!("--token-retries {}", options.token_retries.name()));
         }

@@ -1075,7 +1075,7 @@ fn dissemination_selects_the_lattice_mode_and_is_refused_elsewhere() {
         "trickle",
     ]);
     assert_eq!(out.status.code(), Some(2));
-    assert!(text(&out.stderr).contains("expected adaptive or fixed, found `trickle`"));
+    assert!(text(&out.stderr).contains("[possible values: adaptive, fixed]"));
     let out = dynarole(&[
         "simulate",
         "examples/atron/eight2car.dr",

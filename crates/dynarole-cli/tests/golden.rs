@@ -2,9 +2,10 @@
 //! when it has no errors also formatted and reversed; all output goes into one snapshot.
 
 use codespan_reporting::term::termcolor::NoColor;
-use dynarole_cli::check::{check_one, OnConfiguration, Protocol};
+use dynarole_cli::check::{check_one, OnConfiguration};
 use dynarole_cli::load::{self, PluginArgs};
 use dynarole_cli::render::write_diagnostics;
+use dynarole_codegen::Protocol;
 use dynarole_core::diagnostic::{all_codes, has_errors, shown, DiagnosticCode};
 use dynarole_core::format::{format_file, format_items};
 use dynarole_core::{analyze, parse, Diagnostic};

@@ -2,144 +2,16 @@
 //! machine (paper protocol), role predicates, statement metadata for checkers, the runtime,
 //! and a Makefile.
 
-use crate::paper::paper_machine;
+use crate::options::{op_macro, CompileOptions};
+use crate::paper::{paper_machine, pending_slots};
 use crate::predicate;
+use crate::protocol::Protocol;
 use crate::runtime;
-use crate::token::{token_tables, TokenRetries, TokenRoutes};
+use crate::token::token_tables;
 use dynarole_core::check::Label;
 use dynarole_core::lower::{Ir, LimitError};
 use dynarole_core::RobotApi;
 use std::fmt::Write;
-
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Protocol {
-    Lattice,
-    Paper,
-    /// The token-passing baseline the paper replaced (runtime/token/).
-    Token,
-}
-
-impl Protocol {
-    /// The name used on the command line and in reports.
-    pub fn name(self) -> &'static str {
-        match self {
-            Protocol::Lattice => "lattice",
-            Protocol::Paper => "paper",
-            Protocol::Token => "token",
-        }
-    }
-
-    /// What the protocol's code can run of a sequence: the paper's runs flat ones only.
-    pub fn shape(self) -> dynarole_core::driver::Shape {
-        match self {
-            Protocol::Paper => dynarole_core::driver::Shape::Flat,
-            Protocol::Lattice | Protocol::Token => dynarole_core::driver::Shape::Nested,
-        }
-    }
-}
-
-/// How the lattice protocol disseminates its state (`DR_CONF_LATTICE_DISSEMINATION`,
-/// runtime/dr_conf.h). The paper and token protocols have their own fixed period.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum Dissemination {
-    /// Trickle-like: news at once, then an interval that doubles while nothing is new.
-    #[default]
-    Adaptive,
-    /// A broadcast every period for the whole run (the behaviour before adaptive existed).
-    Fixed,
-}
-
-impl Dissemination {
-    /// Every mode, in the order the command line lists them.
-    pub const ALL: [Dissemination; 2] = [Dissemination::Adaptive, Dissemination::Fixed];
-
-    /// The name used on the command line, in campaign files and in reports.
-    pub fn name(self) -> &'static str {
-        match self {
-            Dissemination::Adaptive => "adaptive",
-            Dissemination::Fixed => "fixed",
-        }
-    }
-
-    /// The mode called `name`, or an error listing the names there are.
-    pub fn parse(name: &str) -> Result<Dissemination, String> {
-        Dissemination::ALL
-            .into_iter()
-            .find(|d| d.name() == name)
-            .ok_or_else(|| {
-                let names: Vec<&str> = Dissemination::ALL.iter().map(|d| d.name()).collect();
-                format!("expected {}, found `{name}`", names.join(" or "))
-            })
-    }
-
-    /// The value of `DR_CONF_LATTICE_DISSEMINATION` in the generated configuration.
-    fn c_macro(self) -> &'static str {
-        match self {
-            Dissemination::Adaptive => "DR_DISSEMINATION_ADAPTIVE",
-            Dissemination::Fixed => "DR_DISSEMINATION_FIXED",
-        }
-    }
-}
-
-/// The three versions of the paper's merge (protocol notes, e.3).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum PaperMerge {
-    /// Fig. 3 as printed: `p > s_other and p in P_other`.
-    Printed,
-    /// The Java runtime of the experiments: `p > s_other or p in P_other`.
-    Java,
-    /// The later C port, which Fig. 4 needs: `p >= s_other or p in P_other`.
-    CPort,
-}
-
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct CompileOptions {
-    pub protocol: Protocol,
-    pub merge: PaperMerge,
-    /// Paper protocol: add pending and transfer in one step.
-    pub single_step_handover: bool,
-    /// Paper protocol: the Sec. III-C restart of an interrupted pending operation.
-    pub restart_pending: bool,
-    /// Lattice protocol: runs of the whole sequence before the end; 0 runs forever.
-    pub epochs: u16,
-    /// Lattice protocol: the hardware has no non-volatile storage; survive resets through the
-    /// neighbours instead (a weaker guarantee, see runtime/lattice/README.md).
-    pub no_nv: bool,
-    /// Lattice protocol: how the state is disseminated (ignored by the other protocols).
-    pub dissemination: Dissemination,
-    /// Token baseline: how hand-overs are made reliable.
-    pub token_retries: TokenRetries,
-    /// Token baseline: where each statement runs and its hand-over routes (required by it).
-    pub routes: Option<TokenRoutes>,
-    /// Name of the compiled sequence(s), for comments.
-    pub name: String,
-    /// The robot (or swarm) identity every packet carries (`DR_ROBOT_ID`, which a build can
-    /// still override at flash time).
-    pub robot_id: u16,
-    /// The shared key of keyed builds: every packet then carries an authentication tag.
-    pub key: Option<[u8; 16]>,
-}
-
-impl Default for CompileOptions {
-    /// The lattice protocol, one run, NV storage, adaptive dissemination; the paper's C-port merge; the safe token
-    /// with 32 tries.
-    fn default() -> CompileOptions {
-        CompileOptions {
-            protocol: Protocol::Lattice,
-            merge: PaperMerge::CPort,
-            single_step_handover: false,
-            restart_pending: false,
-            epochs: 1,
-            no_nv: false,
-            dissemination: Dissemination::Adaptive,
-            token_retries: TokenRetries::Tries(32),
-            routes: None,
-            name: String::new(),
-            robot_id: 0,
-            key: None,
-        }
-    }
-}
 
 /// A compiled directory: file names and contents, and figures the compiler reports.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -151,9 +23,6 @@ pub struct Generated {
     pub fingerprint: u32,
 }
 
-/// Pending slots of the paper protocol's packets: the original's 5, widened when a parallel
-/// group has more parallel statements than that (as the original's rotation experiments did).
-const PAPER_MIN_PENDING_SLOTS: usize = 5;
 /// Framing of every packet (runtime/dr_packet.h): 9 header bytes and a CRC-16.
 const PACKET_OVERHEAD: usize = 11;
 /// Bytes of the authentication tag of keyed builds: forging one takes about 2^31 tries, years
@@ -206,11 +75,7 @@ pub fn generate_c(
         ("dr_meta.c".to_string(), meta(ir)),
         ("Makefile".to_string(), makefile(options.protocol)),
     ];
-    let protocol_files: &[(&str, &str)] = match options.protocol {
-        Protocol::Lattice => &runtime::LATTICE,
-        Protocol::Paper => &runtime::PAPER,
-        Protocol::Token => &runtime::TOKEN,
-    };
+    let protocol_files = options.protocol.info().runtime;
     for (name, text) in runtime::COMMON.iter().chain(protocol_files) {
         files.push((name.to_string(), text.to_string()));
     }
@@ -280,29 +145,6 @@ fn stamp_identity(files: &mut [(String, String)], fingerprint: u32, options: &Co
     }
 }
 
-fn protocol_header(protocol: Protocol) -> &'static str {
-    match protocol {
-        Protocol::Lattice => "dr_lattice.h",
-        Protocol::Paper => "dr_paper.h",
-        Protocol::Token => "dr_token.h",
-    }
-}
-
-/// The most parallel statements that can be pending at once: those of one parallel group.
-pub(crate) fn pending_slots(ir: &Ir) -> Result<usize, LimitError> {
-    let mut most = 0usize;
-    let mut run = 0usize;
-    for unit in ir.paper_layout()? {
-        if unit.kind == dynarole_core::lower::PaperUnitKind::Parallel {
-            run += 1;
-            most = most.max(run);
-        } else {
-            run = 0;
-        }
-    }
-    Ok(most.max(PAPER_MIN_PENDING_SLOTS))
-}
-
 /// The last line of `dr_program_conf.h` (the identity is stamped in before it).
 const CONF_END: &str = "#endif /* DR_PROGRAM_CONF_H */\n";
 
@@ -346,26 +188,18 @@ fn program_conf(
     out
 }
 
-pub(crate) fn op_macro(part: &str, op: &str) -> String {
-    format!("DR_OP_{}_{}", part.to_uppercase(), op.to_uppercase())
-}
-
 fn program_header(ir: &Ir, options: &CompileOptions) -> String {
     let mut out = format!(
         "/* dr_program.h - the compiled sequence {} for robot {} (generated by dynarole). */\n",
         options.name, ir.robot
     );
     out.push_str("#ifndef DR_PROGRAM_H\n#define DR_PROGRAM_H\n\n");
-    let _ = writeln!(out, "#include \"{}\"\n", protocol_header(options.protocol));
+    let _ = writeln!(out, "#include \"{}\"\n", options.protocol.info().header);
     out.push_str("/* Operation codes passed to dr_hal_op_start. */\n");
     for (i, (part, op)) in ir.operations.iter().enumerate() {
         let _ = writeln!(out, "#define {} {i}u", op_macro(part, op));
     }
-    let program_type = match options.protocol {
-        Protocol::Lattice => "dr_program_t",
-        Protocol::Paper => "dr_paper_program_t",
-        Protocol::Token => "dr_token_program_t",
-    };
+    let program_type = options.protocol.info().program_type;
     let _ = writeln!(out, "\nextern const {program_type} dr_program;");
     out.push_str("\n/* Starts (or, after a reset, restarts) a module running this sequence. */\n");
     out.push_str("void dr_program_init(dr_module_t *m, void *platform);\n");
@@ -533,11 +367,7 @@ fn meta(ir: &Ir) -> String {
 /// (`build/host/`, `build/$(MCU)/`), so one build never finds the other's objects up to date,
 /// and an MCU build without avr-gcc stops with how to install it.
 fn makefile(protocol: Protocol) -> String {
-    let protocol_source = match protocol {
-        Protocol::Lattice => "dr_lattice.c",
-        Protocol::Paper => "dr_paper.c",
-        Protocol::Token => "dr_token.c",
-    };
+    let protocol_source = protocol.info().source;
     format!(
         "# Builds the dynarole runtime and this compiled sequence (generated by dynarole).\n\
          #   make                  host build: build/host/libdynarole.a\n\

@@ -6,18 +6,24 @@
 //! runs on the modules and the models that check it cannot drift apart.
 
 mod c;
+pub mod choice;
 mod nesc;
+mod options;
 mod paper;
 mod predicate;
 mod promela;
+mod protocol;
 mod runtime;
 mod token;
 
-pub use c::{
-    generate_c, generate_nesc, CompileOptions, Dissemination, Generated, PaperMerge, Protocol,
-};
+pub use c::{generate_c, generate_nesc, Generated};
+pub use choice::{Choice, UnknownName};
+pub use options::CompileOptions;
 pub use promela::{
     generate_compositional, generate_promela, liveness_graph, Fault, LivenessGraph, Model,
     ModelOptions, Topology, TopologyLink, TopologyModule, MAX_MODEL_MODULES, MAX_MODEL_WINDOW,
 };
-pub use token::{TokenRetries, TokenRoutes};
+pub use protocol::{
+    Dissemination, PaperMerge, Protocol, ProtocolInfo, Setting, TokenRetries, Variant, PROTOCOLS,
+};
+pub use token::TokenRoutes;

@@ -1,7 +1,7 @@
 //! The nesC back-end: the same runtime and state machine as the C back-end, wrapped in a
 //! TinyOS 2 component (a module and its configuration) as the paper's ATRON code was.
 
-use crate::c::CompileOptions;
+use crate::options::CompileOptions;
 
 /// Milliseconds between two steps of the state machine on the module.
 const STEP_MS: u32 = 5;

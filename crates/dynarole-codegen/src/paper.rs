@@ -1,12 +1,15 @@
 //! The paper protocol's state machine in the shape of Fig. 2, numbered as the original
 //! compiler numbered it (protocol notes, e.9).
 
-use crate::c::{CompileOptions, PaperMerge};
+use crate::options::CompileOptions;
 use dynarole_core::lower::{
     Ir, LimitError, PaperUnit, PaperUnitKind, PAPER_ADDRESS_ALL, PAPER_STATE_END,
 };
 use std::fmt::Write;
 
+/// Pending slots of the paper protocol's packets: the original's 5, widened when a parallel
+/// group has more parallel statements than that (as the original's rotation experiments did).
+const PAPER_MIN_PENDING_SLOTS: usize = 5;
 pub fn paper_machine(ir: &Ir, options: &CompileOptions) -> Result<String, LimitError> {
     let units = ir.paper_layout()?;
     let mut out = args_tables(ir);
@@ -25,11 +28,7 @@ pub fn paper_machine(ir: &Ir, options: &CompileOptions) -> Result<String, LimitE
     out.push_str("    default:\n        break;\n    }\n}\n\n");
     responsibility(&mut out, &units);
     let first_address = ir.statements.first().map_or(0, |s| s.address);
-    let merge = match options.merge {
-        PaperMerge::Printed => "DR_MERGE_PRINTED",
-        PaperMerge::Java => "DR_MERGE_JAVA",
-        PaperMerge::CPort => "DR_MERGE_C_PORT",
-    };
+    let merge = options.merge.c_macro();
     let _ = writeln!(
         out,
         "const dr_paper_program_t dr_program = {{\n    DR_PROGRAM_FINGERPRINT,\n    {first_address}u, /* module of the first statement */\n    dr_program_address_of,\n    dr_program_step,\n    dr_program_responsible\n}};\n"
@@ -174,4 +173,19 @@ fn responsibility(out: &mut String, units: &[PaperUnit]) {
         );
     }
     out.push_str("    default: return 0;\n    }\n}\n\n");
+}
+
+/// The most parallel statements that can be pending at once: those of one parallel group.
+pub(crate) fn pending_slots(ir: &Ir) -> Result<usize, LimitError> {
+    let mut most = 0usize;
+    let mut run = 0usize;
+    for unit in ir.paper_layout()? {
+        if unit.kind == dynarole_core::lower::PaperUnitKind::Parallel {
+            run += 1;
+            most = most.max(run);
+        } else {
+            run = 0;
+        }
+    }
+    Ok(most.max(PAPER_MIN_PENDING_SLOTS))
 }

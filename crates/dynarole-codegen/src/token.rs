@@ -2,31 +2,10 @@
 //! its token takes to get there (computed by the caller on a configuration), for
 //! `runtime/token/dr_token.c`.
 
-use crate::c::{op_macro, CompileOptions};
+use crate::options::{op_macro, CompileOptions};
+use crate::protocol::TokenRetries;
 use dynarole_core::lower::{Ir, LimitError};
 use std::fmt::Write;
-
-/// How hand-over messages are made reliable (the original experiments' variants).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum TokenRetries {
-    /// Each hop sends once, unacknowledged.
-    Plain,
-    /// Acknowledged hop by hop, tried at most this many times (at least 1).
-    Tries(u16),
-    /// Acknowledged hop by hop, tried until acknowledged.
-    Unlimited,
-}
-
-impl TokenRetries {
-    /// The name used in reports and campaign files: `plain`, `32`, `unlimited`.
-    pub fn name(self) -> String {
-        match self {
-            TokenRetries::Plain => "plain".into(),
-            TokenRetries::Tries(n) => n.to_string(),
-            TokenRetries::Unlimited => "unlimited".into(),
-        }
-    }
-}
 
 pub use dynarole_core::lower::TokenRoutes;
 

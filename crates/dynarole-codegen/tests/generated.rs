@@ -492,10 +492,12 @@ fn dissemination_is_configured_for_the_lattice_protocol_only() {
     assert!(fixed.contains("#define DR_CONF_LATTICE_DISSEMINATION DR_DISSEMINATION_FIXED"));
     assert!(!conf(&options(Protocol::Paper)).contains("DISSEMINATION"));
     for mode in Dissemination::ALL {
-        assert_eq!(Dissemination::parse(mode.name()), Ok(mode));
+        assert_eq!(mode.name().parse::<Dissemination>(), Ok(mode));
     }
     assert_eq!(
-        Dissemination::parse("trickle"),
-        Err("expected adaptive or fixed, found `trickle`".to_string())
+        "trickle"
+            .parse::<Dissemination>()
+            .map_err(|e| e.to_string()),
+        Err("unknown dissemination `trickle`, expected `adaptive` or `fixed`".to_string())
     );
 }

@@ -86,10 +86,11 @@ impl TomlError {
     }
 }
 
-/// serde writes ``unknown field `x`, expected one of `a`, `b` `` (and the same for variants):
-/// the first quoted name is the unknown one, the others are the candidates.
+/// serde writes ``unknown field `x`, expected one of `a`, `b` `` (and the same for variants,
+/// and the protocol table for its names: ``unknown protocol `x`, expected ...``): the first
+/// quoted name is the unknown one, the others are the candidates.
 fn unknown_name_hint(message: &str) -> Option<String> {
-    if !message.starts_with("unknown field") && !message.starts_with("unknown variant") {
+    if !message.starts_with("unknown ") || !message.contains("`, expected ") {
         return None;
     }
     let quoted: Vec<&str> = message.split('`').skip(1).step_by(2).collect();
@@ -206,5 +207,10 @@ mod tests {
             unknown_name_hint("unknown field `zzz`, expected `name` or `joints`"),
             None
         );
+        assert_eq!(
+            unknown_name_hint("unknown merge `jav`, expected one of `printed`, `java`, `c-port`"),
+            Some("did you mean `java`?".into())
+        );
+        assert_eq!(unknown_name_hint("unknown module `M9`"), None);
     }
 }

@@ -1,6 +1,7 @@
 //! Faults as data: the TOML scenario file (network, timing, resets, power cycles, blocked
 //! links, the faults-on phase and the timeout). Every field is documented in `SCENARIO.md`.
 
+use dynarole_codegen::choice::{self, Choice};
 use serde::{Deserialize, Serialize};
 
 /// How the infrared network and the modules' clocks behave.
@@ -158,8 +159,7 @@ pub struct RandomResets {
 
 /// How the simulator runs each module's C between events (`stepping` in a scenario).
 /// Both give the same run, byte for byte (`docs/simulator.md`, "Stepping").
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
-#[serde(rename_all = "lowercase")]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Stepping {
     /// A step every 5 ms on every powered module, as the controller of a real module runs.
     Fixed,
@@ -167,6 +167,27 @@ pub enum Stepping {
     /// a packet that made one useful, and after its operation completed.
     #[default]
     Tickless,
+}
+
+/// The names of `stepping` in scenarios and of `simulate --stepping`, read through
+/// [`dynarole_codegen::choice`] like the protocols' own.
+impl Choice for Stepping {
+    const WHAT: &'static str = "stepping";
+    const ALL: &'static [Stepping] = &[Stepping::Fixed, Stepping::Tickless];
+    fn name(self) -> &'static str {
+        match self {
+            Stepping::Fixed => "fixed",
+            Stepping::Tickless => "tickless",
+        }
+    }
+    fn help(self) -> &'static str {
+        match self {
+            Stepping::Fixed => "A step every 5 ms on every powered module",
+            Stepping::Tickless => {
+                "A step only when the module needs one (the default; the same run)"
+            }
+        }
+    }
 }
 
 /// A whole scenario. Every field has a default, so an empty file is the fault-free run.
@@ -183,6 +204,10 @@ pub struct Scenario {
     pub block: Vec<Block>,
     pub random_resets: Option<RandomResets>,
     pub foreign: Vec<Foreign>,
+    #[serde(
+        deserialize_with = "choice::deserialize",
+        serialize_with = "choice::serialize"
+    )]
     pub stepping: Stepping,
 }
 
@@ -351,5 +376,34 @@ fn before(field: &str, at: u64, end: u64) -> Result<(), ScenarioError> {
             field,
             format!("{at} is not inside the faults-on phase (ends at {end} ms)"),
         ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every stepping is read by its name, and written back as it.
+    #[test]
+    fn stepping_names_round_trip() {
+        for &stepping in <Stepping as Choice>::ALL {
+            let text = format!("stepping = \"{}\"\n", stepping.name());
+            let scenario = Scenario::from_toml_str(&text).expect("a known name");
+            assert_eq!(scenario.stepping, stepping);
+            let written = serde_json::to_value(&scenario).expect("serialises");
+            assert_eq!(written["stepping"], stepping.name());
+        }
+    }
+
+    #[test]
+    fn an_unknown_stepping_is_an_error_at_its_value() {
+        let text = "stepping = \"tick\"\n";
+        let error = Scenario::from_toml_str(text).expect_err("unknown");
+        assert_eq!(
+            error.message,
+            "unknown stepping `tick`, expected `fixed` or `tickless`"
+        );
+        assert_eq!(error.span, Some(11..17));
+        assert_eq!(error.hint.as_deref(), Some("did you mean `tickless`?"));
     }
 }

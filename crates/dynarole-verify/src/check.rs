@@ -8,7 +8,7 @@ use crate::report::{CheckName, Entry, Header, Observer, Report, Verdict};
 use crate::spin::{self, Check, Limits, PanResult, Progress};
 use crate::trail::{parse_events, Event};
 use crate::VerifyError;
-use dynarole_codegen::{CompileOptions, LivenessGraph, Model, PaperMerge, Protocol};
+use dynarole_codegen::{LivenessGraph, Model, Protocol};
 use std::path::Path;
 
 /// How the checks run.
@@ -94,7 +94,7 @@ pub fn header(built: &Built, options: &crate::BuildOptions, configuration: &str)
     Header {
         name: built.name.clone(),
         configuration: configuration.to_string(),
-        protocol: protocol(o),
+        protocol: o.describe(),
         statements: built.ir.statements.len(),
         modules: built.topology.modules.len(),
         links: built.topology.links.len(),
@@ -107,33 +107,6 @@ pub fn header(built: &Built, options: &crate::BuildOptions, configuration: &str)
         },
         epochs: (o.protocol == Protocol::Lattice).then_some(o.epochs.max(1)),
         fault: options.fault.is_some(),
-    }
-}
-
-/// The protocol and its options in words.
-fn protocol(o: &CompileOptions) -> String {
-    match o.protocol {
-        Protocol::Lattice if o.no_nv => "lattice protocol without NV".to_string(),
-        Protocol::Lattice => "lattice protocol".to_string(),
-        Protocol::Paper => format!(
-            "paper protocol, {} merge{}{}",
-            match o.merge {
-                PaperMerge::Printed => "printed",
-                PaperMerge::Java => "java",
-                PaperMerge::CPort => "c-port",
-            },
-            if o.single_step_handover {
-                ", single-step handover"
-            } else {
-                ""
-            },
-            if o.restart_pending {
-                ", pending restart"
-            } else {
-                ""
-            }
-        ),
-        Protocol::Token => "token baseline".to_string(),
     }
 }
 

@@ -10,7 +10,7 @@
 //! modelled only with the pending restart, the one thing that reads them.
 
 use super::Gen;
-use crate::c::PaperMerge;
+use crate::protocol::PaperMerge;
 use dynarole_core::lower::{
     LimitError, PaperUnit, PaperUnitKind, PAPER_ADDRESS_ALL, PAPER_STATE_END, PAPER_STATE_IDLE,
 };
