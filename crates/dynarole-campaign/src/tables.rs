@@ -4,17 +4,18 @@
 
 use crate::plan::Axis;
 use crate::stats::PointSummary;
+use dynarole_codegen::Variant;
 use std::fmt::Write;
 
 /// Columns in this order (the shared-state protocols, then the token from weakest to most
 /// persistent); others after them.
-const ORDER: [&str; 6] = [
-    "lattice",
-    "paper",
-    "token-plain",
-    "token-32",
-    "token-128",
-    "token-unlimited",
+const ORDER: [Variant; 6] = [
+    Variant::Lattice,
+    Variant::Paper,
+    Variant::TokenPlain,
+    Variant::Token32,
+    Variant::Token128,
+    Variant::TokenUnlimited,
 ];
 
 /// The tables, axis by axis in campaign order.
@@ -41,7 +42,12 @@ fn table(out: &mut String, axis: Axis, on_axis: &[&PointSummary]) {
             values.push(s.value);
         }
     }
-    protocols.sort_by_key(|p| ORDER.iter().position(|o| o == p).unwrap_or(ORDER.len()));
+    protocols.sort_by_key(|p| {
+        ORDER
+            .iter()
+            .position(|o| o.name() == *p)
+            .unwrap_or(ORDER.len())
+    });
     let _ = writeln!(out, "### {}\n", axis.label());
     let _ = write!(out, "| {} |", axis.name());
     for p in &protocols {

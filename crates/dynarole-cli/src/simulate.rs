@@ -281,10 +281,9 @@ fn replay_command(args: &SimulateArgs, seed: u64) -> String {
 
 /// The flags that select `options`' protocol and its variant.
 fn protocol_flags(options: &ProtocolOptions) -> Vec<String> {
-    let mut flags = Vec::new();
+    let mut flags = vec![format!("--protocol {}", options.protocol)];
     match options.protocol {
         Protocol::Lattice => {
-            flags.push("--protocol lattice".into());
             if options.no_nv {
                 flags.push("--no-nv".into());
             }
@@ -293,7 +292,6 @@ fn protocol_flags(options: &ProtocolOptions) -> Vec<String> {
             }
         }
         Protocol::Paper => {
-            flags.push("--protocol paper".into());
             flags.push(format!("--merge {}", options.merge));
             if options.single_step_handover {
                 flags.push("--single-step-handover".into());
@@ -303,7 +301,6 @@ fn protocol_flags(options: &ProtocolOptions) -> Vec<String> {
             }
         }
         Protocol::Token => {
-            flags.push("--protocol token".into());
             flags.push(format!("--token-retries {}", options.token_retries.name()));
         }
     }

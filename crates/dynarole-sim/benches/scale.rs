@@ -206,10 +206,10 @@ fn current_kib() -> Option<u64> {
 
 /// `DYNAROLE_SCALE_STEPPING`: `fixed` or `tickless` (the default).
 fn stepping() -> Stepping {
-    match std::env::var("DYNAROLE_SCALE_STEPPING").as_deref() {
-        Ok("fixed") => Stepping::Fixed,
-        Ok("tickless") | Err(_) => Stepping::Tickless,
-        Ok(other) => panic!("unknown stepping {other} (fixed or tickless)"),
+    match std::env::var("DYNAROLE_SCALE_STEPPING") {
+        Err(_) => Stepping::Tickless,
+        Ok(name) => dynarole_codegen::choice::parse(&name)
+            .unwrap_or_else(|e| panic!("DYNAROLE_SCALE_STEPPING: {e}")),
     }
 }
 
