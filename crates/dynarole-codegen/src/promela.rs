@@ -130,11 +130,13 @@ fn init_processes(text: &str) -> usize {
 fn validate(ir: &Ir, topology: &Topology, options: &ModelOptions) -> Result<(), LimitError> {
     let span = ir.statements.first().map_or(Span::default(), |s| s.span);
     let limit = |message: String| LimitError { message, span };
-    if options.compile.protocol == Protocol::Token {
-        return Err(limit(
-            "the model checker models the lattice and paper protocols, not the token baseline"
-                .into(),
-        ));
+    let protocol = options.compile.protocol.info();
+    if !protocol.modelled {
+        return Err(limit(format!(
+            "the model checker models {}, not the {}",
+            Protocol::modelled_in_words(),
+            protocol.description
+        )));
     }
     if ir.statements.is_empty() {
         return Err(limit("the model needs at least one statement".into()));

@@ -58,6 +58,8 @@ pub struct ProtocolInfo {
     pub program_type: &'static str,
     /// The options of `CompileOptions` that apply to it.
     pub settings: &'static [Setting],
+    /// The model checker has its transcription (`promela/NAME.rs`).
+    pub modelled: bool,
 }
 
 /// Every protocol, in the order the command line lists them (the default first). Entry `i`
@@ -74,6 +76,7 @@ pub static PROTOCOLS: [ProtocolInfo; 3] = [
         source: "dr_lattice.c",
         program_type: "dr_program_t",
         settings: &[Setting::Epochs, Setting::NoNv, Setting::Dissemination],
+        modelled: true,
     },
     ProtocolInfo {
         protocol: Protocol::Paper,
@@ -86,6 +89,7 @@ pub static PROTOCOLS: [ProtocolInfo; 3] = [
         source: "dr_paper.c",
         program_type: "dr_paper_program_t",
         settings: &[Setting::Merge, Setting::PaperVariants],
+        modelled: true,
     },
     ProtocolInfo {
         protocol: Protocol::Token,
@@ -98,13 +102,15 @@ pub static PROTOCOLS: [ProtocolInfo; 3] = [
         source: "dr_token.c",
         program_type: "dr_token_program_t",
         settings: &[Setting::TokenRetries],
+        modelled: false,
     },
 ];
 
 const _: () = {
+    assert!(Protocol::ALL.len() == PROTOCOLS.len());
     let mut i = 0;
     while i < PROTOCOLS.len() {
-        assert!(PROTOCOLS[i].protocol as usize == i);
+        assert!(PROTOCOLS[i].protocol as usize == i && Protocol::ALL[i] as usize == i);
         i += 1;
     }
 };
@@ -131,6 +137,16 @@ impl Protocol {
     /// Whether `setting` means something for this protocol.
     pub fn takes(self, setting: Setting) -> bool {
         self.info().settings.contains(&setting)
+    }
+
+    /// The protocols the model checker models, in words: "the lattice and paper protocols".
+    pub fn modelled_in_words() -> String {
+        let names: Vec<&str> = Protocol::ALL
+            .into_iter()
+            .filter(|p| p.info().modelled)
+            .map(Protocol::name)
+            .collect();
+        format!("the {} protocols", names.join(" and "))
     }
 
     /// The protocols `setting` applies to, by name ("lattice"), for messages.
@@ -301,103 +317,57 @@ pub enum Variant {
     TokenUnlimited,
 }
 
-/// One variant: its name and the options it sets.
-struct VariantInfo {
-    name: &'static str,
-    protocol: Protocol,
-    dissemination: Dissemination,
-    token_retries: TokenRetries,
-}
+/// One variant: the variant, its name, and the options it sets (protocol, dissemination,
+/// token retries). Options a variant does not set keep `CompileOptions::default()`'s values.
+type VariantEntry = (Variant, &'static str, Protocol, Dissemination, TokenRetries);
 
-/// The variants, in `Variant`'s order (checked at compile time below). Options a variant does
-/// not set keep `CompileOptions::default()`'s values.
-static VARIANTS: [(Variant, VariantInfo); 7] = {
-    const fn entry(
-        variant: Variant,
-        name: &'static str,
-        protocol: Protocol,
-        dissemination: Dissemination,
-        token_retries: TokenRetries,
-    ) -> (Variant, VariantInfo) {
-        let info = VariantInfo {
-            name,
-            protocol,
-            dissemination,
-            token_retries,
-        };
-        (variant, info)
-    }
+/// The variants, in `Variant`'s order (checked at compile time below).
+#[rustfmt::skip]
+static VARIANTS: [VariantEntry; 7] = {
     use Dissemination::{Adaptive, Fixed};
-    const T32: TokenRetries = TokenRetries::Tries(32);
+    use Protocol::{Lattice, Paper, Token};
+    use TokenRetries::{Plain, Tries, Unlimited};
     [
-        entry(
-            Variant::Lattice,
-            "lattice",
-            Protocol::Lattice,
-            Adaptive,
-            T32,
-        ),
-        entry(
-            Variant::LatticeFixed,
-            "lattice-fixed",
-            Protocol::Lattice,
-            Fixed,
-            T32,
-        ),
-        entry(Variant::Paper, "paper", Protocol::Paper, Adaptive, T32),
-        entry(
-            Variant::TokenPlain,
-            "token-plain",
-            Protocol::Token,
-            Adaptive,
-            TokenRetries::Plain,
-        ),
-        entry(Variant::Token32, "token-32", Protocol::Token, Adaptive, T32),
-        entry(
-            Variant::Token128,
-            "token-128",
-            Protocol::Token,
-            Adaptive,
-            TokenRetries::Tries(128),
-        ),
-        entry(
-            Variant::TokenUnlimited,
-            "token-unlimited",
-            Protocol::Token,
-            Adaptive,
-            TokenRetries::Unlimited,
-        ),
+        (Variant::Lattice,        "lattice",         Lattice, Adaptive, Tries(32)),
+        (Variant::LatticeFixed,   "lattice-fixed",   Lattice, Fixed,    Tries(32)),
+        (Variant::Paper,          "paper",           Paper,   Adaptive, Tries(32)),
+        (Variant::TokenPlain,     "token-plain",     Token,   Adaptive, Plain),
+        (Variant::Token32,        "token-32",        Token,   Adaptive, Tries(32)),
+        (Variant::Token128,       "token-128",       Token,   Adaptive, Tries(128)),
+        (Variant::TokenUnlimited, "token-unlimited", Token,   Adaptive, Unlimited),
     ]
 };
 
 const _: () = {
+    let all = <Variant as Choice>::ALL;
+    assert!(all.len() == VARIANTS.len());
     let mut i = 0;
     while i < VARIANTS.len() {
-        assert!(VARIANTS[i].0 as usize == i);
+        assert!(VARIANTS[i].0 as usize == i && all[i] as usize == i);
         i += 1;
     }
 };
 
 impl Variant {
-    fn info(self) -> &'static VariantInfo {
-        &VARIANTS[self as usize].1
+    fn entry(self) -> &'static VariantEntry {
+        &VARIANTS[self as usize]
     }
 
     pub fn protocol(self) -> Protocol {
-        self.info().protocol
+        self.entry().2
     }
 
     pub fn dissemination(self) -> Dissemination {
-        self.info().dissemination
+        self.entry().3
     }
 
     pub fn token_retries(self) -> TokenRetries {
-        self.info().token_retries
+        self.entry().4
     }
 
     /// The name used in campaign files and their results.
     pub fn name(self) -> &'static str {
-        self.info().name
+        self.entry().1
     }
 }
 
@@ -413,7 +383,7 @@ impl Choice for Variant {
         Variant::TokenUnlimited,
     ];
     fn name(self) -> &'static str {
-        self.info().name
+        self.entry().1
     }
 }
 
@@ -517,5 +487,9 @@ mod tests {
         assert_eq!(Protocol::taking(Setting::Dissemination), ["lattice"]);
         assert_eq!(Protocol::taking(Setting::Merge), ["paper"]);
         assert!(Protocol::Token.takes(Setting::TokenRetries));
+        assert_eq!(
+            Protocol::modelled_in_words(),
+            "the lattice and paper protocols"
+        );
     }
 }

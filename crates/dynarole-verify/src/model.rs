@@ -99,11 +99,12 @@ impl Built {
 
 /// Whether `protocol` is one the model checker models (asked before anything is read).
 pub fn modelled(protocol: Protocol) -> Result<(), VerifyError> {
-    if protocol == Protocol::Token {
-        return Err(VerifyError::Usage(
-            "verify models the lattice and paper protocols; the token baseline is not modelled"
-                .into(),
-        ));
+    if !protocol.info().modelled {
+        return Err(VerifyError::Usage(format!(
+            "verify models {}; the {} is not modelled",
+            Protocol::modelled_in_words(),
+            protocol.info().description
+        )));
     }
     Ok(())
 }
