@@ -22,6 +22,9 @@
 #define DR_AVR_STROBE_WRITE 5   /* PD5: PORTB goes into the addressed register (address + 1) */
 #define DR_AVR_STROBE_READ 6    /* PD6: the addressed register appears on PINA (address + 1) */
 #define DR_AVR_STROBE_RELEASE 7 /* PD7: the frame being received is taken; the next may come */
+#define DR_AVR_PIN_OP_END 0     /* PD0 (INT0), from the controller: high once the operation
+                                 * started last has ended (status no longer RUNNING), low
+                                 * while one runs; its rising edge wakes the MCU */
 #define DR_AVR_PIN_STEP 2       /* PE2: high while dr_module_step runs */
 #define DR_AVR_PIN_RECEIVE 3    /* PE3: high while dr_module_receive runs */
 #define DR_AVR_PIN_FINISHED 4   /* PE4: high once the module knows the sequence has ended */
