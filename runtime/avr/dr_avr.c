@@ -130,6 +130,28 @@ static uint16_t read_u16(uint8_t reg)
     return (uint16_t)(b[0] | (uint16_t)((uint16_t)b[1] << 8));
 }
 
+#ifdef DR_AVR_DESCRIBE
+/* The module's state as text, for the simulator's trace: the emulated board copies it at
+ * each pulse of PE5. The context's own layout is the AVR compiler's, so the runtime's
+ * dr_module_describe makes the text here, where a host run makes it on the host. */
+char dr_avr_description[DR_AVR_DESCRIPTION];
+static uint8_t describing; /* from the end of dr_program_init: a host run shows - before */
+
+static void describe(void)
+{
+    if (describing) {
+        (void)dr_module_describe(&module, dr_avr_description,
+                                 (uint8_t)sizeof dr_avr_description);
+        PORTE = (uint8_t)(PORTE | (1u << DR_AVR_PIN_DESCRIBED));
+        PORTE = (uint8_t)(PORTE & ~(1u << DR_AVR_PIN_DESCRIBED));
+    }
+}
+#else
+static void describe(void)
+{
+}
+#endif
+
 static void write_u8(uint8_t reg, uint8_t v)
 {
     uint8_t sreg = SREG;
@@ -325,12 +347,14 @@ static void enqueue(uint8_t mask, const uint8_t *bytes, uint8_t len)
 void dr_hal_broadcast(struct dr_module *m, const uint8_t *bytes, uint8_t len)
 {
     (void)m;
+    describe(); /* the state the trace shows next to this frame, as in a host run */
     enqueue((uint8_t)((1u << DR_AVR_CHANNELS) - 1u), bytes, len);
 }
 
 void dr_hal_send(struct dr_module *m, uint8_t channel, const uint8_t *bytes, uint8_t len)
 {
     (void)m;
+    describe();
     if (channel < DR_AVR_CHANNELS) {
         enqueue((uint8_t)(1u << channel), bytes, len);
     }
@@ -343,6 +367,7 @@ void dr_hal_op_start(struct dr_module *m, uint16_t statement, uint8_t op, uint8_
     uint8_t a[2 * DR_CONF_MAX_ARGS];
     uint8_t i;
     uint8_t sreg;
+    describe();
     head[0] = (uint8_t)(statement & 0xFFu);
     head[1] = (uint8_t)(statement >> 8);
     head[2] = op;
@@ -407,6 +432,7 @@ int16_t dr_hal_joint(struct dr_module *m, uint8_t joint)
 void dr_hal_leds(struct dr_module *m, uint8_t value)
 {
     (void)m;
+    describe();
     write_u8(DR_AVR_REG_LEDS, value);
 }
 
@@ -474,6 +500,7 @@ static void receive_all(void)
             dr_module_receive(&module, rx[i].channel, rx[i].bytes, rx[i].len);
             PORTE = (uint8_t)(PORTE & ~(1u << DR_AVR_PIN_RECEIVE));
             rx[i].full = 0;
+            describe();
         }
     }
 }
@@ -500,6 +527,7 @@ static void step(void)
         PORTE = (uint8_t)(PORTE & ~(1u << DR_AVR_PIN_FINISHED));
     }
     PORTE = (uint8_t)(PORTE & ~(1u << DR_AVR_PIN_STEP));
+    describe();
 }
 
 /* --- when to step (dr_module_next_wakeup) --- */
@@ -611,6 +639,10 @@ int main(void)
         random_state = 1u;
     }
     dr_program_init(&module, 0);
+#ifdef DR_AVR_DESCRIBE
+    describing = 1;
+#endif
+    describe();
     write_u8(DR_AVR_REG_ADDRESS, module.address); /* for the board's log */
     first_step = dr_hal_now_ms(&module);
     next_free = first_step;

@@ -1,6 +1,6 @@
 //! `dynarole simulate --firmware avr`: every module an emulated ATmega128 running the image of
-//! runtime/avr. A short sequence here (the emulation runs about 1.5 cores in real time per
-//! host core); the full runs are `#[ignore]`d (docs/simulator.md gives the command).
+//! runtime/avr, against a host-compiled run of the same seed: a short sequence with each
+//! protocol, and the full runs (a sleeping core costs the emulator next to nothing).
 
 mod common;
 
@@ -50,6 +50,19 @@ fn operations(trace: &str) -> Vec<(String, String, f64)> {
                 .then(|| (event.to_string(), statement.to_string(), time))
         })
         .collect()
+}
+
+/// The trace's state column is filled from the firmware (the runtime's description read
+/// from the MCU's RAM): every operation's start shows the starting module's state.
+fn assert_states_shown(trace: &str) {
+    let starts: Vec<&str> = trace
+        .lines()
+        .filter(|l| l.split_whitespace().nth(2) == Some("start"))
+        .collect();
+    assert!(!starts.is_empty(), "{trace}");
+    for line in starts {
+        assert_ne!(line.split_whitespace().nth(3), Some("-"), "{line}");
+    }
 }
 
 /// Each statement's events in order, with their times.
@@ -104,7 +117,11 @@ fn compare_with_host(args: &[&str], name: &str, json: bool) -> (f64, serde_json:
             );
             assert!(stdout.contains("cycles/step (mean max)"), "{stdout}");
         }
-        traces.push(operations(&std::fs::read_to_string(&trace).expect("trace")));
+        let trace = std::fs::read_to_string(&trace).expect("trace");
+        if firmware {
+            assert_states_shown(&trace);
+        }
+        traces.push(operations(&trace));
     }
     // Each statement's own events (start, resume, retry, done...) come in the same order.
     // Statements of one `&` group may start in another order (their relative timing differs);
@@ -210,10 +227,41 @@ fn firmware_refuses_an_unknown_mcu_and_foreign_packets() {
     );
 }
 
-/// The runs (minutes each): eight2car then car2eight with 30 % loss; eight2car with
-/// a reset in the middle of an operation (Fig. 8 left) and with a power-off (Fig. 7).
+/// The paper's protocol and the token baseline run on the firmware too (their frames go
+/// through the same USART framing and arbiter), in the host run's order.
 #[test]
-#[ignore = "several minutes of emulation: cargo test -p dynarole-cli --test firmware -- --ignored"]
+fn the_paper_and_token_protocols_run_on_emulated_atmega128s() {
+    if !avr_tools() {
+        return;
+    }
+    let file = scratch("short-protocols.dr");
+    std::fs::write(&file, SHORT).expect("write");
+    let file = file.to_str().expect("utf-8 path").to_string();
+    for protocol in ["paper", "token"] {
+        let args = [
+            file.as_str(),
+            "--from",
+            "examples/atron/eight.json",
+            "--protocol",
+            protocol,
+            "--seed",
+            "1",
+        ];
+        let (late, value) = compare_with_host(&args, protocol, true);
+        eprintln!("{protocol}: largest time difference of an operation event: {late:.1} ms");
+        let modules = value["firmware"]["modules"].as_array().expect("modules");
+        assert_eq!(modules.len(), 7);
+        for m in modules {
+            // Every module's firmware hands frames to its runtime.
+            assert!(m["receives"].as_u64().expect("receives") > 0, "{m}");
+        }
+    }
+}
+
+/// The runs: eight2car then car2eight with 30 % loss; eight2car with a reset in the
+/// middle of an operation (Fig. 8 left) and with a power-off (Fig. 7). About 40 s of CPU for
+/// the three, host runs included (docs/benchmarks.md).
+#[test]
 fn the_papers_runs_on_emulated_atmega128s_in_the_host_runs_order() {
     if !avr_tools() {
         return;

@@ -33,6 +33,8 @@ struct drav_core {
     avr_t *avr;
     elf_firmware_t firmware;
     uint16_t paint_from; /* first byte above .data and .bss (the linker's _end) */
+    uint16_t description; /* address of dr_avr_description, 0 when the image has none */
+    uint8_t porte;        /* PORTE as last written, for edge detection */
     uint8_t regs[DR_AVR_REGS];
     uint8_t reg;         /* the bus's current register address */
     uint8_t portd;       /* PORTD as last written, for edge detection */
@@ -161,10 +163,36 @@ static void on_portd(struct avr_irq_t *irq, uint32_t value, void *param)
     }
 }
 
+/* The firmware's state description (a NUL-terminated string in its RAM), two characters a
+ * log entry, ending with the entry that holds the NUL. */
+static void note_description(struct drav_core *c)
+{
+    uint32_t i;
+    uint32_t at = c->description;
+    for (i = 0; i < DR_AVR_DESCRIPTION; i += 2u) {
+        uint8_t a = c->avr->data[at + i];
+        /* the buffer's last byte counts as its NUL */
+        uint8_t b = (a == 0u || i + 2u >= DR_AVR_DESCRIPTION) ? 0u : c->avr->data[at + i + 1u];
+        note(c, DRAV_EV_TEXT, a, b);
+        if (a == 0u || b == 0u) {
+            return;
+        }
+    }
+}
+
 static void on_porte(struct avr_irq_t *irq, uint32_t value, void *param)
 {
+    struct drav_core *c = param;
+    uint8_t rising = (uint8_t)(value & ~c->porte);
     (void)irq;
-    note(param, DRAV_EV_PINS, (uint8_t)value, 0);
+    c->porte = (uint8_t)value;
+    if (rising & (1u << DR_AVR_PIN_DESCRIBED)) {
+        if (c->description != 0u) {
+            note_description(c);
+        }
+        return;
+    }
+    note(c, DRAV_EV_PINS, (uint8_t)value, 0);
 }
 
 static void on_uart_out(struct avr_irq_t *irq, uint32_t value, void *param)
@@ -201,16 +229,26 @@ static void paint(struct drav_core *c)
     }
 }
 
-static int find_end(struct drav_core *c)
+/* The RAM address of data symbol `name` (simavr gives it with 0x800000 added), or 0. */
+static uint16_t ram_symbol(const struct drav_core *c, const char *name)
 {
     uint32_t i;
     for (i = 0; i < c->firmware.symbolcount; i++) {
-        if (strcmp(c->firmware.symbol[i]->symbol, "_end") == 0) {
-            c->paint_from = (uint16_t)(c->firmware.symbol[i]->addr & 0xFFFFu);
-            return c->paint_from > 0x100u && c->paint_from <= c->avr->ramend;
+        if (strcmp(c->firmware.symbol[i]->symbol, name) == 0) {
+            return (uint16_t)(c->firmware.symbol[i]->addr & 0xFFFFu);
         }
     }
     return 0;
+}
+
+static int find_symbols(struct drav_core *c)
+{
+    c->paint_from = ram_symbol(c, "_end");
+    c->description = ram_symbol(c, "dr_avr_description");
+    if (c->description != 0u && (uint32_t)c->description + DR_AVR_DESCRIPTION > c->avr->ramend) {
+        c->description = 0;
+    }
+    return c->paint_from > 0x100u && c->paint_from <= c->avr->ramend;
 }
 
 static int wire(struct drav_core *c)
@@ -289,7 +327,7 @@ struct drav_core *drav_open(const char *path, char *err, uint32_t cap)
         free(c);
         return NULL;
     }
-    if (!boot(c) || !find_end(c)) {
+    if (!boot(c) || !find_symbols(c)) {
         message(err, cap, "not a runtime/avr image for simavr's atmega128 (no _end symbol, or the board cannot be wired)",
                 path);
         drav_close(c);
@@ -337,6 +375,7 @@ void drav_reset(struct drav_core *c)
     c->avr->cycle = cycle;
     c->reg = 0;
     c->portd = 0;
+    c->porte = 0;
     c->rx_head = 0;
     c->rx_count = 0;
     c->locked = 0;

@@ -19,6 +19,8 @@ enum {
     DRAV_EV_WRITE = 2,   /* a = controller register written, b = value */
     DRAV_EV_PINS = 3,    /* a = new value of PORTE (the status pins) */
     DRAV_EV_RELEASE = 4, /* the firmware released the receive arbiter */
+    DRAV_EV_TEXT = 5,    /* a, b = two characters of the module's state description (images
+                          * with DR_AVR_DESCRIBE); the last entry of one holds its NUL */
 };
 
 struct drav_event {

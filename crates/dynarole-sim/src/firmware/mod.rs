@@ -37,10 +37,14 @@ impl Simulator {
         }
         image::check_tools().map_err(SimError::Build)?;
         let world = self.world_for(run)?;
-        let defines = vec![format!(
+        let mut defines = vec![format!(
             "-DDR_CONF_BROADCAST_JITTER_MS={}",
             run.scenario.network.preset.jitter_ms()
         )];
+        if run.trace {
+            // The trace's state column: the firmware describes its state in RAM.
+            defines.push("-DDR_AVR_DESCRIBE".into());
+        }
         let image = image::image(&self.files, &defines).map_err(SimError::Build)?;
         let lib = emu::Library::load(&image::emulator().map_err(SimError::Build)?)
             .map_err(SimError::Build)?;
