@@ -27,6 +27,9 @@
 #include <stdint.h>
 #include "dr_avr_board.h"
 #include "dr_program.h"
+#ifdef DR_AVR_NESC
+#include "dr_nesc_platform.h"
+#endif
 
 #if DR_CONF_MAX_ARGS > DR_AVR_MAX_ARGS
 #error "the board takes at most DR_AVR_MAX_ARGS operation arguments"
@@ -58,7 +61,14 @@ struct rx_slot {
     uint8_t bytes[DR_CONF_MAX_PACKET];
 };
 
+#ifdef DR_AVR_NESC
+/* The nesC component (`dynarole compile --target nesc`, compiled by runtime/nesc) owns the
+ * module's context: DynaRoleP's `self`, so named by nescc with -fnesc-separator=__. */
+extern dr_module_t DynaRoleP__self;
+#define module DynaRoleP__self
+#else
 static dr_module_t module;
+#endif
 /* The clock at the last overflow: whole milliseconds, and ticks into the next one. */
 static volatile uint32_t clock_ms;
 static volatile uint8_t clock_ticks;
@@ -497,7 +507,11 @@ static void receive_all(void)
     for (i = 0; i < RX_SLOTS; i++) {
         if (rx[i].full) {
             PORTE = (uint8_t)(PORTE | (1u << DR_AVR_PIN_RECEIVE));
+#ifdef DR_AVR_NESC
+            dr_platform_receive(rx[i].channel, rx[i].bytes, rx[i].len);
+#else
             dr_module_receive(&module, rx[i].channel, rx[i].bytes, rx[i].len);
+#endif
             PORTE = (uint8_t)(PORTE & ~(1u << DR_AVR_PIN_RECEIVE));
             rx[i].full = 0;
             describe();
@@ -516,11 +530,18 @@ static uint8_t any_received(void)
     return 0;
 }
 
-/* One step (PE2 high meanwhile); PE4 shows whether the module knows the sequence ended. */
-static void step(void)
+/* One step (PE2 high meanwhile); PE4 shows whether the module knows the sequence ended.
+ * Under nesC, the component's clock advances by `elapsed` ms instead: its timer runs the
+ * steps (every 5 ms from boot) and the tasks. */
+static void step(uint32_t elapsed)
 {
     PORTE = (uint8_t)(PORTE | (1u << DR_AVR_PIN_STEP));
+#ifdef DR_AVR_NESC
+    dr_nesc_advance_ms(elapsed);
+#else
+    (void)elapsed;
     dr_module_step(&module);
+#endif
     if (dr_module_finished(&module)) {
         PORTE = (uint8_t)(PORTE | (1u << DR_AVR_PIN_FINISHED));
     } else {
@@ -530,10 +551,8 @@ static void step(void)
     describe();
 }
 
-/* --- when to step (dr_module_next_wakeup) --- */
+/* --- when to step --- */
 
-static uint32_t first_step; /* the instants are first_step + k * DR_AVR_STEP_MS */
-static uint32_t next_free;  /* the first instant not stepped yet */
 static uint32_t due;        /* the instant of the next step, when has_due */
 static uint8_t has_due;
 static uint8_t op_wait;     /* a step is wanted once the operation has ended */
@@ -542,47 +561,6 @@ static uint8_t op_wait;     /* a step is wanted once the operation has ended */
 static uint8_t before(uint32_t a, uint32_t b)
 {
     return (uint8_t)((int32_t)(a - b) < 0);
-}
-
-/* The first instant at or after `t`. */
-static uint32_t instant_at_or_after(uint32_t t)
-{
-    uint32_t since = t - first_step + DR_AVR_STEP_MS - 1u;
-    return first_step + since - since % DR_AVR_STEP_MS;
-}
-
-/* The first instant at or after `t` that has not been stepped. */
-static uint32_t instant_from(uint32_t t)
-{
-    return before(t, next_free) ? next_free : instant_at_or_after(t);
-}
-
-static void want_step_at(uint32_t at)
-{
-    if (!has_due || before(at, due)) {
-        due = at;
-        has_due = 1;
-    }
-}
-
-/* Asks the module when it next needs a step (after its init, a step or a frame). */
-static void plan(void)
-{
-    uint32_t at;
-    uint8_t answer = dr_module_next_wakeup(&module, &at);
-    has_due = 0;
-    op_wait = 0;
-    if (answer & DR_WAKE_AT) {
-        want_step_at(instant_from(at));
-    }
-    if (answer & DR_WAKE_OP) {
-        op_ended = 0; /* cleared first: an end after the read below still sets it */
-        if (dr_hal_op_status(&module) != DR_OP_RUNNING) {
-            want_step_at(instant_from(dr_hal_now_ms(&module)));
-        } else {
-            op_wait = 1;
-        }
-    }
 }
 
 /* Arms compare A to wake the MCU when the clock reaches `at` (ms), if it is within one
@@ -630,7 +608,8 @@ static void sleep_until_work(void)
     sei();
 }
 
-int main(void)
+/* Power-on and reset: the board, the random generator's seed from the module's ID. */
+static void start(void)
 {
     board_init();
     sei();
@@ -638,12 +617,93 @@ int main(void)
     if (random_state == 0u) {
         random_state = 1u;
     }
-    dr_program_init(&module, 0);
+}
+
+/* After the runtime's init: the trace's description, the address for the board's log. */
+static void started(void)
+{
 #ifdef DR_AVR_DESCRIBE
     describing = 1;
 #endif
     describe();
-    write_u8(DR_AVR_REG_ADDRESS, module.address); /* for the board's log */
+    write_u8(DR_AVR_REG_ADDRESS, module.address);
+}
+
+#ifdef DR_AVR_NESC
+
+/* The component's timers need its clock every millisecond: the MCU wakes at each. */
+int main(void)
+{
+    uint32_t last;
+    uint32_t now;
+    start();
+    dr_nesc_boot();
+    started();
+    last = dr_hal_now_ms(&module);
+    for (;;) {
+        receive_all();
+        now = dr_hal_now_ms(&module);
+        if (now != last) {
+            step(now - last);
+            last = now;
+        }
+        has_due = 1;
+        due = last + 1u;
+        sleep_until_work();
+    }
+}
+
+#else
+
+static uint32_t first_step; /* the instants are first_step + k * DR_AVR_STEP_MS */
+static uint32_t next_free;  /* the first instant not stepped yet */
+
+/* The first instant at or after `t`. */
+static uint32_t instant_at_or_after(uint32_t t)
+{
+    uint32_t since = t - first_step + DR_AVR_STEP_MS - 1u;
+    return first_step + since - since % DR_AVR_STEP_MS;
+}
+
+/* The first instant at or after `t` that has not been stepped. */
+static uint32_t instant_from(uint32_t t)
+{
+    return before(t, next_free) ? next_free : instant_at_or_after(t);
+}
+
+static void want_step_at(uint32_t at)
+{
+    if (!has_due || before(at, due)) {
+        due = at;
+        has_due = 1;
+    }
+}
+
+/* Asks the module when it next needs a step (after its init, a step or a frame). */
+static void plan(void)
+{
+    uint32_t at;
+    uint8_t answer = dr_module_next_wakeup(&module, &at);
+    has_due = 0;
+    op_wait = 0;
+    if (answer & DR_WAKE_AT) {
+        want_step_at(instant_from(at));
+    }
+    if (answer & DR_WAKE_OP) {
+        op_ended = 0; /* cleared first: an end after the read below still sets it */
+        if (dr_hal_op_status(&module) != DR_OP_RUNNING) {
+            want_step_at(instant_from(dr_hal_now_ms(&module)));
+        } else {
+            op_wait = 1;
+        }
+    }
+}
+
+int main(void)
+{
+    start();
+    dr_program_init(&module, 0);
+    started();
     first_step = dr_hal_now_ms(&module);
     next_free = first_step;
     due = first_step;
@@ -660,9 +720,11 @@ int main(void)
         if (has_due && !before(dr_hal_now_ms(&module), due)) {
             /* Instants that passed while the MCU was busy are not stepped (fell behind). */
             next_free = instant_at_or_after(dr_hal_now_ms(&module) + 1u);
-            step();
+            step(0);
             plan();
         }
         sleep_until_work();
     }
 }
+
+#endif

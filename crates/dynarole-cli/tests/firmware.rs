@@ -83,6 +83,22 @@ fn per_statement(
 /// difference (ms) of an operation event, and the firmware run's report when `json` (else
 /// its text is checked for the firmware's table).
 fn compare_with_host(args: &[&str], name: &str, json: bool) -> (f64, serde_json::Value) {
+    compare_with_host_on(args, name, json, &Firmware::C)
+}
+
+/// The image a firmware run uses: runtime/avr's C, or the nesC component (nescc's directory).
+enum Firmware {
+    C,
+    Nesc(PathBuf),
+}
+
+/// [`compare_with_host`] with the firmware image made from `firmware`.
+fn compare_with_host_on(
+    args: &[&str],
+    name: &str,
+    json: bool,
+    firmware_image: &Firmware,
+) -> (f64, serde_json::Value) {
     let mut traces = Vec::new();
     let mut report = serde_json::Value::Null;
     for firmware in [false, true] {
@@ -92,12 +108,24 @@ fn compare_with_host(args: &[&str], name: &str, json: bool) -> (f64, serde_json:
         let trace_arg = trace.to_str().expect("utf-8 path").to_string();
         all.extend_from_slice(&["--trace", &trace_arg]);
         if firmware {
-            all.extend_from_slice(&["--firmware", "avr"]);
+            let mcu = match firmware_image {
+                Firmware::C => "avr",
+                Firmware::Nesc(_) => "avr-nesc",
+            };
+            all.extend_from_slice(&["--firmware", mcu]);
         }
         if firmware && json {
             all.push("--json");
         }
-        let out = dynarole(&all);
+        let out = match firmware_image {
+            Firmware::Nesc(dir) => Command::new(env!("CARGO_BIN_EXE_dynarole"))
+                .args(&all)
+                .current_dir(repo_root())
+                .env("NESCC", dir.join("nescc"))
+                .output()
+                .expect("the dynarole binary runs"),
+            Firmware::C => dynarole(&all),
+        };
         let stdout = text(&out.stdout);
         assert_eq!(out.status.code(), Some(0), "{stdout}{}", text(&out.stderr));
         if firmware && json {
@@ -225,6 +253,49 @@ fn firmware_refuses_an_unknown_mcu_and_foreign_packets() {
         "{}",
         text(&out.stderr)
     );
+}
+
+/// The directory of nescc 1.4.0, or None (with the reason printed) when this machine cannot
+/// build it; a failed build is a failure, not a skip.
+fn nescc_dir() -> Option<PathBuf> {
+    let out = Command::new(repo_root().join("scripts/ensure-nesc"))
+        .output()
+        .expect("scripts/ensure-nesc runs");
+    match out.status.code() {
+        Some(0) => Some(PathBuf::from(text(&out.stdout).trim())),
+        Some(77) => {
+            eprintln!("skipped: {}", text(&out.stderr));
+            None
+        }
+        _ => panic!("scripts/ensure-nesc failed: {}", text(&out.stderr)),
+    }
+}
+
+/// The nesC component, compiled by nesC 1.4.0 for the ATmega128 and linked with runtime/avr's
+/// platform (`--firmware avr-nesc`), runs in the host run's order too.
+#[test]
+fn the_nesc_component_runs_on_emulated_atmega128s() {
+    if !avr_tools() {
+        return;
+    }
+    let Some(nescc) = nescc_dir() else { return };
+    let file = scratch("short-nesc.dr");
+    std::fs::write(&file, SHORT).expect("write");
+    let file = file.to_str().expect("utf-8 path").to_string();
+    let args = [
+        file.as_str(),
+        "--from",
+        "examples/atron/eight.json",
+        "--seed",
+        "1",
+    ];
+    let (late, value) = compare_with_host_on(&args, "nesc", true, &Firmware::Nesc(nescc));
+    eprintln!("nesC: largest time difference of an operation event: {late:.1} ms");
+    let modules = value["firmware"]["modules"].as_array().expect("modules");
+    assert_eq!(modules.len(), 7);
+    for m in modules {
+        assert!(m["receives"].as_u64().expect("receives") > 0, "{m}");
+    }
 }
 
 /// The paper's protocol and the token baseline run on the firmware too (their frames go

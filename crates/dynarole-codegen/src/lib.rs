@@ -7,6 +7,7 @@
 
 mod c;
 mod nesc;
+pub use nesc::nesc_files;
 mod paper;
 mod predicate;
 mod promela;
