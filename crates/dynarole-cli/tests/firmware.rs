@@ -161,6 +161,7 @@ fn compare_with_host_on(
     );
     let (host, avr) = (per_statement(&traces[0]), per_statement(&traces[1]));
     let mut late: f64 = 0.0;
+    let (mut sum, mut count) = (0.0, 0u32);
     for (statement, events) in &host {
         let names = |e: &[(String, f64)]| e.iter().map(|x| x.0.clone()).collect::<Vec<_>>();
         assert_eq!(
@@ -170,8 +171,15 @@ fn compare_with_host_on(
         );
         for (h, a) in events.iter().zip(&avr[statement]) {
             late = late.max((a.1 - h.1).abs());
+            sum += (a.1 - h.1).abs();
+            count += 1;
         }
     }
+    // The figures of docs/benchmarks.md (`-- --nocapture` shows them).
+    eprintln!(
+        "{name}: {count} operation events in each statement's host order; time difference max {late:.1} ms, mean {:.1} ms",
+        sum / f64::from(count.max(1))
+    );
     let order = |ops: &[(String, String, f64)]| -> Vec<(String, String)> {
         ops.iter().map(|(e, s, _)| (e.clone(), s.clone())).collect()
     };
