@@ -306,6 +306,34 @@ fn the_nesc_component_runs_on_emulated_atmega128s() {
     }
 }
 
+/// Without nesC 1.4.0's compiler, `--firmware avr-nesc` says how to get it (and runs nothing).
+#[test]
+fn avr_nesc_without_nescc_says_how_to_get_it() {
+    let nowhere = scratch("no-home");
+    let out = Command::new(env!("CARGO_BIN_EXE_dynarole"))
+        .args([
+            "simulate",
+            "examples/atron/eight2car.dr",
+            "--from",
+            "examples/atron/eight.json",
+            "--firmware",
+            "avr-nesc",
+        ])
+        .current_dir(repo_root())
+        .env("NESCC", nowhere.join("nescc"))
+        .env("HOME", &nowhere)
+        .env("XDG_CACHE_HOME", &nowhere)
+        .env("PATH", "/nonexistent")
+        .output()
+        .expect("the dynarole binary runs");
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("needs nesC 1.4.0's nescc (scripts/ensure-nesc builds it"),
+        "{stderr}"
+    );
+}
+
 /// The paper's protocol and the token baseline run on the firmware too (their frames go
 /// through the same USART framing and arbiter), in the host run's order.
 #[test]
