@@ -1,7 +1,8 @@
 /* test_emu.c - the emulated board (dr_avr_emu.c) running a real firmware image (argv[1], the
  * eight2car image of runtime/avr): timer, stepping, sending with the transmitter enables,
  * the controller's bus, receiving through the arbiter, sleep, the painted stack, and a reset
- * that clears RAM and keeps the EEPROM. */
+ * that clears RAM and keeps the EEPROM; and (argv[2], the same built with DR_AVR_DESCRIBE)
+ * the state descriptions the board reads from the firmware's RAM. */
 #include <stdio.h>
 #include <string.h>
 #include "dr_avr_board.h"
@@ -31,6 +32,7 @@ struct seen {
     uint32_t leds_writes;
     uint32_t off_instant; /* step edges not on an instant (first step + k * 5 ms) */
     uint32_t go_writes;
+    uint32_t texts;
 };
 
 /* How much the time from an instant to its step's edge varies: the wake-up waits for the
@@ -82,11 +84,54 @@ static void run(struct drav_core *c, uint32_t ms, struct seen *s)
                 s->leds_writes++;
             } else if (ev[i].kind == DRAV_EV_WRITE && ev[i].a == DR_AVR_REG_GO) {
                 s->go_writes++;
+            } else if (ev[i].kind == DRAV_EV_TEXT) {
+                s->texts++;
             }
         }
     }
 }
 
+
+/* The image built with DR_AVR_DESCRIBE: after init and each step the board logs the
+ * runtime's description (the lattice's `e<epoch> low<low> ...`), two characters an entry up
+ * to its NUL (the image without it logs none: checked in main). */
+static void check_descriptions(const char *path)
+{
+    char err[256];
+    char text[DR_AVR_DESCRIPTION + 2];
+    struct drav_event ev[256];
+    uint32_t n;
+    uint32_t i;
+    uint32_t len = 0;
+    uint32_t complete = 0;
+    struct drav_core *c = drav_open(path, err, sizeof err);
+    if (!c) {
+        printf("FAIL: %s\n", err);
+        failures++;
+        return;
+    }
+    drav_set_reg(c, DR_AVR_REG_ID, 3);
+    drav_set_reg(c, DR_AVR_REG_STATUS, 1);
+    check(drav_run(c, 50u * CYCLES_PER_MS) == 0, "the describing image runs");
+    while ((n = drav_take(c, ev, 256)) > 0u) {
+        for (i = 0; i < n; i++) {
+            if (ev[i].kind != DRAV_EV_TEXT) {
+                continue;
+            }
+            if (complete == 0u && len + 2u <= sizeof text) {
+                text[len++] = (char)ev[i].a;
+                text[len++] = (char)ev[i].b;
+            }
+            if (ev[i].a == 0u || ev[i].b == 0u) {
+                complete++;
+            }
+        }
+    }
+    check(complete >= 2u, "descriptions after init and the first step");
+    check(len >= 2u && text[0] == 'e' && memchr(text, 0, len) != NULL,
+          "a description is the runtime's text, NUL-terminated");
+    drav_close(c);
+}
 
 int main(int argc, char **argv)
 {
@@ -100,8 +145,8 @@ int main(int argc, char **argv)
     uint64_t ended;
     uint32_t steps;
     uint32_t len;
-    if (argc != 2) {
-        printf("usage: test_emu FIRMWARE.elf\n");
+    if (argc != 3) {
+        printf("usage: test_emu FIRMWARE.elf DESCRIBING-FIRMWARE.elf\n");
         return 2;
     }
     check(drav_open("no/such/image.elf", err, sizeof err) == NULL, "a missing image is refused");
@@ -122,6 +167,7 @@ int main(int argc, char **argv)
     run(c, 1000, &s);
     check(s.step_edges >= 3u && s.step_edges < 100u, "steps only when the module needs them");
     check(s.go_writes == 1u, "module 3 starts an operation");
+    check(s.texts == 0u, "no description without DR_AVR_DESCRIBE");
     /* The operation's end (the controller raises INT0) wakes the MCU for a step at the next
      * instant. */
     ended = drav_cycle(c);
@@ -163,6 +209,7 @@ int main(int argc, char **argv)
     check(drav_sleep_cycles(c) - asleep > 50u * CYCLES_PER_MS, "the MCU sleeps again after a reset");
     check(!drav_overflowed(c), "no log entry lost");
     drav_close(c);
+    check_descriptions(argv[2]);
     if (failures == 0) {
         printf("test_emu: all checks passed\n");
     }
