@@ -631,11 +631,13 @@ static void started(void)
 
 #ifdef DR_AVR_NESC
 
-/* The component's timers need its clock every millisecond: the MCU wakes at each. */
+/* The component's timers need its clock only when one is due (dr_nesc_until_due_ms): the
+ * MCU sleeps until then, or until a frame. */
 int main(void)
 {
     uint32_t last;
     uint32_t now;
+    uint32_t until;
     start();
     dr_nesc_boot();
     started();
@@ -647,8 +649,9 @@ int main(void)
             step(now - last);
             last = now;
         }
-        has_due = 1;
-        due = last + 1u;
+        until = dr_nesc_until_due_ms();
+        has_due = (uint8_t)(until != DR_NESC_NEVER);
+        due = last + (until == 0u ? 1u : until);
         sleep_until_work();
     }
 }
