@@ -1,17 +1,22 @@
 /* dr_avr.c - the platform of dr_hal.h on an ATRON hemisphere board (ATmega128, 16 MHz), and
  * the firmware's main loop. README.md describes the board (dr_avr_board.h: pins, registers).
  *
- * - Time: Timer1 in CTC mode interrupts every millisecond; dr_hal_now_ms reads the count.
+ * - Time: Timer1 runs freely at 250 kHz (4 us a tick) and interrupts only when it overflows
+ *   (every 262.144 ms); dr_hal_now_ms counts whole milliseconds from the overflows and the
+ *   counter. Output compare A wakes the MCU at the next step the module asked for.
  * - Infrared: USART0 at DR_AVR_BAUD; PORTC selects the transmitters (all for a broadcast, one
  *   for dr_hal_send). Frames go out from a small queue, interrupt driven; the transmitter
  *   enables change only once the previous frame has left the shift register. Received
  *   frames are delimited by their length byte (dr_packet.h: byte 1) and kept in two slots.
  * - Operations and sensors: the board's controller, through an 8-bit bus (PORTB out, PINA
  *   in, strobes on PORTD). A bus transaction runs with interrupts off (the receive
- *   interrupt also uses the bus).
+ *   interrupt also uses the bus). The controller raises INT0 when an operation ends.
  * - Non-volatile storage: the EEPROM (avr-libc's eeprom_read_block / eeprom_update_block).
- * - main: initialises, then runs dr_module_receive for each frame and dr_module_step every
- *   DR_AVR_STEP_MS, and sleeps (idle mode) until the next interrupt in between.
+ * - main: initialises, runs dr_module_receive for each frame, and dr_module_step only at the
+ *   step instants (every DR_AVR_STEP_MS from the first) that dr_module_next_wakeup names;
+ *   in between it sleeps (idle mode) until that instant's timer, a frame or an operation's
+ *   end (dr_module.h: skipping the other instants gives the run that stepping at every
+ *   instant gives).
  *
  * Built with the generated program: avr-gcc -mmcu=atmega128 -Os -I OUT -I runtime/avr
  * OUT/dr_packet.c OUT/dr_<protocol>.c OUT/dr_program.c dr_avr.c (runtime/avr/Makefile). */
@@ -22,6 +27,9 @@
 #include <stdint.h>
 #include "dr_avr_board.h"
 #include "dr_program.h"
+#ifdef DR_AVR_NESC
+#include "dr_nesc_platform.h"
+#endif
 
 #if DR_CONF_MAX_ARGS > DR_AVR_MAX_ARGS
 #error "the board takes at most DR_AVR_MAX_ARGS operation arguments"
@@ -31,8 +39,13 @@
 #define TX_FRAMES 2u
 /* Received frames waiting for dr_module_receive (a third waits at the board). */
 #define RX_SLOTS 2u
-/* Timer1 compare value: 16 MHz / 64 / 250 = 1 kHz. */
-#define TIMER_TOP (DR_AVR_F_CPU / 64u / 1000u - 1u)
+/* Timer1 ticks per millisecond (16 MHz / 64), and what one overflow of its 16 bits adds:
+ * 262 ms and 36 ticks. */
+#define TICKS_PER_MS (DR_AVR_F_CPU / 64u / 1000u)
+#define OVERFLOW_MS (65536u / TICKS_PER_MS)
+#define OVERFLOW_TICKS (65536u % TICKS_PER_MS)
+/* A wake-up closer than this many ticks is waited for awake: the compare might be missed. */
+#define MIN_SLEEP_TICKS 8u
 #define UBRR_VALUE (DR_AVR_F_CPU / 16u / DR_AVR_BAUD - 1u)
 
 struct tx_frame {
@@ -48,9 +61,20 @@ struct rx_slot {
     uint8_t bytes[DR_CONF_MAX_PACKET];
 };
 
+#ifdef DR_AVR_NESC
+/* The nesC component (`dynarole compile --target nesc`, compiled by runtime/nesc) owns the
+ * module's context: DynaRoleP's `self`, so named by nescc with -fnesc-separator=__. */
+extern dr_module_t DynaRoleP__self;
+#define module DynaRoleP__self
+#else
 static dr_module_t module;
-static volatile uint32_t ms_now;
+#endif
+/* The clock at the last overflow: whole milliseconds, and ticks into the next one. */
+static volatile uint32_t clock_ms;
+static volatile uint8_t clock_ticks;
 static uint16_t random_state;
+/* Set by INT0: an operation ended since main last looked. */
+static volatile uint8_t op_ended;
 
 static struct tx_frame tx[TX_FRAMES];
 static volatile uint8_t tx_head;
@@ -116,6 +140,28 @@ static uint16_t read_u16(uint8_t reg)
     return (uint16_t)(b[0] | (uint16_t)((uint16_t)b[1] << 8));
 }
 
+#ifdef DR_AVR_DESCRIBE
+/* The module's state as text, for the simulator's trace: the emulated board copies it at
+ * each pulse of PE5. The context's own layout is the AVR compiler's, so the runtime's
+ * dr_module_describe makes the text here, where a host run makes it on the host. */
+char dr_avr_description[DR_AVR_DESCRIPTION];
+static uint8_t describing; /* from the end of dr_program_init: a host run shows - before */
+
+static void describe(void)
+{
+    if (describing) {
+        (void)dr_module_describe(&module, dr_avr_description,
+                                 (uint8_t)sizeof dr_avr_description);
+        PORTE = (uint8_t)(PORTE | (1u << DR_AVR_PIN_DESCRIBED));
+        PORTE = (uint8_t)(PORTE & ~(1u << DR_AVR_PIN_DESCRIBED));
+    }
+}
+#else
+static void describe(void)
+{
+}
+#endif
+
 static void write_u8(uint8_t reg, uint8_t v)
 {
     uint8_t sreg = SREG;
@@ -126,9 +172,57 @@ static void write_u8(uint8_t reg, uint8_t v)
 
 /* --- interrupts --- */
 
-ISR(TIMER1_COMPA_vect)
+/* Adds one overflow of Timer1 to a clock reading. */
+static void add_overflow(uint32_t *ms, uint8_t *ticks)
 {
-    ms_now++;
+    uint16_t t = (uint16_t)(*ticks + OVERFLOW_TICKS);
+    *ms += OVERFLOW_MS;
+    if (t >= TICKS_PER_MS) {
+        t = (uint16_t)(t - TICKS_PER_MS);
+        (*ms)++;
+    }
+    *ticks = (uint8_t)t;
+}
+
+ISR(TIMER1_OVF_vect)
+{
+    uint32_t ms = clock_ms;
+    uint8_t ticks = clock_ticks;
+    add_overflow(&ms, &ticks);
+    clock_ms = ms;
+    clock_ticks = ticks;
+}
+
+/* Only wakes the MCU: main looks at the clock. */
+EMPTY_INTERRUPT(TIMER1_COMPA_vect)
+
+ISR(INT0_vect)
+{
+    op_ended = 1;
+}
+
+/* Milliseconds since power-on; in *into the ticks since the last whole one, in *count the
+ * counter read. Called with interrupts off. An overflow not yet taken by its interrupt is
+ * counted here. */
+static uint32_t read_clock(uint8_t *into, uint16_t *count_read)
+{
+    uint16_t count = TCNT1;
+    uint32_t ms = clock_ms;
+    uint8_t ticks = clock_ticks;
+    uint16_t whole;
+    uint16_t rest;
+    if ((TIFR & (1u << TOV1)) && count < 0x8000u) {
+        add_overflow(&ms, &ticks);
+    }
+    whole = (uint16_t)(count / TICKS_PER_MS);
+    rest = (uint16_t)(count - whole * TICKS_PER_MS + ticks);
+    if (rest >= TICKS_PER_MS) {
+        whole++;
+        rest = (uint16_t)(rest - TICKS_PER_MS);
+    }
+    *into = (uint8_t)rest;
+    *count_read = count;
+    return ms + whole;
 }
 
 static void tx_start(void)
@@ -216,10 +310,12 @@ ISR(USART0_RX_vect)
 uint32_t dr_hal_now_ms(struct dr_module *m)
 {
     uint32_t v;
+    uint8_t into;
+    uint16_t count;
     uint8_t sreg = SREG;
     (void)m;
     cli();
-    v = ms_now;
+    v = read_clock(&into, &count);
     SREG = sreg;
     return v;
 }
@@ -261,12 +357,14 @@ static void enqueue(uint8_t mask, const uint8_t *bytes, uint8_t len)
 void dr_hal_broadcast(struct dr_module *m, const uint8_t *bytes, uint8_t len)
 {
     (void)m;
+    describe(); /* the state the trace shows next to this frame, as in a host run */
     enqueue((uint8_t)((1u << DR_AVR_CHANNELS) - 1u), bytes, len);
 }
 
 void dr_hal_send(struct dr_module *m, uint8_t channel, const uint8_t *bytes, uint8_t len)
 {
     (void)m;
+    describe();
     if (channel < DR_AVR_CHANNELS) {
         enqueue((uint8_t)(1u << channel), bytes, len);
     }
@@ -279,6 +377,7 @@ void dr_hal_op_start(struct dr_module *m, uint16_t statement, uint8_t op, uint8_
     uint8_t a[2 * DR_CONF_MAX_ARGS];
     uint8_t i;
     uint8_t sreg;
+    describe();
     head[0] = (uint8_t)(statement & 0xFFu);
     head[1] = (uint8_t)(statement >> 8);
     head[2] = op;
@@ -343,6 +442,7 @@ int16_t dr_hal_joint(struct dr_module *m, uint8_t joint)
 void dr_hal_leds(struct dr_module *m, uint8_t value)
 {
     (void)m;
+    describe();
     write_u8(DR_AVR_REG_LEDS, value);
 }
 
@@ -385,9 +485,13 @@ static void board_init(void)
                      (1u << DR_AVR_STROBE_READ) | (1u << DR_AVR_STROBE_RELEASE));
     DDRE = (uint8_t)((1u << DR_AVR_PIN_STEP) | (1u << DR_AVR_PIN_RECEIVE) |
                      (1u << DR_AVR_PIN_FINISHED));
-    OCR1A = (uint16_t)TIMER_TOP;
-    TCCR1B = (uint8_t)((1u << WGM12) | (1u << CS11) | (1u << CS10));
-    TIMSK = (uint8_t)(TIMSK | (1u << OCIE1A));
+    TCCR1A = 0; /* normal mode: counts 0..0xFFFF */
+    TCCR1B = (uint8_t)((1u << CS11) | (1u << CS10));
+    TIMSK = (uint8_t)(TIMSK | (1u << TOIE1));
+    /* INT0 on its rising edge: an operation ended. */
+    EICRA = (uint8_t)((1u << ISC01) | (1u << ISC00));
+    EIFR = (uint8_t)(1u << INTF0);
+    EIMSK = (uint8_t)(EIMSK | (1u << INT0));
     UBRR0H = (uint8_t)(UBRR_VALUE >> 8);
     UBRR0L = (uint8_t)(UBRR_VALUE & 0xFFu);
     UCSR0C = (uint8_t)((1u << UCSZ01) | (1u << UCSZ00));
@@ -403,9 +507,14 @@ static void receive_all(void)
     for (i = 0; i < RX_SLOTS; i++) {
         if (rx[i].full) {
             PORTE = (uint8_t)(PORTE | (1u << DR_AVR_PIN_RECEIVE));
+#ifdef DR_AVR_NESC
+            dr_platform_receive(rx[i].channel, rx[i].bytes, rx[i].len);
+#else
             dr_module_receive(&module, rx[i].channel, rx[i].bytes, rx[i].len);
+#endif
             PORTE = (uint8_t)(PORTE & ~(1u << DR_AVR_PIN_RECEIVE));
             rx[i].full = 0;
+            describe();
         }
     }
 }
@@ -421,49 +530,204 @@ static uint8_t any_received(void)
     return 0;
 }
 
-/* One step (PE2 high meanwhile); PE4 shows whether the module knows the sequence ended. */
-static void step(void)
+/* One step (PE2 high meanwhile); PE4 shows whether the module knows the sequence ended.
+ * Under nesC, the component's clock advances by `elapsed` ms instead: its timer runs the
+ * steps (every 5 ms from boot) and the tasks. */
+static void step(uint32_t elapsed)
 {
     PORTE = (uint8_t)(PORTE | (1u << DR_AVR_PIN_STEP));
+#ifdef DR_AVR_NESC
+    dr_nesc_advance_ms(elapsed);
+#else
+    (void)elapsed;
     dr_module_step(&module);
+#endif
     if (dr_module_finished(&module)) {
         PORTE = (uint8_t)(PORTE | (1u << DR_AVR_PIN_FINISHED));
     } else {
         PORTE = (uint8_t)(PORTE & ~(1u << DR_AVR_PIN_FINISHED));
     }
     PORTE = (uint8_t)(PORTE & ~(1u << DR_AVR_PIN_STEP));
+    describe();
 }
 
-int main(void)
+/* --- when to step --- */
+
+static uint32_t due;        /* the instant of the next step, when has_due */
+static uint8_t has_due;
+static uint8_t op_wait;     /* a step is wanted once the operation has ended */
+
+/* Whether clock reading a comes before b (the clock wraps after 49 days). */
+static uint8_t before(uint32_t a, uint32_t b)
 {
-    uint32_t next_step;
+    return (uint8_t)((int32_t)(a - b) < 0);
+}
+
+/* Arms compare A to wake the MCU when the clock reaches `at` (ms), if it is within one
+ * overflow; the overflow interrupt wakes it anyway. False when `at` is too close to sleep.
+ * Interrupts are off. */
+static uint8_t arm_wake(uint32_t at)
+{
+    uint8_t into;
+    uint16_t count;
+    uint32_t now = read_clock(&into, &count);
+    uint32_t ahead;
+    uint32_t ticks;
+    TIMSK = (uint8_t)(TIMSK & ~(1u << OCIE1A));
+    if (!has_due) {
+        return 1;
+    }
+    if (!before(now, at)) {
+        return 0;
+    }
+    ahead = at - now;
+    if (ahead > OVERFLOW_MS) {
+        return 1;
+    }
+    ticks = ahead * TICKS_PER_MS - into;
+    if (ticks < MIN_SLEEP_TICKS) {
+        return 0;
+    }
+    OCR1A = (uint16_t)(count + (uint16_t)ticks);
+    TIFR = (uint8_t)(1u << OCF1A);
+    TIMSK = (uint8_t)(TIMSK | (1u << OCIE1A));
+    return 1;
+}
+
+/* Sleeps until the next interrupt unless there is work; sei takes effect after the next
+ * instruction, so no wake-up is lost between the checks and the sleep. */
+static void sleep_until_work(void)
+{
+    cli();
+    if (!any_received() && !(op_wait && op_ended) && arm_wake(due)) {
+        sleep_enable();
+        sei();
+        sleep_cpu();
+        sleep_disable();
+    }
+    sei();
+}
+
+/* Power-on and reset: the board, the random generator's seed from the module's ID. */
+static void start(void)
+{
     board_init();
     sei();
     random_state = (uint16_t)(read_u16(DR_AVR_REG_ID) ^ 0xACE1u);
     if (random_state == 0u) {
         random_state = 1u;
     }
-    dr_program_init(&module, 0);
-    write_u8(DR_AVR_REG_ADDRESS, module.address); /* for the board's log */
-    next_step = dr_hal_now_ms(&module);
+}
+
+/* After the runtime's init: the trace's description, the address for the board's log. */
+static void started(void)
+{
+#ifdef DR_AVR_DESCRIBE
+    describing = 1;
+#endif
+    describe();
+    write_u8(DR_AVR_REG_ADDRESS, module.address);
+}
+
+#ifdef DR_AVR_NESC
+
+/* The component's timers need its clock only when one is due (dr_nesc_until_due_ms): the
+ * MCU sleeps until then, or until a frame. */
+int main(void)
+{
+    uint32_t last;
+    uint32_t now;
+    uint32_t until;
+    start();
+    dr_nesc_boot();
+    started();
+    last = dr_hal_now_ms(&module);
     for (;;) {
         receive_all();
-        if ((int32_t)(dr_hal_now_ms(&module) - next_step) >= 0) {
-            step();
-            next_step += DR_AVR_STEP_MS;
-            if ((int32_t)(dr_hal_now_ms(&module) - next_step) >= 0) {
-                next_step = dr_hal_now_ms(&module) + DR_AVR_STEP_MS; /* fell behind */
-            }
+        now = dr_hal_now_ms(&module);
+        if (now != last) {
+            step(now - last);
+            last = now;
         }
-        /* Sleep until the next interrupt (the millisecond tick at the latest) unless a frame
-         * is waiting; sei takes effect after the next instruction, so no wake-up is lost. */
-        cli();
-        if (!any_received() && (int32_t)(ms_now - next_step) < 0) {
-            sleep_enable();
-            sei();
-            sleep_cpu();
-            sleep_disable();
-        }
-        sei();
+        until = dr_nesc_until_due_ms();
+        has_due = (uint8_t)(until != DR_NESC_NEVER);
+        due = last + (until == 0u ? 1u : until);
+        sleep_until_work();
     }
 }
+
+#else
+
+static uint32_t first_step; /* the instants are first_step + k * DR_AVR_STEP_MS */
+static uint32_t next_free;  /* the first instant not stepped yet */
+
+/* The first instant at or after `t`. */
+static uint32_t instant_at_or_after(uint32_t t)
+{
+    uint32_t since = t - first_step + DR_AVR_STEP_MS - 1u;
+    return first_step + since - since % DR_AVR_STEP_MS;
+}
+
+/* The first instant at or after `t` that has not been stepped. */
+static uint32_t instant_from(uint32_t t)
+{
+    return before(t, next_free) ? next_free : instant_at_or_after(t);
+}
+
+static void want_step_at(uint32_t at)
+{
+    if (!has_due || before(at, due)) {
+        due = at;
+        has_due = 1;
+    }
+}
+
+/* Asks the module when it next needs a step (after its init, a step or a frame). */
+static void plan(void)
+{
+    uint32_t at;
+    uint8_t answer = dr_module_next_wakeup(&module, &at);
+    has_due = 0;
+    op_wait = 0;
+    if (answer & DR_WAKE_AT) {
+        want_step_at(instant_from(at));
+    }
+    if (answer & DR_WAKE_OP) {
+        op_ended = 0; /* cleared first: an end after the read below still sets it */
+        if (dr_hal_op_status(&module) != DR_OP_RUNNING) {
+            want_step_at(instant_from(dr_hal_now_ms(&module)));
+        } else {
+            op_wait = 1;
+        }
+    }
+}
+
+int main(void)
+{
+    start();
+    dr_program_init(&module, 0);
+    started();
+    first_step = dr_hal_now_ms(&module);
+    next_free = first_step;
+    due = first_step;
+    has_due = 1;
+    for (;;) {
+        if (any_received()) {
+            receive_all();
+            plan();
+        }
+        if (op_wait && op_ended) {
+            op_wait = 0;
+            want_step_at(instant_from(dr_hal_now_ms(&module)));
+        }
+        if (has_due && !before(dr_hal_now_ms(&module), due)) {
+            /* Instants that passed while the MCU was busy are not stepped (fell behind). */
+            next_free = instant_at_or_after(dr_hal_now_ms(&module) + 1u);
+            step(0);
+            plan();
+        }
+        sleep_until_work();
+    }
+}
+
+#endif

@@ -22,9 +22,14 @@
 #define DR_AVR_STROBE_WRITE 5   /* PD5: PORTB goes into the addressed register (address + 1) */
 #define DR_AVR_STROBE_READ 6    /* PD6: the addressed register appears on PINA (address + 1) */
 #define DR_AVR_STROBE_RELEASE 7 /* PD7: the frame being received is taken; the next may come */
+#define DR_AVR_PIN_OP_END 0     /* PD0 (INT0), from the controller: high once the operation
+                                 * started last has ended (status no longer RUNNING), low
+                                 * while one runs; its rising edge wakes the MCU */
 #define DR_AVR_PIN_STEP 2       /* PE2: high while dr_module_step runs */
 #define DR_AVR_PIN_RECEIVE 3    /* PE3: high while dr_module_receive runs */
 #define DR_AVR_PIN_FINISHED 4   /* PE4: high once the module knows the sequence has ended */
+#define DR_AVR_PIN_DESCRIBED 5  /* PE5: a pulse once dr_avr_description holds the module's
+                                 * state (images built with DR_AVR_DESCRIBE, for traces) */
 
 /* The controller's registers. Multi-byte values are little-endian. */
 #define DR_AVR_REG_STATEMENT 0x00u /* w: 2 bytes, the statement of the next operation */
@@ -45,6 +50,10 @@
 #define DR_AVR_CHANNELS 8u    /* connectors (infrared channels) the board has */
 #define DR_AVR_JOINTS 8u      /* joints whose positions it reports */
 #define DR_AVR_MAX_ARGS 16u   /* operation arguments it takes */
+
+/* Size of dr_avr_description, the module's state as dr_module_describe writes it (the
+ * simulator keeps as much for a host-compiled module). */
+#define DR_AVR_DESCRIPTION 64u
 
 /* Bytes above the .bss that the emulator paints at reset to measure the stack's depth. */
 #define DR_AVR_PAINT 0xC5u

@@ -77,6 +77,20 @@ implementation {
         }
     }
 
+    command void Clock.untilDue(uint32_t *ms) {
+        uint8_t id;
+        *ms = DR_NESC_NEVER;
+        for (id = 0; id < N_TIMERS; id++) {
+            if (due[id]) {
+                *ms = 0;
+                return;
+            }
+            if (running[id] && remaining[id] < *ms) {
+                *ms = remaining[id];
+            }
+        }
+    }
+
     default event void Timer.fired[uint8_t id]() {
         (void)id;
     }

@@ -17,6 +17,12 @@ void dr_nesc_boot(void);
  * runs posted tasks, at most DR_NESC_MAX_TASK_RUNS of them (the others wait for the next
  * call), so one call is bounded even if a task keeps posting itself. */
 void dr_nesc_advance_ms(uint32_t ms);
+/* How many milliseconds may pass before the next dr_nesc_advance_ms has work (a timer due):
+ * 0 when it has work now (a timer due, tasks left waiting), DR_NESC_NEVER when no timer
+ * runs. A platform that sleeps between calls sleeps that long at most (frames aside). */
+uint32_t dr_nesc_until_due_ms(void);
+#define DR_NESC_NEVER 0xFFFFFFFFul
+
 /* The generated component's receive path (DynaRoleP.nc). */
 void dr_platform_receive(uint8_t channel, const uint8_t *bytes, uint8_t len);
 

@@ -8,7 +8,9 @@ use crate::world::read_configuration;
 use clap::ValueEnum;
 use dynarole_codegen::{Choice, Protocol};
 use dynarole_recording::Source;
-use dynarole_sim::{FirmwareReport, Report, Run, Scenario, SimError, Simulator, Stepping};
+use dynarole_sim::{
+    FirmwareReport, FirmwareSource, Report, Run, Scenario, SimError, Simulator, Stepping,
+};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
@@ -38,6 +40,9 @@ pub struct SimulateArgs<'a> {
 pub enum FirmwareArg {
     /// The ATRON's ATmega128 at 16 MHz (simavr), running the image of runtime/avr
     Avr,
+    /// The same MCU running the nesC component (`--target nesc`) compiled by nesC 1.4.0
+    /// against runtime/nesc, with runtime/avr's platform (scripts/ensure-nesc builds nescc)
+    AvrNesc,
 }
 
 pub fn run(args: &SimulateArgs) -> Result<ExitCode, Failure> {
@@ -86,9 +91,13 @@ pub fn run(args: &SimulateArgs) -> Result<ExitCode, Failure> {
                 seed,
                 trace: args.trace.is_some() || args.record.wanted(),
             };
-            let (report, firmware) = match args.firmware {
+            let firmware_source = args.firmware.map(|f| match f {
+                FirmwareArg::Avr => FirmwareSource::C,
+                FirmwareArg::AvrNesc => FirmwareSource::Nesc,
+            });
+            let (report, firmware) = match firmware_source {
                 None => (simulator.run(&run), None),
-                Some(FirmwareArg::Avr) => match simulator.run_firmware(&run) {
+                Some(source) => match simulator.run_firmware(&run, source) {
                     Ok((report, firmware)) => (Ok(report), Some(firmware)),
                     Err(e) => (Err(e), None),
                 },

@@ -1,6 +1,6 @@
 //! `dynarole simulate --firmware avr`: every module an emulated ATmega128 running the image of
-//! runtime/avr. A short sequence here (the emulation runs about 1.5 cores in real time per
-//! host core); the full runs are `#[ignore]`d (docs/simulator.md gives the command).
+//! runtime/avr, against a host-compiled run of the same seed: a short sequence with each
+//! protocol, and the full runs (a sleeping core costs the emulator next to nothing).
 
 mod common;
 
@@ -52,6 +52,19 @@ fn operations(trace: &str) -> Vec<(String, String, f64)> {
         .collect()
 }
 
+/// The trace's state column is filled from the firmware (the runtime's description read
+/// from the MCU's RAM): every operation's start shows the starting module's state.
+fn assert_states_shown(trace: &str) {
+    let starts: Vec<&str> = trace
+        .lines()
+        .filter(|l| l.split_whitespace().nth(2) == Some("start"))
+        .collect();
+    assert!(!starts.is_empty(), "{trace}");
+    for line in starts {
+        assert_ne!(line.split_whitespace().nth(3), Some("-"), "{line}");
+    }
+}
+
 /// Each statement's events in order, with their times.
 fn per_statement(
     ops: &[(String, String, f64)],
@@ -70,6 +83,22 @@ fn per_statement(
 /// difference (ms) of an operation event, and the firmware run's report when `json` (else
 /// its text is checked for the firmware's table).
 fn compare_with_host(args: &[&str], name: &str, json: bool) -> (f64, serde_json::Value) {
+    compare_with_host_on(args, name, json, &Firmware::C)
+}
+
+/// The image a firmware run uses: runtime/avr's C, or the nesC component (nescc's directory).
+enum Firmware {
+    C,
+    Nesc(PathBuf),
+}
+
+/// [`compare_with_host`] with the firmware image made from `firmware`.
+fn compare_with_host_on(
+    args: &[&str],
+    name: &str,
+    json: bool,
+    firmware_image: &Firmware,
+) -> (f64, serde_json::Value) {
     let mut traces = Vec::new();
     let mut report = serde_json::Value::Null;
     for firmware in [false, true] {
@@ -79,12 +108,24 @@ fn compare_with_host(args: &[&str], name: &str, json: bool) -> (f64, serde_json:
         let trace_arg = trace.to_str().expect("utf-8 path").to_string();
         all.extend_from_slice(&["--trace", &trace_arg]);
         if firmware {
-            all.extend_from_slice(&["--firmware", "avr"]);
+            let mcu = match firmware_image {
+                Firmware::C => "avr",
+                Firmware::Nesc(_) => "avr-nesc",
+            };
+            all.extend_from_slice(&["--firmware", mcu]);
         }
         if firmware && json {
             all.push("--json");
         }
-        let out = dynarole(&all);
+        let out = match firmware_image {
+            Firmware::Nesc(dir) => Command::new(env!("CARGO_BIN_EXE_dynarole"))
+                .args(&all)
+                .current_dir(repo_root())
+                .env("NESCC", dir.join("nescc"))
+                .output()
+                .expect("the dynarole binary runs"),
+            Firmware::C => dynarole(&all),
+        };
         let stdout = text(&out.stdout);
         assert_eq!(out.status.code(), Some(0), "{stdout}{}", text(&out.stderr));
         if firmware && json {
@@ -104,7 +145,11 @@ fn compare_with_host(args: &[&str], name: &str, json: bool) -> (f64, serde_json:
             );
             assert!(stdout.contains("cycles/step (mean max)"), "{stdout}");
         }
-        traces.push(operations(&std::fs::read_to_string(&trace).expect("trace")));
+        let trace = std::fs::read_to_string(&trace).expect("trace");
+        if firmware {
+            assert_states_shown(&trace);
+        }
+        traces.push(operations(&trace));
     }
     // Each statement's own events (start, resume, retry, done...) come in the same order.
     // Statements of one `&` group may start in another order (their relative timing differs);
@@ -116,6 +161,7 @@ fn compare_with_host(args: &[&str], name: &str, json: bool) -> (f64, serde_json:
     );
     let (host, avr) = (per_statement(&traces[0]), per_statement(&traces[1]));
     let mut late: f64 = 0.0;
+    let (mut sum, mut count) = (0.0, 0u32);
     for (statement, events) in &host {
         let names = |e: &[(String, f64)]| e.iter().map(|x| x.0.clone()).collect::<Vec<_>>();
         assert_eq!(
@@ -125,8 +171,15 @@ fn compare_with_host(args: &[&str], name: &str, json: bool) -> (f64, serde_json:
         );
         for (h, a) in events.iter().zip(&avr[statement]) {
             late = late.max((a.1 - h.1).abs());
+            sum += (a.1 - h.1).abs();
+            count += 1;
         }
     }
+    // The figures of docs/benchmarks.md (`-- --nocapture` shows them).
+    eprintln!(
+        "{name}: {count} operation events in each statement's host order; time difference max {late:.1} ms, mean {:.1} ms",
+        sum / f64::from(count.max(1))
+    );
     let order = |ops: &[(String, String, f64)]| -> Vec<(String, String)> {
         ops.iter().map(|(e, s, _)| (e.clone(), s.clone())).collect()
     };
@@ -159,8 +212,13 @@ fn a_short_sequence_runs_on_emulated_atmega128s_in_the_host_runs_order() {
     for m in modules {
         let stack = m["stack_bytes"].as_u64().expect("stack");
         assert!(stack > 16 && stack < 4096, "{m}");
-        assert!(m["steps"].as_u64().expect("steps") > 100, "{m}");
-        assert!(m["sleep_cycles"].as_u64() < m["cycles"].as_u64(), "{m}");
+        // Steps only when dr_module_next_wakeup asks: far fewer than one per 5 ms instant
+        // (80,000 cycles); asleep otherwise.
+        let cycles = m["cycles"].as_u64().expect("cycles");
+        let steps = m["steps"].as_u64().expect("steps");
+        assert!(steps >= 3 && steps * 10 < cycles / 80_000, "{m}");
+        let asleep = m["sleep_cycles"].as_u64().expect("sleep cycles");
+        assert!(asleep < cycles && asleep * 10 > cycles * 9, "{m}");
     }
     assert!(value["firmware"]["text"].as_u64().expect("text") > 1000);
 }
@@ -205,10 +263,112 @@ fn firmware_refuses_an_unknown_mcu_and_foreign_packets() {
     );
 }
 
-/// The runs (minutes each): eight2car then car2eight with 30 % loss; eight2car with
-/// a reset in the middle of an operation (Fig. 8 left) and with a power-off (Fig. 7).
+/// The directory of nescc 1.4.0, or None (with the reason printed) when this machine cannot
+/// build it; a failed build is a failure, not a skip.
+fn nescc_dir() -> Option<PathBuf> {
+    let out = Command::new(repo_root().join("scripts/ensure-nesc"))
+        .output()
+        .expect("scripts/ensure-nesc runs");
+    match out.status.code() {
+        Some(0) => Some(PathBuf::from(text(&out.stdout).trim())),
+        Some(77) => {
+            eprintln!("skipped: {}", text(&out.stderr));
+            None
+        }
+        _ => panic!("scripts/ensure-nesc failed: {}", text(&out.stderr)),
+    }
+}
+
+/// The nesC component, compiled by nesC 1.4.0 for the ATmega128 and linked with runtime/avr's
+/// platform (`--firmware avr-nesc`), runs in the host run's order too.
 #[test]
-#[ignore = "several minutes of emulation: cargo test -p dynarole-cli --test firmware -- --ignored"]
+fn the_nesc_component_runs_on_emulated_atmega128s() {
+    if !avr_tools() {
+        return;
+    }
+    let Some(nescc) = nescc_dir() else { return };
+    let file = scratch("short-nesc.dr");
+    std::fs::write(&file, SHORT).expect("write");
+    let file = file.to_str().expect("utf-8 path").to_string();
+    let args = [
+        file.as_str(),
+        "--from",
+        "examples/atron/eight.json",
+        "--seed",
+        "1",
+    ];
+    let (late, value) = compare_with_host_on(&args, "nesc", true, &Firmware::Nesc(nescc));
+    eprintln!("nesC: largest time difference of an operation event: {late:.1} ms");
+    let modules = value["firmware"]["modules"].as_array().expect("modules");
+    assert_eq!(modules.len(), 7);
+    for m in modules {
+        assert!(m["receives"].as_u64().expect("receives") > 0, "{m}");
+    }
+}
+
+/// Without nesC 1.4.0's compiler, `--firmware avr-nesc` says how to get it (and runs nothing).
+#[test]
+fn avr_nesc_without_nescc_says_how_to_get_it() {
+    let nowhere = scratch("no-home");
+    let out = Command::new(env!("CARGO_BIN_EXE_dynarole"))
+        .args([
+            "simulate",
+            "examples/atron/eight2car.dr",
+            "--from",
+            "examples/atron/eight.json",
+            "--firmware",
+            "avr-nesc",
+        ])
+        .current_dir(repo_root())
+        .env("NESCC", nowhere.join("nescc"))
+        .env("HOME", &nowhere)
+        .env("XDG_CACHE_HOME", &nowhere)
+        .env("PATH", "/nonexistent")
+        .output()
+        .expect("the dynarole binary runs");
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("needs nesC 1.4.0's nescc (scripts/ensure-nesc builds it"),
+        "{stderr}"
+    );
+}
+
+/// The paper's protocol and the token baseline run on the firmware too (their frames go
+/// through the same USART framing and arbiter), in the host run's order.
+#[test]
+fn the_paper_and_token_protocols_run_on_emulated_atmega128s() {
+    if !avr_tools() {
+        return;
+    }
+    let file = scratch("short-protocols.dr");
+    std::fs::write(&file, SHORT).expect("write");
+    let file = file.to_str().expect("utf-8 path").to_string();
+    for protocol in ["paper", "token"] {
+        let args = [
+            file.as_str(),
+            "--from",
+            "examples/atron/eight.json",
+            "--protocol",
+            protocol,
+            "--seed",
+            "1",
+        ];
+        let (late, value) = compare_with_host(&args, protocol, true);
+        eprintln!("{protocol}: largest time difference of an operation event: {late:.1} ms");
+        let modules = value["firmware"]["modules"].as_array().expect("modules");
+        assert_eq!(modules.len(), 7);
+        for m in modules {
+            // Every module's firmware hands frames to its runtime.
+            assert!(m["receives"].as_u64().expect("receives") > 0, "{m}");
+        }
+    }
+}
+
+/// The runs: eight2car then car2eight with 30 % loss; eight2car with a reset in the
+/// middle of an operation (Fig. 8 left) and with a power-off (Fig. 7). About 40 s of CPU for
+/// the three, host runs included (docs/benchmarks.md).
+#[test]
 fn the_papers_runs_on_emulated_atmega128s_in_the_host_runs_order() {
     if !avr_tools() {
         return;

@@ -17,6 +17,7 @@ mod runtime;
 mod token;
 
 pub use c::{generate_c, generate_nesc, Generated};
+pub use nesc::nesc_files;
 pub use choice::{Choice, UnknownName};
 pub use options::CompileOptions;
 pub use promela::{

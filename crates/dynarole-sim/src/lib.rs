@@ -26,7 +26,7 @@ mod wake;
 
 pub use build::cache_root;
 pub use critical::CriticalPath;
-pub use firmware::{FirmwareReport, ModuleFirmware};
+pub use firmware::{FirmwareReport, FirmwareSource, ModuleFirmware};
 pub use record::Recorded;
 pub use report::{Counters, ModuleReport, Refusal, Report, Violation};
 pub use scenario::{
@@ -35,7 +35,7 @@ pub use scenario::{
 };
 
 use build::Loaded;
-use dynarole_codegen::{generate_c, CompileOptions, Protocol};
+use dynarole_codegen::{generate_c, nesc_files, CompileOptions, Protocol};
 use dynarole_core::diagnostic::Diagnostic;
 use dynarole_core::expand::Plan;
 use dynarole_core::Program;
@@ -85,6 +85,8 @@ pub struct Run<'a> {
 pub struct Simulator {
     sequence: Arc<Sequence>,
     files: Vec<(String, String)>,
+    /// The nesC component around `files` (`--target nesc`), for `--firmware avr-nesc`.
+    nesc: Vec<(String, String)>,
     protocol: Protocol,
     packet_bytes: usize,
     loaded: RefCell<Vec<(Preset, Rc<Loaded>)>>,
@@ -108,6 +110,7 @@ impl Simulator {
         Ok(Simulator {
             sequence: Arc::new(Sequence::new(program.robot.clone(), ir, resolved)),
             files: generated.files,
+            nesc: nesc_files(options),
             protocol: options.protocol,
             packet_bytes: generated.packet_bytes,
             loaded: RefCell::new(Vec::new()),

@@ -13,6 +13,7 @@
 #include <avr_ioport.h>
 #include <avr_uart.h>
 #include <avr_eeprom.h>
+#include <avr_extint.h>
 #include "dr_avr_board.h"
 #include "dr_avr_emu.h"
 
@@ -32,11 +33,14 @@ struct drav_core {
     avr_t *avr;
     elf_firmware_t firmware;
     uint16_t paint_from; /* first byte above .data and .bss (the linker's _end) */
+    uint16_t description; /* address of dr_avr_description, 0 when the image has none */
+    uint8_t porte;        /* PORTE as last written, for edge detection */
     uint8_t regs[DR_AVR_REGS];
     uint8_t reg;         /* the bus's current register address */
     uint8_t portd;       /* PORTD as last written, for edge detection */
     avr_irq_t *uart_in;
     avr_irq_t *pina[8];
+    avr_irq_t *op_end; /* PD0 (INT0): the operation has ended */
     struct drav_event log[DRAV_EVENTS];
     uint32_t log_head;
     uint32_t log_count;
@@ -89,6 +93,25 @@ static void drive_pina(struct drav_core *c, uint8_t value)
     }
 }
 
+/* The operation-end line follows the status register: low while an operation runs. */
+static void drive_op_end(struct drav_core *c)
+{
+    if (c->avr) {
+        avr_raise_irq(c->op_end, c->regs[DR_AVR_REG_STATUS] != 0u);
+    }
+}
+
+/* A cycle timer that does nothing: it only bounds a sleeping core's jump (simavr sleeps
+ * until its next timer event), so that the core stops where the host or the arbiter
+ * needs it. */
+static avr_cycle_count_t wake_only(struct avr_t *avr, avr_cycle_count_t when, void *param)
+{
+    (void)avr;
+    (void)when;
+    (void)param;
+    return 0;
+}
+
 /* The arbiter passes the next queued frame to the USART once the previous is released. */
 static void feed(struct drav_core *c)
 {
@@ -104,6 +127,7 @@ static void feed(struct drav_core *c)
     }
     c->locked = 1;
     c->lock_until = c->avr->cycle + ((uint64_t)f->len + ARBITER_MARGIN_BYTES) * CYCLES_PER_BYTE;
+    avr_cycle_timer_register(c->avr, c->lock_until - c->avr->cycle, wake_only, &c->lock_until);
     c->rx_head = (c->rx_head + 1u) % DRAV_RX_QUEUE;
     c->rx_count--;
 }
@@ -123,6 +147,7 @@ static void on_portd(struct avr_irq_t *irq, uint32_t value, void *param)
         c->regs[c->reg] = data;
         if (c->reg == DR_AVR_REG_GO) {
             c->regs[DR_AVR_REG_STATUS] = 0; /* running, until the host says otherwise */
+            drive_op_end(c);
         }
         note(c, DRAV_EV_WRITE, c->reg, data);
         c->reg = (uint8_t)((c->reg + 1u) % DR_AVR_REGS);
@@ -138,10 +163,36 @@ static void on_portd(struct avr_irq_t *irq, uint32_t value, void *param)
     }
 }
 
+/* The firmware's state description (a NUL-terminated string in its RAM), two characters a
+ * log entry, ending with the entry that holds the NUL. */
+static void note_description(struct drav_core *c)
+{
+    uint32_t i;
+    uint32_t at = c->description;
+    for (i = 0; i < DR_AVR_DESCRIPTION; i += 2u) {
+        uint8_t a = c->avr->data[at + i];
+        /* the buffer's last byte counts as its NUL */
+        uint8_t b = (a == 0u || i + 2u >= DR_AVR_DESCRIPTION) ? 0u : c->avr->data[at + i + 1u];
+        note(c, DRAV_EV_TEXT, a, b);
+        if (a == 0u || b == 0u) {
+            return;
+        }
+    }
+}
+
 static void on_porte(struct avr_irq_t *irq, uint32_t value, void *param)
 {
+    struct drav_core *c = param;
+    uint8_t rising = (uint8_t)(value & ~c->porte);
     (void)irq;
-    note(param, DRAV_EV_PINS, (uint8_t)value, 0);
+    c->porte = (uint8_t)value;
+    if (rising & (1u << DR_AVR_PIN_DESCRIBED)) {
+        if (c->description != 0u) {
+            note_description(c);
+        }
+        return;
+    }
+    note(c, DRAV_EV_PINS, (uint8_t)value, 0);
 }
 
 static void on_uart_out(struct avr_irq_t *irq, uint32_t value, void *param)
@@ -151,11 +202,14 @@ static void on_uart_out(struct avr_irq_t *irq, uint32_t value, void *param)
     note(c, DRAV_EV_TX, (uint8_t)value, port_value(c, 'C'));
 }
 
-/* Sleeping advances the cycle count only; no wall-clock wait. */
+/* Sleeping advances the cycle count only (simavr jumps to its next timer event); no
+ * wall-clock wait. The jump is counted as time asleep. */
 static void no_sleep(avr_t *avr, avr_cycle_count_t how_long)
 {
-    (void)avr;
-    (void)how_long;
+    struct drav_core *c = avr->custom.data;
+    if (c) {
+        c->sleep_cycles += 1u + how_long;
+    }
 }
 
 /* simavr's messages go nowhere: the host reports what matters (a stopped core). */
@@ -175,16 +229,26 @@ static void paint(struct drav_core *c)
     }
 }
 
-static int find_end(struct drav_core *c)
+/* The RAM address of data symbol `name` (simavr gives it with 0x800000 added), or 0. */
+static uint16_t ram_symbol(const struct drav_core *c, const char *name)
 {
     uint32_t i;
     for (i = 0; i < c->firmware.symbolcount; i++) {
-        if (strcmp(c->firmware.symbol[i]->symbol, "_end") == 0) {
-            c->paint_from = (uint16_t)(c->firmware.symbol[i]->addr & 0xFFFFu);
-            return c->paint_from > 0x100u && c->paint_from <= c->avr->ramend;
+        if (strcmp(c->firmware.symbol[i]->symbol, name) == 0) {
+            return (uint16_t)(c->firmware.symbol[i]->addr & 0xFFFFu);
         }
     }
     return 0;
+}
+
+static int find_symbols(struct drav_core *c)
+{
+    c->paint_from = ram_symbol(c, "_end");
+    c->description = ram_symbol(c, "dr_avr_description");
+    if (c->description != 0u && (uint32_t)c->description + DR_AVR_DESCRIPTION > c->avr->ramend) {
+        c->description = 0;
+    }
+    return c->paint_from > 0x100u && c->paint_from <= c->avr->ramend;
 }
 
 static int wire(struct drav_core *c)
@@ -194,13 +258,14 @@ static int wire(struct drav_core *c)
     avr_irq_t *out = avr_io_getirq(c->avr, (uint32_t)AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_OUTPUT);
     uint32_t i;
     c->uart_in = avr_io_getirq(c->avr, (uint32_t)AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_INPUT);
+    c->op_end = avr_io_getirq(c->avr, (uint32_t)AVR_IOCTL_IOPORT_GETIRQ('D'), DR_AVR_PIN_OP_END);
     for (i = 0; i < 8u; i++) {
         c->pina[i] = avr_io_getirq(c->avr, (uint32_t)AVR_IOCTL_IOPORT_GETIRQ('A'), (int)i);
         if (!c->pina[i]) {
             return 0;
         }
     }
-    if (!portd || !porte || !out || !c->uart_in) {
+    if (!portd || !porte || !out || !c->uart_in || !c->op_end) {
         return 0;
     }
     avr_irq_register_notify(portd, on_portd, c);
@@ -219,6 +284,7 @@ static void message(char *err, uint32_t cap, const char *what, const char *path)
 /* A fresh ATmega128 with the image in its flash, wired to the board. */
 static int boot(struct drav_core *c)
 {
+    uint32_t i;
     c->avr = avr_make_mcu_by_name("atmega128");
     if (!c->avr) {
         return 0;
@@ -228,6 +294,14 @@ static int boot(struct drav_core *c)
     avr_load_firmware(c->avr, &c->firmware);
     c->avr->frequency = (uint32_t)DR_AVR_F_CPU;
     c->avr->sleep = no_sleep;
+    c->avr->custom.data = c;
+    /* simavr polls a low-level external interrupt pin every cycle while it is low, whether
+     * or not the interrupt is enabled (INT4 is PE4, a status output here): a sleeping core
+     * would then advance one cycle at a time. The firmware enables only edge-triggered
+     * external interrupts, so level triggering is reduced to its edge. */
+    for (i = 0; i < 8u; i++) {
+        avr_extint_set_strict_lvl_trig(c->avr, (uint8_t)i, 0);
+    }
     return wire(c);
 }
 
@@ -253,7 +327,7 @@ struct drav_core *drav_open(const char *path, char *err, uint32_t cap)
         free(c);
         return NULL;
     }
-    if (!boot(c) || !find_end(c)) {
+    if (!boot(c) || !find_symbols(c)) {
         message(err, cap, "not a runtime/avr image for simavr's atmega128 (no _end symbol, or the board cannot be wired)",
                 path);
         drav_close(c);
@@ -301,10 +375,12 @@ void drav_reset(struct drav_core *c)
     c->avr->cycle = cycle;
     c->reg = 0;
     c->portd = 0;
+    c->porte = 0;
     c->rx_head = 0;
     c->rx_count = 0;
     c->locked = 0;
     c->regs[DR_AVR_REG_RX_CHANNEL] = 0;
+    drive_op_end(c);
     paint(c);
 }
 
@@ -313,9 +389,11 @@ int drav_run(struct drav_core *c, uint64_t cycle)
     if (!c->avr) {
         return 1; /* a reset could not boot a new core */
     }
+    if (cycle > c->avr->cycle) {
+        avr_cycle_timer_register(c->avr, cycle - c->avr->cycle, wake_only, c);
+    }
     while (c->avr->cycle < cycle) {
         int state = c->avr->state;
-        uint64_t before = c->avr->cycle;
         if (state != cpu_Running && state != cpu_Sleeping) {
             return 1;
         }
@@ -324,10 +402,8 @@ int drav_run(struct drav_core *c, uint64_t cycle)
             c->locked = 0;
             feed(c);
         }
-        if (state == cpu_Sleeping) {
-            c->sleep_cycles += c->avr->cycle - before;
-        }
     }
+    avr_cycle_timer_cancel(c->avr, wake_only, c);
     return 0;
 }
 
@@ -343,7 +419,12 @@ uint64_t drav_sleep_cycles(const struct drav_core *c)
 
 void drav_set_reg(struct drav_core *c, uint8_t reg, uint8_t value)
 {
-    c->regs[reg % DR_AVR_REGS] = value;
+    uint8_t r = (uint8_t)(reg % DR_AVR_REGS);
+    uint8_t changed = (uint8_t)(c->regs[r] != value);
+    c->regs[r] = value;
+    if (r == DR_AVR_REG_STATUS && changed) {
+        drive_op_end(c);
+    }
 }
 
 uint32_t drav_take(struct drav_core *c, struct drav_event *out, uint32_t cap)

@@ -19,6 +19,8 @@ enum {
     DRAV_EV_WRITE = 2,   /* a = controller register written, b = value */
     DRAV_EV_PINS = 3,    /* a = new value of PORTE (the status pins) */
     DRAV_EV_RELEASE = 4, /* the firmware released the receive arbiter */
+    DRAV_EV_TEXT = 5,    /* a, b = two characters of the module's state description (images
+                          * with DR_AVR_DESCRIBE); the last entry of one holds its NUL */
 };
 
 struct drav_event {
@@ -46,14 +48,15 @@ void drav_close(struct drav_core *core);
  * EEPROM kept; the arbiter forgets queued frames; the stack area is painted again. The
  * cycle count goes on. */
 void drav_reset(struct drav_core *core);
-/* Runs until the cycle count reaches `cycle` (a sleeping core may pass it, up to its next
- * timer event). Returns 0, or 1 when the core has stopped (crashed, or slept with
- * interrupts off). */
+/* Runs until the cycle count reaches `cycle` (an instruction may end a few cycles after it;
+ * a sleeping core costs one step per timer event, not per cycle). Returns 0, or 1 when the
+ * core has stopped (crashed, or slept with interrupts off). */
 int drav_run(struct drav_core *core, uint64_t cycle);
 uint64_t drav_cycle(const struct drav_core *core);
 /* Cycles spent asleep since drav_open. */
 uint64_t drav_sleep_cycles(const struct drav_core *core);
-/* Sets controller register `reg` (the sensors: status, ID, latches, neighbours, joints). */
+/* Sets controller register `reg` (the sensors: status, ID, latches, neighbours, joints).
+ * The status also drives the operation-end line (INT0): high unless RUNNING. */
 void drav_set_reg(struct drav_core *core, uint8_t reg, uint8_t value);
 /* Moves up to `cap` log entries to `out`, oldest first; returns how many. */
 uint32_t drav_take(struct drav_core *core, struct drav_event *out, uint32_t cap);

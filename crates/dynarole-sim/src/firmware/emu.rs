@@ -23,6 +23,7 @@ pub struct Event {
 pub const EV_TX: u8 = 1;
 pub const EV_WRITE: u8 = 2;
 pub const EV_PINS: u8 = 3;
+pub const EV_TEXT: u8 = 5;
 
 type OpenFn = unsafe extern "C" fn(*const c_char, *mut c_char, u32) -> *mut c_void;
 type CoreFn = unsafe extern "C" fn(*mut c_void);

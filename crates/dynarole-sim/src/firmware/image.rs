@@ -37,6 +37,65 @@ const SOURCES: [(&str, &str); 6] = [
     ),
 ];
 
+/// `runtime/nesc`: the stand-ins for TinyOS the nesC component is compiled against.
+const NESC_SOURCES: [(&str, &str); 13] = [
+    (
+        "nesc/Boot.nc",
+        include_str!("../../../../runtime/nesc/Boot.nc"),
+    ),
+    (
+        "nesc/Clock.nc",
+        include_str!("../../../../runtime/nesc/Clock.nc"),
+    ),
+    (
+        "nesc/DrMainP.nc",
+        include_str!("../../../../runtime/nesc/DrMainP.nc"),
+    ),
+    (
+        "nesc/MainC.nc",
+        include_str!("../../../../runtime/nesc/MainC.nc"),
+    ),
+    (
+        "nesc/Makefile",
+        include_str!("../../../../runtime/nesc/Makefile"),
+    ),
+    (
+        "nesc/Scheduler.nc",
+        include_str!("../../../../runtime/nesc/Scheduler.nc"),
+    ),
+    (
+        "nesc/TaskBasic.nc",
+        include_str!("../../../../runtime/nesc/TaskBasic.nc"),
+    ),
+    (
+        "nesc/Timer.nc",
+        include_str!("../../../../runtime/nesc/Timer.nc"),
+    ),
+    (
+        "nesc/TimerMilliC.nc",
+        include_str!("../../../../runtime/nesc/TimerMilliC.nc"),
+    ),
+    (
+        "nesc/TimerMilliP.nc",
+        include_str!("../../../../runtime/nesc/TimerMilliP.nc"),
+    ),
+    (
+        "nesc/TinySchedulerC.nc",
+        include_str!("../../../../runtime/nesc/TinySchedulerC.nc"),
+    ),
+    (
+        "nesc/dr_nesc.h",
+        include_str!("../../../../runtime/nesc/dr_nesc.h"),
+    ),
+    (
+        "nesc/dr_nesc_platform.h",
+        include_str!("../../../../runtime/nesc/dr_nesc_platform.h"),
+    ),
+];
+
+/// The nesC compiler's version the nesC build needs (Debian's 1.3.5 crashes).
+const NESC_VERSION: &str = "1.4.0";
+
 static TEMP_COUNTER: AtomicU64 = AtomicU64::new(0);
 
 /// A built firmware image and its footprint.
@@ -50,8 +109,34 @@ pub struct Image {
     pub bss: u64,
 }
 
+/// nesC 1.4.0's `nescc`: `NESCC`, else the one `scripts/ensure-nesc` builds (in
+/// `$XDG_CACHE_HOME` or `~/.cache`, `dynarole/nesc-1.4.0`), else `nescc` on the PATH; the
+/// first that says it is 1.4.0.
+pub fn nescc() -> Result<PathBuf, String> {
+    let cache = std::env::var_os("XDG_CACHE_HOME")
+        .map(PathBuf::from)
+        .or_else(|| std::env::var_os("HOME").map(|h| PathBuf::from(h).join(".cache")));
+    let candidates = std::env::var_os("NESCC")
+        .map(PathBuf::from)
+        .into_iter()
+        .chain(cache.map(|c| c.join(format!("dynarole/nesc-{NESC_VERSION}/bin/nescc"))))
+        .chain([PathBuf::from("nescc")]);
+    for candidate in candidates {
+        let version = Command::new(&candidate).arg("--version").output();
+        if version.is_ok_and(|o| String::from_utf8_lossy(&o.stdout).contains(NESC_VERSION)) {
+            return Ok(candidate);
+        }
+    }
+    Err(format!(
+        "--firmware avr-nesc needs nesC {NESC_VERSION}'s nescc (scripts/ensure-nesc builds it; NESCC=path names another)"
+    ))
+}
+
 /// Says which tool is missing, and how to get it.
-pub fn check_tools() -> Result<(), String> {
+pub fn check_tools(source: super::FirmwareSource) -> Result<(), String> {
+    if source == super::FirmwareSource::Nesc {
+        nescc()?;
+    }
     let works = |program: &str, args: &[&str]| {
         Command::new(program)
             .args(args)
@@ -87,6 +172,53 @@ pub fn image(files: &[(String, String)], defines: &[String]) -> Result<Image, St
                 "image",
                 "PROGRAM=../program",
                 "BUILD=../out",
+                &format!("DEFINES={joined}"),
+            ],
+        )
+    })?;
+    let elf = directory.join("out/firmware.elf");
+    let (text, data, bss) = sizes(&elf)?;
+    Ok(Image {
+        elf,
+        text,
+        data,
+        bss,
+    })
+}
+
+/// The image of the nesC component `nesc` around the generated program `files`, with
+/// `defines` (runtime/avr's `make nesc-image`).
+pub fn nesc_image(
+    files: &[(String, String)],
+    nesc: &[(String, String)],
+    defines: &[String],
+) -> Result<Image, String> {
+    let nescc = nescc()?;
+    let nescc = nescc.to_string_lossy().into_owned();
+    let joined = defines.join(" ");
+    let mut inputs: Vec<(&str, &str)> = files
+        .iter()
+        .chain(nesc)
+        .map(|(n, t)| (n.as_str(), t.as_str()))
+        .chain(NESC_SOURCES)
+        .collect();
+    inputs.push(("defines", &joined));
+    inputs.push(("nescc", &nescc));
+    let directory = cached("avr-nesc-image", &inputs, "out/firmware.elf", |dir| {
+        for (name, text) in files.iter().chain(nesc) {
+            write(&dir.join("program").join(name), text)?;
+        }
+        for (name, text) in NESC_SOURCES {
+            write(&dir.join(name), text)?;
+        }
+        make(
+            dir,
+            &[
+                "nesc-image",
+                "PROGRAM=../program",
+                "BUILD=../out",
+                "NESC=../nesc",
+                &format!("NESCC={nescc}"),
                 &format!("DEFINES={joined}"),
             ],
         )

@@ -25,23 +25,46 @@ fn max_args(files: &[(String, String)]) -> usize {
         .unwrap_or(4)
 }
 
+/// What the firmware image is made from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FirmwareSource {
+    /// The generated C (`--target c`) with runtime/avr's platform and main.
+    C,
+    /// The generated nesC component (`--target nesc`) compiled by nesC 1.4.0 against
+    /// runtime/nesc, with runtime/avr's platform driving it.
+    Nesc,
+}
+
 impl Simulator {
     /// Like [`Simulator::run`], with every module an emulated ATmega128 running the firmware
-    /// image; also returns the image's footprint and each module's measurements. Scenarios
-    /// with packets of another robot (`foreign`) are refused: the firmware only sends its own.
-    pub fn run_firmware(&self, run: &Run) -> Result<(Report, FirmwareReport), SimError> {
+    /// image made from `source`; also returns the image's footprint and each module's
+    /// measurements. Scenarios with packets of another robot (`foreign`) are refused: the
+    /// firmware only sends its own.
+    pub fn run_firmware(
+        &self,
+        run: &Run,
+        source: FirmwareSource,
+    ) -> Result<(Report, FirmwareReport), SimError> {
         if !run.scenario.foreign.is_empty() {
             return Err(SimError::Input(
                 "scenario: packets of another robot (`foreign`) are not supported with --firmware avr".into(),
             ));
         }
-        image::check_tools().map_err(SimError::Build)?;
+        image::check_tools(source).map_err(SimError::Build)?;
         let world = self.world_for(run)?;
-        let defines = vec![format!(
+        let mut defines = vec![format!(
             "-DDR_CONF_BROADCAST_JITTER_MS={}",
             run.scenario.network.preset.jitter_ms()
         )];
-        let image = image::image(&self.files, &defines).map_err(SimError::Build)?;
+        if run.trace {
+            // The trace's state column: the firmware describes its state in RAM.
+            defines.push("-DDR_AVR_DESCRIBE".into());
+        }
+        let image = match source {
+            FirmwareSource::C => image::image(&self.files, &defines),
+            FirmwareSource::Nesc => image::nesc_image(&self.files, &self.nesc, &defines),
+        }
+        .map_err(SimError::Build)?;
         let lib = emu::Library::load(&image::emulator().map_err(SimError::Build)?)
             .map_err(SimError::Build)?;
         let state = State::new(

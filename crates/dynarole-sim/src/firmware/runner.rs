@@ -7,7 +7,7 @@
 
 use super::emu::{self, Core, Library};
 use super::image::Image;
-use crate::engine::Finished;
+use crate::engine::{Describer, Finished};
 use crate::ops::OpCall;
 use crate::state::{Event, Packet, State};
 use std::rc::Rc;
@@ -86,6 +86,8 @@ struct Board {
     address: u8,
     /// Log entries after this time (µs) are void: the core was reset or stopped meanwhile.
     void_after: Option<u64>,
+    /// The state description being received (`EV_TEXT` entries), for the trace.
+    text: Vec<u8>,
     stats: ModuleFirmware,
 }
 
@@ -111,6 +113,7 @@ impl Board {
         }
         self.outgoing = None;
         self.pins = 0;
+        self.text.clear();
         self.void_after = Some(now);
     }
 
@@ -175,6 +178,7 @@ pub fn run(
                 since_receive: 0,
                 address: 0xFF,
                 void_after: None,
+                text: Vec::new(),
                 stats: ModuleFirmware {
                     name: state.modules[m].name.clone(),
                     ..ModuleFirmware::default()
@@ -182,6 +186,9 @@ pub fn run(
             })
         })
         .collect::<Result<Vec<_>, String>>()?;
+    if state.tracing() {
+        state.describer = Some(Describer::texts(n));
+    }
     let mut log = Vec::new();
     let mut outputs = Vec::new();
     let mut until = 0u64;
@@ -336,6 +343,16 @@ fn apply(state: &mut State, b: &mut Board, o: &Output, max_args: usize) {
             }
         }
         emu::EV_PINS => pins(state, b, m, e),
+        emu::EV_TEXT => {
+            b.text
+                .extend([e.a, e.b].into_iter().take_while(|&c| c != 0));
+            if e.a == 0 || e.b == 0 {
+                if let Some(d) = state.describer.as_mut() {
+                    d.set_text(m, &b.text);
+                }
+                b.text.clear();
+            }
+        }
         _ => {}
     }
 }

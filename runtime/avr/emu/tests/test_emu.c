@@ -1,7 +1,8 @@
 /* test_emu.c - the emulated board (dr_avr_emu.c) running a real firmware image (argv[1], the
  * eight2car image of runtime/avr): timer, stepping, sending with the transmitter enables,
  * the controller's bus, receiving through the arbiter, sleep, the painted stack, and a reset
- * that clears RAM and keeps the EEPROM. */
+ * that clears RAM and keeps the EEPROM; and (argv[2], the same built with DR_AVR_DESCRIBE)
+ * the state descriptions the board reads from the firmware's RAM. */
 #include <stdio.h>
 #include <string.h>
 #include "dr_avr_board.h"
@@ -22,13 +23,31 @@ static void check(int ok, const char *what)
 struct seen {
     uint32_t step_edges;
     uint64_t first_step;
+    uint64_t instant; /* the edge of the first step on an instant */
     uint64_t last_step;
     uint32_t tx_bytes;
     uint8_t tx_mask;
     uint8_t first_frame[DRAV_MAX_FRAME];
     uint32_t releases;
     uint32_t leds_writes;
+    uint32_t off_instant; /* step edges not on an instant (first step + k * 5 ms) */
+    uint32_t go_writes;
+    uint32_t texts;
 };
+
+/* How much the time from an instant to its step's edge varies: the wake-up waits for the
+ * compare's timer tick (64 cycles) and the instruction under way, then the clock is read
+ * and checked before the step. */
+#define STEP_LATENCY_CYCLES 300u
+#define CYCLES_PER_STEP ((uint64_t)DR_AVR_STEP_MS * CYCLES_PER_MS)
+
+/* Whether a span of cycles between two steps' edges is a whole number of step periods
+ * (both on instants), up to the latency either way. */
+static int on_instant(uint64_t span)
+{
+    uint64_t off = span % CYCLES_PER_STEP;
+    return off <= STEP_LATENCY_CYCLES || CYCLES_PER_STEP - off <= STEP_LATENCY_CYCLES;
+}
 
 /* Runs `ms` milliseconds and tallies the log. */
 static void run(struct drav_core *c, uint32_t ms, struct seen *s)
@@ -42,8 +61,12 @@ static void run(struct drav_core *c, uint32_t ms, struct seen *s)
         for (i = 0; i < n; i++) {
             if (ev[i].kind == DRAV_EV_PINS) {
                 if ((ev[i].a & (1u << DR_AVR_PIN_STEP)) && !(pins & (1u << DR_AVR_PIN_STEP))) {
-                    if (s->step_edges == 1u) { /* the first step runs at init, off the tick */
-                        s->first_step = ev[i].cycle;
+                    if (s->step_edges == 0u) {
+                        s->first_step = ev[i].cycle; /* at init, off the instants */
+                    } else if (s->step_edges == 1u) {
+                        s->instant = ev[i].cycle; /* the first on an instant */
+                    } else if (!on_instant(ev[i].cycle - s->instant)) {
+                        s->off_instant++;
                     }
                     s->last_step = ev[i].cycle;
                     s->step_edges++;
@@ -59,18 +82,55 @@ static void run(struct drav_core *c, uint32_t ms, struct seen *s)
                 s->releases++;
             } else if (ev[i].kind == DRAV_EV_WRITE && ev[i].a == DR_AVR_REG_LEDS) {
                 s->leds_writes++;
+            } else if (ev[i].kind == DRAV_EV_WRITE && ev[i].a == DR_AVR_REG_GO) {
+                s->go_writes++;
+            } else if (ev[i].kind == DRAV_EV_TEXT) {
+                s->texts++;
             }
         }
     }
 }
 
-/* Cycles by which an interrupt's first instruction may be late: the longest instruction. */
-#define STEP_LATENCY_CYCLES 5u
 
-/* How far a measured span of cycles is from the expected one. */
-static uint64_t span_off(uint64_t measured, uint64_t expected)
+/* The image built with DR_AVR_DESCRIBE: after init and each step the board logs the
+ * runtime's description (the lattice's `e<epoch> low<low> ...`), two characters an entry up
+ * to its NUL (the image without it logs none: checked in main). */
+static void check_descriptions(const char *path)
 {
-    return measured > expected ? measured - expected : expected - measured;
+    char err[256];
+    char text[DR_AVR_DESCRIPTION + 2];
+    struct drav_event ev[256];
+    uint32_t n;
+    uint32_t i;
+    uint32_t len = 0;
+    uint32_t complete = 0;
+    struct drav_core *c = drav_open(path, err, sizeof err);
+    if (!c) {
+        printf("FAIL: %s\n", err);
+        failures++;
+        return;
+    }
+    drav_set_reg(c, DR_AVR_REG_ID, 3);
+    drav_set_reg(c, DR_AVR_REG_STATUS, 1);
+    check(drav_run(c, 50u * CYCLES_PER_MS) == 0, "the describing image runs");
+    while ((n = drav_take(c, ev, 256)) > 0u) {
+        for (i = 0; i < n; i++) {
+            if (ev[i].kind != DRAV_EV_TEXT) {
+                continue;
+            }
+            if (complete == 0u && len + 2u <= sizeof text) {
+                text[len++] = (char)ev[i].a;
+                text[len++] = (char)ev[i].b;
+            }
+            if (ev[i].a == 0u || ev[i].b == 0u) {
+                complete++;
+            }
+        }
+    }
+    check(complete >= 2u, "descriptions after init and the first step");
+    check(len >= 2u && text[0] == 'e' && memchr(text, 0, len) != NULL,
+          "a description is the runtime's text, NUL-terminated");
+    drav_close(c);
 }
 
 int main(int argc, char **argv)
@@ -82,9 +142,11 @@ int main(int argc, char **argv)
     uint8_t back[4];
     uint32_t stack;
     uint64_t asleep;
+    uint64_t ended;
+    uint32_t steps;
     uint32_t len;
-    if (argc != 2) {
-        printf("usage: test_emu FIRMWARE.elf\n");
+    if (argc != 3) {
+        printf("usage: test_emu FIRMWARE.elf DESCRIBING-FIRMWARE.elf\n");
         return 2;
     }
     check(drav_open("no/such/image.elf", err, sizeof err) == NULL, "a missing image is refused");
@@ -96,25 +158,32 @@ int main(int argc, char **argv)
     }
     check(drav_event_size() == (uint32_t)sizeof(struct drav_event), "event layout");
     drav_set_reg(c, DR_AVR_REG_ID, 3);
-    drav_set_reg(c, DR_AVR_REG_STATUS, 1);
     memset(&s, 0, sizeof s);
-    run(c, 200, &s);
-    /* A step every 5 ms from the 1 ms timer: 40 in 200 ms, 80000 cycles apart. The edge
-     * comes a few cycles after the timer's interrupt: it waits for the instruction under way
-     * (up to 5 cycles) when the core was busy rather than asleep, so a span of steps may
-     * differ from the exact multiple by that latency, never by a tick. */
-    check(s.step_edges >= 39u && s.step_edges <= 41u, "a step every 5 ms");
-    check(s.step_edges > 2u && span_off(s.last_step - s.first_step,
-                                        (uint64_t)(s.step_edges - 2u) * DR_AVR_STEP_MS *
-                                            CYCLES_PER_MS) <= STEP_LATENCY_CYCLES,
-          "steps are 80000 cycles apart");
+    /* Steps only when the module asks (dr_module_next_wakeup): a lone lattice module at
+     * its broadcasts (every 100 ms), each on one of the 5 ms instants from the first step. */
+    /* Steps only when the module asks (dr_module_next_wakeup): a lone lattice module at its
+     * broadcasts (a fixed stepping would make 200), each on one of the 5 ms instants from
+     * the first step. Module 3 starts its first operation at once. */
+    run(c, 1000, &s);
+    check(s.step_edges >= 3u && s.step_edges < 100u, "steps only when the module needs them");
+    check(s.go_writes == 1u, "module 3 starts an operation");
+    check(s.texts == 0u, "no description without DR_AVR_DESCRIBE");
+    /* The operation's end (the controller raises INT0) wakes the MCU for a step at the next
+     * instant. */
+    ended = drav_cycle(c);
+    steps = s.step_edges;
+    drav_set_reg(c, DR_AVR_REG_STATUS, 1);
+    run(c, 10, &s);
+    check(s.step_edges > steps && s.last_step - ended <= CYCLES_PER_STEP + STEP_LATENCY_CYCLES,
+          "the operation's end makes a step at the next instant");
+    check(s.off_instant == 0u, "every step on an instant (k * 5 ms after the first)");
     check(s.leds_writes >= 1u, "init shows the address on the LEDs through the bus");
     /* Broadcasts (every 100 ms): whole frames, on every transmitter, byte 1 the length. */
     check(s.tx_bytes > 0u, "the module broadcasts");
     check(s.tx_mask == 0xFFu, "a broadcast enables every transmitter");
     len = s.first_frame[1];
     check(len >= 8u && s.tx_bytes % len == 0u, "frames are whole");
-    check(drav_sleep_cycles(c) > 100u * CYCLES_PER_MS, "the MCU sleeps most of the time");
+    check(drav_sleep_cycles(c) > 990u * CYCLES_PER_MS, "the MCU sleeps most of the time");
     stack = drav_stack_high_water(c);
     check(stack > 16u && stack < 1024u, "the painted stack shows a plausible depth");
     /* Its own frame comes back on channel 2: the firmware takes it and releases the arbiter,
@@ -140,6 +209,7 @@ int main(int argc, char **argv)
     check(drav_sleep_cycles(c) - asleep > 50u * CYCLES_PER_MS, "the MCU sleeps again after a reset");
     check(!drav_overflowed(c), "no log entry lost");
     drav_close(c);
+    check_descriptions(argv[2]);
     if (failures == 0) {
         printf("test_emu: all checks passed\n");
     }
