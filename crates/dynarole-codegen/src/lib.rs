@@ -16,6 +16,7 @@ mod token;
 pub use c::{
     generate_c, generate_nesc, CompileOptions, Dissemination, Generated, PaperMerge, Protocol,
 };
+pub use promela::events as trail_events;
 pub use promela::{
     generate_compositional, generate_promela, liveness_graph, Fault, LivenessGraph, Model,
     ModelOptions, Topology, TopologyLink, TopologyModule, MAX_MODEL_MODULES, MAX_MODEL_WINDOW,
