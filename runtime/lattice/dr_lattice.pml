@@ -260,6 +260,8 @@ inline print_copy(m) {
 }
 
 {{#late}}
+/* The environment, no C: slot takes a copy of `from`'s state for `to` (a packet sent now,
+ * to be delivered late: dr_hal_broadcast's packet held in the air). */
 inline capture(slot, from, to) {
     l_full[slot] = 1;
     l_from[slot] = from;
@@ -269,6 +271,7 @@ inline capture(slot, from, to) {
     l_done[slot] = done[from]
 }
 
+/* The held packet arrives (dr_module_receive of a stale copy), as deliver does. */
 inline deliver_late(slot) {
     in_epoch = l_epoch[slot];
     in_low = l_low[slot];

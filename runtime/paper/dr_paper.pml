@@ -283,6 +283,8 @@ inline print_copy(m) {
 }
 
 {{#late}}
+/* The environment, no C: slot takes a copy of `from`'s state for `to` (a packet sent now,
+ * to be delivered late: dr_hal_broadcast's packet held in the air). */
 inline capture(slot, from, to) {
     l_full[slot] = 1;
     l_from[slot] = from;
@@ -296,6 +298,7 @@ inline capture(slot, from, to) {
     od
 }
 
+/* The held packet arrives (dr_module_receive of a stale copy), as deliver does. */
 inline deliver_late(slot) {
     in_state = l_state[slot];
     in_addr = l_addr[slot];
