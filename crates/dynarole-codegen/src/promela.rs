@@ -686,3 +686,75 @@ fn stage_condition(stages: &[usize]) -> String {
         .collect();
     format!("({})", parts.join(" || "))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use dynarole_core::{analyze, parse, RobotRegistry};
+
+    /// protocol.md's `A; B & C; D;` (a sequential and a parallel unit for the paper switch).
+    fn ir() -> Ir {
+        let parsed = parse(include_str!("../../../examples/verify/a_bc_d.dr"));
+        let (program, _) = analyze(&parsed.file, &RobotRegistry::builtin());
+        let program = program.expect("the example analyses");
+        let plan = program.expand("a_bc_d").expect("the sequence exists");
+        program.lower(&[plan]).expect("it fits")
+    }
+
+    fn line() -> Topology {
+        let modules = (0..3u8)
+            .map(|k| TopologyModule {
+                name: format!("M{k}"),
+                address: Some(k),
+            })
+            .collect();
+        let links = [(0, 1), (1, 0), (1, 2), (2, 1)]
+            .into_iter()
+            .map(|(from, to)| TopologyLink {
+                from,
+                to,
+                fair_stages: (0..=4).collect(),
+            })
+            .collect();
+        Topology { modules, links }
+    }
+
+    /// Every part of every template file is written by some model (none is dead text).
+    #[test]
+    fn every_template_part_is_used() {
+        let (ir, topology) = (ir(), line());
+        let graph = liveness_graph(&ir, &topology);
+        let options = |protocol: Protocol, late: u8| ModelOptions {
+            compile: CompileOptions {
+                protocol,
+                name: "a_bc_d".into(),
+                ..CompileOptions::default()
+            },
+            resets: 1,
+            reset_modules: Vec::new(),
+            late,
+            fault: None,
+        };
+        template::RENDERED.with(|r| r.borrow_mut().clear());
+        let full = generate_promela(&ir, &topology, &options(Protocol::Lattice, 1));
+        let paper = generate_promela(&ir, &topology, &options(Protocol::Paper, 1));
+        let comp = options(Protocol::Lattice, 0);
+        let compositional = generate_compositional(&ir, &topology, &comp, 0, &graph);
+        assert!(full.is_ok() && paper.is_ok() && compositional.is_ok());
+        let rendered = template::RENDERED.with(|r| r.borrow().clone());
+        for file in [
+            &HAL,
+            &lattice::LATTICE,
+            &paper::PAPER,
+            &compositional::COMPOSITIONAL,
+        ] {
+            for (part, _, _) in file.parts() {
+                assert!(
+                    rendered.contains(&(file.path, part)),
+                    "{} part {part} is never written",
+                    file.path
+                );
+            }
+        }
+    }
+}

@@ -29,7 +29,7 @@ use dynarole_core::lower::Ir;
 use std::collections::{BTreeSet, VecDeque};
 
 /// The abstract robot around the checked module: `runtime/lattice/dr_lattice_compositional.pml`.
-static COMPOSITIONAL: TemplateFile = TemplateFile {
+pub(super) static COMPOSITIONAL: TemplateFile = TemplateFile {
     path: "runtime/lattice/dr_lattice_compositional.pml",
     text: include_str!("../../../../runtime/lattice/dr_lattice_compositional.pml"),
 };

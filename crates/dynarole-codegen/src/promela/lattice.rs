@@ -16,7 +16,7 @@ use super::template::{Holes, TemplateFile};
 use super::{Fault, Gen};
 
 /// The transcription: `runtime/lattice/dr_lattice.pml`.
-static LATTICE: TemplateFile = TemplateFile {
+pub(super) static LATTICE: TemplateFile = TemplateFile {
     path: "runtime/lattice/dr_lattice.pml",
     text: include_str!("../../../../runtime/lattice/dr_lattice.pml"),
 };

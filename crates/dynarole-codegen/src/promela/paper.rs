@@ -19,7 +19,7 @@ use dynarole_core::lower::{
 use std::fmt::Write;
 
 /// The transcription: `runtime/paper/dr_paper.pml`.
-static PAPER: TemplateFile = TemplateFile {
+pub(super) static PAPER: TemplateFile = TemplateFile {
     path: "runtime/paper/dr_paper.pml",
     text: include_str!("../../../../runtime/paper/dr_paper.pml"),
 };

@@ -16,6 +16,13 @@ pub(crate) struct TemplateFile {
     pub text: &'static str,
 }
 
+#[cfg(test)]
+thread_local! {
+    /// The parts rendered on this thread, for the test that every part is used.
+    pub(crate) static RENDERED: std::cell::RefCell<Vec<(&'static str, &'static str)>> =
+        const { std::cell::RefCell::new(Vec::new()) };
+}
+
 /// The line that starts a part.
 const PART: &str = "@@ ";
 
@@ -259,6 +266,8 @@ impl Template {
                 format!("`{unused}` is given but the template has no such hole or section"),
             ));
         }
+        #[cfg(test)]
+        RENDERED.with(|r| r.borrow_mut().push((self.file.path, self.name)));
         Ok(out)
     }
 
