@@ -217,7 +217,9 @@ inline step(m) {
             /* persist(): not observable without resets (no NV in the model) */
 {{/no_persist}}
             {{print_complete}};
-            {{#record}}record(m, running[m]);{{/record}}
+{{#record}}
+            record(m, running[m]);
+{{/record}}
             running[m] = NONE
         fi
     :: else -> skip

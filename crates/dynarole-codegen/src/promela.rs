@@ -4,8 +4,10 @@
 //! One process per module runs the same logic as the generated C (each `dr_module_step` and
 //! each `dr_module_receive` is one indivisible step, as on a module); the statement tables come
 //! from the same `lower::Ir` as the C, and the protocol logic is a line-by-line transcription of
-//! the runtime (`protocol_lattice.rs`, `protocol_paper.rs`: every inline names the C function it
-//! mirrors). Around it, the environment: links that deliver the sender's current copy at any
+//! the runtime, kept beside the C as templates (`runtime/lattice/dr_lattice.pml`,
+//! `runtime/paper/dr_paper.pml`: every inline names the C function it mirrors), which
+//! `promela/lattice.rs` and `promela/paper.rs` fill. Around it, the environment (the template
+//! `runtime/dr_hal.pml`, filled here): links that deliver the sender's current copy at any
 //! time or never, a bounded number of stale packets delivered late (and again), actuators that
 //! finish after an unknown time, and a bounded number of module resets at any moment.
 //!
@@ -13,8 +15,8 @@
 //! and the checks of the simulator (`dynarole-sim`, `ops.rs`) are assertions: S1 at every first
 //! start, S2 at every re-issue, S3 when a module first declares the end. L is the LTL formula
 //! `finishes` (`<>[]` every module knows the end), checked with weak fairness. The model prints
-//! one `@` event line per step that matters, which `dynarole verify` reads back from spin's
-//! replay of a counterexample.
+//! one `@` event line per step that matters (the vocabulary of `promela/events.rs`), which
+//! `dynarole verify` reads back from spin's replay of a counterexample.
 //!
 //! **API boundary**: the caller passes the communication graph ([`Topology`]); this crate
 //! knows nothing of geometry.

@@ -1,6 +1,7 @@
 //! The compositional model of the lattice protocol: one module's logic, exactly as in the
 //! full model, against an abstract robot in which every packet is any state the robot has
-//! already reached (`dynarole verify --method compositional`).
+//! already reached (`dynarole verify --method compositional`); the Promela is the template
+//! `runtime/lattice/dr_lattice_compositional.pml`, around `dr_lattice.pml`.
 //!
 //! Why it is sound (docs/verification.md has the argument in full): call the truth T the join
 //! of every copy any module ever held. Every packet, every NV record and every copy is below

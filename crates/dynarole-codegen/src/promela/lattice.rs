@@ -1,5 +1,6 @@
 //! The lattice protocol in Promela: a transcription of `runtime/lattice/dr_lattice.c`
-//! (every inline names the C function it mirrors), with the statement tables from the IR.
+//! (every inline names the C function it mirrors), written beside it as the template
+//! `runtime/lattice/dr_lattice.pml`; this file fills it for the options and the IR.
 //!
 //! Abstractions, each exact for what the runtime decides: the `started` bits are left out (the
 //! C carries and describes them but never reads them to decide anything); a packet is the

@@ -1,5 +1,6 @@
 //! The paper's protocol in Promela: a transcription of `runtime/paper/dr_paper.c` (every
-//! inline names the C function it mirrors) and of the Fig. 2 switch that `paper.rs` generates,
+//! inline names the C function it mirrors; the template `runtime/paper/dr_paper.pml`, which
+//! this file fills) and of the Fig. 2 switch that `paper.rs` generates,
 //! state for state, from the same layout (`Ir::paper_layout`), so that the model splits steps
 //! exactly as the generated C does. The switch is tables indexed by the state, read by one
 //! inline, so that a step's code does not grow with the sequence (spin limits a `d_step`).
