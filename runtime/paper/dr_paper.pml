@@ -416,6 +416,7 @@ inline paper_start(m) {
     fi
 }
 
+/* dr_module_init after a reset: the actuator stops, then start() again. */
 inline reset(m) {
     interrupt(m);
     paper_start(m)
