@@ -293,7 +293,15 @@ mod tests {
 
     const FILE: TemplateFile = TemplateFile {
         path: "test.pml",
-        text: "commentary\n@@ list\nbefore\n    {{items}}\nafter\n@@ t\na {{x}} b\n    {{#f}}\nkept if f\n    {{/f}}\n{{^f}}\nkept if not f\n{{/f}}\nc{{#g}} and g{{/g}}.\n@@ bad\n{{#a}}\n{{#b}}\n{{/a}}\n{{/b}}\n@@ open\n{{#a}}\n@@ syntax\n{{A}}\n",
+        text: concat!(
+            "commentary\n",
+            "@@ list\nbefore\n    {{items}}\nafter\n",
+            "@@ t\na {{x}} b\n    {{#f}}\nkept if f\n    {{/f}}\n",
+            "{{^f}}\nkept if not f\n{{/f}}\nc{{#g}} and g{{/g}}.\n",
+            "@@ bad\n{{#a}}\n{{#b}}\n{{/a}}\n{{/b}}\n",
+            "@@ open\n{{#a}}\n",
+            "@@ syntax\n{{A}}\n",
+        ),
     };
     const T: Template = FILE.part("t");
 
