@@ -20,6 +20,7 @@ pub use c::{generate_c, generate_nesc, Generated};
 pub use nesc::nesc_files;
 pub use choice::{Choice, UnknownName};
 pub use options::CompileOptions;
+pub use promela::events as trail_events;
 pub use promela::{
     generate_compositional, generate_promela, liveness_graph, Fault, LivenessGraph, Model,
     ModelOptions, Topology, TopologyLink, TopologyModule, MAX_MODEL_MODULES, MAX_MODEL_WINDOW,

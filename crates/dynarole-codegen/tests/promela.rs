@@ -159,3 +159,63 @@ fn the_paper_switch_is_tables_so_a_step_does_not_grow_with_the_sequence() {
     let fills = long.text.matches("    d_step {\n").count();
     assert_eq!(long.init_steps, runs + fills + 1);
 }
+
+/// Every model the options can ask for: each template part is filled with exactly its holes
+/// (a mismatch stops a debug build), and every `printf` the model has is an event of the trail
+/// vocabulary that reads back as its kind once spin has printed it.
+#[test]
+fn every_option_fills_every_template_and_prints_only_the_vocabulary() {
+    use dynarole_codegen::trail_events::{parse_printed, EVENTS};
+    use dynarole_codegen::{Dissemination, Fault, PaperMerge};
+    let ir = ir();
+    let topology = line(&[0, 2, 3]);
+    let graph = liveness_graph(&ir, &topology);
+    let mut models = Vec::new();
+    for (no_nv, resets, late) in [(false, 0, 0), (false, 1, 1), (true, 1, 2), (true, 0, 0)] {
+        for epochs in [1, 2] {
+            for dissemination in [Dissemination::Adaptive, Dissemination::Fixed] {
+                for fault in [None, Some(Fault::JoinDropsDone), Some(Fault::JoinNoRebase)] {
+                    let mut o = options(Protocol::Lattice, late);
+                    o.resets = resets;
+                    o.fault = fault;
+                    o.compile.no_nv = no_nv;
+                    o.compile.epochs = epochs;
+                    o.compile.dissemination = dissemination;
+                    models.push(generate_promela(&ir, &topology, &o));
+                    for c in 0..3 {
+                        models.push(generate_compositional(&ir, &topology, &o, c, &graph));
+                    }
+                }
+            }
+        }
+    }
+    for merge in [PaperMerge::Printed, PaperMerge::Java, PaperMerge::CPort] {
+        for (single_step_handover, restart_pending, late) in [(false, false, 0), (true, true, 2)] {
+            let mut o = options(Protocol::Paper, late);
+            o.compile.merge = merge;
+            o.compile.single_step_handover = single_step_handover;
+            o.compile.restart_pending = restart_pending;
+            models.push(generate_promela(&ir, &topology, &o));
+        }
+    }
+    let mut printed = std::collections::BTreeSet::new();
+    for model in models.into_iter().flatten() {
+        assert!(!model.text.contains("{{") && !model.text.contains("#error"));
+        for statement in model.text.split("printf(\"").skip(1) {
+            let (format, rest) = statement.split_once("\\n\"").expect("a format");
+            let args = rest.split(')').next().unwrap_or("").matches(',').count();
+            assert_eq!(format.matches("%d").count(), args, "{format}");
+            // What spin prints: a number for each `%d`.
+            let line = format.replace("%d", "3");
+            let event = parse_printed(&line).unwrap_or_else(|| panic!("not an event: {line}"));
+            assert_eq!(
+                format!("@{}", event.kind.spec().name),
+                format.split(' ').next().unwrap_or("")
+            );
+            printed.insert(event.kind.spec().name);
+        }
+    }
+    // And the models print every event of the vocabulary.
+    let names: std::collections::BTreeSet<&str> = EVENTS.iter().map(|e| e.name).collect();
+    assert_eq!(printed, names);
+}

@@ -1,7 +1,11 @@
 //! The trail of a counterexample as events: what the model prints with `printf("@...")`
-//! while spin replays the trail (`spin -T -t`), read back into values.
+//! while spin replays the trail (`spin -T -t`), read back into values. The vocabulary (names,
+//! fields, format) is defined once, in `dynarole_codegen::trail_events`, which the Promela
+//! writers print with.
 
-/// One event of a replayed trail (see the `printf("@...")` of the model).
+use dynarole_codegen::trail_events::{parse_printed, EventKind, Printed};
+
+/// One event of a replayed trail (see `dynarole_codegen::trail_events::EVENTS`).
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Event {
     /// Module m issued statement s's operation (in epoch e).
@@ -69,77 +73,63 @@ pub enum Event {
     CycleStart,
 }
 
-/// Reads the events from the output of `spin -T -t` (other lines are spin's own).
+/// Reads the events from the output of `spin -T -t` (other lines are spin's own, and so is a
+/// line that does not have its event's fields).
 pub fn parse_events(output: &str) -> Vec<Event> {
     let mut events = Vec::new();
     for line in output.lines() {
-        let line = line.trim();
         if line.contains("START OF CYCLE") {
             events.push(Event::CycleStart);
             continue;
         }
-        let Some(rest) = line.strip_prefix('@') else {
-            continue;
-        };
-        let mut words = rest.split_whitespace();
-        let kind = words.next().unwrap_or("");
-        let words: Vec<&str> = words.collect();
-        events.extend(event(kind, &words));
+        events.extend(parse_printed(line).and_then(|p| event(&p)));
     }
     events
 }
 
-/// The event `@kind words...`; `None` for a kind the model does not print.
-fn event(kind: &str, words: &[&str]) -> Option<Event> {
-    let n = |k: usize| -> usize { words.get(k).and_then(|w| w.parse().ok()).unwrap_or(0) };
-    // The numbers from word k on (a copy of the shared state).
-    let fields = |k: usize| -> Vec<i64> {
-        words
-            .iter()
-            .skip(k)
-            .filter_map(|w| w.parse().ok())
-            .collect()
-    };
-    Some(match kind {
-        "issue" => Event::Issue {
-            m: n(0),
-            s: n(1),
-            e: n(2),
+/// The event of a line read with the vocabulary (`trail_events::EVENTS`, whose field order
+/// the numbers follow).
+fn event(p: &Printed) -> Option<Event> {
+    let n = |k: usize| -> Option<usize> { usize::try_from(*p.numbers.get(k)?).ok() };
+    Some(match p.kind {
+        EventKind::Issue => Event::Issue {
+            m: n(0)?,
+            s: n(1)?,
+            e: n(2)?,
         },
-        "done" => Event::Done { m: n(0), s: n(1) },
-        "complete" => Event::Complete { m: n(0), s: n(1) },
-        "deliver" => Event::Deliver {
-            from: n(0),
-            to: n(1),
-            fields: fields(2),
+        EventKind::Done => Event::Done { m: n(0)?, s: n(1)? },
+        EventKind::Complete => Event::Complete { m: n(0)?, s: n(1)? },
+        EventKind::Deliver => Event::Deliver {
+            from: n(0)?,
+            to: n(1)?,
+            fields: p.copy.clone(),
         },
-        "hear" => Event::Hear {
-            m: n(0),
-            fields: fields(1),
+        EventKind::Hear => Event::Hear {
+            m: n(0)?,
+            fields: p.copy.clone(),
         },
-        "record" => Event::Record { m: n(0), s: n(1) },
-        "capture" => Event::Capture {
-            slot: n(0),
-            from: n(1),
-            to: n(2),
+        EventKind::Record => Event::Record { m: n(0)?, s: n(1)? },
+        EventKind::Capture => Event::Capture {
+            slot: n(0)?,
+            from: n(1)?,
+            to: n(2)?,
         },
-        "late" => Event::Late {
-            slot: n(0),
-            from: n(1),
-            to: n(2),
+        EventKind::Late => Event::Late {
+            slot: n(0)?,
+            from: n(1)?,
+            to: n(2)?,
         },
-        "copy" => Event::Copy {
-            m: n(0),
-            fields: fields(1),
+        EventKind::Copy => Event::Copy {
+            m: n(0)?,
+            fields: p.copy.clone(),
         },
-        "reset" => Event::Reset { m: n(0) },
-        "end" => Event::End { m: n(0) },
-        "violation" => Event::Violation {
-            property: words.first().unwrap_or(&"?").to_string(),
-            m: n(1),
-            s: n(2),
+        EventKind::Reset => Event::Reset { m: n(0)? },
+        EventKind::End => Event::End { m: n(0)? },
+        EventKind::Violation => Event::Violation {
+            property: p.words.first()?.clone(),
+            m: n(0)?,
+            s: n(1)?,
         },
-        _ => return None,
     })
 }
 
@@ -167,5 +157,53 @@ mod tests {
                 },
             ]
         );
+    }
+
+    /// Every event the writers can print, with every field an expression (spin prints a
+    /// number for each) or a known value, comes back as the event of its kind.
+    #[test]
+    fn every_event_the_writers_print_is_read_back() {
+        use dynarole_codegen::trail_events::{expr, printf, value, Field, EVENTS};
+        for spec in EVENTS {
+            let mut args = Vec::new();
+            let mut printed = format!("@{}", spec.name);
+            for (k, field) in spec.fields.iter().enumerate() {
+                match field {
+                    Field::Number(name) => {
+                        args.push(if k % 2 == 0 {
+                            expr(*name)
+                        } else {
+                            value(k + 1)
+                        });
+                    }
+                    Field::Word(_) => args.push(value("S2")),
+                }
+                printed.push_str(&match field {
+                    Field::Number(_) => format!(" {}", k + 1),
+                    Field::Word(_) => " S2".to_string(),
+                });
+            }
+            if spec.copy {
+                args.extend([expr("x"), expr("y")]);
+                printed.push_str(" 7 8");
+            }
+            let statement = printf(spec.kind, &args);
+            assert!(statement.starts_with(&format!("printf(\"@{} ", spec.name)));
+            // What spin prints for the printf: each %d replaced by the number the test chose.
+            let events = parse_events(&format!("spin: noise\n{printed}\n"));
+            assert_eq!(events.len(), 1, "{printed}");
+            let back = parse_printed(&printed).map(|p| p.kind);
+            assert_eq!(back, Some(spec.kind), "{printed}");
+            let numbers = spec.fields.iter().filter(|f| matches!(f, Field::Number(_)));
+            assert_eq!(
+                parse_printed(&printed).map(|p| p.numbers.len()),
+                Some(numbers.count())
+            );
+        }
+    }
+
+    #[test]
+    fn a_line_without_its_fields_is_not_an_event() {
+        assert_eq!(parse_events("@issue 1 2\n@done x 1\n@reset 1 2\n"), vec![]);
     }
 }

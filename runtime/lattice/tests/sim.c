@@ -1,4 +1,4 @@
-/* sim.c - the fake platform of the lattice runtime's tests (see sim.h). */
+/* sim.c - the lattice runtime tests' world on the shared fake platform (see sim.h). */
 #include <string.h>
 #include "sim.h"
 #include "check.h"
@@ -59,30 +59,34 @@ uint8_t sim_address_of(struct dr_module *m)
     return node_of(m)->answer;
 }
 
-/* ---- the HAL ---- */
+/* ---- the world's hooks into the fake platform ---- */
 
-uint32_t dr_hal_now_ms(struct dr_module *m)
+dr_fake_t *dr_fake_of(struct dr_module *m)
+{
+    return &node_of(m)->fake;
+}
+
+static uint32_t sim_now(struct dr_module *m)
 {
     return sim.time + node_of(m)->clock_offset;
 }
 
-uint16_t dr_hal_random(struct dr_module *m)
+static uint16_t sim_random(struct dr_module *m)
 {
-    node_of(m)->effects++;
     return (uint16_t)(xorshift(&node_of(m)->rng) >> 8);
 }
 
-void dr_hal_broadcast(struct dr_module *m, const uint8_t *bytes, uint8_t len)
+static void sim_broadcast(struct dr_module *m, uint8_t channel, const uint8_t *bytes,
+                          uint8_t len)
 {
     sim_node_t *from = node_of(m);
     uint8_t i = (uint8_t)(from - sim.nodes);
-    from->effects++;
     uint8_t j;
     uint8_t copies;
     sim_node_t *to;
     sim_packet_t *p;
-    if (len == 0u || len > DR_CONF_MAX_PACKET) {
-        violation("bad packet length", 0, len);
+    if (channel != DR_FAKE_BROADCAST) {
+        violation("dr_hal_send: the lattice protocol only broadcasts", 0, channel);
         return;
     }
     if (from->mute) {
@@ -112,24 +116,22 @@ void dr_hal_broadcast(struct dr_module *m, const uint8_t *bytes, uint8_t len)
     }
 }
 
-void dr_hal_op_start(struct dr_module *m, uint16_t statement, uint8_t op, uint8_t index,
-                     const int16_t *args)
+/* The operation the fake noted: checked (S1, S2, the right module, one at a time), recorded,
+ * timed. */
+static void sim_op_start(struct dr_module *m)
 {
     sim_node_t *n = node_of(m);
     const dr_program_t *p = sim.program;
-    uint16_t s = statement;
-    n->effects++;
+    uint16_t s = n->fake.statement;
     uint16_t r = m->running_epoch;
     uint16_t t;
     uint16_t d;
     uint32_t latest;
-    (void)op;
-    (void)index;
     if (s >= p->n_statements || m->running != s) {
         violation("op of an unknown statement", r, s);
         return;
     }
-    if ((uint16_t)args[0] != s) { /* the test programs carry their number as argument 0 */
+    if ((uint16_t)n->fake.args[0] != s) { /* the test programs carry their number as argument 0 */
         violation("op start names another statement than its arguments", r, s);
     }
     if (p->statements[s].address != n->address) {
@@ -193,7 +195,7 @@ void dr_hal_op_start(struct dr_module *m, uint16_t statement, uint8_t op, uint8_
     }
 }
 
-enum dr_op_status dr_hal_op_status(struct dr_module *m)
+static enum dr_op_status sim_op_status(struct dr_module *m)
 {
     sim_node_t *n = node_of(m);
     if (!n->op_active) {
@@ -233,69 +235,37 @@ enum dr_op_status dr_hal_op_status(struct dr_module *m)
     return DR_OP_DONE;
 }
 
-uint16_t dr_hal_id(struct dr_module *m)
-{
-    return node_of(m)->id;
-}
-
-uint8_t dr_hal_connected(struct dr_module *m, uint8_t connector)
+static uint8_t sim_connected(struct dr_module *m, uint8_t connector)
 {
     uint8_t i = (uint8_t)(node_of(m) - sim.nodes);
     return (uint8_t)(connector < sim.n_nodes && sim.adj[i][connector]);
 }
 
-int16_t dr_hal_neighbour_id(struct dr_module *m, uint8_t connector)
-{
-    (void)m;
-    (void)connector;
-    return -1;
-}
-
-int16_t dr_hal_joint(struct dr_module *m, uint8_t joint)
-{
-    (void)m;
-    (void)joint;
-    return 0;
-}
-
-void dr_hal_leds(struct dr_module *m, uint8_t value)
-{
-    node_of(m)->leds = value;
-    node_of(m)->effects++;
-}
-
-void dr_hal_nv_read(struct dr_module *m, uint16_t addr, uint8_t *buf, uint8_t len)
+/* An NV write about to happen: torn when planned (power fails half-way through it). */
+static void sim_nv_write(struct dr_module *m, uint16_t addr, const uint8_t *buf, uint8_t len)
 {
     sim_node_t *n = node_of(m);
-    if ((uint32_t)addr + len > SIM_NV) {
-        violation("NV read out of range", 0, addr);
-        return;
-    }
-    n->nv_reads++;
-    memcpy(buf, n->nv + addr, len);
-}
-
-void dr_hal_nv_write(struct dr_module *m, uint16_t addr, const uint8_t *buf, uint8_t len)
-{
-    sim_node_t *n = node_of(m);
-    if ((uint32_t)addr + len > SIM_NV) {
-        violation("NV write out of range", 0, addr);
-        return;
-    }
-    n->nv_writes++;
-    n->effects++;
     if (n->tear_in == 0) {
-        /* Power fails half-way through this write. */
         n->tear_in = -1;
-        memcpy(n->nv + addr, buf, len / 2u);
-        n->nv[addr + len / 2u] = (uint8_t)~buf[len / 2u];
+        memcpy(n->fake.nv + addr, buf, len / 2u);
+        n->fake.nv[addr + len / 2u] = (uint8_t)~buf[len / 2u];
         longjmp(sim.jmp, 1);
     }
     if (n->tear_in > 0) {
         n->tear_in--;
     }
-    memcpy(n->nv + addr, buf, len);
 }
+
+static void sim_misuse(struct dr_module *m, const char *what, uint32_t value)
+{
+    (void)m;
+    violation(what, 0, (uint16_t)value);
+}
+
+static const dr_fake_hooks_t hooks = {
+    sim_now, sim_random, sim_broadcast, sim_op_start, sim_op_status, sim_connected,
+    sim_nv_write, sim_misuse
+};
 
 /* ---- the simulation ---- */
 
@@ -316,7 +286,7 @@ void sim_setup(const dr_program_t *program, uint8_t n, const uint8_t *addresses,
     sim.tear_after_done_stmt = SIM_NONE;
     for (i = 0; i < n; i++) {
         sim_node_t *nd = &sim.nodes[i];
-        nd->id = i;
+        dr_fake_init(&nd->fake, i, &hooks);
         nd->address = addresses[i];
         nd->answer = addresses[i];
         nd->rng = 0x9E3779B9u * (i + 1u) ^ sim.rng;
@@ -324,7 +294,6 @@ void sim_setup(const dr_program_t *program, uint8_t n, const uint8_t *addresses,
         nd->clock_offset = 0xFFFFFFFFu - 700u + 13u * i;
         nd->tear_in = -1;
         nd->woken = 1;
-        memset(nd->nv, 0xFF, SIM_NV);
         if (i > 0u) {
             sim.adj[i][i - 1u] = 1;
             sim.adj[i - 1u][i] = 1;
@@ -415,13 +384,13 @@ static int checked_step(sim_node_t *n)
 {
     uint8_t skip = skippable(n);
     dr_module_t before = n->mod;
-    uint32_t effects = n->effects;
+    uint32_t effects = n->fake.effects;
     if (guarded_step(n)) {
         return 1;
     }
     if (skip) {
         sim_skippable_steps++;
-        if (memcmp(&before, &n->mod, sizeof before) != 0 || effects != n->effects) {
+        if (memcmp(&before, &n->mod, sizeof before) != 0 || effects != n->fake.effects) {
             sim_skippable_acted++;
             violation("tickless: a step next_wakeup let skip changed something",
                       n->mod.shared.epoch, n->mod.running);

@@ -1,17 +1,19 @@
-/* sim.h - a fake platform for the lattice runtime: modules with clocks, operations that take
- * time, NV stores, a broadcast network (optionally lossy, delaying, duplicating, corrupting),
+/* sim.h - the lattice runtime tests' world, on the shared fake platform (runtime/testing/
+ * dr_fake.h) through its hooks: modules with clocks, operations that take time, NV stores
+ * that tear, a broadcast network (optionally lossy, delaying, duplicating, corrupting),
  * resets, and a record of what was physically done, checked at every operation start. */
 #ifndef SIM_H
 #define SIM_H
 
 #include <setjmp.h>
 #include <stdint.h>
+#include "dr_fake.h"
 #include "dr_lattice.h"
 
 #define SIM_MAX_NODES 8
 #define SIM_MAX_EPOCHS 8
 #define SIM_MAX_STATEMENTS 64
-#define SIM_NV 256
+#define SIM_NV DR_FAKE_NV
 #define SIM_INBOX 256
 #define SIM_TICK_MS 5u
 #define SIM_NONE 0xFFFFu
@@ -34,16 +36,12 @@ typedef struct {
 } sim_packet_t;
 
 typedef struct {
+    dr_fake_t fake;               /* the shared fake platform (ID, LEDs, NV store, effects) */
     dr_module_t mod;
-    uint16_t id;
     uint8_t address;              /* the node's role: operations are checked against it */
     uint8_t answer;               /* what address_of returns (its role predicates) */
-    uint8_t leds;
     uint32_t clock_offset;
     uint32_t rng;
-    uint8_t nv[SIM_NV];
-    uint32_t nv_writes;
-    uint32_t nv_reads;
     /* the operation in progress */
     uint8_t op_active;
     uint8_t op_failed;
@@ -65,7 +63,6 @@ typedef struct {
     uint8_t wake;
     uint32_t wake_at;
     uint8_t woken;
-    uint32_t effects;             /* HAL calls with an effect (sends, random, ops, LEDs, NV) */
 } sim_node_t;
 
 typedef struct {

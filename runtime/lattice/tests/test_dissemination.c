@@ -145,7 +145,7 @@ static void test_interval(void)
     gap = m->next_broadcast_ms - dr_hal_now_ms(m);
     CHECK(gap <= SIM_LONGEST_GAP_MS + DR_CONF_BROADCAST_JITTER_MS);
     /* A neighbour reset with a blank store is behind: node 0 answers at its next step. */
-    memset(sim.nodes[1].nv, 0xFF, SIM_NV);
+    memset(sim.nodes[1].fake.nv, 0xFF, SIM_NV);
     sim.checks = 0; /* the known weakness of a lost NV store (test_lost_nv) */
     sim_reset(1);
     run_ticks(4u * SIM_TICK_MS);

@@ -66,7 +66,7 @@ void test_packets(void)
     }
     sim_setup(&program, 1, &address, 7u);
     m = &sim.nodes[0].mod;
-    CHECK_EQ(sim.nodes[0].leds, 0xFF); /* no address: shown on the LEDs */
+    CHECK_EQ(sim.nodes[0].fake.leds, 0xFF); /* no address: shown on the LEDs */
 
     /* Round trip, size. */
     state_with(&s, 0x0102u, 3u, 0x0Au, 0x1Eu);

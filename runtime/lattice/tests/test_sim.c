@@ -179,8 +179,8 @@ static void test_relay(void)
         CHECK(sim_run(60000u));
         CHECK_EQ(sim.violations, 0);
         check_starts(&p1, 1, 1, SIM_NONE, 0);
-        CHECK_EQ(sim.nodes[1].leds, addresses[1]);
-        CHECK_EQ(sim.nodes[2].leds, 1);
+        CHECK_EQ(sim.nodes[1].fake.leds, addresses[1]);
+        CHECK_EQ(sim.nodes[2].fake.leds, 1);
         CHECK(sim.nodes[1].mod.packets_sent > 0u);
     }
 }
@@ -280,7 +280,7 @@ static void test_address_kept(void)
     sim.nodes[0].answer = 2; /* its predicates would now make it C's module */
     sim_reset(0);
     CHECK_EQ(sim.nodes[0].mod.address, 0);
-    CHECK_EQ(sim.nodes[0].leds, 0);
+    CHECK_EQ(sim.nodes[0].fake.leds, 0);
     CHECK(sim_run(60000u));
     CHECK_EQ(sim.violations, 0);
     check_starts(&p2, 1, 1, SIM_NONE, 0);
@@ -294,7 +294,7 @@ static void test_without_nv(void)
     sim_setup(&p1, 3, addr3, 77u);
     CHECK(sim_run(60000u));
     sim.checks = 0;
-    memset(sim.nodes[0].nv, 0xFF, SIM_NV);
+    memset(sim.nodes[0].fake.nv, 0xFF, SIM_NV);
     sim_reset(0);
     CHECK(!dr_module_finished(&sim.nodes[0].mod));
     run_for(2000u);
@@ -542,9 +542,9 @@ static void check_no_nv_access(void)
     uint8_t i;
     uint16_t b;
     for (i = 0; i < sim.n_nodes; i++) {
-        CHECK_EQ(sim.nodes[i].nv_reads, 0);
-        CHECK_EQ(sim.nodes[i].nv_writes, 0);
-        for (b = 0; b < SIM_NV && sim.nodes[i].nv[b] == 0xFFu; b++) {
+        CHECK_EQ(sim.nodes[i].fake.nv_reads, 0);
+        CHECK_EQ(sim.nodes[i].fake.nv_writes, 0);
+        for (b = 0; b < SIM_NV && sim.nodes[i].fake.nv[b] == 0xFFu; b++) {
         }
         CHECK_EQ(b, SIM_NV);
     }

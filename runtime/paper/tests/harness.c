@@ -1,31 +1,7 @@
-/* harness.c - assertion helper, fake HAL (clock, operations, last packet) and world helpers for the tests. */
+/* harness.c - the paper-protocol tests' world on the shared fake platform (see harness.h). */
 #include <stdio.h>
 #include <string.h>
 #include "harness.h"
-
-static int n_checks;
-static int n_failures;
-
-int harness_check(int ok, const char *what, const char *file, int line)
-{
-    n_checks++;
-    if (!ok) {
-        n_failures++;
-        printf("FAIL %s:%d: %s\n", file, line, what);
-    }
-    return ok;
-}
-
-int harness_check_eq(long a, long b, const char *sa, const char *sb, const char *file, int line)
-{
-    n_checks++;
-    if (a != b) {
-        n_failures++;
-        printf("FAIL %s:%d: %s == %s (%ld != %ld)\n", file, line, sa, sb, a, b);
-        return 0;
-    }
-    return 1;
-}
 
 static void print_global(const dr_paper_global_t *g)
 {
@@ -61,9 +37,9 @@ int harness_check_triple(const dr_paper_global_t *g, uint8_t state, uint8_t addr
         }
         ok = found;
     }
-    n_checks++;
+    dr_fake_checks++;
     if (!ok) {
-        n_failures++;
+        dr_fake_fail();
         printf("FAIL %s:%d: got ", file, line);
         print_global(g);
         printf(", want <%u,%u,{", (unsigned)state, (unsigned)address);
@@ -77,100 +53,14 @@ int harness_check_triple(const dr_paper_global_t *g, uint8_t state, uint8_t addr
 
 int harness_done(const char *name)
 {
-    printf("%s: %d checks, %d failed\n", name, n_checks, n_failures);
-    return n_failures == 0 ? 0 : 1;
+    return dr_fake_done(name);
 }
 
-/* ---- fake HAL: m->platform is a fake_t ---- */
+/* ---- the platform: m->platform is the module's fake ---- */
 
-static fake_t *fake(struct dr_module *m)
+dr_fake_t *dr_fake_of(struct dr_module *m)
 {
-    return (fake_t *)m->platform;
-}
-
-uint32_t dr_hal_now_ms(struct dr_module *m)
-{
-    return fake(m)->now_ms;
-}
-
-uint16_t dr_hal_random(struct dr_module *m)
-{
-    fake_t *f = fake(m);
-    f->random = (uint16_t)(f->random * 25173u + 13849u);
-    return f->random;
-}
-
-void dr_hal_broadcast(struct dr_module *m, const uint8_t *bytes, uint8_t len)
-{
-    fake_t *f = fake(m);
-    memcpy(f->packet, bytes, len);
-    f->packet_len = len;
-}
-
-void dr_hal_op_start(struct dr_module *m, uint16_t statement, uint8_t op, uint8_t index,
-                     const int16_t *args)
-{
-    fake_t *f = fake(m);
-    uint8_t i;
-    f->statement = statement;
-    f->op = op;
-    f->index = index;
-    for (i = 0; i < DR_CONF_MAX_ARGS; i++) {
-        f->args[i] = args != 0 ? args[i] : 0;
-    }
-    f->status = DR_OP_RUNNING;
-    f->n_starts++;
-}
-
-enum dr_op_status dr_hal_op_status(struct dr_module *m)
-{
-    return fake(m)->status;
-}
-
-uint16_t dr_hal_id(struct dr_module *m)
-{
-    return fake(m)->id;
-}
-
-uint8_t dr_hal_connected(struct dr_module *m, uint8_t connector)
-{
-    (void)m;
-    (void)connector;
-    return 0;
-}
-
-int16_t dr_hal_neighbour_id(struct dr_module *m, uint8_t connector)
-{
-    (void)m;
-    (void)connector;
-    return -1;
-}
-
-int16_t dr_hal_joint(struct dr_module *m, uint8_t joint)
-{
-    (void)m;
-    (void)joint;
-    return 0;
-}
-
-void dr_hal_leds(struct dr_module *m, uint8_t value)
-{
-    fake(m)->leds = value;
-}
-
-void dr_hal_nv_read(struct dr_module *m, uint16_t addr, uint8_t *buf, uint8_t len)
-{
-    (void)m;
-    (void)addr;
-    memset(buf, 0xFF, len);
-}
-
-void dr_hal_nv_write(struct dr_module *m, uint16_t addr, const uint8_t *buf, uint8_t len)
-{
-    (void)m;
-    (void)addr;
-    (void)buf;
-    (void)len;
+    return (dr_fake_t *)m->platform;
 }
 
 /* ---- world ---- */
@@ -182,9 +72,7 @@ void world_init(world_t *w, uint8_t n, const dr_paper_program_t *program,
     memset(w, 0, sizeof *w);
     w->n = n;
     for (i = 0; i < n; i++) {
-        w->fake[i].id = i;
-        w->fake[i].status = DR_OP_DONE; /* nothing running */
-        w->fake[i].random = (uint16_t)(i + 1u);
+        dr_fake_init(&w->fake[i], i, 0); /* nothing running */
         dr_module_init(&w->mod[i], program, &w->fake[i]);
         w->mod[i].merge = merge;
         w->mod[i].single_step_handover = single_step_handover;

@@ -1,38 +1,24 @@
-/* harness.h - assertion helper, fake HAL and a small world of modules for the paper-protocol tests. */
+/* harness.h - the paper-protocol tests' world of modules on the shared fake platform
+ * (runtime/testing/dr_fake.h), and a check of a copy of the global state. */
 #ifndef HARNESS_H
 #define HARNESS_H
 
 #include <stdint.h>
+#include "dr_fake.h"
 #include "dr_paper.h"
 
-/* ---- assertions: count and report, never abort, so one run shows every failure ---- */
-#define CHECK(cond) harness_check((cond) != 0, #cond, __FILE__, __LINE__)
-#define CHECK_EQ(a, b) harness_check_eq((long)(a), (long)(b), #a, #b, __FILE__, __LINE__)
+/* ---- assertions: CHECK and CHECK_EQ come from the shared fake platform (dr_fake.h) ---- */
 /* A copy of the global state equals <state, address, {pending...}> (as a set). */
 #define CHECK_TRIPLE(g, s, a, pend, n) harness_check_triple((g), (s), (a), (pend), (n), \
                                                             __FILE__, __LINE__)
-int harness_check(int ok, const char *what, const char *file, int line);
-int harness_check_eq(long a, long b, const char *sa, const char *sb, const char *file, int line);
 int harness_check_triple(const dr_paper_global_t *g, uint8_t state, uint8_t address,
                          const uint8_t *pending, uint8_t n_pending, const char *file, int line);
 /* Prints the summary; returns the process exit code. */
 int harness_done(const char *name);
 
-/* ---- the fake hardware of one module ---- */
-typedef struct {
-    uint16_t id;
-    uint32_t now_ms;
-    uint8_t leds;
-    enum dr_op_status status;          /* of the last started operation */
-    uint16_t statement;                /* last started statement, its operation, part, arguments */
-    uint8_t op;
-    uint8_t index;
-    int16_t args[DR_CONF_MAX_ARGS];
-    uint16_t n_starts;                 /* operations started since the test began */
-    uint8_t packet[DR_CONF_MAX_PACKET]; /* the last packet broadcast */
-    uint8_t packet_len;
-    uint16_t random;
-} fake_t;
+/* ---- the hardware of one module: the shared fake platform, without hooks (the test
+ * delivers packets and completes operations by hand) ---- */
+typedef dr_fake_t fake_t;
 
 #define WORLD_MAX 8
 

@@ -1,35 +1,11 @@
-/* test_token.c - the token baseline on a fake platform: modules in a line joined connector to
+/* test_token.c - the token baseline on the shared fake platform (runtime/testing): modules in a line joined connector to
  * connector, operations that take time, a seeded lossy or duplicating network with links
  * that can be cut, resets; every operation start is checked against source order. */
 #include <stdio.h>
 #include <string.h>
+#include "dr_fake.h"
 #include "dr_packet.h"
 #include "dr_token.h"
-
-static unsigned long checks;
-static unsigned long failures;
-
-#define CHECK(cond) check((cond) != 0, #cond, __LINE__)
-#define CHECK_EQ(a, b) check_eq((long)(a), (long)(b), #a, #b, __LINE__)
-
-static void check(int ok, const char *what, int line)
-{
-    checks++;
-    if (!ok) {
-        failures++;
-        fprintf(stderr, "test_token.c:%d: CHECK failed: %s\n", line, what);
-    }
-}
-
-static void check_eq(long a, long b, const char *sa, const char *sb, int line)
-{
-    checks++;
-    if (a != b) {
-        failures++;
-        fprintf(stderr, "test_token.c:%d: CHECK failed: %s == %s (%ld != %ld)\n", line, sa, sb,
-                a, b);
-    }
-}
 
 /* ---- the fake world: NODES modules in a line; module i's connector 0 faces module i+1's
  * connector 4 (so hops to the right leave on 0, to the left on 4) ---- */
@@ -48,8 +24,8 @@ typedef struct {
 } packet_t;
 
 typedef struct {
+    dr_fake_t fake;    /* the shared fake platform, with the hooks below */
     dr_module_t mod;
-    uint16_t id;
     uint32_t op_until;
     uint8_t op_active;
     uint8_t op_stmt_op;
@@ -59,7 +35,6 @@ typedef struct {
     uint8_t wake;
     uint32_t wake_at;
     uint8_t woken;
-    uint32_t effects;  /* HAL calls with an effect: sends, random draws, operation starts */
 } node_t;
 
 static node_t nodes[NODES];
@@ -88,15 +63,22 @@ static node_t *node_of(struct dr_module *m)
     return (node_t *)m->platform;
 }
 
-uint32_t dr_hal_now_ms(struct dr_module *m)
+dr_fake_t *dr_fake_of(struct dr_module *m)
+{
+    return &node_of(m)->fake;
+}
+
+/* ---- the world's hooks into the fake platform ---- */
+
+static uint32_t world_now(struct dr_module *m)
 {
     (void)m;
     return now;
 }
 
-uint16_t dr_hal_random(struct dr_module *m)
+static uint16_t world_random(struct dr_module *m)
 {
-    node_of(m)->effects++;
+    (void)m;
     return (uint16_t)next_random();
 }
 
@@ -117,10 +99,9 @@ static void deliver(uint8_t to, uint8_t channel, const uint8_t *bytes, uint8_t l
     }
 }
 
-void dr_hal_send(struct dr_module *m, uint8_t channel, const uint8_t *bytes, uint8_t len)
+/* One hop along the line: connector RIGHT reaches the next module's LEFT, unless cut. */
+static void send_on(uint8_t i, uint8_t channel, const uint8_t *bytes, uint8_t len)
 {
-    uint8_t i = (uint8_t)(node_of(m) - nodes);
-    node_of(m)->effects++;
     if (channel == RIGHT && i + 1u < NODES && !cut[i]) {
         deliver((uint8_t)(i + 1u), LEFT, bytes, len);
     } else if (channel == LEFT && i > 0u && !cut[i - 1u]) {
@@ -128,84 +109,50 @@ void dr_hal_send(struct dr_module *m, uint8_t channel, const uint8_t *bytes, uin
     }
 }
 
-void dr_hal_broadcast(struct dr_module *m, const uint8_t *bytes, uint8_t len)
+static void world_send(struct dr_module *m, uint8_t channel, const uint8_t *bytes, uint8_t len)
 {
-    dr_hal_send(m, RIGHT, bytes, len);
-    dr_hal_send(m, LEFT, bytes, len);
+    uint8_t i = (uint8_t)(node_of(m) - nodes);
+    if (channel == DR_FAKE_BROADCAST) {
+        send_on(i, RIGHT, bytes, len);
+        send_on(i, LEFT, bytes, len);
+    } else {
+        send_on(i, channel, bytes, len);
+    }
 }
 
-void dr_hal_op_start(struct dr_module *m, uint16_t statement, uint8_t op, uint8_t index,
-                     const int16_t *args)
+static void world_op_start(struct dr_module *m)
 {
     node_t *n = node_of(m);
-    if (statement != m->holding) {
-        fprintf(stderr, "op_start names statement %u, the module holds %u\n", (unsigned)statement,
-                (unsigned)m->holding);
-        failures++;
+    if (n->fake.statement != m->holding) {
+        fprintf(stderr, "op_start names statement %u, the module holds %u\n",
+                (unsigned)n->fake.statement, (unsigned)m->holding);
+        dr_fake_fail();
     }
-    (void)index;
-    (void)args;
-    n->effects++;
     n->op_active = 1;
     n->op_until = now + OP_MS;
-    n->op_stmt_op = op;
+    n->op_stmt_op = n->fake.op;
     if (n_started < sizeof started) {
-        started[n_started++] = op;
+        started[n_started++] = n->fake.op;
     }
 }
 
-enum dr_op_status dr_hal_op_status(struct dr_module *m)
+static enum dr_op_status world_op_status(struct dr_module *m)
 {
     node_t *n = node_of(m);
     return n->op_active && now < n->op_until ? DR_OP_RUNNING : DR_OP_DONE;
 }
 
-uint16_t dr_hal_id(struct dr_module *m)
-{
-    return node_of(m)->id;
-}
-
-uint8_t dr_hal_connected(struct dr_module *m, uint8_t connector)
+/* Every connector is connected (the routes say where a hand-over goes). */
+static uint8_t world_connected(struct dr_module *m, uint8_t connector)
 {
     (void)m;
     (void)connector;
     return 1;
 }
 
-int16_t dr_hal_neighbour_id(struct dr_module *m, uint8_t connector)
-{
-    (void)m;
-    (void)connector;
-    return -1;
-}
-
-int16_t dr_hal_joint(struct dr_module *m, uint8_t joint)
-{
-    (void)m;
-    (void)joint;
-    return 0;
-}
-
-void dr_hal_leds(struct dr_module *m, uint8_t value)
-{
-    (void)m;
-    (void)value;
-}
-
-void dr_hal_nv_read(struct dr_module *m, uint16_t addr, uint8_t *buf, uint8_t len)
-{
-    (void)m;
-    (void)addr;
-    memset(buf, 0xFF, len);
-}
-
-void dr_hal_nv_write(struct dr_module *m, uint16_t addr, const uint8_t *buf, uint8_t len)
-{
-    (void)m;
-    (void)addr;
-    (void)buf;
-    (void)len;
-}
+static const dr_fake_hooks_t hooks = {
+    world_now, world_random, world_send, world_op_start, world_op_status, world_connected, 0, 0
+};
 
 static uint8_t address_by_id(struct dr_module *m)
 {
@@ -252,7 +199,7 @@ static void world_start(const dr_token_program_t *p, unsigned loss, unsigned dup
     dup_percent = dup;
     n_started = 0;
     for (i = 0; i < NODES; i++) {
-        nodes[i].id = (uint16_t)(10u + i);
+        dr_fake_init(&nodes[i].fake, (uint16_t)(10u + i), &hooks);
         dr_module_init(&nodes[i].mod, p, &nodes[i]);
         nodes[i].woken = 1;
     }
@@ -273,11 +220,11 @@ static void checked_step(node_t *n)
 {
     uint8_t skip = skippable(n);
     dr_module_t before = n->mod;
-    uint32_t effects = n->effects;
+    uint32_t effects = n->fake.effects;
     dr_module_step(&n->mod);
     if (skip) {
         skippable_steps++;
-        if (memcmp(&before, &n->mod, sizeof before) != 0 || effects != n->effects) {
+        if (memcmp(&before, &n->mod, sizeof before) != 0 || effects != n->fake.effects) {
             skippable_acted++;
         }
     }
@@ -524,6 +471,5 @@ int main(void)
     CHECK(skippable_steps > 1000ul);
     CHECK_EQ(skippable_acted, 0);
     printf("token runtime: %lu skippable steps checked\n", skippable_steps);
-    printf("token runtime: %lu checks, %lu failures\n", checks, failures);
-    return failures == 0u ? 0 : 1;
+    return dr_fake_done("token runtime");
 }
