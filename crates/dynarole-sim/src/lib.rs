@@ -11,6 +11,7 @@
 
 mod build;
 mod critical;
+mod describe;
 mod engine;
 mod ffi;
 mod firmware;
