@@ -130,11 +130,7 @@ pub fn build(
         configuration: &configuration,
     };
     let scene = Scene {
-        statements: prepared
-            .plans
-            .iter()
-            .flat_map(|p| p.statements().into_iter().cloned())
-            .collect(),
+        statements: prepared.statements(),
         start: prepared.world.configuration(),
     };
     match dynarole_verify::build(&inputs, &options) {

@@ -119,7 +119,7 @@ fn record(
     scene: &Scene,
     report: &dynarole_verify::Report,
 ) -> Result<(), Failure> {
-    use crate::view::Step;
+    use dynarole_sim::Step;
     let Some(cx) = report.counterexample() else {
         eprintln!("note: no counterexample, so no recording was written");
         return Ok(());
@@ -153,7 +153,7 @@ fn record(
     let title = format!("counterexample of {} ({})", built.name, request.display);
     let mut notes = vec![format!("VIOLATED: {}", broken.join(", "))];
     notes.extend(cx.text.lines().map(str::to_string));
-    let recording = crate::view::ModelRun {
+    let recording = dynarole_sim::ModelRun {
         kind: "counterexample",
         title: &title,
         robot: &request.program.robot,
@@ -165,7 +165,8 @@ fn record(
             text: request.source,
         }),
     }
-    .record(notes)?;
+    .record(notes)
+    .map_err(crate::view::model_failure)?;
     args.write(&recording)
 }
 

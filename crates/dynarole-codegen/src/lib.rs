@@ -6,6 +6,7 @@
 //! runs on the modules and the models that check it cannot drift apart.
 
 mod c;
+mod limits;
 mod nesc;
 mod paper;
 mod predicate;
@@ -16,6 +17,7 @@ mod token;
 pub use c::{
     generate_c, generate_nesc, CompileOptions, Dissemination, Generated, PaperMerge, Protocol,
 };
+pub use limits::target_limits;
 pub use promela::{
     generate_compositional, generate_promela, liveness_graph, Fault, LivenessGraph, Model,
     ModelOptions, Topology, TopologyLink, TopologyModule, MAX_MODEL_MODULES, MAX_MODEL_WINDOW,

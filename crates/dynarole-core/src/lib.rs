@@ -21,6 +21,7 @@ pub mod parser;
 pub mod reverse;
 pub mod robot;
 pub mod span;
+pub mod standalone;
 pub mod suggest;
 pub mod toml_error;
 

@@ -13,8 +13,10 @@ mod build;
 mod critical;
 mod describe;
 mod engine;
+mod estimate;
 mod ffi;
 mod firmware;
+mod model_run;
 mod network;
 mod ops;
 mod queue;
@@ -27,7 +29,9 @@ mod wake;
 
 pub use build::cache_root;
 pub use critical::CriticalPath;
+pub use estimate::{form_makespan, makespan, shortest};
 pub use firmware::{FirmwareReport, ModuleFirmware};
+pub use model_run::{replay_steps, ModelRun, ModelRunError, Step};
 pub use record::Recorded;
 pub use report::{Counters, ModuleReport, Refusal, Report, Violation};
 pub use scenario::{
