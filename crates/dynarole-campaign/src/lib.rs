@@ -6,6 +6,7 @@
 mod emit;
 mod exec;
 mod load;
+pub mod picture;
 mod plan;
 mod plot;
 mod progress;
