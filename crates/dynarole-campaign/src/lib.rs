@@ -5,6 +5,7 @@
 
 mod emit;
 mod exec;
+mod limits;
 mod load;
 pub mod picture;
 mod plan;

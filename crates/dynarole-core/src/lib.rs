@@ -16,6 +16,7 @@ pub mod driver;
 pub mod expand;
 pub mod format;
 pub mod lexer;
+pub mod limits;
 pub mod lower;
 pub mod parser;
 pub mod reverse;

@@ -10,6 +10,7 @@ pub mod check;
 pub mod explain;
 pub mod model;
 pub mod report;
+pub mod search;
 pub mod spin;
 pub mod trail;
 
