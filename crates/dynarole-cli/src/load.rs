@@ -85,3 +85,12 @@ pub fn selection(error: &driver::SelectError, display: &str) -> Failure {
 pub fn unknown_sequence(program: &dynarole_core::Program, display: &str, name: &str) -> Failure {
     selection(&driver::unknown_sequence(program, 0, name), display)
 }
+
+/// A fresh folder name for scratch files (`dynarole-WHAT-PID-NANOS` in the system's temporary
+/// folder); the caller creates it and removes it when done.
+pub fn scratch_dir(what: &str) -> PathBuf {
+    let nanos = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.subsec_nanos());
+    std::env::temp_dir().join(format!("dynarole-{what}-{}-{nanos}", std::process::id()))
+}

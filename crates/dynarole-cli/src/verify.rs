@@ -7,10 +7,10 @@ use crate::model::{build, failed, Request, Scene};
 pub use crate::model::{FaultArg, MethodArg, ModelArgs};
 use dynarole_campaign::ProgressMode;
 use dynarole_verify::{
-    BuildOptions, Built, Entry, Event, Header, Observer, Phase, Source, Verdict, VerifyOptions,
+    BuildOptions, Built, Entry, Header, Observer, Phase, Source, Verdict, VerifyOptions,
 };
 use indicatif::{ProgressBar, ProgressStyle};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
 
@@ -68,7 +68,7 @@ fn check(
 ) -> Result<ExitCode, Failure> {
     let dir = match args.keep {
         Some(d) => d.to_path_buf(),
-        None => scratch_dir(),
+        None => load::scratch_dir("verify"),
     };
     std::fs::create_dir_all(&dir)
         .map_err(|e| Failure::Internal(format!("cannot create {}: {e}", dir.display())))?;
@@ -119,37 +119,11 @@ fn record(
     scene: &Scene,
     report: &dynarole_verify::Report,
 ) -> Result<(), Failure> {
-    use dynarole_sim::Step;
     let Some(cx) = report.counterexample() else {
         eprintln!("note: no counterexample, so no recording was written");
         return Ok(());
     };
-    let name = |m: &usize| cx.module_names.get(*m).cloned().unwrap_or_default();
-    let mut broken = Vec::new();
-    let steps: Vec<Step> = cx
-        .events
-        .iter()
-        .enumerate()
-        .filter_map(|(k, e)| match e {
-            Event::Issue { m, s, .. } => Some(Step::Issue(*s, name(m))),
-            Event::Done { m, s } => Some(Step::Done(*s, name(m))),
-            Event::Reset { m } => Some(Step::Reset(name(m))),
-            Event::Copy { m, .. } => Some(Step::Copy(name(m), cx.copies.get(&k)?.clone())),
-            Event::Violation { property, m, s } => {
-                broken.push(property.clone());
-                let text = built
-                    .ir
-                    .statements
-                    .get(*s)
-                    .map_or("", |st| st.text.as_str());
-                Some(Step::Violation(
-                    name(m),
-                    format!("#{s} {text}: {property} broken here"),
-                ))
-            }
-            _ => None,
-        })
-        .collect();
+    let (steps, broken) = dynarole_verify::recorded::counterexample_steps(cx, &built.ir);
     let title = format!("counterexample of {} ({})", built.name, request.display);
     let mut notes = vec![format!("VIOLATED: {}", broken.join(", "))];
     notes.extend(cx.text.lines().map(str::to_string));
@@ -168,13 +142,6 @@ fn record(
     .record(notes)
     .map_err(crate::view::model_failure)?;
     args.write(&recording)
-}
-
-fn scratch_dir() -> PathBuf {
-    let nanos = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .map_or(0, |d| d.subsec_nanos());
-    std::env::temp_dir().join(format!("dynarole-verify-{}-{nanos}", std::process::id()))
 }
 
 /// Prints the report on stdout as it comes, and the progress of the tools on stderr.

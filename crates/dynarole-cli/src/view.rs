@@ -115,10 +115,7 @@ pub fn run(args: &ViewArgs) -> Result<ExitCode, Failure> {
 #[cfg(unix)]
 fn video(recording: &Recording, out: &Path, args: &ViewArgs) -> Result<(), Failure> {
     // The page goes to a scratch folder the browser reads it from.
-    let nanos = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .map_or(0, |d| d.subsec_nanos());
-    let dir = std::env::temp_dir().join(format!("dynarole-video-{}-{nanos}", std::process::id()));
+    let dir = load::scratch_dir("video");
     std::fs::create_dir_all(&dir)
         .map_err(|e| Failure::Internal(format!("cannot create {}: {e}", dir.display())))?;
     let page = dir.join("page.html");

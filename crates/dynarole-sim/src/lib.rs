@@ -31,7 +31,7 @@ pub use build::cache_root;
 pub use critical::CriticalPath;
 pub use estimate::{form_makespan, makespan, shortest};
 pub use firmware::{FirmwareReport, ModuleFirmware};
-pub use model_run::{replay_steps, ModelRun, ModelRunError, Step};
+pub use model_run::{replay_steps, ModelRun, ModelRunError};
 pub use record::Recorded;
 pub use report::{Counters, ModuleReport, Refusal, Report, Violation};
 pub use scenario::{

@@ -4,7 +4,7 @@
 
 use crate::Timing;
 use dynarole_core::check::ResolvedStatement;
-use dynarole_recording::{Builder, Recording};
+use dynarole_recording::{Builder, ModelStep, Recording};
 use dynarole_replay::Assignment;
 
 /// Why a model run could not be recorded.
@@ -24,29 +24,13 @@ impl std::fmt::Display for ModelRunError {
     }
 }
 
-/// One step of a run on the model, with module names as in the configuration.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Step {
-    /// The module does the statement's operation, start to end (replay).
-    Operation(usize, String),
-    /// The module issues the statement's operation (a counterexample's trail)...
-    Issue(usize, String),
-    /// ... and it completes physically.
-    Done(usize, String),
-    Reset(String),
-    /// The module's copy of the shared protocol state is now this (the state panel).
-    Copy(String, String),
-    /// A property broken at this step: its name and what the trail explains.
-    Violation(String, String),
-}
-
 /// The recording of a run on the model (no network): the steps in order, each operation
 /// taking the simulator's default duration, so the page plays like a simulation.
 pub struct ModelRun<'a> {
     pub kind: &'a str,
     pub title: &'a str,
     pub robot: &'a dynarole_core::robot::RobotApi,
-    pub steps: &'a [Step],
+    pub steps: &'a [ModelStep],
     pub statements: &'a [ResolvedStatement],
     pub start: &'a dynarole_world::Configuration,
     pub source: Option<dynarole_recording::Source<'a>>,
@@ -89,11 +73,11 @@ impl ModelRun<'_> {
         let mut issued: Vec<(usize, f64, f64)> = Vec::new();
         for step in self.steps {
             match step {
-                Step::Operation(s, module) => {
+                ModelStep::Operation(s, module) => {
                     let (end, _) = builder.operation(now, index(module)?, *s, &duration);
                     now = end + MODEL_GAP_MS;
                 }
-                Step::Issue(s, module) => {
+                ModelStep::Issue(s, module) => {
                     let label = format!("#{s} {}", texts.get(*s).map_or("", String::as_str));
                     let m = index(module)?;
                     builder.event(now, Some(m), "start", &states[m], &label);
@@ -102,7 +86,7 @@ impl ModelRun<'_> {
                     issued.push((*s, now, duration(*s, turn.as_ref())));
                     now += MODEL_GAP_MS;
                 }
-                Step::Done(s, module) => {
+                ModelStep::Done(s, module) => {
                     if let Some((_, at, length)) = issued.iter().find(|(x, _, _)| x == s) {
                         now = now.max(at + length);
                     }
@@ -111,17 +95,17 @@ impl ModelRun<'_> {
                     builder.event(now, Some(m), "done", &states[m], &label);
                     now += MODEL_GAP_MS;
                 }
-                Step::Reset(module) => {
+                ModelStep::Reset(module) => {
                     let m = index(module)?;
                     builder.event(now, Some(m), "reset", &states[m], "");
                     now += MODEL_GAP_MS;
                 }
-                Step::Copy(module, state) => {
+                ModelStep::Copy(module, state) => {
                     let m = index(module)?;
                     state.clone_into(&mut states[m]);
                     builder.event(now, Some(m), "copy", state, "");
                 }
-                Step::Violation(module, what) => {
+                ModelStep::Violation(module, what) => {
                     let m = index(module)?;
                     builder.event(now, Some(m), "violation", &states[m], what);
                     now += MODEL_GAP_MS;
@@ -145,10 +129,10 @@ fn nominal_ms(text: &str, turn: Option<&dynarole_recording::Turn>) -> f64 {
 
 /// A replay's steps: each statement (numbered in `statements`' order) done by the module of
 /// its label; a label without a module (reported by the replay) does nothing.
-pub fn replay_steps(statements: &[ResolvedStatement], assignment: &Assignment) -> Vec<Step> {
+pub fn replay_steps(statements: &[ResolvedStatement], assignment: &Assignment) -> Vec<ModelStep> {
     statements
         .iter()
         .enumerate()
-        .filter_map(|(i, s)| Some(Step::Operation(i, assignment.get(&s.label)?.clone())))
+        .filter_map(|(i, s)| Some(ModelStep::Operation(i, assignment.get(&s.label)?.clone())))
         .collect()
 }
