@@ -5,7 +5,9 @@
 
 mod emit;
 mod exec;
+mod limits;
 mod load;
+pub mod picture;
 mod plan;
 mod plot;
 mod progress;
@@ -15,8 +17,8 @@ mod spec;
 mod stats;
 mod tables;
 
+pub use dynarole_input::{read_limited, MAX_INPUT_BYTES};
 pub use emit::{job_files, write as write_job_files, JobFile, Jobs, Scheduler};
-pub use load::{read_limited, MAX_INPUT_BYTES};
 pub use plan::{plan, Axis, Faults, Plan, PlannedRun, MAX_RUNS};
 pub use plot::{bounds, rasterise_svg};
 pub use progress::{Progress, ProgressMode, INTERVAL_VARIABLE};

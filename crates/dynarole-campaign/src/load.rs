@@ -34,37 +34,10 @@ pub struct Inputs<'a> {
     pub expect: Option<&'a Configuration>,
 }
 
-/// Largest input file (program, plugin, configuration, scenario or campaign) read.
-pub const MAX_INPUT_BYTES: u64 = 8 << 20;
-
-/// Reads a user's file as text, refusing one larger than [`MAX_INPUT_BYTES`] (or endless,
-/// like `/dev/zero`) after reading no more than that. Every reader of user files (this crate's
-/// and the command line's) goes through here.
-pub fn read_limited(path: &Path) -> std::io::Result<String> {
-    use std::io::Read;
-    let mut bytes = Vec::new();
-    std::fs::File::open(path)?
-        .take(MAX_INPUT_BYTES + 1)
-        .read_to_end(&mut bytes)?;
-    if bytes.len() as u64 > MAX_INPUT_BYTES {
-        let message = format!(
-            "the file is larger than {} MiB, the limit for input files",
-            MAX_INPUT_BYTES >> 20
-        );
-        return Err(std::io::Error::new(
-            std::io::ErrorKind::InvalidData,
-            message,
-        ));
-    }
-    String::from_utf8(bytes).map_err(|e| {
-        let at = e.utf8_error().valid_up_to();
-        let message = format!("the file is not UTF-8 text (byte {at})");
-        std::io::Error::new(std::io::ErrorKind::InvalidData, message)
-    })
-}
-
+/// Every file a campaign names is read through `dynarole_input` (the size limit); the error
+/// names the file as the campaign's other errors do.
 fn read(path: &Path) -> Result<String, Error> {
-    read_limited(path).map_err(|e| Error::io(path, e))
+    dynarole_input::read_input(path).map_err(|e| Error::io(&e.path, e.error))
 }
 
 /// Reads the campaign file and everything it names.

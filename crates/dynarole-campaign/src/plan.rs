@@ -88,10 +88,7 @@ impl PlannedRun {
     }
 }
 
-/// Most runs a campaign may plan (points x protocols x seeds). A run takes a fraction of a
-/// second at best, so a million is already days of computing; past it the file is refused
-/// before anything is planned.
-pub const MAX_RUNS: u64 = 1_000_000;
+pub use crate::limits::MAX_RUNS;
 
 /// Every run of the campaign, in index order, computed from its index when asked for: a plan
 /// is the points of the sweep and nothing per run, so its size does not grow with `seeds`.

@@ -132,7 +132,7 @@ pub fn find(dir: &Path) -> Result<Found, Error> {
 /// or checks that the copy already there is the same text.
 pub fn keep_campaign(dir: &Path, text: &str) -> Result<(), Error> {
     let path = dir.join(CAMPAIGN_COPY);
-    match std::fs::read_to_string(&path) {
+    match crate::read_limited(&path) {
         Ok(there) if there == text => return Ok(()),
         Ok(_) => {
             return Err(Error::Results(format!(

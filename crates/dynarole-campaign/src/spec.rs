@@ -112,8 +112,8 @@ impl CampaignFile {
         if sorted.len() != self.protocols.len() {
             return Err(error("protocols", "a protocol is listed twice"));
         }
-        if self.seeds == 0 || self.seeds > crate::plan::MAX_RUNS {
-            let most = crate::plan::MAX_RUNS;
+        if self.seeds == 0 || self.seeds > crate::limits::MAX_RUNS {
+            let most = crate::limits::MAX_RUNS;
             return Err(error(
                 "seeds",
                 format!("expected 1 to {most}, found {}", self.seeds),

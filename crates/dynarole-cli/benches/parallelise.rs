@@ -4,11 +4,10 @@
 //! eight2car and the 1,000-statement chain with criterion.
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use dynarole_cli::parallelise::{form_makespan, makespan};
-use dynarole_codegen::CompileOptions;
-use dynarole_codegen::Protocol;
+use dynarole_codegen::{CompileOptions, Protocol};
 use dynarole_core::{analyze, parse, RobotRegistry};
 use dynarole_replay::{assign_modules, parallelise, Parallelised, Request, RobotWorld};
+use dynarole_sim::{form_makespan, makespan};
 use dynarole_sim::{Run, Scenario, Simulator};
 use dynarole_world::generated::atron_chain_json;
 use dynarole_world::{Configuration, World};

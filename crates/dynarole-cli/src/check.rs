@@ -57,7 +57,7 @@ pub fn check_one(
         eprintln!("note: {}: the token baseline's hand-over routes are checked only on a configuration (--from CONFIG)", path.display());
     }
     if let Some(program) = program {
-        diagnostics.extend(target_limits(&program, protocol));
+        diagnostics.extend(dynarole_codegen::target_limits(&program, protocol));
     }
     diagnostics.sort_by_key(|d| d.span);
     diagnostics.dedup();
@@ -71,50 +71,9 @@ fn on_configuration(
     protocol: Protocol,
 ) -> Result<Vec<Diagnostic>, Failure> {
     let config = crate::world::read_configuration(on.path)?;
-    let prepared = match crate::world::prepare(
-        program,
-        &path.display().to_string(),
-        on.sequences,
-        config.clone(),
-    )? {
-        Ok(prepared) => prepared,
-        Err(errors) => return Ok(errors),
-    };
-    let replay = dynarole_replay::replay(
-        program,
-        &prepared.plans,
-        prepared.world.clone(),
-        &prepared.assignment,
-    );
-    let mut diagnostics = replay.diagnostics;
-    if protocol == Protocol::Token && !has_errors(&diagnostics) {
-        if let Err(unroutable) = dynarole_replay::token_routes(program, &prepared.plans, &config) {
-            diagnostics.extend(unroutable);
-        }
+    let display = path.display().to_string();
+    match crate::world::prepare(program, &display, on.sequences, config)? {
+        Ok(prepared) => Ok(prepared.diagnose(program, protocol == Protocol::Token)),
+        Err(errors) => Ok(errors),
     }
-    diagnostics.extend(dynarole_replay::check_independence(
-        program,
-        &prepared.plans,
-        prepared.world,
-        &prepared.assignment,
-    ));
-    Ok(diagnostics)
-}
-
-/// What the generated code of each sequence could not encode, for the chosen protocol.
-fn target_limits(program: &dynarole_core::Program, protocol: Protocol) -> Vec<Diagnostic> {
-    let shape = protocol.shape();
-    let mut out = Vec::new();
-    for decl in program.file.sequences() {
-        let plan = program.expand(&decl.name.name).unwrap_or_default();
-        let fits =
-            driver::lower(program, std::slice::from_ref(&plan), shape).and_then(
-                |ir| match protocol {
-                    Protocol::Paper => ir.paper_layout().map(|_| ()).map_err(Diagnostic::from),
-                    Protocol::Lattice | Protocol::Token => Ok(()),
-                },
-            );
-        out.extend(fits.err());
-    }
-    out
 }

@@ -129,32 +129,11 @@ pub struct CompileArgs<'a> {
     pub out_dir: &'a Path,
     /// The start configuration: `--target promela` and the token protocol need it.
     pub from: Option<&'a Path>,
-    pub model: &'a crate::verify::ModelArgs,
     pub plugins: &'a PluginArgs,
 }
 
+/// C or nesC (`--target promela` is `model::compile`, which lib.rs calls instead).
 pub fn run(args: &CompileArgs) -> Result<ExitCode, Failure> {
-    if let Target::Promela = args.target {
-        let Some(from) = args.from else {
-            return Err(Failure::Usage(
-                "--target promela needs --from CONFIG (the model is of a robot's communication graph)".into(),
-            ));
-        };
-        return load::with_program(args.file, args.plugins, |program, source| {
-            let display = args.file.display().to_string();
-            let request = crate::verify::Request {
-                program,
-                source,
-                display: &display,
-                sequences: args.sequences,
-                from,
-                options: args.options,
-                model: args.model,
-                epochs: args.epochs,
-            };
-            crate::verify::write_model(&request, args.out_dir)
-        });
-    }
     load::with_program(args.file, args.plugins, |program, source| {
         let display = args.file.display().to_string();
         let names = load::select_sequences(program, &display, args.sequences)?;

@@ -5,8 +5,10 @@
 pub mod campaign;
 pub mod check;
 pub mod compile;
+pub mod failure;
 pub mod fmt;
 pub mod load;
+pub mod model;
 pub mod parallelise;
 pub mod render;
 pub mod replay;
@@ -77,7 +79,7 @@ enum Command {
         #[arg(long, value_name = "CONFIG")]
         from: Option<PathBuf>,
         #[command(flatten)]
-        model: verify::ModelArgs,
+        model: model::ModelArgs,
         #[command(flatten)]
         plugins: load::PluginArgs,
     },
@@ -95,7 +97,7 @@ enum Command {
         #[command(flatten)]
         options: compile::ProtocolOptions,
         #[command(flatten)]
-        model: verify::ModelArgs,
+        model: model::ModelArgs,
         /// Lattice protocol: how many times the whole sequence runs.
         #[arg(long, default_value_t = 1)]
         epochs: u16,
@@ -116,7 +118,7 @@ enum Command {
         keep: Option<PathBuf>,
         /// Check a deliberately broken lattice protocol (tests of the checker).
         #[arg(long, value_enum, hide = true)]
-        fault: Option<verify::FaultArg>,
+        fault: Option<model::FaultArg>,
         #[command(flatten)]
         record: view::RecordArgs,
         #[command(flatten)]
@@ -420,17 +422,22 @@ pub fn main() -> ExitCode {
             from,
             model,
             plugins,
-        } => compile::run(&compile::CompileArgs {
-            file: &file,
-            sequences: &sequences,
-            target,
-            options: &options,
-            epochs,
-            out_dir: &out_dir,
-            from: from.as_deref(),
-            model: &model,
-            plugins: &plugins,
-        }),
+        } => {
+            let args = compile::CompileArgs {
+                file: &file,
+                sequences: &sequences,
+                target,
+                options: &options,
+                epochs,
+                out_dir: &out_dir,
+                from: from.as_deref(),
+                plugins: &plugins,
+            };
+            match target {
+                compile::Target::Promela => model::compile(&args, &model),
+                compile::Target::C | compile::Target::Nesc => compile::run(&args),
+            }
+        }
         Command::Verify {
             file,
             sequences,

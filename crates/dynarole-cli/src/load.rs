@@ -3,50 +3,11 @@
 use dynarole_core::driver;
 pub use dynarole_core::driver::robot_name;
 use dynarole_core::robot::RobotApi;
-use dynarole_core::toml_error::TomlError;
 use dynarole_core::RobotRegistry;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-/// A command that could not run; printed as `error: ...` by `main`.
-#[derive(Debug)]
-pub enum Failure {
-    /// Bad input (exit 1).
-    Input(String),
-    /// Bad usage (exit 2).
-    Usage(String),
-    /// A TOML file (plugin, scenario, campaign) with an error (exit 1), shown with its snippet.
-    Toml {
-        path: String,
-        text: String,
-        error: Box<TomlError>,
-    },
-    /// A failure of dynarole or of the tools it runs (spin, the C compiler), not a verdict on
-    /// the input (exit 4).
-    Internal(String),
-}
-
-/// The exit code of an internal failure (0-3 are verdicts and usage errors).
-pub const INTERNAL_EXIT: u8 = 4;
-
-impl Failure {
-    pub fn exit_code(&self) -> ExitCode {
-        match self {
-            Failure::Input(_) | Failure::Toml { .. } => ExitCode::from(1),
-            Failure::Usage(_) => ExitCode::from(2),
-            Failure::Internal(_) => ExitCode::from(INTERNAL_EXIT),
-        }
-    }
-
-    /// The failure of the TOML file at `path`, whose text is `text`.
-    pub fn toml(path: &Path, text: String, error: TomlError) -> Failure {
-        Failure::Toml {
-            path: path.display().to_string(),
-            error: Box::new(error.locate(&text)),
-            text,
-        }
-    }
-}
+pub use crate::failure::{Failure, INTERNAL_EXIT};
 
 #[derive(clap::Args, Clone, Debug, Default)]
 pub struct PluginArgs {
@@ -56,10 +17,10 @@ pub struct PluginArgs {
     pub plugins: Vec<PathBuf>,
 }
 
-/// Every user file the commands read comes through here (with the size limit).
+/// Every user file the commands read comes through here (`dynarole_input`: the size limit,
+/// the error naming the file).
 pub fn read_source(path: &Path) -> Result<String, Failure> {
-    dynarole_campaign::read_limited(path)
-        .map_err(|e| Failure::Input(format!("cannot read {}: {e}", path.display())))
+    dynarole_input::read_input(path).map_err(|e| Failure::Input(e.to_string()))
 }
 
 /// Built-in robots, then `--plugin` files, then a `NAME.robot.toml` beside `source_path`
@@ -123,4 +84,13 @@ pub fn selection(error: &driver::SelectError, display: &str) -> Failure {
 /// `no sequence `x` in FILE; did you mean `y`? sequences in FILE: a, b`.
 pub fn unknown_sequence(program: &dynarole_core::Program, display: &str, name: &str) -> Failure {
     selection(&driver::unknown_sequence(program, 0, name), display)
+}
+
+/// A fresh folder name for scratch files (`dynarole-WHAT-PID-NANOS` in the system's temporary
+/// folder); the caller creates it and removes it when done.
+pub fn scratch_dir(what: &str) -> PathBuf {
+    let nanos = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.subsec_nanos());
+    std::env::temp_dir().join(format!("dynarole-{what}-{}-{nanos}", std::process::id()))
 }

@@ -5,11 +5,10 @@
 use crate::load::{self, Failure, PluginArgs};
 use crate::render;
 use crate::world::{prepare, read_configuration};
-use dynarole_codegen::{CompileOptions, Protocol};
-use dynarole_core::expand::Plan;
-use dynarole_core::{parse, Program, RobotApi};
+use dynarole_codegen::Protocol;
+use dynarole_core::RobotApi;
 use dynarole_replay::{parallelise, Form, FormKind, ParalleliseError, Parallelised, Request};
-use dynarole_sim::{Simulator, Timing};
+use dynarole_sim::{form_makespan, makespan, shortest};
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -30,9 +29,9 @@ pub fn run(args: &ParalleliseArgs) -> Result<ExitCode, Failure> {
     let name = args
         .name
         .map_or_else(|| format!("{}_parallel", args.sequence), str::to_string);
-    if !is_identifier(&name) {
+    if !dynarole_core::lexer::is_identifier(&name) {
         return Err(Failure::Usage(format!(
-            "--name `{name}` is not a sequence name (a letter or `_`, then letters, digits or `_`)"
+            "--name `{name}` is not a sequence name (a letter or `_`, then letters, digits or `_`; not a keyword)"
         )));
     }
     if args.protocol == Protocol::Token {
@@ -73,7 +72,7 @@ pub fn run(args: &ParalleliseArgs) -> Result<ExitCode, Failure> {
             }
             Err(ParalleliseError::Message(m)) => return Err(Failure::Input(m)),
         };
-        let before = makespan(program, &prepared.plans, args.protocol);
+        let before = makespan(program, &prepared.plans, estimated(args.protocol));
         write_result(args, &name, &found, before, &program.robot)
     })
 }
@@ -89,9 +88,9 @@ fn write_result(
     let estimates: Vec<Result<u64, String>> = found
         .forms
         .iter()
-        .map(|form| form_makespan(found, form, name, args.protocol, robot))
+        .map(|form| form_makespan(found, form, name, estimated(args.protocol), robot))
         .collect();
-    let chosen = choose(&estimates);
+    let chosen = shortest(&estimates);
     let form = found
         .forms
         .get(chosen)
@@ -126,22 +125,6 @@ fn write_result(
         seconds(&estimates[chosen])
     );
     Ok(ExitCode::SUCCESS)
-}
-
-/// The form with the shortest estimate; the first (parallel groups) on a tie or when none
-/// could be estimated.
-fn choose(estimates: &[Result<u64, String>]) -> usize {
-    let mut best = 0;
-    for (k, e) in estimates.iter().enumerate() {
-        if let (Ok(ms), Ok(top)) = (e, &estimates[best]) {
-            if ms < top {
-                best = k;
-            }
-        } else if e.is_ok() && estimates[best].is_err() {
-            best = k;
-        }
-    }
-    best
 }
 
 /// The comment block at the top of the output.
@@ -231,47 +214,11 @@ fn seconds(estimate: &Result<u64, String>) -> String {
     }
 }
 
-/// The critical path of `plans` in ms, as the simulator's timing preset weighs it.
-pub fn makespan(program: &Program, plans: &[Plan], protocol: Protocol) -> Result<u64, String> {
-    let options = CompileOptions {
-        protocol: match protocol {
-            Protocol::Paper => Protocol::Paper,
-            // The token baseline is refused before this; its makespan would be the lattice's.
-            Protocol::Lattice | Protocol::Token => Protocol::Lattice,
-        },
-        name: "parallelise".into(),
-        ..CompileOptions::default()
-    };
-    let simulator = Simulator::new(program, plans, &options).map_err(|e| e.to_string())?;
-    Ok(simulator.critical_path(&Timing::default()).duration_ms)
-}
-
-/// The makespan of a written form, from its text (what the user gets).
-pub fn form_makespan(
-    found: &Parallelised,
-    form: &Form,
-    name: &str,
-    protocol: Protocol,
-    robot: &RobotApi,
-) -> Result<u64, String> {
-    let source = format!("{}\n{}", found.header, form.text);
-    let parsed = parse(&source);
-    let program = dynarole_core::driver::check_for(&parsed, robot).map_err(|diagnostics| {
-        format!(
-            "the output does not check ({} diagnostics)",
-            diagnostics.len()
-        )
-    })?;
-    let plan = program
-        .expand(name)
-        .ok_or_else(|| format!("no sequence `{name}` in the output"))?;
-    makespan(&program, &[plan], protocol)
-}
-
-fn is_identifier(name: &str) -> bool {
-    let mut chars = name.chars();
-    chars
-        .next()
-        .is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
-        && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
+/// The protocol whose code orders the statements in an estimate (the token baseline is
+/// refused before: it runs what the lattice protocol runs).
+fn estimated(protocol: Protocol) -> Protocol {
+    match protocol {
+        Protocol::Paper => Protocol::Paper,
+        Protocol::Lattice | Protocol::Token => Protocol::Lattice,
+    }
 }

@@ -1,6 +1,6 @@
 //! Printing diagnostics (with file, line, column and a source snippet) and failures.
 
-use crate::load::Failure;
+use crate::failure::Failure;
 use codespan_reporting::diagnostic::{Diagnostic as Report, Label, Severity as ReportSeverity};
 use codespan_reporting::files::{Files, SimpleFile};
 use codespan_reporting::term::{

@@ -70,23 +70,11 @@ fn record(
     display: &str,
     source: &str,
 ) -> Result<(), Failure> {
-    let statements: Vec<_> = prepared
-        .plans
-        .iter()
-        .flat_map(|p| p.statements().into_iter().cloned())
-        .collect();
-    // A label without a module was reported by the replay; it does nothing.
-    let steps: Vec<crate::view::Step> = statements
-        .iter()
-        .enumerate()
-        .filter_map(|(i, s)| {
-            let module = prepared.assignment.get(&s.label)?;
-            Some(crate::view::Step::Operation(i, module.clone()))
-        })
-        .collect();
+    let statements = prepared.statements();
+    let steps = dynarole_sim::replay_steps(&statements, &prepared.assignment);
     let start = prepared.world.configuration();
     let title = format!("replay of {} ({display})", prepared.names.join(" + "));
-    let recording = crate::view::ModelRun {
+    let recording = dynarole_sim::ModelRun {
         kind: "replay",
         title: &title,
         robot: &program.robot,
@@ -98,7 +86,8 @@ fn record(
             text: source,
         }),
     }
-    .record(vec![title.clone()])?;
+    .record(vec![title.clone()])
+    .map_err(crate::view::model_failure)?;
     args.record.write(&recording)
 }
 

@@ -115,10 +115,7 @@ pub fn run(args: &ViewArgs) -> Result<ExitCode, Failure> {
 #[cfg(unix)]
 fn video(recording: &Recording, out: &Path, args: &ViewArgs) -> Result<(), Failure> {
     // The page goes to a scratch folder the browser reads it from.
-    let nanos = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .map_or(0, |d| d.subsec_nanos());
-    let dir = std::env::temp_dir().join(format!("dynarole-video-{}-{nanos}", std::process::id()));
+    let dir = load::scratch_dir("video");
     std::fs::create_dir_all(&dir)
         .map_err(|e| Failure::Internal(format!("cannot create {}: {e}", dir.display())))?;
     let page = dir.join("page.html");
@@ -141,120 +138,10 @@ fn video(_: &Recording, _: &Path, _: &ViewArgs) -> Result<(), Failure> {
     Err(Failure::Usage("--video needs a Unix system".into()))
 }
 
-/// One step of a run on the model, with module names as in the configuration.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Step {
-    /// The module does the statement's operation, start to end (replay).
-    Operation(usize, String),
-    /// The module issues the statement's operation (a counterexample's trail)...
-    Issue(usize, String),
-    /// ... and it completes physically.
-    Done(usize, String),
-    Reset(String),
-    /// The module's copy of the shared protocol state is now this (the state panel).
-    Copy(String, String),
-    /// A property broken at this step: its name and what the trail explains.
-    Violation(String, String),
-}
-
-/// The recording of a run on the model (no network): the steps in order, each operation
-/// taking the simulator's default duration, so the page plays like a simulation.
-pub struct ModelRun<'a> {
-    pub kind: &'a str,
-    pub title: &'a str,
-    pub robot: &'a dynarole_core::robot::RobotApi,
-    pub steps: &'a [Step],
-    pub statements: &'a [dynarole_core::check::ResolvedStatement],
-    pub start: &'a dynarole_world::Configuration,
-    pub source: Option<dynarole_recording::Source<'a>>,
-}
-
-/// Pause between two steps of a model run (as a hand-over between modules would take).
-const MODEL_GAP_MS: f64 = 100.0;
-
-impl ModelRun<'_> {
-    /// The recording, with `notes` (the verdict, the explanation) as its summary.
-    pub fn record(&self, notes: Vec<String>) -> Result<Recording, Failure> {
-        let texts: Vec<String> = self
-            .statements
-            .iter()
-            .map(|s| s.describe(self.robot))
-            .collect();
-        let mut builder = dynarole_recording::Builder::new(
-            self.kind,
-            self.title,
-            self.start,
-            self.robot,
-            self.statements,
-            &texts,
-            self.source,
-        )
-        .map_err(Failure::Input)?;
-        let duration = |s: usize, turn: Option<&dynarole_recording::Turn>| -> f64 {
-            nominal_ms(texts.get(s).map_or("", String::as_str), turn)
-        };
-        let view = dynarole_world::View::of(self.start);
-        let index = |name: &str| {
-            view.index(name)
-                .ok_or_else(|| Failure::Internal(format!("no module {name} in the configuration")))
-        };
-        let mut now = 0.0;
-        // Each module's last copy of the shared state, shown with each of its events.
-        let mut states = vec!["-".to_string(); view.len()];
-        // Per statement, when its operation was issued (a trail's completions follow later).
-        let mut issued: Vec<(usize, f64, f64)> = Vec::new();
-        for step in self.steps {
-            match step {
-                Step::Operation(s, module) => {
-                    let (end, _) = builder.operation(now, index(module)?, *s, &duration);
-                    now = end + MODEL_GAP_MS;
-                }
-                Step::Issue(s, module) => {
-                    let label = format!("#{s} {}", texts.get(*s).map_or("", String::as_str));
-                    let m = index(module)?;
-                    builder.event(now, Some(m), "start", &states[m], &label);
-                    let turn = builder.last_turn();
-                    issued.retain(|(x, _, _)| x != s);
-                    issued.push((*s, now, duration(*s, turn.as_ref())));
-                    now += MODEL_GAP_MS;
-                }
-                Step::Done(s, module) => {
-                    if let Some((_, at, length)) = issued.iter().find(|(x, _, _)| x == s) {
-                        now = now.max(at + length);
-                    }
-                    let label = format!("#{s} {}", texts.get(*s).map_or("", String::as_str));
-                    let m = index(module)?;
-                    builder.event(now, Some(m), "done", &states[m], &label);
-                    now += MODEL_GAP_MS;
-                }
-                Step::Reset(module) => {
-                    let m = index(module)?;
-                    builder.event(now, Some(m), "reset", &states[m], "");
-                    now += MODEL_GAP_MS;
-                }
-                Step::Copy(module, state) => {
-                    let m = index(module)?;
-                    state.clone_into(&mut states[m]);
-                    builder.event(now, Some(m), "copy", state, "");
-                }
-                Step::Violation(module, what) => {
-                    let m = index(module)?;
-                    builder.event(now, Some(m), "violation", &states[m], what);
-                    now += MODEL_GAP_MS;
-                }
-            }
-        }
-        Ok(builder.finish(now, notes))
+/// A model run that could not be recorded: bad input, or a step the caller got wrong.
+pub fn model_failure(error: dynarole_sim::ModelRunError) -> Failure {
+    match error {
+        dynarole_sim::ModelRunError::Input(m) => Failure::Input(m),
+        dynarole_sim::ModelRunError::Internal(m) => Failure::Internal(m),
     }
-}
-
-/// The simulator's default duration of an operation (`dynarole_sim::Timing`).
-fn nominal_ms(text: &str, turn: Option<&dynarole_recording::Turn>) -> f64 {
-    let timing = dynarole_sim::Timing::default();
-    let ms = match turn {
-        Some(t) => timing.turn_ms((t.angle_deg.abs() / 90.0).round() as u64),
-        None if text.contains(".retract(") => timing.retract_ms,
-        None => timing.extend_ms,
-    };
-    ms as f64
 }

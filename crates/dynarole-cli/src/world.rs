@@ -1,10 +1,12 @@
-//! Shared by the commands that run sequences on a configuration (`replay`, `check --from`):
-//! load the configuration, expand the sequences, and find the module behind every label.
+//! Shared by the commands that run sequences on a configuration (`replay`, `check --from`,
+//! `simulate`, `parallelise`, `verify`): their arguments, the configuration read, and
+//! `dynarole_replay::prepare`'s errors turned into the command's.
 
 use crate::load::{self, Failure};
 use dynarole_core::expand::Plan;
 use dynarole_core::{Diagnostic, Program};
-use dynarole_replay::{assign_modules, Assignment, RobotWorld};
+use dynarole_replay::PrepareError;
+pub use dynarole_replay::Prepared;
 use dynarole_world::Configuration;
 use std::path::Path;
 
@@ -22,15 +24,6 @@ pub struct RunArgs {
     pub expect: Option<std::path::PathBuf>,
 }
 
-/// Everything needed to run `plans` on the model.
-pub struct Prepared {
-    /// The sequences run, in turn (the named ones, or the file's first).
-    pub names: Vec<String>,
-    pub plans: Vec<Plan>,
-    pub assignment: Assignment,
-    pub world: RobotWorld,
-}
-
 /// Reads a configuration in the data-file JSON format; errors name the file and the field.
 pub fn read_configuration(path: &Path) -> Result<Configuration, Failure> {
     let text = load::read_source(path)?;
@@ -38,26 +31,20 @@ pub fn read_configuration(path: &Path) -> Result<Configuration, Failure> {
         .map_err(|e| Failure::Input(format!("{}: {e}", path.display())))
 }
 
-/// The plans of `sequences` (the first declared sequence when none is named) of the source
-/// `display`, the modules of their labels on `config`, and the world to run them in. Label
-/// problems come back as diagnostics of the source file.
+/// The sequences (the first declared when none is named) of the source `display` prepared
+/// to run on `config`; label problems come back as diagnostics of the source file.
 pub fn prepare(
     program: &Program,
     display: &str,
     sequences: &[String],
     config: Configuration,
 ) -> Result<Result<Prepared, Vec<Diagnostic>>, Failure> {
-    let names = load::select_sequences(program, display, sequences)?;
-    let plans = plans(program, display, &names)?;
-    let world = RobotWorld::new(config.clone(), &program.robot).map_err(Failure::Input)?;
-    Ok(
-        assign_modules(program, &plans, &config).map(|assignment| Prepared {
-            names,
-            plans,
-            assignment,
-            world,
-        }),
-    )
+    match dynarole_replay::prepare(program, sequences, config) {
+        Ok(prepared) => Ok(Ok(prepared)),
+        Err(PrepareError::Labels(diagnostics)) => Ok(Err(diagnostics)),
+        Err(PrepareError::Select(e)) => Err(load::selection(&e, display)),
+        Err(PrepareError::World(message)) => Err(Failure::Input(message)),
+    }
 }
 
 /// The expanded plans of sequences chosen by [`load::select_sequences`].

@@ -7,6 +7,7 @@
 
 mod c;
 pub mod choice;
+mod limits;
 mod nesc;
 mod options;
 mod paper;
@@ -17,8 +18,9 @@ mod runtime;
 mod token;
 
 pub use c::{generate_c, generate_nesc, Generated};
-pub use nesc::nesc_files;
 pub use choice::{Choice, UnknownName};
+pub use limits::target_limits;
+pub use nesc::nesc_files;
 pub use options::CompileOptions;
 pub use promela::events as trail_events;
 pub use promela::{

@@ -5,7 +5,7 @@
 
 use crate::ast::*;
 use crate::diagnostic::{has_errors, Diagnostic, DiagnosticKind as K};
-use crate::lower::MAX_STATEMENTS;
+use crate::limits::MAX_STATEMENTS;
 use crate::robot::{ParamType, Part, RobotApi, RobotRegistry, Value};
 use crate::span::Span;
 use crate::suggest::{closest, module_label_lookalike};

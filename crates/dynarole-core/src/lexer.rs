@@ -154,7 +154,7 @@ fn too_much(lexed: &Lexed) -> Option<String> {
     if lexed.tokens.len() >= MAX_TOKENS {
         return Some(format!("more than {MAX_TOKENS} tokens"));
     }
-    let limit = crate::parser::MAX_SYNTAX_ERRORS;
+    let limit = crate::limits::MAX_SYNTAX_ERRORS;
     (lexed.errors.len() >= limit).then(|| format!("more than {limit} syntax errors"))
 }
 

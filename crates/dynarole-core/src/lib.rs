@@ -16,11 +16,13 @@ pub mod driver;
 pub mod expand;
 pub mod format;
 pub mod lexer;
+pub mod limits;
 pub mod lower;
 pub mod parser;
 pub mod reverse;
 pub mod robot;
 pub mod span;
+pub mod standalone;
 pub mod suggest;
 pub mod toml_error;
 

@@ -239,8 +239,7 @@ impl Program<'_> {
     }
 }
 
-/// Most statements a program can have: indices are 16 bits and 65,535 is reserved.
-pub const MAX_STATEMENTS: usize = u16::MAX as usize - 1;
+pub use crate::limits::MAX_STATEMENTS;
 /// Most statements one statement can wait for (`n_deps` is one byte in the lattice tables).
 pub const MAX_WAITS: usize = u8::MAX as usize;
 /// Most entries of the lattice dependency table (`first_dep` is 16 bits).

@@ -12,8 +12,7 @@ use crate::span::Span;
 /// Deepest nesting of blocks or of predicate sub-expressions the parser accepts.
 pub const MAX_NESTING: usize = 64;
 
-/// Syntax errors recorded before the rest of a file is skipped (lexer and parser each).
-pub const MAX_SYNTAX_ERRORS: usize = 1000;
+pub use crate::limits::MAX_SYNTAX_ERRORS;
 
 /// Most binary operators in one role predicate. A chain `a || b || ...` is a tree as deep as it
 /// is long, and later passes walk trees recursively.

@@ -6,6 +6,7 @@ use dynarole_core::format::format_file;
 use dynarole_core::{analyze, driver, parse, Diagnostic, RobotApi, RobotRegistry};
 use dynarole_sim::Scenario;
 use dynarole_world::Configuration;
+use std::convert::Infallible;
 use std::path::Path;
 
 /// Error text allowed on top of what is proportional to the input (a loader may quote the
@@ -53,13 +54,14 @@ impl Context {
     /// The built-in robots plus every plugin of `plugins` that loads (so the checker's corpus
     /// can use a custom robot).
     pub fn new(plugins: &[String]) -> Context {
-        let mut registry = RobotRegistry::builtin();
-        for text in plugins {
-            if let Ok(api) = RobotApi::from_toml(text) {
-                registry.add(api);
-            }
+        let loaded = plugins
+            .iter()
+            .filter_map(|text| RobotApi::from_toml(text).ok());
+        let registry = driver::registry(None, loaded, |_| Ok::<_, Infallible>(None));
+        match registry {
+            Ok(registry) => Context { registry },
+            Err(never) => match never {},
         }
-        Context { registry }
     }
 }
 

@@ -5,8 +5,10 @@
 
 mod builder;
 mod format;
+mod model_step;
 mod pose;
 
 pub use builder::{Builder, Source};
 pub use format::*;
+pub use model_step::ModelStep;
 pub use pose::{poses_at, settled_at};

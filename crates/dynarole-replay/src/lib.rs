@@ -6,6 +6,7 @@
 
 mod independence;
 mod parallel;
+mod prepare;
 mod robot_world;
 mod roles;
 mod routes;
@@ -17,6 +18,7 @@ pub use parallel::{
     dependency_graph, parallelise, transitive_reduction, Form, FormKind, Layout, ParalleliseError,
     Parallelised, Request,
 };
+pub use prepare::{prepare, PrepareError, Prepared};
 pub use robot_world::{RobotWorld, StepOutcome};
 pub use roles::{assign_modules, Assignment};
 pub use routes::token_routes;

@@ -14,7 +14,7 @@ use dynarole_core::check::{resolve_statement, ResolvedStatement};
 use dynarole_core::diagnostic::{has_errors, Diagnostic, DiagnosticKind};
 use dynarole_core::expand::Plan;
 use dynarole_core::format::{format_items, statement as statement_text};
-use dynarole_core::{analyze, parse, Program, RobotRegistry, Span};
+use dynarole_core::{driver, parse, Program, Span};
 use dynarole_world::{compare, Configuration, Port};
 use std::collections::BTreeMap;
 use std::fmt::Write;
@@ -577,17 +577,12 @@ impl Verifier<'_> {
             .filter_map(|(at, s)| Some((u32::try_from(at + offset).ok()?, *s)))
             .collect();
         let parsed = parse(&source);
-        let mut registry = RobotRegistry::builtin();
-        registry.add(self.request.program.robot.clone());
-        let (program, diagnostics) = analyze(&parsed.file, &registry);
-        let program = program
-            .filter(|_| parsed.diagnostics.is_empty() && !has_errors(&diagnostics))
-            .ok_or_else(|| {
-                Failure::new(format!(
-                    "the written sequence does not check: {:?}",
-                    diagnostics.first().or(parsed.diagnostics.first())
-                ))
-            })?;
+        let program = driver::check_for(&parsed, &self.request.program.robot).map_err(|d| {
+            Failure::new(format!(
+                "the written sequence does not check: {:?}",
+                d.first()
+            ))
+        })?;
         let lookup = Lookup { index: &index };
         let forward = program.expand(self.request.name).unwrap_or_default();
         let end = self.run(

@@ -11,9 +11,12 @@
 
 mod build;
 mod critical;
+mod describe;
 mod engine;
+mod estimate;
 mod ffi;
 mod firmware;
+mod model_run;
 mod network;
 mod ops;
 mod queue;
@@ -26,7 +29,9 @@ mod wake;
 
 pub use build::cache_root;
 pub use critical::CriticalPath;
+pub use estimate::{form_makespan, makespan, shortest};
 pub use firmware::{FirmwareReport, FirmwareSource, ModuleFirmware};
+pub use model_run::{replay_steps, ModelRun, ModelRunError};
 pub use record::Recorded;
 pub use report::{Counters, ModuleReport, Refusal, Report, Violation};
 pub use scenario::{

@@ -2,7 +2,7 @@
 //! queue, the world, every module's platform data, counters, violations and the trace.
 //! Operations live in `ops.rs`, the infrared network in `network.rs`.
 
-use crate::engine::{Describer, DESCRIPTION_BYTES};
+use crate::describe::{Describer, DESCRIPTION_BYTES};
 use crate::queue::{Key, Queue};
 use crate::report::{Counters, Refusal, Violation};
 use crate::scenario::{Preset, Scenario, Stepping};

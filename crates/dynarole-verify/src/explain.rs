@@ -2,7 +2,7 @@
 //! back to modules, statements and source locations, as numbered steps (one function per
 //! kind of event) under a headline saying which property is violated and how.
 
-use crate::spin::Check;
+use crate::search::Check;
 use crate::trail::Event;
 use dynarole_core::lower::{Ir, PAPER_STATE_END};
 use dynarole_core::span::line_col;

@@ -9,7 +9,9 @@
 pub mod check;
 pub mod explain;
 pub mod model;
+pub mod recorded;
 pub mod report;
+pub mod search;
 pub mod spin;
 pub mod trail;
 

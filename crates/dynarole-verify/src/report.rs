@@ -4,7 +4,7 @@
 //! the progress of the tools.
 
 use crate::explain::Counterexample;
-use crate::spin::{Check, PanResult};
+use crate::search::{Check, PanResult};
 use std::fmt;
 
 /// Whether a property was proved, refuted, or neither.

@@ -3,6 +3,7 @@
 //! figures, replay a counterexample, and tell a verdict from a failure of the tools.
 
 use crate::report::{Observer, Phase};
+pub use crate::search::{Check, PanResult};
 use crate::VerifyError;
 use std::path::Path;
 use std::process::{Child, Command, Stdio};
@@ -21,41 +22,6 @@ pub struct Limits {
     /// a state met again on a shorter path is searched again: every run within the bound is
     /// covered).
     pub depth: Option<u64>,
-}
-
-/// Safety (assertions S1-S3) or liveness (the LTL formula `finishes`, weak fairness).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Check {
-    Safety,
-    Liveness,
-}
-
-/// What one pan run said.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct PanResult {
-    pub errors: u64,
-    pub states: u64,
-    pub transitions: u64,
-    pub depth: u64,
-    pub seconds: f64,
-    pub memory_mb: f64,
-    pub out_of_memory: bool,
-    pub depth_limited: bool,
-    pub timed_out: bool,
-    pub bitstate: bool,
-    /// The search was bounded in depth (`Limits::depth`).
-    pub bounded: bool,
-    /// pan printed its statistics (a search that ran, whatever it found).
-    pub reported: bool,
-    /// The first line of pan's error report, e.g. `pan:1: assertion violated false (at depth 17)`.
-    pub error_line: Option<String>,
-}
-
-impl PanResult {
-    /// The search covered every reachable state.
-    pub fn complete(&self) -> bool {
-        !self.out_of_memory && !self.depth_limited && !self.timed_out && !self.bitstate
-    }
 }
 
 const MAX_DEPTH: &str = "-m1000000";

@@ -7,7 +7,8 @@
 
 use super::emu::{self, Core, Library};
 use super::image::Image;
-use crate::engine::{Describer, Finished};
+use crate::describe::Describer;
+use crate::engine::Finished;
 use crate::ops::OpCall;
 use crate::state::{Event, Packet, State};
 use std::rc::Rc;

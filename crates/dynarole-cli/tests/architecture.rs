@@ -1,0 +1,743 @@
+//! The layering ARCHITECTURE.md promises, checked on the tree: no import circle among the
+//! top-level modules of any crate (read from the `crate::` and `super::` paths of its
+//! sources), no crate depending on one after it in ARCHITECTURE.md's dependency order (from
+//! `cargo metadata`), and `compile` not linking the simulator.
+
+use serde_json::Value;
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+
+/// Circles that other changes are removing, as (crate, the modules of the circle). A circle
+/// found must lie inside one of these; an entry that no longer matches a circle fails too, so
+/// the list only shrinks.
+const KNOWN_CIRCLES: &[(&str, &[&str])] = &[
+    ("dynarole-replay", &["independence", "parallel"]),
+    (
+        "dynarole-sim",
+        &[
+            "build", "describe", "ffi", "ops", "queue", "record", "report", "state",
+        ],
+    ),
+    ("dynarole-world", &["config", "json", "mtran", "structure"]),
+];
+
+/// The CLI's modules on the path of `dynarole compile` (every target).
+const COMPILE_MODULES: &[&str] = &["compile", "model"];
+
+fn workspace() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+// ---------------------------------------------------------------------------------------
+// Module graph of one crate.
+
+/// One token of Rust source with comments, strings and characters removed.
+#[derive(Clone, Debug, PartialEq, Eq)]
+enum Tok {
+    Ident(String),
+    PathSep,
+    Open,
+    Close,
+    Comma,
+    Other(char),
+}
+
+/// The tokens that matter for paths: identifiers, `::`, braces and commas.
+fn tokens(text: &str) -> Vec<Tok> {
+    let chars: Vec<char> = text.chars().collect();
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < chars.len() {
+        let c = chars[i];
+        let next = chars.get(i + 1).copied();
+        if c == '/' && next == Some('/') {
+            while i < chars.len() && chars[i] != '\n' {
+                i += 1;
+            }
+        } else if c == '/' && next == Some('*') {
+            i = skip_block_comment(&chars, i);
+        } else if c == '"' {
+            i = skip_string(&chars, i + 1, 0);
+        } else if c == 'r' && matches!(next, Some('"' | '#')) && raw_string_start(&chars, i) {
+            let hashes = chars[i + 1..].iter().take_while(|&&h| h == '#').count();
+            i = skip_string(&chars, i + 2 + hashes, hashes);
+        } else if c == '\'' {
+            i = skip_char_or_lifetime(&chars, i);
+        } else if c.is_alphabetic() || c == '_' {
+            let start = i;
+            while i < chars.len() && (chars[i].is_alphanumeric() || chars[i] == '_') {
+                i += 1;
+            }
+            out.push(Tok::Ident(chars[start..i].iter().collect()));
+        } else {
+            out.push(match (c, next) {
+                (':', Some(':')) => {
+                    i += 1;
+                    Tok::PathSep
+                }
+                ('{', _) => Tok::Open,
+                ('}', _) => Tok::Close,
+                (',', _) => Tok::Comma,
+                _ => Tok::Other(c),
+            });
+            i += 1;
+        }
+    }
+    out.into_iter()
+        .filter(|t| !matches!(t, Tok::Other(c) if c.is_whitespace()))
+        .collect()
+}
+
+/// Whether `r` at `i` opens a raw string (`r"`, `r#"`), not an identifier starting with r.
+fn raw_string_start(chars: &[char], i: usize) -> bool {
+    let after_ident = i > 0 && (chars[i - 1].is_alphanumeric() || chars[i - 1] == '_');
+    let hashes = chars[i + 1..].iter().take_while(|&&h| h == '#').count();
+    !after_ident && chars.get(i + 1 + hashes) == Some(&'"')
+}
+
+fn skip_block_comment(chars: &[char], mut i: usize) -> usize {
+    let mut depth = 0;
+    while i < chars.len() {
+        if chars[i] == '/' && chars.get(i + 1) == Some(&'*') {
+            depth += 1;
+            i += 2;
+        } else if chars[i] == '*' && chars.get(i + 1) == Some(&'/') {
+            depth -= 1;
+            i += 2;
+            if depth == 0 {
+                return i;
+            }
+        } else {
+            i += 1;
+        }
+    }
+    i
+}
+
+/// Skips a string whose text starts at `i`, closed by `"` and `hashes` `#` (escapes only in a
+/// plain string).
+fn skip_string(chars: &[char], mut i: usize, hashes: usize) -> usize {
+    while i < chars.len() {
+        if hashes == 0 && chars[i] == '\\' {
+            i += 2;
+            continue;
+        }
+        if chars[i] == '"' && chars[i + 1..].iter().take_while(|&&h| h == '#').count() >= hashes {
+            return i + 1 + hashes;
+        }
+        i += 1;
+    }
+    i
+}
+
+fn skip_char_or_lifetime(chars: &[char], i: usize) -> usize {
+    match (chars.get(i + 1), chars.get(i + 2)) {
+        (Some('\\'), _) => {
+            // Past the escaped character, to the closing quote (`'\''`, `'\u{1F}'`).
+            let mut j = i + 3;
+            while j < chars.len() && chars[j] != '\'' {
+                j += 1;
+            }
+            j + 1
+        }
+        (Some(_), Some('\'')) => i + 3,
+        // A lifetime or a label: the name that follows is read as an identifier.
+        _ => i + 1,
+    }
+}
+
+/// The top-level modules `text` (the file of module path `path`, from the crate root) names
+/// through `crate::` and `super::` paths, `use` groups included.
+fn referenced(path: &[String], text: &str) -> BTreeSet<String> {
+    let toks = tokens(text);
+    let mut found = BTreeSet::new();
+    // Inline modules (`mod tests { ... }`) open inside this file: their name and the brace
+    // depth they close at.
+    let mut inline: Vec<(String, usize)> = Vec::new();
+    let mut depth = 0usize;
+    let mut i = 0;
+    while i < toks.len() {
+        match &toks[i] {
+            Tok::Open => depth += 1,
+            Tok::Close => {
+                depth = depth.saturating_sub(1);
+                if inline.last().is_some_and(|(_, d)| *d == depth) {
+                    inline.pop();
+                }
+            }
+            Tok::Ident(word) if word == "mod" => {
+                if let (Some(Tok::Ident(name)), Some(Tok::Open)) =
+                    (toks.get(i + 1), toks.get(i + 2))
+                {
+                    inline.push((name.clone(), depth));
+                }
+            }
+            Tok::Ident(word) if word == "crate" || word == "super" => {
+                let macro_crate = i > 0 && toks[i - 1] == Tok::Other('$');
+                let after_sep = i > 0 && toks[i - 1] == Tok::PathSep;
+                if !macro_crate && !after_sep && toks.get(i + 1) == Some(&Tok::PathSep) {
+                    let here: Vec<String> = path
+                        .iter()
+                        .cloned()
+                        .chain(inline.iter().map(|(n, _)| n.clone()))
+                        .collect();
+                    let (base, rest) = path_base(&toks, i, &here);
+                    found.extend(targets(&toks, rest, &base));
+                }
+            }
+            _ => {}
+        }
+        i += 1;
+    }
+    found
+}
+
+/// The module a path starting at `toks[i]` (`crate` or `super`) leaves from, seen from module
+/// `here`, and the index of the token after its last `::`.
+fn path_base(toks: &[Tok], mut i: usize, here: &[String]) -> (Vec<String>, usize) {
+    if toks[i] == Tok::Ident("crate".into()) {
+        return (Vec::new(), i + 2);
+    }
+    let mut base = here.to_vec();
+    while toks.get(i) == Some(&Tok::Ident("super".into())) && toks.get(i + 1) == Some(&Tok::PathSep)
+    {
+        base.pop();
+        i += 2;
+    }
+    (base, i)
+}
+
+/// The top-level modules named by the path segment(s) at `toks[i]` below `base`.
+fn targets(toks: &[Tok], i: usize, base: &[String]) -> Vec<String> {
+    if let Some(top) = base.first() {
+        return vec![top.clone()];
+    }
+    match toks.get(i) {
+        Some(Tok::Ident(name)) => vec![name.clone()],
+        Some(Tok::Open) => {
+            // `crate::{a::X, b}`: the first name of every item of the group.
+            let mut names = Vec::new();
+            let mut depth = 0;
+            let mut at_item_start = true;
+            for tok in &toks[i..] {
+                match tok {
+                    Tok::Open => {
+                        depth += 1;
+                        if depth == 1 {
+                            continue;
+                        }
+                    }
+                    Tok::Close => {
+                        depth -= 1;
+                        if depth == 0 {
+                            break;
+                        }
+                    }
+                    Tok::Comma if depth == 1 => {
+                        at_item_start = true;
+                        continue;
+                    }
+                    Tok::Ident(name) if depth == 1 && at_item_start => names.push(name.clone()),
+                    _ => {}
+                }
+                at_item_start = false;
+            }
+            names
+        }
+        _ => Vec::new(),
+    }
+}
+
+/// The module path of a file under `src/` (`a.rs`, `a/mod.rs`: `[a]`; `a/b.rs`: `[a, b]`);
+/// the crate root (`lib.rs`, `main.rs`) is the empty path.
+fn module_path(relative: &str) -> Vec<String> {
+    let trimmed = relative.trim_end_matches(".rs");
+    let mut parts: Vec<String> = trimmed.split('/').map(str::to_string).collect();
+    if parts.last().is_some_and(|p| p == "mod") {
+        parts.pop();
+    }
+    if parts.len() == 1 && (parts[0] == "lib" || parts[0] == "main") {
+        parts.clear();
+    }
+    parts
+}
+
+/// The import graph among the top-level modules of a crate whose `src/` holds `files`
+/// (relative path, text). The root and `src/bin/` are left out: the root declares the
+/// modules, and a binary is not imported.
+fn module_graph(files: &[(String, String)]) -> BTreeMap<String, BTreeSet<String>> {
+    let paths: Vec<(Vec<String>, &str)> = files
+        .iter()
+        .filter(|(rel, _)| !rel.starts_with("bin/"))
+        .map(|(rel, text)| (module_path(rel), text.as_str()))
+        .collect();
+    let tops: BTreeSet<String> = paths
+        .iter()
+        .filter_map(|(p, _)| p.first().cloned())
+        .collect();
+    let mut graph: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+    for (path, text) in &paths {
+        let Some(top) = path.first() else { continue };
+        let edges = graph.entry(top.clone()).or_default();
+        for target in referenced(path, text) {
+            if target != *top && tops.contains(&target) {
+                edges.insert(target);
+            }
+        }
+    }
+    graph
+}
+
+/// The strongly connected components of more than one module (Tarjan), each sorted.
+fn circles(graph: &BTreeMap<String, BTreeSet<String>>) -> Vec<Vec<String>> {
+    struct Search<'g> {
+        graph: &'g BTreeMap<String, BTreeSet<String>>,
+        index: BTreeMap<&'g str, usize>,
+        low: BTreeMap<&'g str, usize>,
+        stack: Vec<&'g str>,
+        on_stack: BTreeSet<&'g str>,
+        out: Vec<Vec<String>>,
+    }
+    impl<'g> Search<'g> {
+        fn visit(&mut self, v: &'g str) {
+            let n = self.index.len();
+            self.index.insert(v, n);
+            self.low.insert(v, n);
+            self.stack.push(v);
+            self.on_stack.insert(v);
+            let graph = self.graph;
+            for w in graph.get(v).into_iter().flatten() {
+                let w = w.as_str();
+                if !self.index.contains_key(w) {
+                    self.visit(w);
+                    let low = self.low[v].min(self.low[w]);
+                    self.low.insert(v, low);
+                } else if self.on_stack.contains(w) {
+                    let low = self.low[v].min(self.index[w]);
+                    self.low.insert(v, low);
+                }
+            }
+            if self.low[v] == self.index[v] {
+                let mut component = Vec::new();
+                while let Some(w) = self.stack.pop() {
+                    self.on_stack.remove(w);
+                    component.push(w.to_string());
+                    if w == v {
+                        break;
+                    }
+                }
+                if component.len() > 1 {
+                    component.sort();
+                    self.out.push(component);
+                }
+            }
+        }
+    }
+    let mut search = Search {
+        graph,
+        index: BTreeMap::new(),
+        low: BTreeMap::new(),
+        stack: Vec::new(),
+        on_stack: BTreeSet::new(),
+        out: Vec::new(),
+    };
+    for v in graph.keys() {
+        if !search.index.contains_key(v.as_str()) {
+            search.visit(v);
+        }
+    }
+    search.out.sort();
+    search.out
+}
+
+/// What is wrong with the circles found per crate, given the known ones.
+fn circle_problems(
+    found: &BTreeMap<String, Vec<Vec<String>>>,
+    known: &[(&str, &[&str])],
+) -> Vec<String> {
+    let mut problems = Vec::new();
+    for (krate, list) in found {
+        for circle in list {
+            let allowed = known.iter().any(|(k, modules)| {
+                k == krate && circle.iter().all(|m| modules.contains(&m.as_str()))
+            });
+            if !allowed {
+                problems.push(format!(
+                    "{krate}: import circle among {}",
+                    circle.join(", ")
+                ));
+            }
+        }
+    }
+    for (krate, modules) in known {
+        let still = found
+            .get(*krate)
+            .into_iter()
+            .flatten()
+            .any(|circle| circle.iter().all(|m| modules.contains(&m.as_str())));
+        if !still {
+            problems.push(format!(
+                "{krate}: the known circle among {} is gone; remove it from KNOWN_CIRCLES",
+                modules.join(", ")
+            ));
+        }
+    }
+    problems
+}
+
+/// Every `.rs` file under `dir`, as (path relative to `dir` with `/`, text).
+fn sources(dir: &Path) -> Vec<(String, String)> {
+    let mut out = Vec::new();
+    let mut pending = vec![dir.to_path_buf()];
+    while let Some(d) = pending.pop() {
+        let Ok(entries) = std::fs::read_dir(&d) else {
+            continue;
+        };
+        for entry in entries.flatten() {
+            let path = entry.path();
+            if path.is_dir() {
+                pending.push(path);
+            } else if path.extension().is_some_and(|e| e == "rs") {
+                let rel = path.strip_prefix(dir).expect("under dir");
+                let rel = rel
+                    .components()
+                    .map(|c| c.as_os_str().to_string_lossy())
+                    .collect::<Vec<_>>()
+                    .join("/");
+                out.push((rel, std::fs::read_to_string(&path).expect("source")));
+            }
+        }
+    }
+    out.sort();
+    out
+}
+
+fn crate_dirs() -> Vec<(String, PathBuf)> {
+    let mut out: Vec<(String, PathBuf)> = std::fs::read_dir(workspace().join("crates"))
+        .expect("crates/")
+        .flatten()
+        .map(|e| e.path())
+        .filter(|p| p.join("src").is_dir())
+        .map(|p| {
+            (
+                p.file_name().expect("name").to_string_lossy().into_owned(),
+                p,
+            )
+        })
+        .collect();
+    out.sort();
+    out
+}
+
+// ---------------------------------------------------------------------------------------
+// Dependencies between crates.
+
+/// ARCHITECTURE.md's dependency order and its test-only crates.
+fn documented_order(architecture: &str) -> (Vec<String>, Vec<String>) {
+    let start = architecture
+        .find("Dependency order")
+        .expect("ARCHITECTURE.md states the dependency order");
+    let paragraph = architecture[start..].split("\n\n").next().unwrap_or("");
+    let ticked = |text: &str| -> Vec<String> {
+        text.split('`')
+            .skip(1)
+            .step_by(2)
+            .map(str::to_string)
+            .collect()
+    };
+    let body = paragraph.split_once(':').map_or("", |(_, b)| b);
+    match body.split_once('(') {
+        Some((order, tests)) if tests.contains("tests only") => (ticked(order), ticked(tests)),
+        _ => (ticked(body), Vec::new()),
+    }
+}
+
+/// Each workspace crate and the workspace crates it depends on (normal and build
+/// dependencies; dev-dependencies when `dev`).
+fn workspace_dependencies(metadata: &Value, dev: bool) -> BTreeMap<String, BTreeSet<String>> {
+    let packages = metadata["packages"].as_array().expect("packages");
+    let names: BTreeSet<String> = packages
+        .iter()
+        .filter_map(|p| p["name"].as_str().map(str::to_string))
+        .collect();
+    packages
+        .iter()
+        .filter_map(|p| {
+            let deps = p["dependencies"]
+                .as_array()?
+                .iter()
+                .filter(|d| dev || d["kind"].as_str() != Some("dev"))
+                .filter_map(|d| d["name"].as_str())
+                .filter(|d| names.contains(*d))
+                .map(str::to_string)
+                .collect();
+            Some((p["name"].as_str()?.to_string(), deps))
+        })
+        .collect()
+}
+
+/// Crates placed nowhere in the order, and dependencies on a crate after the dependent.
+fn order_problems(
+    order: &[String],
+    tests_only: &[String],
+    deps: &BTreeMap<String, BTreeSet<String>>,
+) -> Vec<String> {
+    let position = |name: &str| order.iter().position(|o| o == name);
+    let mut problems = Vec::new();
+    for (krate, needs) in deps {
+        if tests_only.contains(krate) {
+            continue;
+        }
+        let Some(at) = position(krate) else {
+            problems.push(format!(
+                "{krate} is not in ARCHITECTURE.md's dependency order"
+            ));
+            continue;
+        };
+        for need in needs {
+            match position(need) {
+                Some(n) if n < at => {}
+                _ => problems.push(format!("{krate} depends on {need}, which is not before it")),
+            }
+        }
+    }
+    problems
+}
+
+/// The crates `start` links, itself included.
+fn closure(deps: &BTreeMap<String, BTreeSet<String>>, start: &str) -> BTreeSet<String> {
+    let mut seen = BTreeSet::new();
+    let mut pending = vec![start.to_string()];
+    while let Some(k) = pending.pop() {
+        if seen.insert(k.clone()) {
+            pending.extend(deps.get(&k).into_iter().flatten().cloned());
+        }
+    }
+    seen
+}
+
+fn metadata() -> Value {
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+    let output = std::process::Command::new(cargo)
+        .args([
+            "metadata",
+            "--format-version",
+            "1",
+            "--no-deps",
+            "--offline",
+        ])
+        .current_dir(workspace())
+        .output()
+        .expect("cargo metadata runs");
+    assert!(
+        output.status.success(),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    serde_json::from_slice(&output.stdout).expect("cargo metadata's JSON")
+}
+
+// ---------------------------------------------------------------------------------------
+// The checks on the tree.
+
+#[test]
+fn no_import_circle_in_any_crate() {
+    let mut found = BTreeMap::new();
+    let mut edges = Vec::new();
+    for (name, dir) in crate_dirs() {
+        let graph = module_graph(&sources(&dir.join("src")));
+        let list = circles(&graph);
+        for circle in &list {
+            for from in circle {
+                let to = graph[from].iter().filter(|t| circle.contains(t));
+                let to: Vec<&str> = to.map(String::as_str).collect();
+                edges.push(format!("  {name}: {from} uses {}", to.join(", ")));
+            }
+        }
+        if !list.is_empty() {
+            found.insert(name, list);
+        }
+    }
+    let problems = circle_problems(&found, KNOWN_CIRCLES);
+    assert!(
+        problems.is_empty(),
+        "{}\nthe imports inside the circles:\n{}",
+        problems.join("\n"),
+        edges.join("\n")
+    );
+}
+
+#[test]
+fn no_crate_depends_on_one_after_it() {
+    let architecture =
+        std::fs::read_to_string(workspace().join("ARCHITECTURE.md")).expect("ARCHITECTURE.md");
+    let (order, tests_only) = documented_order(&architecture);
+    let deps = workspace_dependencies(&metadata(), false);
+    let problems = order_problems(&order, &tests_only, &deps);
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
+
+/// Where the modules `start` of a crate made of `files` reach (through its imports) a crate
+/// that links `forbidden`: "FILE names CRATE".
+fn links(
+    files: &[(String, String)],
+    start: &[&str],
+    deps: &BTreeMap<String, BTreeSet<String>>,
+    forbidden: &str,
+) -> Vec<String> {
+    let graph = module_graph(files);
+    let mut reached = BTreeSet::new();
+    let mut pending: Vec<String> = start.iter().map(|m| m.to_string()).collect();
+    while let Some(m) = pending.pop() {
+        if reached.insert(m.clone()) {
+            pending.extend(graph.get(&m).into_iter().flatten().cloned());
+        }
+    }
+    let mut found = BTreeSet::new();
+    for (rel, text) in files {
+        let top = module_path(rel).first().cloned().unwrap_or_default();
+        if !reached.contains(&top) {
+            continue;
+        }
+        for tok in tokens(text) {
+            let Tok::Ident(word) = tok else { continue };
+            let Some(krate) = word.strip_prefix("dynarole_") else {
+                continue;
+            };
+            let krate = format!("dynarole-{}", krate.replace('_', "-"));
+            if closure(deps, &krate).contains(forbidden) {
+                found.insert(format!("{rel} names {krate}"));
+            }
+        }
+    }
+    found.into_iter().collect()
+}
+
+/// `compile` (every target) reaches no module that names the simulator, or a crate that
+/// links it.
+#[test]
+fn compile_does_not_link_the_simulator() {
+    let files = sources(&workspace().join("crates/dynarole-cli/src"));
+    let deps = workspace_dependencies(&metadata(), false);
+    let found = links(&files, COMPILE_MODULES, &deps, "dynarole-sim");
+    assert!(
+        found.is_empty(),
+        "`compile` links dynarole-sim: {}",
+        found.join("; ")
+    );
+    // The check looks at the real modules: `simulate` does link the simulator.
+    assert!(!links(&files, &["simulate"], &deps, "dynarole-sim").is_empty());
+}
+
+// ---------------------------------------------------------------------------------------
+// The checks themselves, on made-up crates.
+
+fn files(list: &[(&str, &str)]) -> Vec<(String, String)> {
+    list.iter()
+        .map(|(p, t)| (p.to_string(), t.to_string()))
+        .collect()
+}
+
+#[test]
+fn finds_a_circle_through_use_groups_and_super() {
+    let crate_files = files(&[
+        ("lib.rs", "pub mod a; pub mod b; pub mod c; pub mod d;"),
+        ("a.rs", "use crate::{b::Thing, c};"),
+        ("b/mod.rs", "mod inner;"),
+        ("b/inner.rs", "use super::super::a::Other;"),
+        ("c.rs", "// use crate::d;\nconst S: &str = \"crate::d\";"),
+        ("d.rs", "use crate::c::X;"),
+    ]);
+    let graph = module_graph(&crate_files);
+    assert_eq!(
+        circles(&graph),
+        vec![vec!["a".to_string(), "b".to_string()]]
+    );
+    assert_eq!(
+        graph["c"],
+        BTreeSet::new(),
+        "comments and strings are not imports"
+    );
+}
+
+#[test]
+fn a_test_module_using_super_is_no_circle() {
+    let crate_files = files(&[
+        (
+            "a.rs",
+            "pub struct A; #[cfg(test)] mod tests { use super::A; use crate::b::B; }",
+        ),
+        (
+            "b.rs",
+            "pub struct B; fn f<'a>(x: &'a str) -> char { let _ = r#\"crate::a\"#; 'x' }",
+        ),
+    ]);
+    let graph = module_graph(&crate_files);
+    assert_eq!(graph["a"], BTreeSet::from(["b".to_string()]));
+    assert!(circles(&graph).is_empty());
+}
+
+#[test]
+fn a_new_or_a_vanished_circle_is_a_problem() {
+    let found = BTreeMap::from([(
+        "k".to_string(),
+        vec![vec!["x".to_string(), "y".to_string()]],
+    )]);
+    assert_eq!(
+        circle_problems(&found, &[]),
+        vec!["k: import circle among x, y".to_string()]
+    );
+    assert!(circle_problems(&found, &[("k", &["x", "y", "z"])]).is_empty());
+    assert_eq!(
+        circle_problems(&BTreeMap::new(), &[("k", &["x", "y"])]).len(),
+        1
+    );
+}
+
+#[test]
+fn a_dependency_upwards_is_a_problem() {
+    let architecture = "Dependency order (a crate depends only on crates before it): `low`,\n`high` (`fuzz`: tests only).\n\nNext.";
+    let (order, tests_only) = documented_order(architecture);
+    assert_eq!(order, vec!["low", "high"]);
+    assert_eq!(tests_only, vec!["fuzz"]);
+    let deps = |pairs: &[(&str, &[&str])]| -> BTreeMap<String, BTreeSet<String>> {
+        pairs
+            .iter()
+            .map(|(k, d)| (k.to_string(), d.iter().map(|s| s.to_string()).collect()))
+            .collect()
+    };
+    let fine = deps(&[("low", &[]), ("high", &["low"]), ("fuzz", &["high"])]);
+    assert!(order_problems(&order, &tests_only, &fine).is_empty());
+    let upwards = deps(&[("low", &["high"]), ("high", &[]), ("new", &[])]);
+    assert_eq!(
+        order_problems(&order, &tests_only, &upwards),
+        vec![
+            "low depends on high, which is not before it".to_string(),
+            "new is not in ARCHITECTURE.md's dependency order".to_string()
+        ]
+    );
+}
+
+#[test]
+fn a_module_reaching_the_simulator_through_imports_is_found() {
+    let crate_files = files(&[
+        ("compile.rs", "use crate::load::read;"),
+        (
+            "load.rs",
+            "pub fn read() { dynarole_campaign::read_limited(); }",
+        ),
+        ("other.rs", "use dynarole_sim::Simulator;"),
+    ]);
+    let deps: BTreeMap<String, BTreeSet<String>> = BTreeMap::from([
+        (
+            "dynarole-campaign".to_string(),
+            BTreeSet::from(["dynarole-sim".to_string()]),
+        ),
+        ("dynarole-sim".to_string(), BTreeSet::new()),
+    ]);
+    assert_eq!(
+        links(&crate_files, &["compile"], &deps, "dynarole-sim"),
+        vec!["load.rs names dynarole-campaign".to_string()]
+    );
+    assert!(links(&crate_files, &["load"], &deps, "dynarole-core").is_empty());
+}

@@ -1,0 +1,138 @@
+//! The recording of a run on the model, with no network (`dynarole replay`, and `verify`'s
+//! counterexamples): its steps in order, each operation taking the simulator's default
+//! duration ([`Timing`]), so that the viewer plays it like a simulation.
+
+use crate::Timing;
+use dynarole_core::check::ResolvedStatement;
+use dynarole_recording::{Builder, ModelStep, Recording};
+use dynarole_replay::Assignment;
+
+/// Why a model run could not be recorded.
+#[derive(Debug)]
+pub enum ModelRunError {
+    /// The start configuration does not fit the statements (bad input).
+    Input(String),
+    /// A step names a module the configuration lacks (a bug of the caller).
+    Internal(String),
+}
+
+impl std::fmt::Display for ModelRunError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            ModelRunError::Input(m) | ModelRunError::Internal(m) => f.write_str(m),
+        }
+    }
+}
+
+/// The recording of a run on the model (no network): the steps in order, each operation
+/// taking the simulator's default duration, so the page plays like a simulation.
+pub struct ModelRun<'a> {
+    pub kind: &'a str,
+    pub title: &'a str,
+    pub robot: &'a dynarole_core::robot::RobotApi,
+    pub steps: &'a [ModelStep],
+    pub statements: &'a [ResolvedStatement],
+    pub start: &'a dynarole_world::Configuration,
+    pub source: Option<dynarole_recording::Source<'a>>,
+}
+
+/// Pause between two steps of a model run (as a hand-over between modules would take).
+const MODEL_GAP_MS: f64 = 100.0;
+
+impl ModelRun<'_> {
+    /// The recording, with `notes` (the verdict, the explanation) as its summary.
+    pub fn record(&self, notes: Vec<String>) -> Result<Recording, ModelRunError> {
+        let texts: Vec<String> = self
+            .statements
+            .iter()
+            .map(|s| s.describe(self.robot))
+            .collect();
+        let mut builder = Builder::new(
+            self.kind,
+            self.title,
+            self.start,
+            self.robot,
+            self.statements,
+            &texts,
+            self.source,
+        )
+        .map_err(ModelRunError::Input)?;
+        let duration = |s: usize, turn: Option<&dynarole_recording::Turn>| -> f64 {
+            nominal_ms(texts.get(s).map_or("", String::as_str), turn)
+        };
+        let view = dynarole_world::View::of(self.start);
+        let index = |name: &str| {
+            view.index(name).ok_or_else(|| {
+                ModelRunError::Internal(format!("no module {name} in the configuration"))
+            })
+        };
+        let mut now = 0.0;
+        // Each module's last copy of the shared state, shown with each of its events.
+        let mut states = vec!["-".to_string(); view.len()];
+        // Per statement, when its operation was issued (a trail's completions follow later).
+        let mut issued: Vec<(usize, f64, f64)> = Vec::new();
+        for step in self.steps {
+            match step {
+                ModelStep::Operation(s, module) => {
+                    let (end, _) = builder.operation(now, index(module)?, *s, &duration);
+                    now = end + MODEL_GAP_MS;
+                }
+                ModelStep::Issue(s, module) => {
+                    let label = format!("#{s} {}", texts.get(*s).map_or("", String::as_str));
+                    let m = index(module)?;
+                    builder.event(now, Some(m), "start", &states[m], &label);
+                    let turn = builder.last_turn();
+                    issued.retain(|(x, _, _)| x != s);
+                    issued.push((*s, now, duration(*s, turn.as_ref())));
+                    now += MODEL_GAP_MS;
+                }
+                ModelStep::Done(s, module) => {
+                    if let Some((_, at, length)) = issued.iter().find(|(x, _, _)| x == s) {
+                        now = now.max(at + length);
+                    }
+                    let label = format!("#{s} {}", texts.get(*s).map_or("", String::as_str));
+                    let m = index(module)?;
+                    builder.event(now, Some(m), "done", &states[m], &label);
+                    now += MODEL_GAP_MS;
+                }
+                ModelStep::Reset(module) => {
+                    let m = index(module)?;
+                    builder.event(now, Some(m), "reset", &states[m], "");
+                    now += MODEL_GAP_MS;
+                }
+                ModelStep::Copy(module, state) => {
+                    let m = index(module)?;
+                    state.clone_into(&mut states[m]);
+                    builder.event(now, Some(m), "copy", state, "");
+                }
+                ModelStep::Violation(module, what) => {
+                    let m = index(module)?;
+                    builder.event(now, Some(m), "violation", &states[m], what);
+                    now += MODEL_GAP_MS;
+                }
+            }
+        }
+        Ok(builder.finish(now, notes))
+    }
+}
+
+/// The simulator's default duration of an operation (`dynarole_sim::Timing`).
+fn nominal_ms(text: &str, turn: Option<&dynarole_recording::Turn>) -> f64 {
+    let timing = Timing::default();
+    let ms = match turn {
+        Some(t) => timing.turn_ms((t.angle_deg.abs() / 90.0).round() as u64),
+        None if text.contains(".retract(") => timing.retract_ms,
+        None => timing.extend_ms,
+    };
+    ms as f64
+}
+
+/// A replay's steps: each statement (numbered in `statements`' order) done by the module of
+/// its label; a label without a module (reported by the replay) does nothing.
+pub fn replay_steps(statements: &[ResolvedStatement], assignment: &Assignment) -> Vec<ModelStep> {
+    statements
+        .iter()
+        .enumerate()
+        .filter_map(|(i, s)| Some(ModelStep::Operation(i, assignment.get(&s.label)?.clone())))
+        .collect()
+}
