@@ -200,20 +200,15 @@ static void broadcast(dr_module_t *m, uint32_t now)
 #endif
 }
 
-/* The NV record starts with the program's fingerprint (big endian): a module flashed with
- * another program ignores the record the old one left. */
-static void put_fingerprint(uint8_t *rec, uint32_t fingerprint)
+/* The NV record: the program's fingerprint (big endian: a module flashed with another program
+ * ignores the record the old one left), the address, the payload, and the CRC-16 of the bytes
+ * before it (dr_crc16_put, the frames' own code). */
+static void record(const dr_module_t *m, uint8_t *rec)
 {
-    uint8_t i;
-    for (i = 0; i < 4u; i++) {
-        rec[i] = (uint8_t)(fingerprint >> (24u - 8u * i));
-    }
-}
-
-static uint32_t get_fingerprint(const uint8_t *rec)
-{
-    return ((uint32_t)rec[0] << 24) | ((uint32_t)rec[1] << 16) | ((uint32_t)rec[2] << 8) |
-           (uint32_t)rec[3];
+    dr_put_be32(rec, m->program->fingerprint);
+    rec[4] = m->address;
+    (void)dr_shared_encode(&m->shared, rec + 5, PAYLOAD);
+    dr_crc16_put(rec, (uint8_t)(RECORD - 2u));
 }
 
 /* Writes the address and the state twice (copy A, then copy B), so that a reset during a
@@ -222,33 +217,28 @@ static uint32_t get_fingerprint(const uint8_t *rec)
 static void persist(dr_module_t *m)
 {
     uint8_t rec[RECORD];
-    uint16_t crc;
     uint8_t copy;
-    put_fingerprint(rec, m->program->fingerprint);
-    rec[4] = m->address;
-    (void)dr_shared_encode(&m->shared, rec + 5, PAYLOAD);
-    crc = dr_crc16(rec, (uint8_t)(RECORD - 2u));
-    rec[RECORD - 2u] = (uint8_t)(crc >> 8);
-    rec[RECORD - 1u] = (uint8_t)(crc & 0xFFu);
+    record(m, rec);
     for (copy = 0; copy < 2u; copy++) {
         dr_hal_nv_write(m, (uint16_t)(DR_CONF_LATTICE_NV_ADDR + copy * RECORD), rec, RECORD);
     }
 }
 
 /* Joins every valid copy of the persisted state into m->shared and takes the address it
- * records; returns whether there was one. */
+ * records; returns whether there was one. A copy is valid when its CRC matches (the CRC of
+ * the whole record is then 0) and it names this program. */
 static uint8_t restore(dr_module_t *m)
 {
     uint8_t rec[RECORD];
+    uint8_t fingerprint[4];
     dr_shared_t s;
-    uint16_t crc;
     uint8_t copy;
     uint8_t found = 0;
+    dr_put_be32(fingerprint, m->program->fingerprint);
     for (copy = 0; copy < 2u; copy++) {
         dr_hal_nv_read(m, (uint16_t)(DR_CONF_LATTICE_NV_ADDR + copy * RECORD), rec, RECORD);
-        crc = dr_crc16(rec, (uint8_t)(RECORD - 2u));
-        if (get_fingerprint(rec) == m->program->fingerprint &&
-            rec[RECORD - 2u] == (uint8_t)(crc >> 8) && rec[RECORD - 1u] == (uint8_t)(crc & 0xFFu) &&
+        if (dr_crc16(rec, RECORD) == 0u && rec[0] == fingerprint[0] &&
+            rec[1] == fingerprint[1] && rec[2] == fingerprint[2] && rec[3] == fingerprint[3] &&
             dr_shared_decode(&s, rec + 5, PAYLOAD, m->program->n_statements)) {
             dr_shared_join(&m->shared, &s, m->program->n_statements);
             m->address = rec[4];
@@ -418,7 +408,7 @@ static uint16_t next_startable(const dr_module_t *m)
     uint16_t s;
     uint16_t dep;
     uint8_t d;
-    if (m->address >= DR_MANY_ADDRESSES || (p->n_epochs != 0u && sh->epoch >= p->n_epochs)) {
+    if (m->address >= DR_MANY_ADDRESSES || dr_module_finished(m)) {
         return W;
     }
     for (i = 0; i < W; i++) {
