@@ -421,7 +421,7 @@ fn roles(ir: &Ir, robot: &RobotApi) -> String {
 }
 
 fn lattice_tables(ir: &Ir, options: &CompileOptions) -> String {
-    let mut out = String::from("static const uint16_t dr_program_deps[] DR_TABLE = {\n");
+    let mut out = String::from("static const dr_dep_t dr_program_deps[] DR_TABLE = {\n");
     let mut first = Vec::new();
     let mut count = 0usize;
     for s in &ir.statements {
