@@ -111,12 +111,34 @@ static uint8_t tag_ok(const uint8_t *frame, uint8_t len)
 }
 #endif
 
+void dr_put_be32(uint8_t *out, uint32_t value)
+{
+    /* Constant shifts: byte moves on an 8-bit core (a loop over a variable shift is not). */
+    out[0] = (uint8_t)(value >> 24);
+    out[1] = (uint8_t)(value >> 16);
+    out[2] = (uint8_t)(value >> 8);
+    out[3] = (uint8_t)value;
+}
+
+void dr_crc16_put(uint8_t *bytes, uint8_t len)
+{
+    uint16_t crc = dr_crc16(bytes, len);
+    bytes[len] = (uint8_t)(crc >> 8);
+    bytes[len + 1u] = (uint8_t)crc;
+}
+
+/* The identity's bytes of a frame (robot, fingerprint: big endian) at out[0..5]. */
+static void put_identity(uint8_t *out, const dr_identity_t *id)
+{
+    out[0] = (uint8_t)(id->robot >> 8);
+    out[1] = (uint8_t)id->robot;
+    dr_put_be32(out + 2, id->fingerprint);
+}
+
 uint8_t dr_packet_frame(uint8_t *out, uint8_t cap, const dr_identity_t *from, uint8_t kind,
                         const uint8_t *payload, uint8_t payload_len)
 {
     uint16_t total = (uint16_t)(payload_len + DR_PACKET_OVERHEAD);
-    uint8_t body = (uint8_t)(DR_PACKET_HEADER + payload_len);
-    uint16_t crc;
     uint8_t i;
     if (total > cap) {
         return 0;
@@ -126,38 +148,25 @@ uint8_t dr_packet_frame(uint8_t *out, uint8_t cap, const dr_identity_t *from, ui
     }
     out[0] = DR_PACKET_MAGIC;
     out[1] = (uint8_t)total;
-    out[2] = (uint8_t)(from->robot >> 8);
-    out[3] = (uint8_t)(from->robot & 0xFFu);
-    for (i = 0; i < 4u; i++) {
-        out[4u + i] = (uint8_t)(from->fingerprint >> (24u - 8u * i));
-    }
+    put_identity(out + 2, from);
     out[8] = kind;
 #if DR_CONF_PACKET_TAG > 0
-    put_tag(out, body);
+    put_tag(out, (uint8_t)(DR_PACKET_HEADER + payload_len));
 #endif
-    crc = dr_crc16(out, (uint8_t)(total - 2u));
-    out[total - 2u] = (uint8_t)(crc >> 8);
-    out[total - 1u] = (uint8_t)(crc & 0xFFu);
-    (void)body;
+    dr_crc16_put(out, (uint8_t)(total - 2u));
     return (uint8_t)total;
-}
-
-static uint32_t fingerprint_of(const uint8_t *in)
-{
-    return ((uint32_t)in[4] << 24) | ((uint32_t)in[5] << 16) | ((uint32_t)in[6] << 8) |
-           (uint32_t)in[7];
 }
 
 enum dr_packet_result dr_packet_unframe(const uint8_t *in, uint8_t len, const dr_identity_t *self,
                                         uint8_t kind, const uint8_t **payload,
                                         uint8_t *payload_len)
 {
-    uint16_t crc;
-    if (len < DR_PACKET_OVERHEAD || in[0] != DR_PACKET_MAGIC || in[1] != len) {
-        return DR_PACKET_MALFORMED;
-    }
-    crc = dr_crc16(in, (uint8_t)(len - 2u));
-    if (in[len - 2u] != (uint8_t)(crc >> 8) || in[len - 1u] != (uint8_t)(crc & 0xFFu)) {
+    uint8_t expected[6];
+    uint8_t diff;
+    uint8_t i;
+    /* The CRC over the frame with its own CRC appended is 0 exactly when the CRC matches. */
+    if (len < DR_PACKET_OVERHEAD || in[0] != DR_PACKET_MAGIC || in[1] != len ||
+        dr_crc16(in, len) != 0u) {
         return DR_PACKET_MALFORMED;
     }
 #if DR_CONF_PACKET_TAG > 0
@@ -165,8 +174,12 @@ enum dr_packet_result dr_packet_unframe(const uint8_t *in, uint8_t len, const dr
         return DR_PACKET_MALFORMED;
     }
 #endif
-    if (((uint16_t)((uint16_t)in[2] << 8) | in[3]) != self->robot ||
-        fingerprint_of(in) != self->fingerprint || in[8] != kind) {
+    put_identity(expected, self);
+    diff = (uint8_t)(in[8] ^ kind);
+    for (i = 0; i < 6u; i++) {
+        diff = (uint8_t)(diff | (in[2u + i] ^ expected[i]));
+    }
+    if (diff != 0u) {
         return DR_PACKET_FOREIGN;
     }
     *payload = in + DR_PACKET_HEADER;

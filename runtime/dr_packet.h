@@ -51,8 +51,14 @@ extern const uint8_t dr_packet_key[16];
 uint64_t dr_siphash24(const uint8_t key[16], const uint8_t *in, uint8_t len);
 #endif
 
-/* CRC-16/CCITT-FALSE of `len` bytes. Cost: O(len). */
+/* CRC-16/CCITT-FALSE of `len` bytes. Cost: O(len). Bytes followed by their own CRC (big
+ * endian, as dr_crc16_put writes it) have a CRC of 0, and only then: a check is one call. */
 uint16_t dr_crc16(const uint8_t *bytes, uint8_t len);
+/* Writes the CRC of the first `len` bytes at bytes[len] and bytes[len + 1] (big endian). The
+ * frames' and the lattice NV record's checksum: one piece of code for both. */
+void dr_crc16_put(uint8_t *bytes, uint8_t len);
+/* Writes `value` at out[0..3], big endian (the fingerprint in frames and NV records). */
+void dr_put_be32(uint8_t *out, uint32_t value);
 
 /* Writes a frame around `payload` into `out` (capacity `cap`); returns the frame length, or
  * 0 when it does not fit. `payload` may point into `out` at DR_PACKET_HEADER (encoded in

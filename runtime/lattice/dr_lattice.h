@@ -28,6 +28,15 @@
  * with DR_CONF_NV_EITHER does the runtime follow this bit. */
 #define DR_PROGRAM_NO_NV 0x01u
 
+/* A statement number in the dependency table (generated dr_program_deps): one byte when the
+ * program has at most 256 statements (DR_CONF_MAX_STATEMENTS, which the compiler sets), so
+ * the table takes half the flash and each read of it one byte. */
+#if DR_CONF_MAX_STATEMENTS <= 256
+typedef uint8_t dr_dep_t;
+#else
+typedef uint16_t dr_dep_t;
+#endif
+
 /* One statement of the compiled sequence (generated, constant). Statement indices are source
  * order after expansion; `deps` lists the statements that must be complete before this one
  * starts (the previous parallel group, and the same module's previous statement). */
@@ -45,7 +54,7 @@ typedef struct {
     uint32_t fingerprint;              /* packets of another program are foreign */
     uint16_t n_statements;
     const dr_statement_t *statements;
-    const uint16_t *deps;
+    const dr_dep_t *deps;
     uint16_t n_epochs;                 /* runs of the whole sequence before the end; 0: forever */
     uint8_t (*address_of)(struct dr_module *m); /* evaluates the role predicates */
     uint8_t options;                   /* DR_PROGRAM_* bits; 0: the default behaviour */

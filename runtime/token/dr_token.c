@@ -313,8 +313,10 @@ static void receive_ack(dr_module_t *m, uint8_t channel, uint8_t counter)
 
 void dr_module_receive(dr_module_t *m, uint8_t channel, const uint8_t *bytes, uint8_t len)
 {
-    const uint8_t *payload;
-    uint8_t payload_len;
+    /* Set only when the frame is ours; initialised because avr-gcc's link-time optimiser
+     * cannot see that and would warn. */
+    const uint8_t *payload = bytes;
+    uint8_t payload_len = 0u;
     enum dr_packet_result r;
     m->packets_received++;
     r = dr_packet_unframe(bytes, len, &m->identity, DR_PACKET_TOKEN, &payload,

@@ -255,7 +255,7 @@ fn roles(ir: &Ir, robot: &RobotApi) -> String {
 }
 
 fn lattice_tables(ir: &Ir, options: &CompileOptions) -> String {
-    let mut out = String::from("static const uint16_t dr_program_deps[] DR_TABLE = {\n");
+    let mut out = String::from("static const dr_dep_t dr_program_deps[] DR_TABLE = {\n");
     let mut first = Vec::new();
     let mut count = 0usize;
     for s in &ir.statements {
@@ -389,9 +389,11 @@ fn makefile(protocol: Protocol) -> String {
          CC = avr-gcc\n\
          AR = avr-ar\n\
          SIZE = avr-size\n\
-         # -mcall-prologues: functions share one register save/restore (about 200 B less\n\
-         # flash per runtime, a few cycles more per call).\n\
-         CFLAGS = -Os -mcall-prologues -mmcu=$(MCU) $(WARN)\n\
+         # Flash (docs/benchmarks.md, each measured): -mcall-prologues (one shared register\n\
+         # save/restore), -mstrict-X (fewer pointer copies), -mrelax (short calls where they\n\
+         # reach); -flto -ffat-lto-objects: objects usable both ways, and an image linked with\n\
+         # -flto has the runtime and the program optimised as one.\n\
+         CFLAGS = -Os -mcall-prologues -mstrict-X -flto -ffat-lto-objects -mrelax -mmcu=$(MCU) $(WARN)\n\
          ifneq ($(filter-out clean,$(or $(MAKECMDGOALS),all)),)\n\
          ifeq ($(shell command -v $(CC)),)\n\
          $(error $(CC) not found, needed for MCU=$(MCU): install it (Debian or Ubuntu: sudo apt-get install gcc-avr avr-libc), or build for the host without MCU)\n\

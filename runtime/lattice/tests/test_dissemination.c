@@ -9,7 +9,7 @@
 #define ADAPTIVE (DR_CONF_LATTICE_DISSEMINATION == DR_DISSEMINATION_ADAPTIVE)
 
 static dr_statement_t two_st[2];
-static const uint16_t two_deps[] = { 0 };
+static const dr_dep_t two_deps[] = { 0 };
 /* `A; B;`: A on address 0, B (after A) on address 1. */
 static dr_program_t two = { 0x61u, 2u, two_st, two_deps, 1u, sim_address_of, 0u };
 static dr_program_t two_no_nv = { 0x62u, 2u, two_st, two_deps, 1u, sim_address_of,

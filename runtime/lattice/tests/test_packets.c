@@ -10,7 +10,7 @@
 #define N_STMT 12u
 
 static dr_statement_t statements[N_STMT];
-static const uint16_t no_deps[1] = { 0 };
+static const dr_dep_t no_deps[1] = { 0 };
 static const dr_program_t program = { 0x5Au, N_STMT, statements, no_deps, 3u, sim_address_of,
                                       0u };
 

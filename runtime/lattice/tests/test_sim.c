@@ -9,13 +9,13 @@
 
 /* `A & B; C;`  A@0 B@1 C@2 */
 static dr_statement_t p1_st[3];
-static const uint16_t p1_deps[] = { 0, 1 };
+static const dr_dep_t p1_deps[] = { 0, 1 };
 /* `A; B & C; D;`  A@0 B@1 C@2 D@0 (D also depends on A, the same module's previous) */
 static dr_statement_t p2_st[4];
-static const uint16_t p2_deps[] = { 0, 0, 1, 2, 0 };
+static const dr_dep_t p2_deps[] = { 0, 0, 1, 2, 0 };
 /* `A & B & C; D;`  D on C's module */
 static dr_statement_t p3_st[4];
-static const uint16_t p3_deps[] = { 0, 1, 2 };
+static const dr_dep_t p3_deps[] = { 0, 1, 2 };
 
 static dr_program_t p1 = { 0x11u, 3u, p1_st, p1_deps, 1u, sim_address_of, 0u };
 static dr_program_t p2 = { 0x22u, 4u, p2_st, p2_deps, 1u, sim_address_of, 0u };
@@ -42,7 +42,7 @@ static void build_fixed(void)
  * depends on the previous group and on its module's previous statement ---- */
 
 static dr_statement_t g_st[SIM_MAX_STATEMENTS];
-static uint16_t g_deps[SIM_MAX_STATEMENTS * 5u];
+static dr_dep_t g_deps[SIM_MAX_STATEMENTS * 5u];
 static dr_program_t g_prog;
 
 static void generate(uint16_t n, uint8_t modules, uint16_t epochs)
@@ -71,12 +71,12 @@ static void generate(uint16_t n, uint8_t modules, uint16_t epochs)
             address = (uint8_t)(sim_rand() % modules);
             first = nd;
             for (p = prev_start; p < prev_end; p++) {
-                g_deps[nd++] = p;
+                g_deps[nd++] = (dr_dep_t)p;
             }
             if (last_of[address] >= 0 && (uint16_t)last_of[address] >= start) {
-                g_deps[nd++] = (uint16_t)last_of[address];
+                g_deps[nd++] = (dr_dep_t)last_of[address];
             } else if (last_of[address] >= 0 && (uint16_t)last_of[address] < prev_start) {
-                g_deps[nd++] = (uint16_t)last_of[address];
+                g_deps[nd++] = (dr_dep_t)last_of[address];
             }
             sim_statement(&g_st[s], address, s, (uint8_t)(nd - first), first);
             last_of[address] = (int16_t)s;
@@ -361,7 +361,7 @@ static void test_epochs(void)
 static void test_old_epoch_completion(void)
 {
     static dr_statement_t st[2];
-    static const uint16_t deps[] = { 0 };
+    static const dr_dep_t deps[] = { 0 };
     dr_program_t p = { 0x77u, 2u, st, deps, 3u, sim_address_of, 0u };
     static const uint8_t one[] = { 0 };
     uint8_t payload[4u + DR_CONF_WINDOW / 4u];
@@ -431,7 +431,7 @@ static void test_window_too_small(void)
     uint16_t n = 3u * DR_CONF_WINDOW < SIM_MAX_STATEMENTS ? 3u * DR_CONF_WINDOW : SIM_MAX_STATEMENTS;
     for (s = 0; s < n; s++) {
         if (s >= 4u) {
-            g_deps[nd] = (uint16_t)(s - 4u);
+            g_deps[nd] = (dr_dep_t)(s - 4u);
             sim_statement(&g_st[s], (uint8_t)(s % 4u), s, 1, nd);
             nd++;
         } else {
@@ -600,7 +600,7 @@ static void test_no_nv_programs(void)
 static void test_no_nv_rules(void)
 {
     static dr_statement_t st[2];
-    static const uint16_t deps[] = { 0 };
+    static const dr_dep_t deps[] = { 0 };
     static const uint8_t nodes[] = { 0, DR_NO_ADDRESS };
     dr_program_t q = { 0x55u, 2u, st, deps, 1u, sim_address_of, DR_PROGRAM_NO_NV };
     uint32_t t;
@@ -831,7 +831,7 @@ static void test_no_nv_unlatched_neighbour(void)
 static void test_no_nv_limits(void)
 {
     static dr_statement_t st[2];
-    static const uint16_t deps[] = { 0 };
+    static const dr_dep_t deps[] = { 0 };
     static const uint8_t two[] = { 0, 1 };
     dr_program_t q2 = without_nv(&p2);
     static const uint8_t with_relay[] = { 0, DR_NO_ADDRESS };
