@@ -158,7 +158,7 @@ fn build(
             .iter()
             .flat_map(|p| p.statements().into_iter().cloned())
             .collect(),
-        start: prepared.world.configuration(),
+        start: prepared.start.clone(),
     };
     match dynarole_verify::build(&inputs, &options) {
         Ok(built) => Ok(Ok((built, options, scene))),

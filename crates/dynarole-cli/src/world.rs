@@ -29,6 +29,8 @@ pub struct Prepared {
     pub plans: Vec<Plan>,
     pub assignment: Assignment,
     pub world: RobotWorld,
+    /// The configuration the world starts from.
+    pub start: Configuration,
 }
 
 /// Reads a configuration in the data-file JSON format; errors name the file and the field.
@@ -56,6 +58,7 @@ pub fn prepare(
             plans,
             assignment,
             world,
+            start: config,
         }),
     )
 }

@@ -17,8 +17,8 @@ pub use parallel::{
     dependency_graph, parallelise, transitive_reduction, Form, FormKind, Layout, ParalleliseError,
     Parallelised, Request,
 };
-pub use robot_world::{RobotWorld, StepOutcome};
-pub use roles::{assign_modules, Assignment};
+pub use robot_world::{action, RobotWorld, StepOutcome};
+pub use roles::{assign_modules, assign_modules_on, Assignment};
 pub use routes::token_routes;
 pub use run::{replay, Replay};
 pub use topology::{communication_graph, CommGraph};

@@ -15,7 +15,7 @@ use dynarole_core::diagnostic::{has_errors, Diagnostic, DiagnosticKind};
 use dynarole_core::expand::Plan;
 use dynarole_core::format::{format_items, statement as statement_text};
 use dynarole_core::{analyze, parse, Program, RobotRegistry, Span};
-use dynarole_world::{compare, Configuration, Port};
+use dynarole_world::{Port, View};
 use std::collections::BTreeMap;
 use std::fmt::Write;
 
@@ -96,7 +96,7 @@ pub fn parallelise(request: &Request) -> Result<Parallelised, ParalleliseError> 
         request,
         header: header(program),
         texts: statement_texts(program, &statements),
-        expected: input.final_configuration,
+        expected: input.final_world,
         suspicious: suspicious_spans(&input.diagnostics),
         spans: statements.iter().map(|s| s.span).collect(),
         reversible: program
@@ -404,14 +404,12 @@ impl Pair<'_> {
         if !(part_is(robot, self.a, "Connector") && part_is(robot, self.b, "Connector")) {
             return false;
         }
-        let config = world.configuration();
-        let (Some(pa), Some(pb)) = (
-            port(robot, self.a, ma, &config),
-            port(robot, self.b, mb, &config),
-        ) else {
+        let view = world.view();
+        let (Some(pa), Some(pb)) = (port(robot, self.a, ma, view), port(robot, self.b, mb, view))
+        else {
             return false;
         };
-        partner(&config, pa) == Some(pb) || partner(&config, pb) == Some(pa)
+        partner(view, pa) == Some(pb) || partner(view, pb) == Some(pa)
     }
 }
 
@@ -428,16 +426,13 @@ fn port(
     robot: &dynarole_core::RobotApi,
     statement: &ResolvedStatement,
     module: &str,
-    config: &Configuration,
+    view: View,
 ) -> Option<Port> {
     if !part_is(robot, statement, "Connector") {
         return None;
     }
     let connector = u8::try_from(statement.index?).ok()?;
-    let index = match config {
-        Configuration::Atron(c) => c.module_index(module),
-        Configuration::Mtran(c) => c.module_index(module),
-    }?;
+    let index = view.index(module)?;
     Some(Port {
         module: index,
         connector,
@@ -445,11 +440,8 @@ fn port(
 }
 
 /// The port latched to `port`, or else the one it faces.
-fn partner(config: &Configuration, port: Port) -> Option<Port> {
-    match config {
-        Configuration::Atron(c) => c.latched_to(port).or_else(|| c.facing(port)),
-        Configuration::Mtran(c) => c.latched_to(port).or_else(|| c.facing(port)),
-    }
+fn partner(view: View, port: Port) -> Option<Port> {
+    view.latched_to(port).or_else(|| view.facing(port))
 }
 
 /// Writes forms out and checks them on the model, exactly as `check --from` would.
@@ -457,7 +449,7 @@ struct Verifier<'a> {
     request: &'a Request<'a>,
     header: String,
     texts: Vec<String>,
-    expected: Configuration,
+    expected: RobotWorld,
     /// Statements the input's replay already calls suspicious (by input index).
     suspicious: Vec<Span>,
     spans: Vec<Span>,
@@ -597,21 +589,15 @@ impl Verifier<'_> {
             &lookup,
             Direction::Forward,
         )?;
-        if let Err(difference) = compare(&end, &self.expected) {
-            let first = difference
-                .to_string()
-                .lines()
-                .next()
-                .unwrap_or_default()
-                .to_string();
+        if let Some(difference) = end.difference(&self.expected) {
+            let first = difference.lines().next().unwrap_or_default().to_string();
             return Err(Failure::new(format!(
                 "it ends elsewhere than the input ({first})"
             )));
         }
         if self.reversible {
             let backward = program.expand(&reverse_name).unwrap_or_default();
-            let world = RobotWorld::new(end, &program.robot).map_err(Failure::new)?;
-            self.run(&program, &backward, world, &lookup, Direction::Backward)?;
+            self.run(&program, &backward, end, &lookup, Direction::Backward)?;
         }
         Ok(())
     }
@@ -624,7 +610,7 @@ impl Verifier<'_> {
         world: RobotWorld,
         lookup: &Lookup,
         direction: Direction,
-    ) -> Result<Configuration, Failure> {
+    ) -> Result<RobotWorld, Failure> {
         let assignment = self.request.assignment;
         let plans = std::slice::from_ref(plan);
         let result = replay(program, plans, world.clone(), assignment);
@@ -659,7 +645,7 @@ impl Verifier<'_> {
                 ..Failure::new(reason)
             });
         }
-        Ok(result.final_configuration)
+        Ok(result.final_world)
     }
 }
 

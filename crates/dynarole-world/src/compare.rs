@@ -2,10 +2,11 @@
 //! plus a translation), with a readable account of the differences under the best-matching
 //! motion.
 
-use crate::atron::Orientation;
-use crate::config::{Configuration, NamedConnection};
+use crate::atron::lattice::Orientation;
+use crate::common::NamedConnection;
+use crate::configuration::Configuration;
 use crate::geometry::{add, sub, Rotation, Vec3};
-use crate::mtran::MtranOrientation;
+use crate::mtran::module::MtranOrientation;
 use crate::structure::{RobotModule, Structure};
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt;
