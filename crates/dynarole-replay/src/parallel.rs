@@ -14,6 +14,7 @@ use dynarole_core::check::{resolve_statement, ResolvedStatement};
 use dynarole_core::diagnostic::{has_errors, Diagnostic, DiagnosticKind};
 use dynarole_core::expand::Plan;
 use dynarole_core::format::{format_items, statement as statement_text};
+use dynarole_core::robot::OperationKind;
 use dynarole_core::{analyze, parse, Program, RobotRegistry, Span};
 use dynarole_world::{Port, View};
 use std::collections::BTreeMap;
@@ -375,7 +376,7 @@ impl Pair<'_> {
         if !accepted || !same_configuration(&ab, &ba) {
             return true;
         }
-        if !(part_is(robot, self.a, "Joint") && part_is(robot, self.b, "Joint")) {
+        if !(kind(robot, self.a).is_turn() && kind(robot, self.b).is_turn()) {
             // Only two turns have a motion check; the rest is what was just done.
             return false;
         }
@@ -390,7 +391,7 @@ impl Pair<'_> {
     fn turn_footprints(&self, before: &RobotWorld) -> Option<bool> {
         let side_a = self.motion_a?;
         let robot = &self.request.program.robot;
-        if !part_is(robot, self.b, "Joint") {
+        if !kind(robot, self.b).is_turn() {
             return None;
         }
         let b = (self.b, self.modules.1);
@@ -401,7 +402,7 @@ impl Pair<'_> {
     /// Connector operations on the two ends of one latch (made, or facing, before `a`).
     fn same_latch(&self, world: &RobotWorld, ma: &str, mb: &str) -> bool {
         let robot = &self.request.program.robot;
-        if !(part_is(robot, self.a, "Connector") && part_is(robot, self.b, "Connector")) {
+        if !(kind(robot, self.a).is_latch() && kind(robot, self.b).is_latch()) {
             return false;
         }
         let view = world.view();
@@ -413,12 +414,9 @@ impl Pair<'_> {
     }
 }
 
-/// Whether `statement` works on the plugin part named `name` (`Connector`, `Joint`).
-fn part_is(robot: &dynarole_core::RobotApi, statement: &ResolvedStatement, name: &str) -> bool {
-    robot
-        .parts
-        .get(statement.part)
-        .is_some_and(|p| p.name == name)
+/// What `statement`'s operation does, as its plugin declares it.
+fn kind(robot: &dynarole_core::RobotApi, statement: &ResolvedStatement) -> OperationKind {
+    robot.kind(statement.part, statement.operation)
 }
 
 /// The port a connector statement works on.
@@ -428,7 +426,7 @@ fn port(
     module: &str,
     view: View,
 ) -> Option<Port> {
-    if !part_is(robot, statement, "Connector") {
+    if !kind(robot, statement).is_latch() {
         return None;
     }
     let connector = u8::try_from(statement.index?).ok()?;

@@ -3,7 +3,7 @@
 //! M-TRAN, or a robot defined elsewhere).
 
 use dynarole_core::check::ResolvedStatement;
-use dynarole_core::robot::Value;
+use dynarole_core::robot::{OperationKind, Value};
 use dynarole_core::RobotApi;
 use dynarole_world::{Action, Configuration, Outcome, RobotModel, TurnMotion, View};
 
@@ -104,7 +104,8 @@ pub(crate) fn same_configuration(a: &RobotWorld, b: &RobotWorld) -> bool {
 }
 
 /// What `statement` does to the robot: the one place where a plugin operation becomes a model
-/// action. `None` for an operation the models do not know, or arguments that do not fit it.
+/// action, by the kind its plugin declares. `None` for an operation of kind `none`, or
+/// arguments that do not fit the kind (the loader and the checker make that impossible).
 pub fn action(robot: &RobotApi, statement: &ResolvedStatement) -> Option<Action> {
     let index = statement.index.and_then(|i| u8::try_from(i).ok());
     let turn = |from, to, increasing| Action::Turn {
@@ -113,13 +114,14 @@ pub fn action(robot: &RobotApi, statement: &ResolvedStatement) -> Option<Action>
         to,
         increasing,
     };
-    match (names(robot, statement), statement.args.as_slice()) {
-        (("Connector", "extend"), []) => Some(Action::Extend { connector: index? }),
-        (("Connector", "retract"), []) => Some(Action::Retract { connector: index? }),
-        (("Joint", "rotateFromToBy"), [Value::Int(f), Value::Int(t), Value::Bool(d), _]) => {
+    let kind = robot.kind(statement.part, statement.operation);
+    match (kind, statement.args.as_slice()) {
+        (OperationKind::Extend, _) => Some(Action::Extend { connector: index? }),
+        (OperationKind::Retract, _) => Some(Action::Retract { connector: index? }),
+        (OperationKind::Turn, [Value::Int(f), Value::Int(t), Value::Bool(d), ..]) => {
             Some(turn(Some(*f), *t, *d))
         }
-        (("Joint", "rotateToBy"), [Value::Int(t), Value::Bool(d), _]) => Some(turn(None, *t, *d)),
+        (OperationKind::TurnTo, [Value::Int(t), Value::Bool(d), ..]) => Some(turn(None, *t, *d)),
         _ => None,
     }
 }
