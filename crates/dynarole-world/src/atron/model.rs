@@ -5,7 +5,7 @@ use super::config::AtronConfiguration;
 use super::lattice::{is_male, CONNECTOR_COUNT, JOINT_UNITS_PER_TURN, QUARTER_TURN_UNITS};
 use super::world::World;
 use crate::common::Port;
-use crate::compare::compare;
+use crate::compare::model_difference;
 use crate::configuration::Configuration;
 use crate::geometry::to_f64;
 use crate::model::{Action, RobotModel, RobotShape};
@@ -121,17 +121,7 @@ impl RobotModel for World {
     }
 
     fn difference(&self, other: &dyn RobotModel) -> Option<String> {
-        // Exact equality first, on the worlds' own configurations (no copy).
-        if let Some(o) = other.as_any().downcast_ref::<World>() {
-            if o.configuration() == World::configuration(self) {
-                return None;
-            }
-        }
-        let mine = RobotModel::configuration(self)?;
-        let Some(theirs) = other.configuration() else {
-            return Some(format!("the other robot is {}, not ATRON", other.robot()));
-        };
-        compare(&mine, &theirs).err().map(|d| d.to_string())
+        model_difference(self, other)
     }
 
     fn clone_model(&self) -> Box<dyn RobotModel> {

@@ -4,7 +4,7 @@
 use super::module::{is_mtran_male, MtranConfiguration, MtranJoint, MTRAN_CONNECTOR_COUNT};
 use super::world::MtranWorld;
 use crate::common::Port;
-use crate::compare::compare;
+use crate::compare::model_difference;
 use crate::configuration::Configuration;
 use crate::model::{Action, RobotModel, RobotShape};
 use crate::motion::TurnMotion;
@@ -124,17 +124,7 @@ impl RobotModel for MtranWorld {
     }
 
     fn difference(&self, other: &dyn RobotModel) -> Option<String> {
-        // Exact equality first, on the worlds' own configurations (no copy).
-        if let Some(o) = other.as_any().downcast_ref::<MtranWorld>() {
-            if o.configuration() == MtranWorld::configuration(self) {
-                return None;
-            }
-        }
-        let mine = RobotModel::configuration(self)?;
-        let Some(theirs) = other.configuration() else {
-            return Some(format!("the other robot is {}, not M-TRAN", other.robot()));
-        };
-        compare(&mine, &theirs).err().map(|d| d.to_string())
+        model_difference(self, other)
     }
 
     fn clone_model(&self) -> Box<dyn RobotModel> {
