@@ -131,7 +131,7 @@ pub fn build(
     };
     let scene = Scene {
         statements: prepared.statements(),
-        start: prepared.world.configuration(),
+        start: prepared.start.clone(),
     };
     match dynarole_verify::build(&inputs, &options) {
         Ok(built) => Ok(Ok((built, options, scene))),

@@ -48,14 +48,18 @@ pub fn run(args: &ReplayArgs) -> Result<ExitCode, Failure> {
             result.n_rejected,
             result.diagnostics.len() - result.n_rejected
         );
-        print_configuration(&result.final_configuration);
+        // A configuration file's robot always has the file format.
+        let final_configuration = result.final_world.configuration().ok_or_else(|| {
+            Failure::Internal("the robot model has no configuration format".into())
+        })?;
+        print_configuration(&final_configuration);
         if let Some(out) = args.out {
-            std::fs::write(out, result.final_configuration.to_json_string())
+            std::fs::write(out, final_configuration.to_json_string())
                 .map_err(|e| Failure::Input(format!("cannot write {}: {e}", out.display())))?;
             println!("final configuration written to {}", out.display());
         }
         let matches = match args.expect {
-            Some(path) => expect(&result.final_configuration, path)?,
+            Some(path) => expect(&final_configuration, path)?,
             None => true,
         };
         Ok(ExitCode::from(u8::from(result.n_rejected > 0 || !matches)))
@@ -72,9 +76,9 @@ fn record(
 ) -> Result<(), Failure> {
     let statements = prepared.statements();
     let steps = dynarole_sim::replay_steps(&statements, &prepared.assignment);
-    let start = prepared.world.configuration();
+    let start = prepared.start.clone();
     let title = format!("replay of {} ({display})", prepared.names.join(" + "));
-    let recording = dynarole_sim::ModelRun {
+    let recording = dynarole_sim::ModelRecording {
         kind: "replay",
         title: &title,
         robot: &program.robot,

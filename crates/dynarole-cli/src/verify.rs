@@ -127,7 +127,7 @@ fn record(
     let title = format!("counterexample of {} ({})", built.name, request.display);
     let mut notes = vec![format!("VIOLATED: {}", broken.join(", "))];
     notes.extend(cx.text.lines().map(str::to_string));
-    let recording = dynarole_sim::ModelRun {
+    let recording = dynarole_sim::ModelRecording {
         kind: "counterexample",
         title: &title,
         robot: &request.program.robot,

@@ -139,9 +139,9 @@ fn video(_: &Recording, _: &Path, _: &ViewArgs) -> Result<(), Failure> {
 }
 
 /// A model run that could not be recorded: bad input, or a step the caller got wrong.
-pub fn model_failure(error: dynarole_sim::ModelRunError) -> Failure {
+pub fn model_failure(error: dynarole_sim::ModelRecordingError) -> Failure {
     match error {
-        dynarole_sim::ModelRunError::Input(m) => Failure::Input(m),
-        dynarole_sim::ModelRunError::Internal(m) => Failure::Internal(m),
+        dynarole_sim::ModelRecordingError::Input(m) => Failure::Input(m),
+        dynarole_sim::ModelRecordingError::Internal(m) => Failure::Internal(m),
     }
 }

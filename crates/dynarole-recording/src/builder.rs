@@ -36,6 +36,8 @@ pub struct Builder<'r> {
     robot: &'r RobotApi,
     statements: &'r [ResolvedStatement],
     world: RobotWorld,
+    /// The configuration the world started from.
+    start: Configuration,
     recording: Recording,
     /// Per (event, link) of the faults that strike every packet, the time of its last drop.
     last_link_drop: Vec<(String, f64)>,
@@ -105,6 +107,7 @@ impl<'r> Builder<'r> {
             robot,
             statements,
             world,
+            start: start.clone(),
             recording,
             last_link_drop: Vec::new(),
             powered_once: vec![false; n],
@@ -218,7 +221,11 @@ impl<'r> Builder<'r> {
 
     /// The world's configuration as the recording has replayed it so far.
     pub fn configuration(&self) -> Configuration {
-        self.world.configuration()
+        // The world was made from a configuration file (`new`), so it always has one; the
+        // start stands in only to keep this total.
+        self.world
+            .configuration()
+            .unwrap_or_else(|| self.start.clone())
     }
 
     fn module_name(&self, m: usize) -> String {
@@ -276,14 +283,14 @@ impl<'r> Builder<'r> {
         name: &str,
         motion: &TurnMotion,
     ) -> Option<u8> {
-        let before = poses(&self.world.configuration());
+        let before = poses(&self.configuration());
         let own = motion.moving.iter().find(|(n, _)| n == name);
         if let (Some((_, centre)), Some(pose)) = (own, before.get(m)) {
             return Some(u8::from(pose.halves[1].centre == *centre));
         }
         let mut after = self.world.clone();
         after.apply(self.robot, statement, name).ok()?;
-        let moved = poses(&after.configuration());
+        let moved = poses(&after.configuration()?);
         Some(match (before.get(m), moved.get(m)) {
             (Some(b), Some(a)) if b.connectors.first() != a.connectors.first() => 0,
             _ => 1,
@@ -323,12 +330,12 @@ impl<'r> Builder<'r> {
         let Some(statement) = self.statements.get(s) else {
             return (Vec::new(), Vec::new(), Vec::new());
         };
-        let before = self.world.configuration();
+        let before = self.configuration();
         let name = self.module_name(m);
         if self.world.apply(self.robot, statement, &name).is_err() {
             return (Vec::new(), Vec::new(), Vec::new());
         }
-        let after = self.world.configuration();
+        let after = self.configuration();
         self.changed = true;
         let (old, new) = (latches(&before), latches(&after));
         let latched = new.iter().filter(|l| !old.contains(l)).copied().collect();
@@ -360,7 +367,7 @@ impl<'r> Builder<'r> {
                 continue;
             }
             self.changed = false;
-            let config = self.world.configuration();
+            let config = self.configuration();
             self.recording.keyframes.push(Keyframe {
                 time_ms: next,
                 poses: poses(&config),

@@ -2,7 +2,7 @@
 //! hand them to the recording of a model run.
 
 /// One step of a run on the model (a replay, or a model checker's counterexample), with
-/// module names as in the configuration; `dynarole_sim::ModelRun` turns them into a recording.
+/// module names as in the configuration; `dynarole_sim::ModelRecording` turns them into a recording.
 #[derive(Clone, Debug, PartialEq)]
 pub enum ModelStep {
     /// The module does the statement's operation, start to end (replay).

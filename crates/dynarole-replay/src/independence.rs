@@ -3,13 +3,13 @@
 //! through each other.
 
 use crate::parallel::footprint::MovingSide;
-use crate::robot_world::{same_configuration, RobotWorld};
+use crate::robot_world::RobotWorld;
 use crate::roles::Assignment;
 use dynarole_core::check::ResolvedStatement;
 use dynarole_core::diagnostic::{Diagnostic, DiagnosticKind};
 use dynarole_core::expand::{Plan, PlanElement, PlanKind};
 use dynarole_core::Program;
-use dynarole_world::{compare, TurnMotion};
+use dynarole_world::TurnMotion;
 
 /// Warnings for every pair of elements of a parallel group that are not independent, walking
 /// the plans from the world's configuration. Pairs of ATRON turns that their motions prove
@@ -144,16 +144,8 @@ impl Checker<'_> {
             // Refused in both orders: the replay reports the step itself.
             (Err(_), Err(_)) => return None,
         }
-        if same_configuration(&ab, &ba) {
-            return self.simultaneous_turns(a, b, world);
-        }
-        if let Err(difference) = compare(&ab.configuration(), &ba.configuration()) {
-            let first_line = difference
-                .to_string()
-                .lines()
-                .next()
-                .unwrap_or_default()
-                .to_string();
+        if let Some(difference) = ab.difference(&ba) {
+            let first_line = difference.lines().next().unwrap_or_default().to_string();
             return Some(format!(
                 "the two orders end in different configurations ({first_line})"
             ));

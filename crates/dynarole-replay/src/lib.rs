@@ -19,8 +19,8 @@ pub use parallel::{
     Parallelised, Request,
 };
 pub use prepare::{prepare, PrepareError, Prepared};
-pub use robot_world::{RobotWorld, StepOutcome};
-pub use roles::{assign_modules, Assignment};
+pub use robot_world::{action, RobotWorld, StepOutcome};
+pub use roles::{assign_modules, assign_modules_on, Assignment};
 pub use routes::token_routes;
 pub use run::{replay, Replay};
 pub use topology::{communication_graph, CommGraph};

@@ -14,8 +14,9 @@ use dynarole_core::check::{resolve_statement, ResolvedStatement};
 use dynarole_core::diagnostic::{has_errors, Diagnostic, DiagnosticKind};
 use dynarole_core::expand::Plan;
 use dynarole_core::format::{format_items, statement as statement_text};
+use dynarole_core::robot::OperationKind;
 use dynarole_core::{driver, parse, Program, Span};
-use dynarole_world::{compare, Configuration, Port};
+use dynarole_world::{Port, View};
 use std::collections::BTreeMap;
 use std::fmt::Write;
 
@@ -96,7 +97,7 @@ pub fn parallelise(request: &Request) -> Result<Parallelised, ParalleliseError> 
         request,
         header: header(program),
         texts: statement_texts(program, &statements),
-        expected: input.final_configuration,
+        expected: input.final_world,
         suspicious: suspicious_spans(&input.diagnostics),
         spans: statements.iter().map(|s| s.span).collect(),
         reversible: program
@@ -375,7 +376,7 @@ impl Pair<'_> {
         if !accepted || !same_configuration(&ab, &ba) {
             return true;
         }
-        if !(part_is(robot, self.a, "Joint") && part_is(robot, self.b, "Joint")) {
+        if !(kind(robot, self.a).is_turn() && kind(robot, self.b).is_turn()) {
             // Only two turns have a motion check; the rest is what was just done.
             return false;
         }
@@ -390,7 +391,7 @@ impl Pair<'_> {
     fn turn_footprints(&self, before: &RobotWorld) -> Option<bool> {
         let side_a = self.motion_a?;
         let robot = &self.request.program.robot;
-        if !part_is(robot, self.b, "Joint") {
+        if !kind(robot, self.b).is_turn() {
             return None;
         }
         let b = (self.b, self.modules.1);
@@ -401,26 +402,21 @@ impl Pair<'_> {
     /// Connector operations on the two ends of one latch (made, or facing, before `a`).
     fn same_latch(&self, world: &RobotWorld, ma: &str, mb: &str) -> bool {
         let robot = &self.request.program.robot;
-        if !(part_is(robot, self.a, "Connector") && part_is(robot, self.b, "Connector")) {
+        if !(kind(robot, self.a).is_latch() && kind(robot, self.b).is_latch()) {
             return false;
         }
-        let config = world.configuration();
-        let (Some(pa), Some(pb)) = (
-            port(robot, self.a, ma, &config),
-            port(robot, self.b, mb, &config),
-        ) else {
+        let view = world.view();
+        let (Some(pa), Some(pb)) = (port(robot, self.a, ma, view), port(robot, self.b, mb, view))
+        else {
             return false;
         };
-        partner(&config, pa) == Some(pb) || partner(&config, pb) == Some(pa)
+        partner(view, pa) == Some(pb) || partner(view, pb) == Some(pa)
     }
 }
 
-/// Whether `statement` works on the plugin part named `name` (`Connector`, `Joint`).
-fn part_is(robot: &dynarole_core::RobotApi, statement: &ResolvedStatement, name: &str) -> bool {
-    robot
-        .parts
-        .get(statement.part)
-        .is_some_and(|p| p.name == name)
+/// What `statement`'s operation does, as its plugin declares it.
+fn kind(robot: &dynarole_core::RobotApi, statement: &ResolvedStatement) -> OperationKind {
+    robot.kind(statement.part, statement.operation)
 }
 
 /// The port a connector statement works on.
@@ -428,16 +424,13 @@ fn port(
     robot: &dynarole_core::RobotApi,
     statement: &ResolvedStatement,
     module: &str,
-    config: &Configuration,
+    view: View,
 ) -> Option<Port> {
-    if !part_is(robot, statement, "Connector") {
+    if !kind(robot, statement).is_latch() {
         return None;
     }
     let connector = u8::try_from(statement.index?).ok()?;
-    let index = match config {
-        Configuration::Atron(c) => c.module_index(module),
-        Configuration::Mtran(c) => c.module_index(module),
-    }?;
+    let index = view.index(module)?;
     Some(Port {
         module: index,
         connector,
@@ -445,11 +438,8 @@ fn port(
 }
 
 /// The port latched to `port`, or else the one it faces.
-fn partner(config: &Configuration, port: Port) -> Option<Port> {
-    match config {
-        Configuration::Atron(c) => c.latched_to(port).or_else(|| c.facing(port)),
-        Configuration::Mtran(c) => c.latched_to(port).or_else(|| c.facing(port)),
-    }
+fn partner(view: View, port: Port) -> Option<Port> {
+    view.latched_to(port).or_else(|| view.facing(port))
 }
 
 /// Writes forms out and checks them on the model, exactly as `check --from` would.
@@ -457,7 +447,7 @@ struct Verifier<'a> {
     request: &'a Request<'a>,
     header: String,
     texts: Vec<String>,
-    expected: Configuration,
+    expected: RobotWorld,
     /// Statements the input's replay already calls suspicious (by input index).
     suspicious: Vec<Span>,
     spans: Vec<Span>,
@@ -592,21 +582,15 @@ impl Verifier<'_> {
             &lookup,
             Direction::Forward,
         )?;
-        if let Err(difference) = compare(&end, &self.expected) {
-            let first = difference
-                .to_string()
-                .lines()
-                .next()
-                .unwrap_or_default()
-                .to_string();
+        if let Some(difference) = end.difference(&self.expected) {
+            let first = difference.lines().next().unwrap_or_default().to_string();
             return Err(Failure::new(format!(
                 "it ends elsewhere than the input ({first})"
             )));
         }
         if self.reversible {
             let backward = program.expand(&reverse_name).unwrap_or_default();
-            let world = RobotWorld::new(end, &program.robot).map_err(Failure::new)?;
-            self.run(&program, &backward, world, &lookup, Direction::Backward)?;
+            self.run(&program, &backward, end, &lookup, Direction::Backward)?;
         }
         Ok(())
     }
@@ -619,7 +603,7 @@ impl Verifier<'_> {
         world: RobotWorld,
         lookup: &Lookup,
         direction: Direction,
-    ) -> Result<Configuration, Failure> {
+    ) -> Result<RobotWorld, Failure> {
         let assignment = self.request.assignment;
         let plans = std::slice::from_ref(plan);
         let result = replay(program, plans, world.clone(), assignment);
@@ -654,7 +638,7 @@ impl Verifier<'_> {
                 ..Failure::new(reason)
             });
         }
-        Ok(result.final_configuration)
+        Ok(result.final_world)
     }
 }
 

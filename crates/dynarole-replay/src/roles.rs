@@ -18,13 +18,22 @@ pub fn assign_modules(
     plans: &[Plan],
     config: &Configuration,
 ) -> Result<Assignment, Vec<Diagnostic>> {
+    assign_modules_on(program, plans, View::of(config))
+}
+
+/// Resolves every label used by `plans` on any robot's configuration (`RobotWorld::view`).
+pub fn assign_modules_on(
+    program: &Program,
+    plans: &[Plan],
+    view: View<'_>,
+) -> Result<Assignment, Vec<Diagnostic>> {
     let mut assignment = Assignment::new();
     let mut errors = Vec::new();
     for statement in plans.iter().flat_map(Plan::statements) {
         if assignment.contains_key(&statement.label) {
             continue;
         }
-        match resolve(program, &statement.label, config) {
+        match resolve(program, &statement.label, view) {
             Ok(name) => {
                 assignment.insert(statement.label.clone(), name);
             }
@@ -42,12 +51,7 @@ pub fn assign_modules(
     }
 }
 
-fn resolve(
-    program: &Program,
-    label: &Label,
-    config: &Configuration,
-) -> Result<String, DiagnosticKind> {
-    let view = View::of(config);
+fn resolve(program: &Program, label: &Label, view: View<'_>) -> Result<String, DiagnosticKind> {
     match label {
         Label::Module(id) => view
             .index_by_id(*id)

@@ -5,12 +5,12 @@ use crate::roles::Assignment;
 use dynarole_core::diagnostic::{Diagnostic, DiagnosticKind};
 use dynarole_core::expand::{Plan, PlanKind};
 use dynarole_core::Program;
-use dynarole_world::Configuration;
 
-/// The end of a replay: the final configuration and every refused or suspicious step.
+/// The end of a replay: the robot as it ends and every refused or suspicious step.
 #[derive(Clone, Debug)]
 pub struct Replay {
-    pub final_configuration: Configuration,
+    /// The robot after the last step (`final_world.configuration()` in the file format).
+    pub final_world: RobotWorld,
     pub diagnostics: Vec<Diagnostic>,
     pub n_statements: usize,
     pub n_rejected: usize,
@@ -26,17 +26,24 @@ pub fn replay(
     mut world: RobotWorld,
     assignment: &Assignment,
 ) -> Replay {
-    let mut report = Replay {
-        final_configuration: world.configuration(),
-        diagnostics: Vec::new(),
-        n_statements: 0,
-        n_rejected: 0,
-    };
+    let mut steps = Steps::default();
     for plan in plans {
-        run_plan(program, plan, &mut world, assignment, &mut report);
+        run_plan(program, plan, &mut world, assignment, &mut steps);
     }
-    report.final_configuration = world.configuration();
-    report
+    Replay {
+        final_world: world,
+        diagnostics: steps.diagnostics,
+        n_statements: steps.n_statements,
+        n_rejected: steps.n_rejected,
+    }
+}
+
+/// What the steps of a replay found so far.
+#[derive(Default)]
+struct Steps {
+    diagnostics: Vec<Diagnostic>,
+    n_statements: usize,
+    n_rejected: usize,
 }
 
 fn run_plan(
@@ -44,7 +51,7 @@ fn run_plan(
     plan: &Plan,
     world: &mut RobotWorld,
     assignment: &Assignment,
-    report: &mut Replay,
+    report: &mut Steps,
 ) {
     for element in &plan.elements {
         match &element.kind {

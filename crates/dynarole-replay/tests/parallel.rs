@@ -72,12 +72,14 @@ fn check_written(found: &Parallelised, text: &str, config: &str) -> Configuratio
     let warnings = check_independence(&program, &forward, world, &assignment);
     assert!(warnings.is_empty(), "{source}\n{warnings:?}");
     let back = vec![program.expand("back").expect("back")];
-    let end = RobotWorld::new(done.final_configuration.clone(), &program.robot).expect("world");
+    let end = done.final_world.clone();
     let undone = replay(&program, &back, end.clone(), &assignment);
     assert_eq!(undone.n_rejected, 0, "{source}\n{:?}", undone.diagnostics);
     let warnings = check_independence(&program, &back, end, &assignment);
     assert!(warnings.is_empty(), "reverse of\n{source}\n{warnings:?}");
-    done.final_configuration
+    done.final_world
+        .configuration()
+        .expect("a file-format robot")
 }
 
 /// The final configuration of `sequence` replayed as written.
@@ -89,7 +91,10 @@ fn replayed(source: &str, sequence: &str, config: &str) -> Configuration {
     let plans = vec![program.expand(sequence).expect("sequence")];
     let assignment = assign_modules(&program, &plans, &config).expect("labels");
     let world = RobotWorld::new(config, &program.robot).expect("world");
-    replay(&program, &plans, world, &assignment).final_configuration
+    replay(&program, &plans, world, &assignment)
+        .final_world
+        .configuration()
+        .expect("a file-format robot")
 }
 
 /// The group (top-level element) each statement is in.

@@ -16,7 +16,7 @@ mod engine;
 mod estimate;
 mod ffi;
 mod firmware;
-mod model_run;
+mod model_recording;
 mod network;
 mod ops;
 mod queue;
@@ -31,7 +31,7 @@ pub use build::cache_root;
 pub use critical::CriticalPath;
 pub use estimate::{form_makespan, makespan, shortest};
 pub use firmware::{FirmwareReport, FirmwareSource, ModuleFirmware};
-pub use model_run::{replay_steps, ModelRun, ModelRunError};
+pub use model_recording::{replay_steps, ModelRecording, ModelRecordingError};
 pub use record::Recorded;
 pub use report::{Counters, ModuleReport, Refusal, Report, Violation};
 pub use scenario::{
@@ -45,7 +45,7 @@ use dynarole_core::diagnostic::Diagnostic;
 use dynarole_core::expand::Plan;
 use dynarole_core::Program;
 use dynarole_replay::RobotWorld;
-use dynarole_world::{compare, Configuration};
+use dynarole_world::{Configuration, RobotModel};
 use sequence::Sequence;
 use state::State;
 use std::cell::RefCell;
@@ -80,6 +80,18 @@ impl std::error::Error for SimError {}
 pub struct Run<'a> {
     pub start: &'a Configuration,
     pub expect: Option<&'a Configuration>,
+    pub scenario: &'a Scenario,
+    pub seed: u64,
+    /// Keep the event trace (`Report::trace`).
+    pub trace: bool,
+}
+
+/// One run on robot models rather than configuration files: for a robot that has no file
+/// format (one defined outside the built-in ones), or a start built in memory.
+#[derive(Clone, Copy, Debug)]
+pub struct ModelRun<'a> {
+    pub start: &'a dyn RobotModel,
+    pub expect: Option<&'a dyn RobotModel>,
     pub scenario: &'a Scenario,
     pub seed: u64,
     /// Keep the event trace (`Report::trace`).
@@ -184,7 +196,22 @@ impl Simulator {
 
     /// One run: deterministic in the inputs and the seed.
     pub fn run(&self, run: &Run) -> Result<Report, SimError> {
-        let world = self.world_for(run)?;
+        // Built here first so that a configuration of another robot is refused in its terms.
+        let start =
+            RobotWorld::new(run.start.clone(), &self.sequence.robot).map_err(SimError::Input)?;
+        let expect = run.expect.map(|c| c.clone().into_model());
+        self.run_model(&ModelRun {
+            start: start.model(),
+            expect: expect.as_deref(),
+            scenario: run.scenario,
+            seed: run.seed,
+            trace: run.trace,
+        })
+    }
+
+    /// One run from a robot model: deterministic in the inputs and the seed.
+    pub fn run_model(&self, run: &ModelRun) -> Result<Report, SimError> {
+        let world = self.world_for_model(run)?;
         let preset = run.scenario.network.preset;
         let library = self.library(preset)?;
         let foreign_frames = if run.scenario.foreign.is_empty() {
@@ -201,7 +228,7 @@ impl Simulator {
         );
         state.foreign_frames = foreign_frames;
         let finished = engine::run(library.entry, state).map_err(SimError::Build)?;
-        Ok(self.report(run, finished))
+        Ok(self.report_against(run.expect, run.scenario, run.seed, finished))
     }
 
     /// The second robot of `Scenario::foreign`: the same program from the same start, run
@@ -211,21 +238,32 @@ impl Simulator {
     fn world_for(&self, run: &Run) -> Result<RobotWorld, SimError> {
         let world =
             RobotWorld::new(run.start.clone(), &self.sequence.robot).map_err(SimError::Input)?;
-        run.scenario
+        Self::checked(world, run.scenario)
+    }
+
+    /// The start model's world, once the scenario is checked against it.
+    fn world_for_model(&self, run: &ModelRun) -> Result<RobotWorld, SimError> {
+        let world = RobotWorld::from_model(run.start.clone_model(), &self.sequence.robot)
+            .map_err(SimError::Input)?;
+        Self::checked(world, run.scenario)
+    }
+
+    fn checked(world: RobotWorld, scenario: &Scenario) -> Result<RobotWorld, SimError> {
+        scenario
             .check()
             .map_err(|e| SimError::Input(e.to_string()))?;
-        Self::check_scenario_on(&world, run.scenario)
+        Self::check_scenario_on(&world, scenario)
             .map_err(|e| SimError::Input(format!("scenario: {e}")))?;
         Ok(world)
     }
 
     fn other_robots_frames(
         &self,
-        run: &Run,
+        run: &ModelRun,
         entry: build::Entry,
     ) -> Result<Vec<Option<Vec<u8>>>, SimError> {
-        let world =
-            RobotWorld::new(run.start.clone(), &self.sequence.robot).map_err(SimError::Input)?;
+        let world = RobotWorld::from_model(run.start.clone_model(), &self.sequence.robot)
+            .map_err(SimError::Input)?;
         let scenario = Scenario {
             timeout_ms: run.scenario.timeout_ms,
             network: Network {
@@ -241,17 +279,31 @@ impl Simulator {
         Ok(finished.state.last_frames.unwrap_or_default())
     }
 
+    /// The report of a run from a configuration file.
     fn report(&self, run: &Run, finished: engine::Finished) -> Report {
+        let expect = run.expect.map(|c| c.clone().into_model());
+        self.report_against(expect.as_deref(), run.scenario, run.seed, finished)
+    }
+
+    /// The report of a finished run, its end compared with `expect`; the trace is kept when
+    /// the run kept one.
+    fn report_against(
+        &self,
+        expect: Option<&dyn RobotModel>,
+        scenario: &Scenario,
+        seed: u64,
+        finished: engine::Finished,
+    ) -> Report {
         let engine::Finished {
             mut state,
             addresses,
         } = finished;
         let ms = |t: u64| t as f64 / 1000.0;
-        let final_configuration = state.world.configuration();
-        let (matches, difference) = match run.expect {
-            Some(expected) => match compare(&final_configuration, expected) {
-                Ok(()) => (Some(true), None),
-                Err(d) => (Some(false), Some(d.to_string())),
+        let traced = state.trace.is_some();
+        let (matches, difference) = match expect {
+            Some(expected) => match state.world.model().difference(expected) {
+                None => (Some(true), None),
+                Some(d) => (Some(false), Some(d)),
             },
             None => (None, None),
         };
@@ -281,7 +333,7 @@ impl Simulator {
         let mut report = Report {
             success: false,
             failures: Vec::new(),
-            seed: run.seed,
+            seed,
             protocol: self.protocol.name().into(),
             preset: state.preset.name().into(),
             completion_ms: state.first_finished.map(ms),
@@ -295,15 +347,22 @@ impl Simulator {
             modules,
             configuration_matches: matches,
             difference,
-            final_configuration: serde_json::from_str(&final_configuration.to_json_string())
-                .unwrap_or(serde_json::Value::Null),
+            final_configuration: final_configuration_json(&state.world),
             trace: state.trace.take(),
-            recorded: run.trace.then(|| std::mem::take(&mut state.recorded)),
+            recorded: traced.then(|| std::mem::take(&mut state.recorded)),
         };
-        report.failures = failures(&report, run.scenario.timeout_ms);
+        report.failures = failures(&report, scenario.timeout_ms);
         report.success = report.failures.is_empty();
         report
     }
+}
+
+/// The final configuration in the file format, `null` for a robot that has none.
+fn final_configuration_json(world: &RobotWorld) -> serde_json::Value {
+    world
+        .configuration()
+        .and_then(|c| serde_json::from_str(&c.to_json_string()).ok())
+        .unwrap_or(serde_json::Value::Null)
 }
 
 fn failures(report: &Report, timeout_ms: u64) -> Vec<String> {

@@ -5,8 +5,7 @@
 use crate::report::{Refusal, Violation};
 use crate::sequence::OpKind;
 use crate::state::{uniform, Attempt, Event, State};
-use dynarole_replay::RobotWorld;
-use dynarole_world::View;
+use dynarole_world::Action;
 
 /// How a call of `dr_hal_op_start` relates to what already happened to its statement.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -251,14 +250,7 @@ impl State {
             // A turn to the angle the joint already has (re-issued after it completed, or
             // written with a `from` that is not the joint's angle) moves nothing.
             OpKind::Turn if self.already_there(m, s) => 0,
-            OpKind::Turn => {
-                let view = self.view();
-                let current = view.joint(m, 0).unwrap_or(0);
-                let quarters = self
-                    .seq
-                    .quarters(s, current, matches!(view, View::Atron(_)));
-                timing.turn_ms(quarters)
-            }
+            OpKind::Turn => timing.turn_ms(self.quarter_turns(m, s)),
             OpKind::Other => 0,
         }
     }
@@ -364,12 +356,26 @@ impl State {
         if self.seq.kinds[s] != OpKind::Turn {
             return false;
         }
-        let joint = match &self.world {
-            RobotWorld::Atron(_) => 0,
-            RobotWorld::Mtran(_) => self.seq.ir.statements[s].index,
+        let Some(Action::Turn { joint, to, .. }) = self.seq.actions[s] else {
+            return false;
         };
-        let current = self.view().joint(m, joint);
-        current.is_some() && current == self.seq.turn_target(s)
+        self.view().joint(m, joint) == Some(to)
+    }
+
+    /// Quarter turns statement `s`'s turn makes from module `m`'s joint angle now.
+    fn quarter_turns(&self, m: usize, s: usize) -> u64 {
+        let Some(Action::Turn {
+            joint,
+            from,
+            to,
+            increasing,
+        }) = self.seq.actions[s]
+        else {
+            return 0;
+        };
+        let current = self.view().joint(m, joint).unwrap_or(0);
+        let model = self.world.model();
+        model.quarter_turns(from.unwrap_or(current), to, increasing)
     }
 
     /// The module lost power: its operations stop where they are and take no effect.

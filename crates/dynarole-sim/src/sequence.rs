@@ -5,8 +5,8 @@
 
 use dynarole_core::check::ResolvedStatement;
 use dynarole_core::lower::Ir;
-use dynarole_core::robot::Value;
 use dynarole_core::RobotApi;
+use dynarole_world::Action;
 
 /// The physical kind of an operation (for its duration and the links it breaks).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -17,12 +17,25 @@ pub enum OpKind {
     Other,
 }
 
+impl OpKind {
+    fn of(action: Option<Action>) -> OpKind {
+        match action {
+            Some(Action::Extend { .. }) => OpKind::Extend,
+            Some(Action::Retract { .. }) => OpKind::Retract,
+            Some(Action::Turn { .. }) => OpKind::Turn,
+            None => OpKind::Other,
+        }
+    }
+}
+
 /// The compiled sequence, as the simulator's checks and world need it.
 #[derive(Clone, Debug)]
 pub struct Sequence {
     pub robot: RobotApi,
     pub ir: Ir,
     pub resolved: Vec<ResolvedStatement>,
+    /// What each statement does to the robot (`dynarole_replay::action`).
+    pub actions: Vec<Option<Action>>,
     pub kinds: Vec<OpKind>,
     /// For each statement, every statement that depends on it directly or transitively.
     pub dependents: Vec<Vec<usize>>,
@@ -30,19 +43,17 @@ pub struct Sequence {
 
 impl Sequence {
     pub fn new(robot: RobotApi, ir: Ir, resolved: Vec<ResolvedStatement>) -> Sequence {
-        let kinds = ir
-            .statements
+        let actions: Vec<Option<Action>> = resolved
             .iter()
-            .map(|s| match ir.operations.get(usize::from(s.op)) {
-                Some((part, op)) => kind(part, op),
-                None => OpKind::Other,
-            })
+            .map(|s| dynarole_replay::action(&robot, s))
             .collect();
+        let kinds = actions.iter().map(|a| OpKind::of(*a)).collect();
         let dependents = ir.dependents();
         Sequence {
             robot,
             ir,
             resolved,
+            actions,
             kinds,
             dependents,
         }
@@ -69,33 +80,28 @@ impl Sequence {
             && args.iter().enumerate().all(|(k, a)| *a == padded(k))
     }
 
-    /// The angle a turn ends at (plugin units), for the "already there" rule.
+    /// The angle a turn ends at (plugin units).
     pub fn turn_target(&self, s: usize) -> Option<i64> {
-        let st = self.resolved.get(s)?;
-        let name = self.op_name(s);
-        let at = match name {
-            "rotateFromToBy" => 1,
-            "rotateToBy" => 0,
-            _ => return None,
-        };
-        match st.args.get(at) {
-            Some(Value::Int(v)) => Some(*v),
+        match self.actions.get(s)? {
+            Some(Action::Turn { to, .. }) => Some(*to),
             _ => None,
         }
     }
 
     /// Quarter turns a turn makes from joint angle `current` (ATRON units of 1/432 turn,
-    /// M-TRAN degrees).
+    /// wrapping; M-TRAN degrees), for the critical path, which has no robot model to ask.
     pub fn quarters(&self, s: usize, current: i64, atron: bool) -> u64 {
-        let Some(st) = self.resolved.get(s) else {
+        let Some(Some(Action::Turn {
+            from,
+            to,
+            increasing,
+            ..
+        })) = self.actions.get(s).copied()
+        else {
             return 0;
         };
         let (full, quarter) = if atron { (432, 108) } else { (360, 90) };
-        let (from, to, increasing) = match (self.op_name(s), st.args.as_slice()) {
-            ("rotateFromToBy", [Value::Int(f), Value::Int(t), Value::Bool(d), ..]) => (*f, *t, *d),
-            ("rotateToBy", [Value::Int(t), Value::Bool(d), ..]) => (current, *t, *d),
-            _ => return 0,
-        };
+        let from = from.unwrap_or(current);
         let delta = if !atron {
             (to - from).abs()
         } else if increasing {
@@ -104,22 +110,5 @@ impl Sequence {
             (from - to).rem_euclid(full)
         };
         u64::try_from((delta + quarter - 1) / quarter).unwrap_or(0)
-    }
-
-    fn op_name(&self, s: usize) -> &str {
-        self.ir
-            .statements
-            .get(s)
-            .and_then(|st| self.ir.operations.get(usize::from(st.op)))
-            .map_or("", |(_, op)| op.as_str())
-    }
-}
-
-fn kind(part: &str, op: &str) -> OpKind {
-    match (part, op) {
-        ("Connector", "extend") => OpKind::Extend,
-        ("Connector", "retract") => OpKind::Retract,
-        ("Joint", _) => OpKind::Turn,
-        _ => OpKind::Other,
     }
 }

@@ -2,10 +2,12 @@
 //! plus a translation), with a readable account of the differences under the best-matching
 //! motion.
 
-use crate::atron::Orientation;
-use crate::config::{Configuration, NamedConnection};
+use crate::atron::lattice::Orientation;
+use crate::common::NamedConnection;
+use crate::configuration::Configuration;
 use crate::geometry::{add, sub, Rotation, Vec3};
-use crate::mtran::MtranOrientation;
+use crate::model::RobotModel;
+use crate::mtran::module::MtranOrientation;
 use crate::structure::{RobotModule, Structure};
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt;
@@ -317,4 +319,21 @@ fn best_motion(common: &[(&String, &Body, &Body)]) -> (Rotation, Vec3, usize) {
         }
     }
     best
+}
+
+/// How a built-in robot's model differs from `other` (`RobotModel::difference`): `None` when
+/// they are equal, compared in place first (no copy), or equal up to rigid motion.
+pub(crate) fn model_difference<W>(model: &W, other: &dyn RobotModel) -> Option<String>
+where
+    W: RobotModel + PartialEq + 'static,
+{
+    if other.as_any().downcast_ref::<W>() == Some(model) {
+        return None;
+    }
+    let mine = model.configuration()?;
+    let Some(theirs) = other.configuration() else {
+        let (a, b) = (other.robot(), model.robot());
+        return Some(format!("the other robot is {a}, not {b}"));
+    };
+    compare(&mine, &theirs).err().map(|d| d.to_string())
 }

@@ -1,7 +1,7 @@
 //! Connectivity through latches: which modules turn with a hemisphere, whether a joint is
 //! locked by a loop, and whether releasing a latch splits the robot.
 
-use crate::config::Latch;
+use crate::common::Latch;
 use std::collections::BTreeSet;
 
 /// Modules reachable from `starts` through latches without entering `barrier`.

@@ -2,14 +2,14 @@
 //! the field path; redundant fields are optional on input, checked when present, and always
 //! written.
 
-use crate::atron::{
+use crate::atron::config::{AtronConfiguration, AtronModule};
+use crate::atron::lattice::{
     is_joint_position, Orientation, OrientationBase, CONNECTOR_COUNT, LATTICE_UNIT_M,
 };
-use crate::config::{
-    AtronConfiguration, AtronModule, ConfigError, Configuration, Metadata, NamedConnection,
-};
+use crate::common::{ConfigError, Metadata, NamedConnection};
+use crate::configuration::Configuration;
 use crate::geometry::{within_bounds, Vec3, MAX_COORDINATE};
-use crate::mtran::{
+use crate::mtran::module::{
     MtranConfiguration, MtranModule, MtranOrientation, MTRAN_CONNECTOR_COUNT, MTRAN_LATTICE_UNIT_M,
 };
 use serde::de::DeserializeOwned;
@@ -84,8 +84,22 @@ struct MtranRecord {
     connector_positions_m: Option<Vec<[f64; 3]>>,
 }
 
+// The file format's entry points live beside the format, so that the configuration types do
+// not depend on it.
+impl Configuration {
+    /// Parses and validates a configuration in the data-file format (see the crate README).
+    pub fn from_json_str(text: &str) -> Result<Configuration, ConfigError> {
+        parse_configuration(text)
+    }
+
+    /// Writes the configuration in the same format, including the redundant fields.
+    pub fn to_json_string(&self) -> String {
+        write_configuration(self)
+    }
+}
+
 /// Parses either robot's file.
-pub(crate) fn parse_configuration(text: &str) -> Result<Configuration, ConfigError> {
+fn parse_configuration(text: &str) -> Result<Configuration, ConfigError> {
     let probe: Probe = deserialize(text)?;
     match probe.robot.as_deref() {
         Some("ATRON") => parse_atron(deserialize(text)?).map(Configuration::Atron),
@@ -458,7 +472,7 @@ fn check_float_list(
 
 /// Writes a configuration: top-level fields one per line, one module and one connection per
 /// line, like the data files.
-pub(crate) fn write_configuration(config: &Configuration) -> String {
+fn write_configuration(config: &Configuration) -> String {
     let (robot, unit, modules, connections) = match config {
         Configuration::Atron(c) => (
             "ATRON",

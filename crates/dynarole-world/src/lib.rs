@@ -1,5 +1,9 @@
 //! Kinematic models of modular robots (ATRON, M-TRAN) and their configurations.
 //!
+//! - [`RobotShape`] / [`RobotModel`]: the one robot API the other crates ask (modules, names,
+//!   ids, connectors, genders, latches, joints; doing an [`Action`]; the motion of a turn).
+//!   Each robot implements it in its own folder (`atron/`, `mtran/`); [`View`] is the
+//!   borrowed handle callers query.
 //! - [`Configuration::from_json_str`] / [`Configuration::to_json_string`]: the data-file JSON
 //!   format, validated, with field paths in every error.
 //! - [`World`]: the ATRON API (extend, retract, rotateFromToBy) on an exact integer lattice,
@@ -10,29 +14,32 @@
 //! The crate does no input/output; it is deterministic (no hash-map iteration anywhere).
 
 pub mod atron;
+mod builtin;
+mod common;
 mod compare;
-mod config;
+mod configuration;
 pub mod generated;
 pub mod geometry;
 mod graph;
 mod json;
+mod model;
+mod motion;
 pub mod mtran;
-mod mtran_world;
 mod ops;
 mod structure;
 mod view;
-mod world;
 mod world_common;
 
-pub use atron::{Orientation, OrientationBase, MIN_SWEEP_DISTANCE_LATTICE};
-pub use compare::{compare, Difference, JointDifference, Misplaced};
-pub use config::{
-    AtronConfiguration, AtronModule, ConfigError, Configuration, Latch, Metadata, NamedConnection,
-    Port, Robot,
+pub use atron::{
+    AtronConfiguration, AtronModule, Orientation, OrientationBase, World,
+    MIN_SWEEP_DISTANCE_LATTICE,
 };
+pub use common::{ConfigError, Latch, Metadata, NamedConnection, Port};
+pub use compare::{compare, Difference, JointDifference, Misplaced};
+pub use configuration::{Configuration, Robot};
 pub use geometry::{Rotation, Vec3};
-pub use mtran::{MtranConfiguration, MtranJoint, MtranModule, MtranOrientation};
-pub use mtran_world::MtranWorld;
+pub use model::{Action, RobotModel, RobotShape};
+pub use motion::TurnMotion;
+pub use mtran::{MtranConfiguration, MtranJoint, MtranModule, MtranOrientation, MtranWorld};
 pub use ops::{OpError, Outcome, Warning};
 pub use view::View;
-pub use world::{TurnMotion, World};

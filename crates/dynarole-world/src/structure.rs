@@ -1,7 +1,7 @@
 //! What the ATRON and M-TRAN configurations share: modules in file order, the latches between
 //! them, their validation, and the indices that keep look-ups by name, id and port logarithmic.
 
-use crate::config::{ConfigError, Latch, NamedConnection, Port};
+use crate::common::{ConfigError, Latch, NamedConnection, Port};
 use std::collections::{BTreeMap, BTreeSet};
 
 /// What the shared code needs to know about one robot's modules and connector rules.

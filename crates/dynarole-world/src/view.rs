@@ -1,38 +1,36 @@
-//! One question-answering view over either robot's configuration (modules, names, ids,
-//! connectors, male or female, latches, joints), so that no other crate dispatches on the robot.
+//! One question-answering view over any robot's configuration (modules, names, ids,
+//! connectors, male or female, latches, joints), so that no other crate dispatches on the
+//! robot: a thin handle on [`RobotShape`] with the facts derived from it.
 
-use crate::atron::{is_male, CONNECTOR_COUNT};
-use crate::mtran::{is_mtran_male, MTRAN_CONNECTOR_COUNT};
-use crate::{AtronConfiguration, Configuration, MtranConfiguration, Port};
+use crate::common::Port;
+use crate::configuration::Configuration;
+use crate::model::RobotShape;
 
-/// A configuration of either robot, borrowed.
+/// A configuration of any robot, borrowed.
 #[derive(Clone, Copy)]
-pub enum View<'c> {
-    Atron(&'c AtronConfiguration),
-    Mtran(&'c MtranConfiguration),
-}
+pub struct View<'c>(&'c dyn RobotShape);
 
 impl<'c> View<'c> {
+    /// The view of a configuration of a built-in robot.
     pub fn of(config: &'c Configuration) -> View<'c> {
         match config {
-            Configuration::Atron(c) => View::Atron(c),
-            Configuration::Mtran(c) => View::Mtran(c),
+            Configuration::Atron(c) => View(c),
+            Configuration::Mtran(c) => View(c),
         }
+    }
+
+    /// The view of any robot's shape.
+    pub fn new(shape: &'c dyn RobotShape) -> View<'c> {
+        View(shape)
     }
 
     /// Connectors of every module of this robot.
     pub fn connectors(self) -> u8 {
-        match self {
-            View::Atron(_) => CONNECTOR_COUNT,
-            View::Mtran(_) => MTRAN_CONNECTOR_COUNT,
-        }
+        self.0.connectors()
     }
 
     pub fn is_male(self, connector: u8) -> bool {
-        match self {
-            View::Atron(_) => is_male(connector),
-            View::Mtran(_) => is_mtran_male(connector),
-        }
+        self.0.is_male(connector)
     }
 
     /// Which half of a module a connector is on (an ATRON hemisphere, an M-TRAN block).
@@ -42,10 +40,7 @@ impl<'c> View<'c> {
 
     /// Number of modules.
     pub fn len(self) -> usize {
-        match self {
-            View::Atron(c) => c.modules().len(),
-            View::Mtran(c) => c.modules().len(),
-        }
+        self.0.len()
     }
 
     pub fn is_empty(self) -> bool {
@@ -54,58 +49,32 @@ impl<'c> View<'c> {
 
     /// Module `m`'s name (empty when there is no such module).
     pub fn name(self, m: usize) -> String {
-        match self {
-            View::Atron(c) => c.module(m).map(|x| x.name.clone()),
-            View::Mtran(c) => c.modules().get(m).map(|x| x.name.clone()),
-        }
-        .unwrap_or_default()
+        self.0.name(m).unwrap_or_default().to_string()
     }
 
     pub fn id(self, m: usize) -> Option<u32> {
-        match self {
-            View::Atron(c) => c.module(m).and_then(|x| x.id),
-            View::Mtran(c) => c.modules().get(m).and_then(|x| x.id),
-        }
+        self.0.id(m)
     }
 
     pub fn index(self, name: &str) -> Option<usize> {
-        match self {
-            View::Atron(c) => c.module_index(name),
-            View::Mtran(c) => c.module_index(name),
-        }
+        self.0.index(name)
     }
 
     pub fn index_by_id(self, id: u32) -> Option<usize> {
-        match self {
-            View::Atron(c) => c.module_index_by_id(id),
-            View::Mtran(c) => c.module_index_by_id(id),
-        }
+        self.0.index_by_id(id)
     }
 
     /// Joint `joint` of module `m`, in the robot's units (ATRON 1/432 turn, M-TRAN degrees).
     pub fn joint(self, m: usize, joint: u8) -> Option<i64> {
-        match self {
-            View::Atron(c) => c.module(m).map(|x| i64::from(x.joint_units)),
-            View::Mtran(c) => c
-                .modules()
-                .get(m)
-                .and_then(|x| x.joints_deg.get(usize::from(joint)))
-                .map(|d| i64::from(*d)),
-        }
+        self.0.joint(m, joint)
     }
 
     pub fn latched_to(self, port: Port) -> Option<Port> {
-        match self {
-            View::Atron(c) => c.latched_to(port),
-            View::Mtran(c) => c.latched_to(port),
-        }
+        self.0.latched_to(port)
     }
 
     pub fn facing(self, port: Port) -> Option<Port> {
-        match self {
-            View::Atron(c) => c.facing(port),
-            View::Mtran(c) => c.facing(port),
-        }
+        self.0.facing(port)
     }
 
     /// Where a packet sent on `port` goes (atron.md a.8): the latched partner, or, for an
@@ -123,9 +92,6 @@ impl<'c> View<'c> {
     }
 
     pub fn port_name(self, port: Port) -> String {
-        match self {
-            View::Atron(c) => c.port_name(port),
-            View::Mtran(c) => c.port_name(port),
-        }
+        self.0.port_name(port)
     }
 }

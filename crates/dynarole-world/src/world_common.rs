@@ -2,7 +2,7 @@
 //! (extend/connect, retract/disconnect) and the verdict on a joint turn's sweep. They differ
 //! only in the connector rules ([`RobotModule`]) and in how a facing connector is found.
 
-use crate::config::{Latch, Port};
+use crate::common::{Latch, Port};
 use crate::geometry::SweepApproach;
 use crate::graph::split_parts;
 use crate::ops::{OpError, Outcome, Warning};

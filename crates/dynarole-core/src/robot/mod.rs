@@ -39,6 +39,53 @@ pub struct Operation {
     pub params: Vec<Param>,
     pub requires_male: bool,
     pub inverse: Option<Inverse>,
+    /// What it does to the robot (`kind = "extend"`), so that the models and the simulator
+    /// never decide it from the operation's name.
+    pub kind: OperationKind,
+}
+
+/// What an operation does to the robot, as its plugin declares it. The loader checks that
+/// the operation's index and parameters fit the kind.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum OperationKind {
+    /// Nothing the robot models know of (a lamp, a sensor): the models refuse it and the
+    /// simulator gives it no duration. What an operation without `kind` is.
+    #[default]
+    None,
+    /// Latches the indexed (male) connector onto the one facing it; no parameters.
+    Extend,
+    /// Releases the indexed (male) connector's latch; no parameters.
+    Retract,
+    /// Turns the joint (the indexed one, or the only one): parameters `from` (int), `to`
+    /// (int), the direction (bool, `true` = increasing), then any others.
+    Turn,
+    /// Turns the joint from wherever it is: parameters `to` (int), the direction (bool),
+    /// then any others.
+    TurnTo,
+}
+
+impl OperationKind {
+    /// The name a plugin writes (what `serde` reads: the variant in snake case).
+    pub fn name(self) -> &'static str {
+        match self {
+            OperationKind::None => "none",
+            OperationKind::Extend => "extend",
+            OperationKind::Retract => "retract",
+            OperationKind::Turn => "turn",
+            OperationKind::TurnTo => "turn_to",
+        }
+    }
+
+    /// A connector operation (extend or retract).
+    pub fn is_latch(self) -> bool {
+        matches!(self, OperationKind::Extend | OperationKind::Retract)
+    }
+
+    /// A joint turn (with or without its start angle).
+    pub fn is_turn(self) -> bool {
+        matches!(self, OperationKind::Turn | OperationKind::TurnTo)
+    }
 }
 
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -191,6 +238,14 @@ impl RobotApi {
 
     pub fn constant(&self, name: &str) -> Option<&Constant> {
         self.constants.iter().find(|c| c.name == name)
+    }
+
+    /// The kind of operation `op` of part `part` (`None` for one that does not exist).
+    pub fn kind(&self, part: usize, op: usize) -> OperationKind {
+        self.parts
+            .get(part)
+            .and_then(|p| p.operations.get(op))
+            .map_or(OperationKind::None, |o| o.kind)
     }
 
     /// The inverse of operation `op` of part `part` applied to `args`, if it has one.

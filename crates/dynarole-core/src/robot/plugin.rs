@@ -44,6 +44,8 @@ struct RawOperation {
     #[serde(default)]
     requires_male: bool,
     inverse: Option<String>,
+    /// An unknown one is refused by the TOML reader at its place, with the closest name.
+    kind: Option<OperationKind>,
 }
 
 #[derive(Deserialize)]
@@ -224,7 +226,9 @@ fn convert_part(raw: &RawPart, field: &str) -> Result<Part, PluginError> {
                 "the part lists no `male` indices",
             ));
         }
-        operations.push(convert_operation(raw_op, &op_field)?);
+        let operation = convert_operation(raw_op, &op_field)?;
+        check_kind(&operation, raw.count, &op_field)?;
+        operations.push(operation);
     }
     Ok(Part {
         name: raw.name.clone(),
@@ -257,7 +261,60 @@ fn convert_operation(raw: &RawOperation, field: &str) -> Result<Operation, Plugi
         params,
         requires_male: raw.requires_male,
         inverse: None,
+        kind: raw.kind.unwrap_or_default(),
     })
+}
+
+/// The parameters each kind starts with: what the models read.
+fn kind_params(kind: OperationKind) -> (&'static [ParamShape], &'static str) {
+    match kind {
+        OperationKind::None => (&[], ""),
+        OperationKind::Extend | OperationKind::Retract => (&[], "no parameters"),
+        OperationKind::Turn => (
+            &[ParamShape::Int, ParamShape::Int, ParamShape::Bool],
+            "parameters `from` (int), `to` (int) and the direction (bool) first",
+        ),
+        OperationKind::TurnTo => (
+            &[ParamShape::Int, ParamShape::Bool],
+            "parameters `to` (int) and the direction (bool) first",
+        ),
+    }
+}
+
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum ParamShape {
+    Int,
+    Bool,
+}
+
+/// An operation's index and parameters must be what its kind's models read.
+fn check_kind(op: &Operation, count: Option<u32>, field: &str) -> Result<(), PluginError> {
+    let kind = op.kind;
+    let name = kind.name();
+    let field = format!("{field}.kind");
+    if kind.is_latch() && count.is_none() {
+        return Err(error(
+            field,
+            format!("kind `{name}` needs its part to have a `count` (the connectors)"),
+        ));
+    }
+    let (shape, words) = kind_params(kind);
+    let fits = op.params.len() >= shape.len()
+        && op.params.iter().zip(shape).all(|(p, s)| {
+            matches!(
+                (&p.ty, s),
+                (ParamType::Int { .. }, ParamShape::Int) | (ParamType::Bool, ParamShape::Bool)
+            )
+        });
+    let exact = !kind.is_latch() || op.params.is_empty();
+    if fits && exact {
+        Ok(())
+    } else {
+        Err(error(
+            field,
+            format!("kind `{name}` takes {words}; `{}` does not", op.signature()),
+        ))
+    }
 }
 
 fn convert_type(raw: &RawParam, field: &str) -> Result<ParamType, PluginError> {
@@ -631,5 +688,71 @@ mod tests {
         .expect_err("count");
         assert_eq!(huge.field, "part[0].count");
         assert!(huge.message.contains("expected 1 to 255"), "{huge}");
+    }
+
+    #[test]
+    fn builtin_operations_declare_their_kinds() {
+        let registry = RobotRegistry::builtin();
+        let kinds = |robot: &str| -> Vec<(String, OperationKind)> {
+            let api = registry.get(robot).expect("built in");
+            api.parts
+                .iter()
+                .flat_map(|p| p.operations.iter().map(|o| (o.name.clone(), o.kind)))
+                .collect()
+        };
+        use OperationKind::*;
+        let named = |list: &[(&str, OperationKind)]| -> Vec<(String, OperationKind)> {
+            list.iter().map(|(n, k)| (n.to_string(), *k)).collect()
+        };
+        assert_eq!(
+            kinds("atron"),
+            named(&[
+                ("extend", Extend),
+                ("retract", Retract),
+                ("rotateFromToBy", Turn),
+                ("rotateToBy", TurnTo)
+            ])
+        );
+        assert_eq!(
+            kinds("mtran"),
+            named(&[
+                ("extend", Extend),
+                ("retract", Retract),
+                ("rotateFromToBy", Turn)
+            ])
+        );
+    }
+
+    #[test]
+    fn an_unknown_kind_is_refused_at_its_place_with_the_closest_name() {
+        let text = format!("{GRIPPER}[[part.operation]]\nname = \"close\"\nkind = \"extnd\"\n");
+        let err = RobotApi::from_toml(&text).expect_err("unknown kind");
+        assert!(err.message.contains("unknown variant `extnd`"), "{err}");
+        assert_eq!(err.hint.as_deref(), Some("did you mean `extend`?"));
+        let span = err.span.expect("located");
+        assert_eq!(&text[span], "\"extnd\"");
+    }
+
+    #[test]
+    fn a_kind_whose_parameters_do_not_fit_is_refused_at_the_kind() {
+        let text = format!(
+            "{GRIPPER}[[part.operation]]\nname = \"bend\"\nkind = \"turn\"\n\
+             params = [{{ name = \"to\", type = \"int\" }}, {{ name = \"up\", type = \"bool\" }}]\n"
+        );
+        let err = RobotApi::from_toml(&text).expect_err("turn needs from, to, direction");
+        assert_eq!(err.field, "part[0].operation[0].kind");
+        assert!(err.message.contains("`from` (int), `to` (int)"), "{err}");
+        assert_eq!(&text[err.span.expect("located")], "\"turn\"");
+        let turn_to = text.replace("\"turn\"", "\"turn_to\"");
+        assert!(
+            RobotApi::from_toml(&turn_to).is_ok(),
+            "to, direction fit turn_to"
+        );
+        let latch = "name = \"g\"\n[[part]]\nname = \"Arm\"\n[[part.operation]]\nname = \"grab\"\nkind = \"extend\"\n";
+        let err = RobotApi::from_toml(latch).expect_err("extend needs connectors");
+        assert!(err.message.contains("`count`"), "{err}");
+        let with_args = with_ops("[[part.operation]]\nname = \"close\"\nkind = \"retract\"\nparams = [{ name = \"x\", type = \"bool\" }]\n")
+            .expect_err("retract takes no parameters");
+        assert!(with_args.message.contains("no parameters"), "{with_args}");
     }
 }

@@ -3,7 +3,8 @@
 //!
 //! Two turns `a` (statement `i`) and `b` (a later one), on the state `W` before `a`:
 //! - moving sides that share a module: ordered (the full check says "both turns move ...");
-//! - on ATRON, disjoint sides, neither pivot moved by the other turn (or the one moved
+//! - on a robot whose turns move whole modules (`RobotModel::rigid_module_centres`: ATRON),
+//!   disjoint sides, neither pivot moved by the other turn (or the one moved
 //!   turns no module, as at a free end of a chain): the two orders give
 //!   the same configuration (each module is turned by at most one of them, about an axis the
 //!   other does not move). If the two turns done at the same time can come closer than the
@@ -22,7 +23,7 @@ use crate::independence::closest_approach;
 use crate::robot_world::RobotWorld;
 use dynarole_core::check::ResolvedStatement;
 use dynarole_core::RobotApi;
-use dynarole_world::geometry::{sweep_closest_approach, to_f64};
+use dynarole_world::geometry::sweep_closest_approach;
 use dynarole_world::TurnMotion;
 use std::cell::{Cell, RefCell};
 use std::rc::Rc;
@@ -121,9 +122,7 @@ impl MovingSide {
             return Some(true);
         }
 
-        let RobotWorld::Atron(w) = world else {
-            return None;
-        };
+        let positions = world.model().rigid_module_centres()?;
         // A turn that moves no module (a free end's joint) leaves every position where it
         // was, so carrying its module along changes nothing it does; else moving the other's
         // module changes the other's motion, and the full check decides.
@@ -137,12 +136,6 @@ impl MovingSide {
             return Some(true);
         }
 
-        let positions: Vec<[f64; 3]> = w
-            .configuration()
-            .modules()
-            .iter()
-            .map(|m| to_f64(m.position))
-            .collect();
         // Clear on the state after `a` (checked for the pair `i + 1`): only `a`'s modules moved.
         let incremental = clear.get() == Some(i + 1);
         let still: Vec<[f64; 3]> = (0..positions.len())

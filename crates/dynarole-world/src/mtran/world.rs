@@ -1,16 +1,16 @@
 //! The M-TRAN world: an M-TRAN configuration mutated by connect, disconnect and joint turns,
 //! with the same acceptance rules as the ATRON world (see `MTRAN.md`).
 
-use crate::config::Port;
-use crate::geometry::{add, sub, sweep_closest_approach, Rotation, Vec3};
-use crate::graph::split_at_joint;
-use crate::mtran::{
+use super::module::{
     is_mtran_male, MtranConfiguration, MtranJoint, MtranModule, MtranOrientation,
     MTRAN_JOINT_LIMIT_DEG, MTRAN_MIN_SWEEP_DISTANCE_BLOCKS,
 };
+use crate::common::Port;
+use crate::geometry::{add, sub, sweep_closest_approach, Rotation, Vec3};
+use crate::graph::split_at_joint;
+use crate::motion::TurnMotion;
 use crate::ops::{OpError, Outcome, Warning};
 use crate::structure::Structure;
-use crate::world::TurnMotion;
 use crate::world_common::{known_module, latch, release, sweep_verdict, warn, Latching};
 use std::collections::BTreeSet;
 

@@ -10,7 +10,7 @@
 //! right-handed about the joint axis, which is the module's local +y (world: `joint_axis`),
 //! relative to the side before it. Joint axes pass through the centre of their block.
 
-use crate::config::{check_translation, ConfigError, Latch, Metadata, NamedConnection, Port};
+use crate::common::{check_translation, ConfigError, Latch, Metadata, NamedConnection, Port};
 use crate::geometry::{add, axis_name, scale, sub, within_bounds, Rotation, Vec3, MAX_COORDINATE};
 use crate::structure::{RobotModule, Structure};
 use std::collections::{BTreeMap, BTreeSet};

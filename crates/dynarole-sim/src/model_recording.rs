@@ -9,24 +9,24 @@ use dynarole_replay::Assignment;
 
 /// Why a model run could not be recorded.
 #[derive(Debug)]
-pub enum ModelRunError {
+pub enum ModelRecordingError {
     /// The start configuration does not fit the statements (bad input).
     Input(String),
     /// A step names a module the configuration lacks (a bug of the caller).
     Internal(String),
 }
 
-impl std::fmt::Display for ModelRunError {
+impl std::fmt::Display for ModelRecordingError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            ModelRunError::Input(m) | ModelRunError::Internal(m) => f.write_str(m),
+            ModelRecordingError::Input(m) | ModelRecordingError::Internal(m) => f.write_str(m),
         }
     }
 }
 
 /// The recording of a run on the model (no network): the steps in order, each operation
 /// taking the simulator's default duration, so the page plays like a simulation.
-pub struct ModelRun<'a> {
+pub struct ModelRecording<'a> {
     pub kind: &'a str,
     pub title: &'a str,
     pub robot: &'a dynarole_core::robot::RobotApi,
@@ -39,9 +39,9 @@ pub struct ModelRun<'a> {
 /// Pause between two steps of a model run (as a hand-over between modules would take).
 const MODEL_GAP_MS: f64 = 100.0;
 
-impl ModelRun<'_> {
+impl ModelRecording<'_> {
     /// The recording, with `notes` (the verdict, the explanation) as its summary.
-    pub fn record(&self, notes: Vec<String>) -> Result<Recording, ModelRunError> {
+    pub fn record(&self, notes: Vec<String>) -> Result<Recording, ModelRecordingError> {
         let texts: Vec<String> = self
             .statements
             .iter()
@@ -56,14 +56,14 @@ impl ModelRun<'_> {
             &texts,
             self.source,
         )
-        .map_err(ModelRunError::Input)?;
+        .map_err(ModelRecordingError::Input)?;
         let duration = |s: usize, turn: Option<&dynarole_recording::Turn>| -> f64 {
             nominal_ms(texts.get(s).map_or("", String::as_str), turn)
         };
         let view = dynarole_world::View::of(self.start);
         let index = |name: &str| {
             view.index(name).ok_or_else(|| {
-                ModelRunError::Internal(format!("no module {name} in the configuration"))
+                ModelRecordingError::Internal(format!("no module {name} in the configuration"))
             })
         };
         let mut now = 0.0;

@@ -1,0 +1,155 @@
+//! ATRON behind the robot API: the configuration answers [`RobotShape`], the [`World`]
+//! is the [`RobotModel`] (one joint per module, angles in 1/432 turn).
+
+use super::config::AtronConfiguration;
+use super::lattice::{is_male, CONNECTOR_COUNT, JOINT_UNITS_PER_TURN, QUARTER_TURN_UNITS};
+use super::world::World;
+use crate::common::Port;
+use crate::compare::model_difference;
+use crate::configuration::Configuration;
+use crate::geometry::to_f64;
+use crate::model::{Action, RobotModel, RobotShape};
+use crate::motion::TurnMotion;
+use crate::ops::{OpError, Outcome};
+use std::any::Any;
+
+impl RobotShape for AtronConfiguration {
+    fn connectors(&self) -> u8 {
+        CONNECTOR_COUNT
+    }
+
+    fn is_male(&self, connector: u8) -> bool {
+        is_male(connector)
+    }
+
+    fn len(&self) -> usize {
+        self.modules().len()
+    }
+
+    fn name(&self, m: usize) -> Option<&str> {
+        self.module(m).map(|x| x.name.as_str())
+    }
+
+    fn id(&self, m: usize) -> Option<u32> {
+        self.module(m).and_then(|x| x.id)
+    }
+
+    fn index(&self, name: &str) -> Option<usize> {
+        self.module_index(name)
+    }
+
+    fn index_by_id(&self, id: u32) -> Option<usize> {
+        self.module_index_by_id(id)
+    }
+
+    /// ATRON has one joint; every joint index reads it.
+    fn joint(&self, m: usize, _joint: u8) -> Option<i64> {
+        self.module(m).map(|x| i64::from(x.joint_units))
+    }
+
+    fn latched_to(&self, port: Port) -> Option<Port> {
+        AtronConfiguration::latched_to(self, port)
+    }
+
+    fn facing(&self, port: Port) -> Option<Port> {
+        AtronConfiguration::facing(self, port)
+    }
+
+    fn port_name(&self, port: Port) -> String {
+        AtronConfiguration::port_name(self, port)
+    }
+}
+
+impl RobotModel for World {
+    fn robot(&self) -> &str {
+        "atron"
+    }
+
+    fn shape(&self) -> &dyn RobotShape {
+        self.configuration()
+    }
+
+    fn apply(&mut self, module: &str, action: &Action) -> Result<Outcome, OpError> {
+        match *action {
+            Action::Extend { connector } => self.extend(module, connector),
+            Action::Retract { connector } => self.retract(module, connector),
+            Action::Turn {
+                from,
+                to,
+                increasing,
+                ..
+            } => {
+                let from = self.joint_from(module, from);
+                self.rotate(module, from, units(to), increasing)
+            }
+        }
+    }
+
+    fn turn_motion(&self, module: &str, action: &Action) -> Option<TurnMotion> {
+        let Action::Turn {
+            from,
+            to,
+            increasing,
+            ..
+        } = *action
+        else {
+            return None;
+        };
+        let from = self.joint_from(module, from);
+        World::turn_motion(self, module, from, units(to), increasing).ok()
+    }
+
+    /// The joint wraps: `(0, 108, false)` is three quarter turns.
+    fn quarter_turns(&self, from: i64, to: i64, increasing: bool) -> u64 {
+        let full = i64::from(JOINT_UNITS_PER_TURN);
+        let quarter = i64::from(QUARTER_TURN_UNITS);
+        let delta = if increasing {
+            (to - from).rem_euclid(full)
+        } else {
+            (from - to).rem_euclid(full)
+        };
+        u64::try_from((delta + quarter - 1) / quarter).unwrap_or(0)
+    }
+
+    fn rigid_module_centres(&self) -> Option<Vec<[f64; 3]>> {
+        let modules = self.configuration().modules();
+        Some(modules.iter().map(|m| to_f64(m.position)).collect())
+    }
+
+    fn configuration(&self) -> Option<Configuration> {
+        Some(Configuration::Atron(World::configuration(self).clone()))
+    }
+
+    fn difference(&self, other: &dyn RobotModel) -> Option<String> {
+        model_difference(self, other)
+    }
+
+    fn clone_model(&self) -> Box<dyn RobotModel> {
+        Box::new(self.clone())
+    }
+
+    fn as_any(&self) -> &dyn Any {
+        self
+    }
+}
+
+impl World {
+    /// The start angle of a turn: the given one, or the joint's angle now.
+    fn joint_from(&self, module: &str, from: Option<i64>) -> u16 {
+        match from {
+            Some(angle) => units(angle),
+            None => {
+                let config = self.configuration();
+                config
+                    .module_index(module)
+                    .and_then(|i| config.module(i))
+                    .map_or(0, |m| m.joint_units)
+            }
+        }
+    }
+}
+
+/// An angle the plugin range-checked; anything else becomes one the world refuses.
+fn units(angle: i64) -> u16 {
+    u16::try_from(angle).unwrap_or(u16::MAX)
+}

@@ -1,0 +1,166 @@
+//! M-TRAN behind the robot API: the configuration answers [`RobotShape`], the
+//! [`MtranWorld`] is the [`RobotModel`] (two joints, angles in degrees, no wrapping).
+
+use super::module::{is_mtran_male, MtranConfiguration, MtranJoint, MTRAN_CONNECTOR_COUNT};
+use super::world::MtranWorld;
+use crate::common::Port;
+use crate::compare::model_difference;
+use crate::configuration::Configuration;
+use crate::model::{Action, RobotModel, RobotShape};
+use crate::motion::TurnMotion;
+use crate::ops::{OpError, Outcome};
+use std::any::Any;
+
+/// Degrees in a quarter turn.
+const QUARTER_DEG: i64 = 90;
+
+impl RobotShape for MtranConfiguration {
+    fn connectors(&self) -> u8 {
+        MTRAN_CONNECTOR_COUNT
+    }
+
+    fn is_male(&self, connector: u8) -> bool {
+        is_mtran_male(connector)
+    }
+
+    fn len(&self) -> usize {
+        self.modules().len()
+    }
+
+    fn name(&self, m: usize) -> Option<&str> {
+        self.modules().get(m).map(|x| x.name.as_str())
+    }
+
+    fn id(&self, m: usize) -> Option<u32> {
+        self.modules().get(m).and_then(|x| x.id)
+    }
+
+    fn index(&self, name: &str) -> Option<usize> {
+        self.module_index(name)
+    }
+
+    fn index_by_id(&self, id: u32) -> Option<usize> {
+        self.module_index_by_id(id)
+    }
+
+    fn joint(&self, m: usize, joint: u8) -> Option<i64> {
+        let module = self.modules().get(m)?;
+        module
+            .joints_deg
+            .get(usize::from(joint))
+            .map(|d| i64::from(*d))
+    }
+
+    fn latched_to(&self, port: Port) -> Option<Port> {
+        MtranConfiguration::latched_to(self, port)
+    }
+
+    fn facing(&self, port: Port) -> Option<Port> {
+        MtranConfiguration::facing(self, port)
+    }
+
+    fn port_name(&self, port: Port) -> String {
+        MtranConfiguration::port_name(self, port)
+    }
+}
+
+impl RobotModel for MtranWorld {
+    fn robot(&self) -> &str {
+        "mtran"
+    }
+
+    fn shape(&self) -> &dyn RobotShape {
+        self.configuration()
+    }
+
+    fn apply(&mut self, module: &str, action: &Action) -> Result<Outcome, OpError> {
+        match *action {
+            Action::Extend { connector } => self.connect(module, connector),
+            Action::Retract { connector } => self.disconnect(module, connector),
+            Action::Turn {
+                joint,
+                from,
+                to,
+                increasing,
+            } => {
+                let from = self.joint_from(module, joint, from);
+                self.rotate(module, mtran_joint(joint), from, degrees(to), increasing)
+            }
+        }
+    }
+
+    fn turn_motion(&self, module: &str, action: &Action) -> Option<TurnMotion> {
+        let Action::Turn {
+            joint,
+            from,
+            to,
+            increasing,
+        } = *action
+        else {
+            return None;
+        };
+        let from = self.joint_from(module, joint, from);
+        MtranWorld::turn_motion(
+            self,
+            module,
+            mtran_joint(joint),
+            from,
+            degrees(to),
+            increasing,
+        )
+        .ok()
+    }
+
+    /// The joint does not wrap: the turn is the difference of the angles.
+    fn quarter_turns(&self, from: i64, to: i64, _increasing: bool) -> u64 {
+        let delta = (to - from).abs();
+        u64::try_from((delta + QUARTER_DEG - 1) / QUARTER_DEG).unwrap_or(0)
+    }
+
+    fn configuration(&self) -> Option<Configuration> {
+        Some(Configuration::Mtran(
+            MtranWorld::configuration(self).clone(),
+        ))
+    }
+
+    fn difference(&self, other: &dyn RobotModel) -> Option<String> {
+        model_difference(self, other)
+    }
+
+    fn clone_model(&self) -> Box<dyn RobotModel> {
+        Box::new(self.clone())
+    }
+
+    fn as_any(&self) -> &dyn Any {
+        self
+    }
+}
+
+impl MtranWorld {
+    /// The start angle of a turn: the given one, or the joint's angle now.
+    fn joint_from(&self, module: &str, joint: u8, from: Option<i64>) -> i16 {
+        match from {
+            Some(angle) => degrees(angle),
+            None => {
+                let config = self.configuration();
+                let index = config.module_index(module);
+                let now = index.and_then(|m| RobotShape::joint(config, m, joint));
+                degrees(now.unwrap_or(0))
+            }
+        }
+    }
+}
+
+/// Joint 0 is the north one, 1 the south one (the plugin allows no other index).
+fn mtran_joint(index: u8) -> MtranJoint {
+    if index == 0 {
+        MtranJoint::North
+    } else {
+        MtranJoint::South
+    }
+}
+
+/// An angle the plugin range-checked; anything else becomes one the world refuses.
+fn degrees(angle: i64) -> i16 {
+    i16::try_from(angle).unwrap_or(i16::MAX)
+}
