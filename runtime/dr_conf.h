@@ -54,7 +54,8 @@
  * interval back to DR_CONF_LATTICE_INTERVAL_MS. Once every connected neighbour has been
  * heard with a copy at least ours, the longest interval (INTERVAL << DR_CONF_LATTICE_DOUBLINGS);
  * until then DR_CONF_LATTICE_RESENDS broadcasts at the smallest interval, then at most
- * DR_CONF_LATTICE_UNACKED_DOUBLINGS doublings, and the smallest interval for as long as a
+ * DR_CONF_LATTICE_UNACKED_DOUBLINGS doublings (each at a random time in the last
+ * DR_CONF_LATTICE_RESEND_SPREAD % of its interval), and the smallest interval for as long as a
  * neighbour heard behind has not been heard with our copy. A neighbour that hears the same
  * copy as its own three times from us since it last spoke answers (we were resending for
  * want of its packet). Measurements behind the values: runtime/lattice/README.md ("Adaptive
@@ -74,17 +75,25 @@
 #endif
 /* Adaptive: broadcasts at the smallest interval while a connected neighbour has not been
  * heard with a copy at least ours since ours last changed (its packet may have been lost).
- * 1 by measurement (README.md): 3 sends 22 % more packets at loss 0 (4.5x fewer than fixed
- * instead of 5.4x) for a median 6 % earlier at loss 0.6. */
+ * 1 by measurement (README.md): 3 sent 22 % more packets at loss 0 for a median 6 % earlier
+ * at loss 0.6 (measured with the cap at 400 ms and no spread). */
 #ifndef DR_CONF_LATTICE_RESENDS
 #define DR_CONF_LATTICE_RESENDS 1
 #endif
 /* Adaptive: after the resends, the most doublings while a connected neighbour still has not
- * been heard with our copy (2: every 400 ms; a neighbour heard behind, i.e. known to lack a
+ * been heard with our copy (3: every 800 ms; a neighbour heard behind, i.e. known to lack a
  * fact, is tried every INTERVAL instead, as the fixed period does across a link that passes
- * almost nothing). */
+ * almost nothing). 3 by measurement: with 2, 4.4x-4.6x fewer packets than fixed at loss 0.3
+ * instead of 5.0x-5.2x (README.md). */
 #ifndef DR_CONF_LATTICE_UNACKED_DOUBLINGS
-#define DR_CONF_LATTICE_UNACKED_DOUBLINGS 2
+#define DR_CONF_LATTICE_UNACKED_DOUBLINGS 3
+#endif
+/* Adaptive: a broadcast toward an unacknowledged neighbour (a resend, or a try at the capped
+ * or the smallest interval) goes out at a random time in the last this-many percent of its
+ * interval, not at its end: modules that heard the same news at once would otherwise resend
+ * in step and collide again (0: at the end). */
+#ifndef DR_CONF_LATTICE_RESEND_SPREAD
+#define DR_CONF_LATTICE_RESEND_SPREAD 25
 #endif
 /* Adaptive: news and answers go out at the next step plus 0 to this many ms at random, so
  * that neighbours hearing the same news do not all send at once (their packets would collide

@@ -289,7 +289,8 @@ typedef char dr_lattice_check_doublings[(DR_CONF_LATTICE_DOUBLINGS <= 16 &&
                                          DR_CONF_LATTICE_UNACKED_DOUBLINGS <=
                                              DR_CONF_LATTICE_DOUBLINGS &&
                                          DR_CONF_LATTICE_INTERVAL_MS >= 1 &&
-                                         DR_CONF_LATTICE_INTERVAL_MS <= 0xFFFF) ? 1 : -1];
+                                         DR_CONF_LATTICE_INTERVAL_MS <= 0xFFFF &&
+                                         DR_CONF_LATTICE_RESEND_SPREAD <= 100) ? 1 : -1];
 
 /* Back to the smallest interval, with every resend allowed again. */
 static void restart_interval(dr_module_t *m)
@@ -310,6 +311,9 @@ static void restart_interval(dr_module_t *m)
 static void disseminate(dr_module_t *m, uint32_t now, uint8_t changed)
 {
     dr_channels_t unacked;
+#if DR_CONF_LATTICE_RESEND_SPREAD > 0
+    uint32_t spread;
+#endif
     if (changed) {
         restart_interval(m);
     }
@@ -341,6 +345,17 @@ static void disseminate(dr_module_t *m, uint32_t now, uint8_t changed)
         m->doublings = DR_CONF_LATTICE_DOUBLINGS;
     }
     m->next_broadcast_ms = now + ((uint32_t)DR_CONF_LATTICE_INTERVAL_MS << m->doublings);
+#if DR_CONF_LATTICE_RESEND_SPREAD > 0
+    if (unacked != 0u) {
+        /* A try toward an unacknowledged neighbour at a random time in the last SPREAD % of
+         * its interval: the modules that heard the same news at the same time would
+         * otherwise resend in step and collide again. */
+        spread = (((uint32_t)DR_CONF_LATTICE_INTERVAL_MS << m->doublings) *
+                  DR_CONF_LATTICE_RESEND_SPREAD) / 100u;
+        m->next_broadcast_ms -= spread;
+        m->next_broadcast_ms += (uint32_t)(dr_hal_random(m) % (spread + 1u));
+    }
+#endif
 #if DR_CONF_BROADCAST_JITTER_MS > 0
     m->next_broadcast_ms += (uint32_t)(dr_hal_random(m) % (DR_CONF_BROADCAST_JITTER_MS + 1u));
 #endif
