@@ -205,7 +205,10 @@ static void broadcast(dr_module_t *m, uint32_t now)
                           frame + DR_PACKET_HEADER, PAYLOAD);
     dr_hal_broadcast(m, frame, len);
     m->packets_sent++;
-#if !ADAPTIVE
+#if ADAPTIVE
+    m->repeated[0] = 0; /* they hear us now: a resend of theirs is news again */
+    m->repeated[1] = 0;
+#else
     m->next_broadcast_ms = now + DR_CONF_BROADCAST_MS;
 #if DR_CONF_BROADCAST_JITTER_MS > 0
     m->next_broadcast_ms += (uint32_t)(dr_hal_random(m) % (DR_CONF_BROADCAST_JITTER_MS + 1u));
@@ -288,7 +291,9 @@ static uint8_t no_nv(const dr_module_t *m)
 typedef char dr_lattice_check_doublings[(DR_CONF_LATTICE_DOUBLINGS <= 16 &&
                                          DR_CONF_LATTICE_UNACKED_DOUBLINGS <=
                                              DR_CONF_LATTICE_DOUBLINGS &&
-                                         DR_CONF_LATTICE_INTERVAL_MS >= 1) ? 1 : -1];
+                                         DR_CONF_LATTICE_INTERVAL_MS >= 1 &&
+                                         DR_CONF_LATTICE_INTERVAL_MS <= 0xFFFF &&
+                                         DR_CONF_LATTICE_RESEND_SPREAD <= 100) ? 1 : -1];
 
 /* Back to the smallest interval, with every resend allowed again. */
 static void restart_interval(dr_module_t *m)
@@ -298,23 +303,28 @@ static void restart_interval(dr_module_t *m)
 }
 
 /* The adaptive counterpart of the fixed broadcast, called when a broadcast is due or the own
- * copy changed (`changed`: a local start or completion, always sent and a restart of the
- * interval). A due broadcast may be suppressed (DR_CONF_LATTICE_SUPPRESS). Then the next
- * one is scheduled: while a connected neighbour has not been heard with our copy, first the
- * resends at the smallest interval, then at most DR_CONF_LATTICE_UNACKED_DOUBLINGS
- * doublings (its packets may be lost; a silent neighbour costs one packet per such interval);
- * once all have, the interval doubles at each broadcast. */
+ * copy changed (`changed`: a local completion, always sent and a restart of the interval). A
+ * due broadcast may be suppressed (DR_CONF_LATTICE_SUPPRESS). Then the next one is
+ * scheduled: toward a connected neighbour heard behind and not heard with our copy since,
+ * the smallest interval (a near-dead link: try as often as the fixed period does); while
+ * another connected neighbour has not been heard with our copy, first the resends at the
+ * smallest interval, then at most DR_CONF_LATTICE_UNACKED_DOUBLINGS doublings (its packets
+ * may be lost; a silent neighbour costs one packet per such interval); once all have, the
+ * longest interval (nothing is left to tell them: the broadcasts only keep the links alive). */
 static void disseminate(dr_module_t *m, uint32_t now, uint8_t changed)
 {
-    uint8_t all_acked;
+    dr_channels_t unacked;
+#if DR_CONF_LATTICE_RESEND_SPREAD > 0
+    uint32_t spread;
+#endif
     if (changed) {
         restart_interval(m);
     }
-    all_acked = (uint8_t)((connected(m) & (dr_channels_t)~m->acked) == 0u);
+    unacked = (dr_channels_t)(connected(m) & (dr_channels_t)~m->acked);
 #if DR_CONF_LATTICE_SUPPRESS > 0
     /* Never without NV: a neighbour in its rule-1 wait (or awaiting an echo) must hear us
      * even when our copy is the same as its own. */
-    if (changed || m->answer || !all_acked || m->consistent < DR_CONF_LATTICE_SUPPRESS ||
+    if (changed || m->answer || unacked != 0u || m->consistent < DR_CONF_LATTICE_SUPPRESS ||
         no_nv(m)) {
         send_state(m);
     }
@@ -323,20 +333,32 @@ static void disseminate(dr_module_t *m, uint32_t now, uint8_t changed)
 #endif
     m->consistent = 0;
     m->answer = 0;
-    if (!all_acked && m->resends > 0u) {
+    if ((unacked & m->lagging) != 0u) {
+        m->doublings = 0; /* a neighbour known to lack a fact: again soon */
+    } else if (unacked != 0u && m->resends > 0u) {
         /* A neighbour may have missed it: again after the smallest interval. */
         m->resends--;
-        m->next_broadcast_ms = now + DR_CONF_LATTICE_INTERVAL_MS;
+        m->doublings = 0;
+    } else if (unacked != 0u) {
+        /* Still unacknowledged after the resends: less often, up to the cap. */
+        m->doublings = (uint8_t)(m->doublings < DR_CONF_LATTICE_UNACKED_DOUBLINGS
+                                     ? m->doublings + 1u
+                                     : DR_CONF_LATTICE_UNACKED_DOUBLINGS);
     } else {
-        if (m->doublings < DR_CONF_LATTICE_DOUBLINGS) {
-            m->doublings++;
-        }
-        if (!all_acked && m->doublings > DR_CONF_LATTICE_UNACKED_DOUBLINGS) {
-            /* Still unacknowledged after the resends: keep trying, less often. */
-            m->doublings = DR_CONF_LATTICE_UNACKED_DOUBLINGS;
-        }
-        m->next_broadcast_ms = now + ((uint32_t)DR_CONF_LATTICE_INTERVAL_MS << m->doublings);
+        m->doublings = DR_CONF_LATTICE_DOUBLINGS;
     }
+    m->next_broadcast_ms = now + ((uint32_t)DR_CONF_LATTICE_INTERVAL_MS << m->doublings);
+#if DR_CONF_LATTICE_RESEND_SPREAD > 0
+    if (unacked != 0u) {
+        /* A try toward an unacknowledged neighbour at a random time in the last SPREAD % of
+         * its interval: the modules that heard the same news at the same time would
+         * otherwise resend in step and collide again. */
+        spread = (((uint32_t)DR_CONF_LATTICE_INTERVAL_MS << m->doublings) *
+                  DR_CONF_LATTICE_RESEND_SPREAD) / 100u;
+        m->next_broadcast_ms -= spread;
+        m->next_broadcast_ms += (uint32_t)(dr_hal_random(m) % (spread + 1u));
+    }
+#endif
 #if DR_CONF_BROADCAST_JITTER_MS > 0
     m->next_broadcast_ms += (uint32_t)(dr_hal_random(m) % (DR_CONF_BROADCAST_JITTER_MS + 1u));
 #endif
@@ -354,15 +376,29 @@ static uint8_t same_facts(const dr_shared_t *a, const dr_shared_t *b)
     return same;
 }
 
+/* A broadcast at the next step plus 0..DR_CONF_LATTICE_RELAY_JITTER_MS ms, unless one is due
+ * sooner. */
+static void send_soon(dr_module_t *m)
+{
+    uint32_t soon = dr_hal_now_ms(m);
+#if DR_CONF_LATTICE_RELAY_JITTER_MS > 0
+    soon += (uint32_t)(dr_hal_random(m) % (DR_CONF_LATTICE_RELAY_JITTER_MS + 1u));
+#endif
+    if ((uint32_t)(m->next_broadcast_ms - soon) < 0x80000000u) {
+        m->next_broadcast_ms = soon;
+    }
+}
+
 /* After the join of a packet `in` heard on `channel` (`before`: our copy before it). News
  * (our copy grew) and a sender that lacks something we hold (it is behind: answer it) are
  * sent at the next step, with the interval back to the smallest; a packet equal to our copy
- * acknowledges that channel. O(W). */
+ * acknowledges that channel, and the third one from the same channel since our last
+ * broadcast is answered too: that neighbour keeps resending because it has not heard us
+ * with its copy (our packet was lost), and nothing else would make us speak. O(W). */
 static void heard_copy(dr_module_t *m, uint8_t channel, const dr_shared_t *before,
                        dr_shared_t *in)
 {
     dr_channels_t bit_c = 0;
-    uint32_t soon;
     uint8_t grew = (uint8_t)!same_facts(before, &m->shared);
     uint8_t behind;
     dr_shared_normalise(in, m->program->n_statements);
@@ -372,13 +408,7 @@ static void heard_copy(dr_module_t *m, uint8_t channel, const dr_shared_t *befor
     }
     if (grew || behind) {
         restart_interval(m);
-        soon = dr_hal_now_ms(m);
-#if DR_CONF_LATTICE_RELAY_JITTER_MS > 0
-        soon += (uint32_t)(dr_hal_random(m) % (DR_CONF_LATTICE_RELAY_JITTER_MS + 1u));
-#endif
-        if ((uint32_t)(m->next_broadcast_ms - soon) < 0x80000000u) {
-            m->next_broadcast_ms = soon; /* unless one is due sooner */
-        }
+        send_soon(m);
         if (grew) {
             m->acked = 0;
         }
@@ -386,14 +416,22 @@ static void heard_copy(dr_module_t *m, uint8_t channel, const dr_shared_t *befor
     if (behind) {
         m->answer = 1; /* never suppressed (the sender may be on a channel not connected) */
         m->acked = (dr_channels_t)(m->acked & (dr_channels_t)~bit_c);
+        m->lagging = (dr_channels_t)(m->lagging | bit_c);
     } else {
         m->acked = (dr_channels_t)(m->acked | bit_c);
+        m->lagging = (dr_channels_t)(m->lagging & (dr_channels_t)~bit_c);
         if (!grew) {
-            /* Heard nothing new: the interval doubles (the broadcast already scheduled keeps
-             * its time; the next one is scheduled with the longer interval). */
+            if ((m->repeated[1] & bit_c) != 0u) {
+                m->answer = 1;
+                send_soon(m);
+            }
+            m->repeated[1] = (dr_channels_t)(m->repeated[1] | (m->repeated[0] & bit_c));
+            m->repeated[0] = (dr_channels_t)(m->repeated[0] | bit_c);
             if (m->consistent < 0xFFu) {
                 m->consistent++;
             }
+            /* Heard nothing new: the interval doubles (the broadcast already scheduled keeps
+             * its time; the next one is scheduled with the longer interval). */
             if (m->doublings < DR_CONF_LATTICE_DOUBLINGS) {
                 m->doublings++;
             }
@@ -407,6 +445,9 @@ static void issue(dr_module_t *m)
     dr_statement_t st;
     dr_hal_table_read(&st, &m->program->statements[m->running], sizeof st);
     dr_hal_op_start(m, m->running, st.op, st.index, st.args);
+#if ADAPTIVE
+    m->issued_ms = (uint16_t)dr_hal_now_ms(m);
+#endif
 }
 
 /* This module's first statement in the window that is not done and whose dependencies are
@@ -506,6 +547,9 @@ void dr_module_init(dr_module_t *m, const dr_program_t *program, void *platform)
     m->consistent = 0;
     m->answer = 0;
     m->acked = 0;
+    m->lagging = 0;
+    m->repeated[0] = 0;
+    m->repeated[1] = 0;
 #endif
 }
 
@@ -517,6 +561,9 @@ void dr_module_step(dr_module_t *m)
     uint32_t now = dr_hal_now_ms(m);
     uint8_t due = (uint8_t)((uint32_t)(now - m->next_broadcast_ms) < 0x80000000u);
     uint8_t changed = 0;
+#if ADAPTIVE
+    uint8_t retrying = 0;
+#endif
     uint16_t i;
     enum dr_op_status status;
     if (m->running != DR_NONE) {
@@ -543,9 +590,15 @@ void dr_module_step(dr_module_t *m)
                 m->acked = 0; /* a new fact: no neighbour is known to hold our copy */
 #endif
             } else if (due) {
-                issue(m); /* failed: retry, at the pace of the periodic broadcast */
 #if ADAPTIVE
-                restart_interval(m); /* which is the smallest interval while it fails */
+                /* Failed: retried at the smallest interval, however soon an answer or news
+                 * is due (the start itself was not broadcast). */
+                retrying = 1;
+                if ((uint16_t)((uint16_t)now - m->issued_ms) >= DR_CONF_LATTICE_INTERVAL_MS) {
+                    issue(m);
+                }
+#else
+                issue(m); /* failed: retry, at the pace of the periodic broadcast */
 #endif
             }
         }
@@ -554,11 +607,18 @@ void dr_module_step(dr_module_t *m)
         m->unheard = (dr_channels_t)(m->unheard & connected(m)); /* unlatched meanwhile */
     }
     if (m->running == DR_NONE && m->unheard == 0u && m->unechoed == DR_NONE) {
+#if ADAPTIVE
+        (void)start_next(m); /* not news: the started bits decide nothing */
+#else
         changed = (uint8_t)(changed | start_next(m));
+#endif
     }
     if (changed || due) {
 #if ADAPTIVE
         disseminate(m, now, changed);
+        if (retrying) {
+            m->next_broadcast_ms = now + DR_CONF_LATTICE_INTERVAL_MS;
+        }
 #else
         broadcast(m, now);
 #endif

@@ -103,9 +103,14 @@ typedef struct dr_module {
     uint8_t doublings;
     uint8_t resends;
     uint8_t consistent;
-    uint8_t answer;                    /* a neighbour was heard behind: the next broadcast
-                                          answers it and is never suppressed */
+    uint8_t answer;                    /* a neighbour was heard behind (or resending): the
+                                          next broadcast answers it, never suppressed */
     dr_channels_t acked;
+    dr_channels_t lagging;             /* heard behind and not heard with our copy since */
+    dr_channels_t repeated[2];         /* heard with our copy once / twice since our last
+                                          broadcast (a third time: it is resending) */
+    uint16_t issued_ms;                /* when the running operation was last issued (low
+                                          16 bits): a failed one is retried an interval on */
 #endif
     /* counters, for reports */
     uint32_t packets_sent;

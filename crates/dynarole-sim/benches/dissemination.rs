@@ -3,7 +3,8 @@
 //! `atron` preset, the same seeds (1 to `SEEDS`, default 200) at loss 0, 0.3 and 0.6. Prints
 //! a Markdown table (docs/benchmarks.md, "Adaptive dissemination"): success, packets sent per
 //! run, median and 95th-percentile completion of the successful runs, and at loss 0 the mean
-//! completion over the mechanical critical path plus one 100 ms period per hand-over.
+//! completion over the mechanical critical path plus one 100 ms period per hand-over, and
+//! over the same bound with each module's statements one at a time (as the runtime runs them).
 //!
 //! `cargo bench -p dynarole-sim --bench dissemination` (`SEEDS=20` for a quick look)
 
@@ -171,22 +172,27 @@ fn main() {
                 );
                 if loss == 0.0 {
                     let path = path_sim.critical_path(&scenario.timing);
+                    let serial = path_sim.critical_path_one_at_a_time(&scenario.timing);
                     let bound = path.with_handovers(PERIOD_MS) as f64;
+                    let serial_bound = serial.with_handovers(PERIOD_MS) as f64;
                     bounds.push(format!(
-                        "| {} | {} | {:.2} | {:.2} ({} hand-overs) | {:.3} |",
+                        "| {} | {} | {:.2} | {:.2} ({} hand-overs) | {:.3} | {:.2} ({} hand-overs) | {:.3} |",
                         case.name,
                         d.name(),
                         p.mean_ms / 1000.0,
                         bound / 1000.0,
                         path.handovers,
-                        p.mean_ms / bound
+                        p.mean_ms / bound,
+                        serial_bound / 1000.0,
+                        serial.handovers,
+                        p.mean_ms / serial_bound
                     ));
                 }
             }
         }
     }
-    println!("\n| case | dissemination | mean completion s (loss 0) | critical path + 100 ms per hand-over s | ratio |");
-    println!("|---|---|---|---|---|");
+    println!("\n| case | dissemination | mean completion s (loss 0) | critical path + 100 ms per hand-over s | ratio | one operation at a time per module + 100 ms per hand-over s | ratio |");
+    println!("|---|---|---|---|---|---|---|");
     for line in bounds {
         println!("{line}");
     }

@@ -27,16 +27,34 @@ impl CriticalPath {
     }
 }
 
-/// The longest chain through `deps`, statement `s` weighing `duration(s)`. Among chains of
-/// equal duration, the one with the most hand-overs (the stricter bound), then the earliest
-/// statements. Dependencies point backwards (lowering guarantees it; others are ignored).
-pub fn longest_chain(ir: &Ir, duration: impl Fn(usize) -> u64) -> CriticalPath {
+/// Which edges a chain follows.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Order {
+    /// The IR's `deps`: what the sequence means.
+    Meaning,
+    /// Also `previous_on_module`: a module runs one operation at a time, in source order, as
+    /// the lattice runtime does (two `&` statements of one module run one after the other).
+    OneAtATime,
+}
+
+/// The longest chain through `deps` (and, by `order`, each module's own order), statement `s`
+/// weighing `duration(s)`. Among chains of equal duration, the one with the most hand-overs
+/// (the stricter bound), then the earliest statements. Dependencies point backwards (lowering
+/// guarantees it; others are ignored).
+fn chain(ir: &Ir, order: Order, duration: impl Fn(usize) -> u64) -> CriticalPath {
     // For each statement: (finish, hand-overs) of the heaviest chain ending with it, and the
     // previous statement on that chain.
     let mut best: Vec<((u64, usize), Option<usize>)> = Vec::with_capacity(ir.statements.len());
     for (s, st) in ir.statements.iter().enumerate() {
         let mut top = ((0, 0), None);
-        for d in st.deps.iter().map(|d| usize::from(*d)).filter(|d| *d < s) {
+        let previous = st.previous_on_module.filter(|_| order == Order::OneAtATime);
+        for d in st
+            .deps
+            .iter()
+            .chain(&previous)
+            .map(|d| usize::from(*d))
+            .filter(|d| *d < s)
+        {
             let ((finish, handovers), _) = best[d];
             let handovers = handovers + usize::from(ir.statements[d].address != st.address);
             if top.1.is_none() || (finish, handovers) > top.0 {
@@ -71,8 +89,20 @@ pub fn longest_chain(ir: &Ir, duration: impl Fn(usize) -> u64) -> CriticalPath {
 /// arguments: `rotateFromToBy` names where it starts; `rotateToBy` is taken to start where
 /// the same module's previous turn of that joint ended (0 when there is none), an estimate.
 pub fn critical_path(seq: &Sequence, timing: &Timing) -> CriticalPath {
+    chain(&seq.ir, Order::Meaning, durations(seq, timing))
+}
+
+/// The critical path as the lattice runtime can run it at best: `critical_path` plus the
+/// order of each module's own statements (one operation at a time), so that two `&`
+/// statements of one module weigh the sum of their durations. Still a lower bound of any run.
+pub fn one_at_a_time(seq: &Sequence, timing: &Timing) -> CriticalPath {
+    chain(&seq.ir, Order::OneAtATime, durations(seq, timing))
+}
+
+/// Each statement's duration with `timing` (see `critical_path`).
+fn durations<'a>(seq: &'a Sequence, timing: &'a Timing) -> impl Fn(usize) -> u64 + 'a {
     let atron = seq.robot.name == "atron";
-    let duration = |s: usize| match seq.kinds[s] {
+    move |s: usize| match seq.kinds[s] {
         OpKind::Extend => timing.extend_ms,
         OpKind::Retract => timing.retract_ms,
         OpKind::Turn => {
@@ -90,8 +120,7 @@ pub fn critical_path(seq: &Sequence, timing: &Timing) -> CriticalPath {
             timing.turn_ms(seq.quarters(s, current, atron))
         }
         OpKind::Other => 0,
-    };
-    longest_chain(&seq.ir, duration)
+    }
 }
 
 #[cfg(test)]
@@ -146,6 +175,23 @@ mod tests {
     }
 
     #[test]
+    fn one_at_a_time_adds_a_modules_own_order() {
+        // #1 and #2 are M1's, joined by `&`: the meaning lets them overlap (3 s), the runtime
+        // runs them one after the other (2 + 3 s), then M0's turn (a hand-over).
+        let sim = simulator(
+            "robot atron;\nsequence s {\n    M1.Connector[2].retract();\n    \
+             M1.Connector[4].retract() &\n    M1.Connector[2].extend();\n    \
+             M0.Joint.rotateFromToBy(0, 108, true, 150);\n}\n",
+        );
+        let meaning = sim.critical_path(&Timing::default());
+        assert_eq!(meaning.duration_ms, 2000 + 3000 + 550);
+        let runtime = sim.critical_path_one_at_a_time(&Timing::default());
+        assert_eq!(runtime.duration_ms, 2000 + 2000 + 3000 + 550);
+        assert_eq!(runtime.statements, vec![0, 1, 2, 3]);
+        assert_eq!(runtime.handovers, 1);
+    }
+
+    #[test]
     fn any_weights() {
         // With every statement weighing 1: three statements on the longest chain.
         let sim = simulator(
@@ -153,7 +199,7 @@ mod tests {
              M1.Connector[2].extend() &\n    M0.Joint.rotateFromToBy(0, 216, true, 150);\n    \
              M0.Joint.rotateFromToBy(216, 0, false, 150);\n}\n",
         );
-        let path = super::longest_chain(&sim.sequence.ir, |_| 1);
+        let path = super::chain(&sim.sequence.ir, super::Order::Meaning, |_| 1);
         assert_eq!(path.duration_ms, 3);
         assert_eq!(path.statements.len(), 3);
         assert_eq!(path.handovers, 1);

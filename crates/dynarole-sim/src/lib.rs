@@ -149,6 +149,12 @@ impl Simulator {
         critical::critical_path(&self.sequence, timing)
     }
 
+    /// `critical_path` with each module's statements run one at a time, in source order, as
+    /// the lattice runtime runs them (`critical.rs`): also a lower bound, and a tighter one.
+    pub fn critical_path_one_at_a_time(&self, timing: &Timing) -> CriticalPath {
+        critical::one_at_a_time(&self.sequence, timing)
+    }
+
     /// Builds (or finds in the cache) the C for `preset` and loads it.
     fn library(&self, preset: Preset) -> Result<Rc<Loaded>, SimError> {
         if let Some((_, l)) = self.loaded.borrow().iter().find(|(p, _)| *p == preset) {
