@@ -201,6 +201,16 @@ impl Simulator {
     /// modules broadcast (the end, once it finished).
     /// The start configuration's world, once the scenario is checked against it.
     fn world_for(&self, run: &Run) -> Result<RobotWorld, SimError> {
+        let view = dynarole_world::View::of(run.start);
+        if view.len() > network::MAX_MODULES || usize::from(view.connectors()) > state::QUEUES {
+            return Err(SimError::Input(format!(
+                "{} modules of {} connectors: the simulator runs at most {} modules of at most {} connectors",
+                view.len(),
+                view.connectors(),
+                network::MAX_MODULES,
+                state::QUEUES
+            )));
+        }
         let world =
             RobotWorld::new(run.start.clone(), &self.sequence.robot).map_err(SimError::Input)?;
         run.scenario
@@ -239,21 +249,15 @@ impl Simulator {
             addresses,
         } = finished;
         let ms = |t: u64| t as f64 / 1000.0;
-        let final_configuration = state.world.configuration();
-        let (matches, difference) = match run.expect {
-            Some(expected) => match compare(&final_configuration, expected) {
-                Ok(()) => (Some(true), None),
-                Err(d) => (Some(false), Some(d.to_string())),
-            },
-            None => (None, None),
-        };
         let statements_done = state.phys.iter().filter(|p| p.done.is_some()).count();
+        let view = state.view();
         let modules = state
             .modules
             .iter()
             .zip(&addresses)
-            .map(|(m, address)| ModuleReport {
-                name: m.name.clone(),
+            .enumerate()
+            .map(|(k, (m, address))| ModuleReport {
+                name: view.name(k),
                 id: m.id,
                 address: *address,
                 packets_sent: m.stats.sent,
@@ -285,13 +289,18 @@ impl Simulator {
             violations: std::mem::take(&mut state.violations),
             refusals: std::mem::take(&mut state.refusals),
             modules,
-            configuration_matches: matches,
-            difference,
-            final_configuration: serde_json::from_str(&final_configuration.to_json_string())
-                .unwrap_or(serde_json::Value::Null),
+            configuration_matches: None,
+            difference: None,
             trace: state.trace.take(),
             recorded: run.trace.then(|| std::mem::take(&mut state.recorded)),
+            // Moved out of the world last: the rest of the state is freed with it.
+            final_configuration: state.into_configuration(),
         };
+        if let Some(expected) = run.expect {
+            let compared = compare(&report.final_configuration, expected);
+            report.configuration_matches = Some(compared.is_ok());
+            report.difference = compared.err().map(|d| d.to_string());
+        }
         report.failures = failures(&report, run.scenario.timeout_ms);
         report.success = report.failures.is_empty();
         report

@@ -3,15 +3,14 @@
 //! the way: a link broken by a turn, a blocked link, a collision, loss, a dead link.
 
 use crate::scenario::Preset;
-use crate::state::{uniform, Event, Packet, State};
+use crate::state::{uniform, Air, Event, Packet, State, QUEUES};
 use dynarole_world::Port;
+use std::rc::Rc;
 
 /// 19200 baud, modelled as 1920 bytes per second.
 const BYTES_PER_SECOND: u64 = 1920;
 /// Send buffer per channel (bytes).
 const SEND_BUFFER: u64 = 128;
-/// Send queues per module, at most (one per connector; ATRON and M-TRAN have 8 and 6).
-const QUEUES: usize = 8;
 /// How long transmissions are remembered for collision checks (µs): longer than any
 /// packet's air time (a packet has at most 255 bytes: 133 ms), so forgetting older ones
 /// changes no check (a packet arriving now started at most that long ago).
@@ -54,6 +53,68 @@ fn airtime_us(len: usize) -> u64 {
     (len as u64 * 1_000_000).div_ceil(BYTES_PER_SECOND)
 }
 
+/// Where each module's broadcasts go, by sending connector, while the world is unchanged:
+/// one u32 per connector of every module in one vector (4 bytes per connector, no
+/// allocation per module), filled for a module at its first broadcast after a change.
+pub struct Links {
+    /// Connectors per module.
+    connectors: usize,
+    /// Module m's entries are `slots[m * connectors..][..connectors]`: `UNKNOWN` (not looked
+    /// up since the last change), `NONE`, or the receiving port as `module * QUEUES +
+    /// connector`.
+    slots: Vec<u32>,
+}
+
+const UNKNOWN: u32 = u32::MAX;
+const NONE: u32 = u32::MAX - 1;
+
+/// Most modules a run can have: every port must pack into a `Links` slot.
+pub const MAX_MODULES: usize = (NONE as usize) / QUEUES;
+
+impl Links {
+    pub fn new(modules: usize, connectors: u8) -> Links {
+        let connectors = usize::from(connectors);
+        Links {
+            connectors,
+            slots: vec![UNKNOWN; modules * connectors],
+        }
+    }
+
+    /// Forgets every target (the world changed).
+    pub fn clear(&mut self) {
+        self.slots.fill(UNKNOWN);
+    }
+
+    /// Module m's targets by sending connector, if looked up since the last change.
+    fn get(&self, m: usize) -> Option<[Option<Port>; QUEUES]> {
+        let slots = self
+            .slots
+            .get(m * self.connectors..(m + 1) * self.connectors)?;
+        if slots.first().is_none_or(|s| *s == UNKNOWN) {
+            return None;
+        }
+        let mut out = [None; QUEUES];
+        for (target, slot) in out.iter_mut().zip(slots) {
+            *target = (*slot != NONE).then_some(Port {
+                module: *slot as usize / QUEUES,
+                connector: (*slot as usize % QUEUES) as u8,
+            });
+        }
+        Some(out)
+    }
+
+    fn set(&mut self, m: usize, targets: &[Option<Port>; QUEUES]) {
+        let range = m * self.connectors..(m + 1) * self.connectors;
+        if let Some(slots) = self.slots.get_mut(range) {
+            for (slot, target) in slots.iter_mut().zip(targets) {
+                *slot = target.map_or(NONE, |p| {
+                    u32::try_from(p.module * QUEUES + usize::from(p.connector)).unwrap_or(NONE)
+                });
+            }
+        }
+    }
+}
+
 impl State {
     /// `dr_hal_broadcast`: one transmission per channel the module can send on.
     pub fn broadcast(&mut self, m: usize, bytes: &[u8]) {
@@ -66,14 +127,27 @@ impl State {
                 *slot = Some(bytes.to_vec());
             }
         }
-        let targets = match self.links.get_mut(m).and_then(Option::take) {
+        let targets = match self.links.get(m) {
             Some(targets) => targets,
-            None => self.link_targets(m),
+            None => {
+                let targets = self.link_targets(m);
+                self.links.set(m, &targets);
+                targets
+            }
         };
         // The air time reserved on each send queue (one reservation per queue and broadcast).
         let mut slots: [Option<Option<(u64, u64)>>; QUEUES] = [None; QUEUES];
-        for &(from, to) in &targets {
-            let queue = self.send_queue(from.connector);
+        // One copy of the bytes for every packet of this broadcast.
+        let mut frame: Option<Rc<[u8]>> = None;
+        for (connector, to) in (0u8..).zip(targets) {
+            let Some(to) = to else {
+                continue;
+            };
+            let from = Port {
+                module: m,
+                connector,
+            };
+            let queue = self.send_queue(connector);
             let slot = match slots.get(queue).copied().flatten() {
                 Some(slot) => slot,
                 None => {
@@ -88,10 +162,8 @@ impl State {
                 self.counters.overflow += 1;
                 continue;
             };
-            self.send(from, to, start, end, bytes);
-        }
-        if let Some(cache) = self.links.get_mut(m) {
-            *cache = Some(targets);
+            let frame = Rc::clone(frame.get_or_insert_with(|| Rc::from(bytes)));
+            self.send(from, to, start, end, frame);
         }
     }
 
@@ -109,22 +181,23 @@ impl State {
         };
         let queue = self.send_queue(channel);
         match self.reserve(m, queue, bytes.len()) {
-            Some((start, end)) => self.send(from, to, start, end, bytes),
+            Some((start, end)) => self.send(from, to, start, end, Rc::from(bytes)),
             None => self.counters.overflow += 1,
         }
     }
 
-    /// Where module `m`'s broadcasts go: (sending connector, receiving connector), by
-    /// connector. Cached in `links` until the world changes.
-    fn link_targets(&self, m: usize) -> Vec<(Port, Port)> {
+    /// Where module `m`'s broadcasts go: the receiving connector, by sending connector.
+    /// Cached in `links` until the world changes.
+    fn link_targets(&self, m: usize) -> [Option<Port>; QUEUES] {
         let view = self.view();
-        (0..view.connectors())
-            .map(|c| Port {
+        let mut out = [None; QUEUES];
+        for (connector, target) in (0..view.connectors()).zip(out.iter_mut()) {
+            *target = view.link_target(Port {
                 module: m,
-                connector: c,
-            })
-            .filter_map(|from| view.link_target(from).map(|to| (from, to)))
-            .collect()
+                connector,
+            });
+        }
+        out
     }
 
     /// Full duplex: one queue per channel; half duplex: one UART per hemisphere.
@@ -153,65 +226,68 @@ impl State {
             *slot = end;
         }
         if self.preset == Preset::Atron {
-            self.modules[m].air[queue.min(1)].push((start, end, 0));
+            self.modules[m].air.push(Air {
+                start,
+                end,
+                packet: 0,
+                hemisphere: queue.min(1),
+            });
         }
         Some((start, end))
     }
 
-    fn send(&mut self, from: Port, to: Port, start: u64, end: u64, bytes: &[u8]) {
+    fn send(&mut self, from: Port, to: Port, start: u64, end: u64, bytes: Rc<[u8]>) {
         let id = self.next_id;
         self.next_id += 1;
         self.counters.packets_sent += 1;
         self.modules[from.module].stats.sent += 1;
         if self.preset == Preset::Atron {
-            let h = self.view().hemisphere(to.connector);
-            self.modules[to.module].air[h].push((start, end, id));
+            let hemisphere = self.view().hemisphere(to.connector);
+            self.modules[to.module].air.push(Air {
+                start,
+                end,
+                packet: id,
+                hemisphere,
+            });
         }
-        let packet = Packet {
-            id,
-            from,
-            to,
-            start,
-            end,
-            bytes: bytes.to_vec(),
-        };
+        let packet = Packet::new(id, from, to, (start, end), bytes);
         self.schedule(end, Event::Arrival(Box::new(packet)));
     }
 
     /// Decides a packet's fate as it arrives; true when the receiver gets it.
     pub fn arrive(&mut self, packet: &Packet) -> bool {
         let fate = self.fate(packet);
-        self.prune_air(packet.to.module);
+        self.prune_air(packet.to().module);
         self.record_packet(packet, fate.name());
         if fate == Fate::Delivered {
             self.counters.delivered += 1;
-            self.modules[packet.to.module].stats.received += 1;
+            self.modules[packet.to().module].stats.received += 1;
             return true;
         }
         self.counters.count_drop(fate);
-        self.modules[packet.to.module].stats.dropped += 1;
+        self.modules[packet.to().module].stats.dropped += 1;
         if self.tracing() {
             let view = self.view();
             let detail = format!(
                 "{} <- {} ({} bytes)",
-                view.port_name(packet.to),
-                view.port_name(packet.from),
+                view.port_name(packet.to()),
+                view.port_name(packet.from()),
                 packet.bytes.len()
             );
-            self.log(Some(packet.to.module), fate.name(), detail);
+            self.log(Some(packet.to().module), fate.name(), detail);
         }
         false
     }
 
     fn fate(&mut self, p: &Packet) -> Fate {
-        if !self.modules[p.to.module].powered {
+        if !self.modules[p.to().module].powered {
             return Fate::Off;
         }
-        if self.turn_breaks(p.from.module, p.to.module) {
+        if self.turn_breaks(p.from().module, p.to().module) {
             return Fate::Moving;
         }
         let faults = self.faults_on();
-        if faults && (self.blocked(p.from) || self.blocked(p.to)) {
+        if faults && (self.blocked(p.from()) || self.blocked(p.to())) {
             return Fate::Blocked;
         }
         if self.preset == Preset::Atron && self.collides(p) {
@@ -220,11 +296,10 @@ impl State {
         if !faults {
             return Fate::Delivered;
         }
-        let dead = self.modules[p.to.module]
+        let dead = self.modules[p.to().module]
             .dead
-            .get(usize::from(p.to.connector))
-            .copied()
-            .unwrap_or(false);
+            .checked_shr(u32::from(p.to().connector))
+            .is_some_and(|bits| bits & 1 == 1);
         let loss = if dead {
             self.scenario.network.dead_loss
         } else {
@@ -249,7 +324,7 @@ impl State {
         let now_ms = self.now / 1000;
         self.scenario.block.iter().any(|b| {
             b.connector == port.connector
-                && self.modules[port.module].name == b.module
+                && self.view().index(&b.module) == Some(port.module)
                 && (b.from_ms..b.to_ms).contains(&now_ms)
         })
     }
@@ -257,17 +332,16 @@ impl State {
     /// Half duplex: the receiver's hemisphere UART heard another packet, or was sending,
     /// while this one was on the air.
     fn collides(&self, p: &Packet) -> bool {
-        let h = self.view().hemisphere(p.to.connector);
-        self.modules[p.to.module].air[h]
+        let h = self.view().hemisphere(p.to().connector);
+        self.modules[p.to().module]
+            .air
             .iter()
-            .any(|(start, end, id)| *id != p.id && *start < p.end && *end > p.start)
+            .any(|a| a.hemisphere == h && a.packet != p.id && a.start < p.end && a.end > p.start)
     }
 
     fn prune_air(&mut self, m: usize) {
         let horizon = self.now.saturating_sub(AIR_MEMORY_US);
-        for log in &mut self.modules[m].air {
-            log.retain(|(_, end, _)| *end >= horizon);
-        }
+        self.modules[m].air.retain(|a| a.end >= horizon);
     }
 }
 

@@ -203,7 +203,7 @@ impl State {
         self.violations.push(Violation {
             check: check.to_string(),
             time_ms: self.now as f64 / 1000.0,
-            module: self.modules[m].name.clone(),
+            module: self.view().name(m),
             statement: s,
             text: self.seq.text(s).to_string(),
             involved,
@@ -265,7 +265,7 @@ impl State {
 
     /// Which modules move during a turn, so that their links break while it lasts.
     fn note_turn(&mut self, id: u64, m: usize, s: usize) {
-        let name = self.modules[m].name.clone();
+        let name = self.view().name(m);
         let Some(motion) = self
             .world
             .turn_motion(&self.seq.robot, &self.seq.resolved[s], &name)
@@ -297,13 +297,13 @@ impl State {
             return;
         }
         self.phys[s].running = None;
-        let name = self.modules[m].name.clone();
+        let name = self.view().name(m);
         let label = self.trace_label(s);
         let applied = self
             .world
             .apply(&self.seq.robot, &self.seq.resolved[s], &name);
         // Links may have changed (latches, facing connectors).
-        self.links.iter_mut().for_each(|l| *l = None);
+        self.links.clear();
         match applied {
             Ok(outcome) => {
                 let notes = if self.tracing() {
@@ -343,7 +343,7 @@ impl State {
         }
         self.refusals.push(Refusal {
             time_ms: self.now as f64 / 1000.0,
-            module: self.modules[m].name.clone(),
+            module: self.view().name(m),
             statement: s,
             text: self.seq.text(s).to_string(),
             reason,

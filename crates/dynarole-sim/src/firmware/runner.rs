@@ -176,7 +176,7 @@ pub fn run(
                 address: 0xFF,
                 void_after: None,
                 stats: ModuleFirmware {
-                    name: state.modules[m].name.clone(),
+                    name: state.view().name(m),
                     ..ModuleFirmware::default()
                 },
             })
@@ -298,8 +298,8 @@ fn dispatch(state: &mut State, boards: &mut [Board], event: Event) {
 
 fn arrive(state: &mut State, boards: &mut [Board], packet: &Packet) {
     if state.arrive(packet) {
-        let b = &mut boards[packet.to.module];
-        if b.on.is_some() && !b.core.rx(packet.to.connector, &packet.bytes) {
+        let b = &mut boards[packet.to().module];
+        if b.on.is_some() && !b.core.rx(packet.to().connector, &packet.bytes) {
             b.stats.arbiter_drops += 1;
         }
     }
