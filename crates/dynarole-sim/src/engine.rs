@@ -263,7 +263,8 @@ fn dispatch(state: &Rc<RefCell<State>>, contexts: &mut Contexts, event: Event) {
             state.borrow_mut().op_done(attempt);
             after_operations(state);
         }
-        Event::Arrival(packet) => {
+        Event::Arrival(arrivals) => {
+            let packet = state.borrow_mut().next_arrival(arrivals);
             if state.borrow_mut().arrive(&packet) {
                 contexts.receive(&packet);
                 after_packet(state, contexts, packet.to().module);

@@ -2,6 +2,7 @@
 //! queue per channel (per hemisphere when half duplex), and what can happen to a packet on
 //! the way: a link broken by a turn, a blocked link, a collision, loss, a dead link.
 
+use crate::queue::Key;
 use crate::scenario::Preset;
 use crate::state::{uniform, Air, Event, Packet, State, QUEUES};
 use dynarole_world::Port;
@@ -51,6 +52,122 @@ impl Fate {
 
 fn airtime_us(len: usize) -> u64 {
     (len as u64 * 1_000_000).div_ceil(BYTES_PER_SECOND)
+}
+
+/// The packets of one broadcast (or one `dr_hal_send`) before they go into the queue.
+#[derive(Default)]
+struct Sends {
+    list: [Send; QUEUES],
+    len: usize,
+}
+
+#[derive(Clone, Copy)]
+struct Send {
+    connector: u8,
+    to: Port,
+    /// Start and end on the air.
+    air: (u64, u64),
+}
+
+impl Default for Send {
+    fn default() -> Send {
+        let to = Port {
+            module: 0,
+            connector: 0,
+        };
+        Send {
+            connector: 0,
+            to,
+            air: (0, 0),
+        }
+    }
+}
+
+impl Sends {
+    fn push(&mut self, connector: u8, to: Port, air: (u64, u64)) {
+        if let Some(slot) = self.list.get_mut(self.len) {
+            *slot = Send { connector, to, air };
+            self.len += 1;
+        }
+    }
+
+    fn list(&self) -> &[Send] {
+        self.list.get(..self.len).unwrap_or_default()
+    }
+}
+
+/// The packets of one broadcast that share their time on the air, as one event of the queue
+/// (a broadcast reaches every neighbour at once: at the start of a large run every module's
+/// first broadcast is in flight together, and one event per packet would hold four or more
+/// queue entries per module). Delivered one per event (`State::next_arrival`), each at the
+/// key it would have had alone: the packets of one broadcast take consecutive sequence
+/// numbers and ids (the k-th sent: first + k) and share the instant they were scheduled at
+/// and their end, so no other event comes between them.
+#[derive(Clone, Debug)]
+pub struct Arrivals {
+    first_id: u64,
+    first_seq: u64,
+    sent_at: u64,
+    air: (u64, u64),
+    bytes: Rc<[u8]>,
+    from_module: u32,
+    /// The next packet to deliver, and how many there are.
+    next: u8,
+    len: u8,
+    targets: [Target; QUEUES],
+}
+
+/// One packet of `Arrivals`: where it goes, the sender's connector, and its rank among the
+/// packets of its broadcast.
+#[derive(Clone, Copy, Debug, Default)]
+struct Target {
+    to_module: u32,
+    to_connector: u8,
+    from_connector: u8,
+    rank: u8,
+}
+
+impl Arrivals {
+    fn add(&mut self, rank: u8, send: &Send) {
+        if let Some(slot) = self.targets.get_mut(usize::from(self.len)) {
+            *slot = Target {
+                // Fits: a run has at most MAX_MODULES modules.
+                to_module: send.to.module as u32,
+                to_connector: send.to.connector,
+                from_connector: send.connector,
+                rank,
+            };
+            self.len += 1;
+        }
+    }
+
+    fn current(&self) -> Target {
+        self.targets
+            .get(usize::from(self.next))
+            .copied()
+            .unwrap_or_default()
+    }
+
+    /// The queue key of the next packet: as `State::schedule` gave it when it was sent.
+    fn key(&self) -> Key {
+        let seq = self.first_seq + u64::from(self.current().rank);
+        Key::plain(self.air.1, self.sent_at, seq)
+    }
+
+    /// The next packet.
+    fn packet(&self) -> Packet {
+        let t = self.current();
+        let from = Port {
+            module: self.from_module as usize,
+            connector: t.from_connector,
+        };
+        let to = Port {
+            module: t.to_module as usize,
+            connector: t.to_connector,
+        };
+        let id = self.first_id + u64::from(t.rank);
+        Packet::new(id, from, to, self.air, Rc::clone(&self.bytes))
+    }
 }
 
 /// Where each module's broadcasts go, by sending connector, while the world is unchanged:
@@ -137,15 +254,10 @@ impl State {
         };
         // The air time reserved on each send queue (one reservation per queue and broadcast).
         let mut slots: [Option<Option<(u64, u64)>>; QUEUES] = [None; QUEUES];
-        // One copy of the bytes for every packet of this broadcast.
-        let mut frame: Option<Rc<[u8]>> = None;
+        let mut sends = Sends::default();
         for (connector, to) in (0u8..).zip(targets) {
             let Some(to) = to else {
                 continue;
-            };
-            let from = Port {
-                module: m,
-                connector,
             };
             let queue = self.send_queue(connector);
             let slot = match slots.get(queue).copied().flatten() {
@@ -158,13 +270,13 @@ impl State {
                     slot
                 }
             };
-            let Some((start, end)) = slot else {
+            let Some(air) = slot else {
                 self.counters.overflow += 1;
                 continue;
             };
-            let frame = Rc::clone(frame.get_or_insert_with(|| Rc::from(bytes)));
-            self.send(from, to, start, end, frame);
+            sends.push(connector, to, air);
         }
+        self.transmit(m, &sends, bytes);
     }
 
     /// `dr_hal_send`: one transmission on one channel, if anything listens there.
@@ -181,7 +293,11 @@ impl State {
         };
         let queue = self.send_queue(channel);
         match self.reserve(m, queue, bytes.len()) {
-            Some((start, end)) => self.send(from, to, start, end, Rc::from(bytes)),
+            Some(air) => {
+                let mut sends = Sends::default();
+                sends.push(channel, to, air);
+                self.transmit(m, &sends, bytes);
+            }
             None => self.counters.overflow += 1,
         }
     }
@@ -226,32 +342,81 @@ impl State {
             *slot = end;
         }
         if self.preset == Preset::Atron {
-            self.modules[m].air.push(Air {
+            let air = Air {
                 start,
                 end,
                 packet: 0,
                 hemisphere: queue.min(1),
-            });
+            };
+            if let Some(log) = self.air.get_mut(m) {
+                log.push(air);
+            }
         }
         Some((start, end))
     }
 
-    fn send(&mut self, from: Port, to: Port, start: u64, end: u64, bytes: Rc<[u8]>) {
-        let id = self.next_id;
-        self.next_id += 1;
-        self.counters.packets_sent += 1;
-        self.modules[from.module].stats.sent += 1;
-        if self.preset == Preset::Atron {
-            let hemisphere = self.view().hemisphere(to.connector);
-            self.modules[to.module].air.push(Air {
-                start,
-                end,
-                packet: id,
-                hemisphere,
-            });
+    /// Module `m`'s packets, in the order sent: each takes the next packet id and the next
+    /// sequence number, exactly as if scheduled one by one, but the packets with the same air
+    /// time go into the queue as one event (`Arrivals`).
+    fn transmit(&mut self, m: usize, sends: &Sends, bytes: &[u8]) {
+        if sends.len == 0 {
+            return;
         }
-        let packet = Packet::new(id, from, to, (start, end), bytes);
-        self.schedule(end, Event::Arrival(Box::new(packet)));
+        let (first_id, first_seq) = (self.next_id, self.next_seq);
+        self.next_id += sends.len as u64;
+        self.next_seq += sends.len as u64;
+        self.counters.packets_sent += sends.len as u64;
+        self.modules[m].stats.sent += sends.len as u64;
+        let frame: Rc<[u8]> = Rc::from(bytes);
+        let mut grouped = 0u8;
+        for (k, send) in (0u8..).zip(sends.list()) {
+            if self.preset == Preset::Atron {
+                let hemisphere = self.view().hemisphere(send.to.connector);
+                let air = Air {
+                    start: send.air.0,
+                    end: send.air.1,
+                    packet: first_id + u64::from(k),
+                    hemisphere,
+                };
+                if let Some(log) = self.air.get_mut(send.to.module) {
+                    log.push(air);
+                }
+            }
+            if grouped & (1 << k) != 0 {
+                continue;
+            }
+            let mut arrivals = Arrivals {
+                first_id,
+                first_seq,
+                sent_at: self.now,
+                air: send.air,
+                bytes: Rc::clone(&frame),
+                from_module: m as u32,
+                next: 0,
+                len: 0,
+                targets: [Target::default(); QUEUES],
+            };
+            for (j, other) in (0u8..).zip(sends.list()) {
+                if j >= k && other.air == send.air {
+                    grouped |= 1 << j;
+                    arrivals.add(j, other);
+                }
+            }
+            let key = arrivals.key();
+            self.push(key, Event::Arrival(Box::new(arrivals)));
+        }
+    }
+
+    /// The next packet of `arrivals` (the event being dispatched); the others go back into the
+    /// queue, at the next one's key.
+    pub fn next_arrival(&mut self, mut arrivals: Box<Arrivals>) -> Packet {
+        let packet = arrivals.packet();
+        arrivals.next += 1;
+        if arrivals.next < arrivals.len {
+            let key = arrivals.key();
+            self.push(key, Event::Arrival(arrivals));
+        }
+        packet
     }
 
     /// Decides a packet's fate as it arrives; true when the receiver gets it.
@@ -333,15 +498,18 @@ impl State {
     /// while this one was on the air.
     fn collides(&self, p: &Packet) -> bool {
         let h = self.view().hemisphere(p.to().connector);
-        self.modules[p.to().module]
-            .air
-            .iter()
-            .any(|a| a.hemisphere == h && a.packet != p.id && a.start < p.end && a.end > p.start)
+        self.air.get(p.to().module).is_some_and(|log| {
+            log.iter().any(|a| {
+                a.hemisphere == h && a.packet != p.id && a.start < p.end && a.end > p.start
+            })
+        })
     }
 
     fn prune_air(&mut self, m: usize) {
         let horizon = self.now.saturating_sub(AIR_MEMORY_US);
-        self.modules[m].air.retain(|a| a.end >= horizon);
+        if let Some(log) = self.air.get_mut(m) {
+            log.retain(|a| a.end >= horizon);
+        }
     }
 }
 

@@ -67,8 +67,9 @@ impl State {
         let s = match call {
             Call::Resume(s) | Call::Retry(s) | Call::First(s) | Call::Reissue(s) => s,
         };
-        if !self.modules[m].waiting.contains(&s) {
-            self.modules[m].waiting.push(s);
+        let waiting = self.waiting.entry(m).or_default();
+        if !waiting.contains(&s) {
+            waiting.push(s);
         }
         let label = self.trace_label(s);
         match call {
@@ -94,14 +95,10 @@ impl State {
 
     /// `dr_hal_op_status`: running while any operation the module waits for runs.
     pub fn op_status(&self, m: usize) -> u8 {
-        let module = &self.modules[m];
-        if module
-            .waiting
-            .iter()
-            .any(|s| self.phys[*s].running.is_some())
-        {
+        let waiting = self.waiting.get(&m).map_or(&[][..], Vec::as_slice);
+        if waiting.iter().any(|s| self.phys[*s].running.is_some()) {
             RUNNING
-        } else if module.failed {
+        } else if self.modules[m].failed {
             FAILED
         } else {
             DONE
@@ -130,10 +127,10 @@ impl State {
     /// A new batch of operations starts once every earlier one has finished.
     fn clear_finished_waits(&mut self, m: usize) {
         let phys = &self.phys;
-        let module = &mut self.modules[m];
-        if module.waiting.iter().all(|s| phys[*s].running.is_none()) {
-            module.waiting.clear();
-            module.failed = false;
+        let waiting = self.waiting.get(&m).map_or(&[][..], Vec::as_slice);
+        if waiting.iter().all(|s| phys[*s].running.is_none()) {
+            self.waiting.remove(&m);
+            self.modules[m].failed = false;
         }
     }
 
@@ -351,9 +348,11 @@ impl State {
     }
 
     fn mark_failed(&mut self, s: usize) {
-        for module in &mut self.modules {
-            if module.waiting.contains(&s) {
-                module.failed = true;
+        for (m, waiting) in &self.waiting {
+            if waiting.contains(&s) {
+                if let Some(module) = self.modules.get_mut(*m) {
+                    module.failed = true;
+                }
             }
         }
     }

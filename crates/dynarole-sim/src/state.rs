@@ -3,7 +3,7 @@
 //! Operations live in `ops.rs`, the infrared network in `network.rs`.
 
 use crate::engine::{Describer, DESCRIPTION_BYTES};
-use crate::network::Links;
+use crate::network::{Arrivals, Links};
 use crate::queue::{Key, Queue};
 use crate::report::{Counters, Refusal, Violation};
 use crate::scenario::{Preset, Scenario, Stepping};
@@ -87,7 +87,8 @@ pub enum Event {
     OpDone {
         attempt: u64,
     },
-    Arrival(Box<Packet>),
+    /// Packets of one broadcast (`network::Arrivals`), one per event.
+    Arrival(Box<Arrivals>),
     Reset {
         module: usize,
     },
@@ -101,8 +102,9 @@ pub enum Event {
 }
 
 /// The platform data of one module. Sized with care (no heap until the module writes its
-/// storage, starts an operation or, half duplex, hears a packet): the simulator's memory
-/// grows with the modules (`tests/memory.rs`). Its name is the world's (`View::name`).
+/// storage; what few modules need is kept aside: `State::waiting`, `State::air`): the
+/// simulator's memory grows with the modules (`tests/memory.rs`). Its name is the world's
+/// (`View::name`).
 #[derive(Clone, Debug)]
 pub struct Module {
     pub id: u16,
@@ -125,10 +127,6 @@ pub struct Module {
     /// The storage up to the last byte ever written (at most NV_BYTES): bytes beyond it have
     /// never been written and read as 0xFF.
     pub nv: Vec<u8>,
-    /// Statements started since the last time all were finished (what op_status reports on).
-    pub waiting: Vec<usize>,
-    /// Half duplex: recent transmissions and receptions (`network.rs`).
-    pub air: Vec<Air>,
     pub stats: ModuleStats,
 }
 
@@ -185,7 +183,7 @@ pub struct State {
     pub preset: Preset,
     pub now: u64,
     queue: Queue,
-    next_seq: u64,
+    pub(crate) next_seq: u64,
     /// Power-ons so far (each module's `rank`).
     next_rank: u64,
     /// The key of the event being dispatched.
@@ -198,6 +196,12 @@ pub struct State {
     /// Per module, where its broadcasts go (`network.rs`), while the world is unchanged.
     pub links: Links,
     pub modules: Vec<Module>,
+    /// By module, the statements it started since the last time all were finished (what
+    /// op_status reports on); only modules that run operations have an entry.
+    pub waiting: BTreeMap<usize, Vec<usize>>,
+    /// Half duplex (`Preset::Atron`), by module: its recent transmissions and receptions
+    /// (`network.rs`); empty otherwise.
+    pub air: Vec<Vec<Air>>,
     pub phys: Vec<Phys>,
     pub attempts: BTreeMap<u64, Attempt>,
     pub next_id: u64,
@@ -270,13 +274,15 @@ impl State {
                 finished_at: None,
                 busy_until: [0; QUEUES],
                 nv: Vec::new(),
-                waiting: Vec::new(),
-                air: Vec::new(),
                 stats: ModuleStats::default(),
             })
             .collect();
         let phys = vec![Phys::default(); seq.len()];
         let links = Links::new(view.len(), connectors);
+        let air = match preset {
+            Preset::Atron => vec![Vec::new(); view.len()],
+            Preset::Ussr => Vec::new(),
+        };
         let mut state = State {
             seq,
             scenario,
@@ -290,6 +296,8 @@ impl State {
             world,
             links,
             modules,
+            waiting: BTreeMap::new(),
+            air,
             phys,
             attempts: BTreeMap::new(),
             next_id: 1,
@@ -405,7 +413,7 @@ impl State {
     }
 
     /// Into the queue; stale steps go first when the queue would otherwise grow.
-    fn push(&mut self, key: Key, event: Event) {
+    pub(crate) fn push(&mut self, key: Key, event: Event) {
         if self.queue.heap_full() {
             let modules = &self.modules;
             self.queue.drop_stale(|key, event| match *event {
