@@ -15,7 +15,7 @@ const SEND_BUFFER: u64 = 128;
 /// How long transmissions are remembered for collision checks (µs): longer than any
 /// packet's air time (a packet has at most 255 bytes: 133 ms), so forgetting older ones
 /// changes no check (a packet arriving now started at most that long ago).
-const AIR_MEMORY_US: u64 = 200_000;
+const AIR_MEMORY_US: u64 = 140_000;
 const _: () = assert!(AIR_MEMORY_US > 255 * 1_000_000 / BYTES_PER_SECOND + 1);
 
 /// What happened to a packet at the receiving connector.
@@ -342,12 +342,10 @@ impl State {
             *slot = end;
         }
         if self.preset == Preset::Atron {
-            let air = Air {
-                start,
-                end,
-                packet: 0,
-                hemisphere: queue.min(1),
-            };
+            let air = Air::new((start, end), 0, queue.min(1));
+            // Its own transmissions are forgotten too (not only when it hears a packet), so
+            // that a module that mostly talks keeps a short log.
+            self.prune_air(m);
             if let Some(log) = self.air.get_mut(m) {
                 log.push(air);
             }
@@ -372,12 +370,7 @@ impl State {
         for (k, send) in (0u8..).zip(sends.list()) {
             if self.preset == Preset::Atron {
                 let hemisphere = self.view().hemisphere(send.to.connector);
-                let air = Air {
-                    start: send.air.0,
-                    end: send.air.1,
-                    packet: first_id + u64::from(k),
-                    hemisphere,
-                };
+                let air = Air::new(send.air, first_id + u64::from(k), hemisphere);
                 if let Some(log) = self.air.get_mut(send.to.module) {
                     log.push(air);
                 }
@@ -500,7 +493,7 @@ impl State {
         let h = self.view().hemisphere(p.to().connector);
         self.air.get(p.to().module).is_some_and(|log| {
             log.iter().any(|a| {
-                a.hemisphere == h && a.packet != p.id && a.start < p.end && a.end > p.start
+                a.hemisphere() == h && a.packet() != p.id && a.start < p.end && a.end > p.start
             })
         })
     }

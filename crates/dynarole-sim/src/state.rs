@@ -138,14 +138,36 @@ impl Module {
     }
 }
 
-/// One transmission or reception on a module's hemisphere, remembered for collision checks.
+/// One transmission or reception on a module's hemisphere, remembered for collision checks
+/// (24 bytes: a half-duplex module remembers a dozen at a time).
 #[derive(Clone, Copy, Debug)]
 pub struct Air {
     pub start: u64,
     pub end: u64,
-    /// The packet's id; 0 for the module's own transmission.
-    pub packet: u64,
-    pub hemisphere: usize,
+    /// The packet's id (0 for the module's own transmission; ids stay far below 2^63), with
+    /// the hemisphere in the top bit.
+    tag: u64,
+}
+
+impl Air {
+    const HEMISPHERE: u64 = 1 << 63;
+
+    pub fn new((start, end): (u64, u64), packet: u64, hemisphere: usize) -> Air {
+        let top = if hemisphere == 0 { 0 } else { Air::HEMISPHERE };
+        Air {
+            start,
+            end,
+            tag: (packet & !Air::HEMISPHERE) | top,
+        }
+    }
+
+    pub fn packet(&self) -> u64 {
+        self.tag & !Air::HEMISPHERE
+    }
+
+    pub fn hemisphere(&self) -> usize {
+        usize::from(self.tag & Air::HEMISPHERE != 0)
+    }
 }
 
 /// Send queues per module, at most (one per connector; ATRON and M-TRAN have 8 and 6).
@@ -712,3 +734,4 @@ fn reset_interval(interval_ms: u64, m: usize) -> u64 {
 const _: () = assert!(std::mem::size_of::<Event>() == 16);
 const _: () = assert!(std::mem::size_of::<Key>() == 24);
 const _: () = assert!(std::mem::size_of::<Packet>() == 56);
+const _: () = assert!(std::mem::size_of::<Air>() == 24);
