@@ -12,12 +12,6 @@ use std::rc::Rc;
 const BYTES_PER_SECOND: u64 = 1920;
 /// Send buffer per channel (bytes).
 const SEND_BUFFER: u64 = 128;
-/// How long transmissions are remembered for collision checks (µs): longer than any
-/// packet's air time (a packet has at most 255 bytes: 133 ms), so forgetting older ones
-/// changes no check (a packet arriving now started at most that long ago).
-const AIR_MEMORY_US: u64 = 140_000;
-const _: () = assert!(AIR_MEMORY_US > 255 * 1_000_000 / BYTES_PER_SECOND + 1);
-
 /// What happened to a packet at the receiving connector.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Fate {
@@ -364,6 +358,9 @@ impl State {
         self.next_id += sends.len as u64;
         self.next_seq += sends.len as u64;
         self.counters.packets_sent += sends.len as u64;
+        for send in sends.list() {
+            self.longest_air_us = self.longest_air_us.max(send.air.1 - send.air.0);
+        }
         self.modules[m].stats.sent += sends.len as u64;
         let frame: Rc<[u8]> = Rc::from(bytes);
         let mut grouped = 0u8;
@@ -498,8 +495,12 @@ impl State {
         })
     }
 
+    /// Forgets module m's records that no collision check can need: a packet arriving from
+    /// now on is either on the air already (it started at most `longest_air_us` ago) or
+    /// sent later (it starts now or after), so a record that ended before both matters to
+    /// no packet.
     fn prune_air(&mut self, m: usize) {
-        let horizon = self.now.saturating_sub(AIR_MEMORY_US);
+        let horizon = self.now.saturating_sub(self.longest_air_us);
         if let Some(log) = self.air.get_mut(m) {
             log.retain(|a| a.end >= horizon);
         }

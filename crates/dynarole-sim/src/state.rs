@@ -224,6 +224,8 @@ pub struct State {
     /// Half duplex (`Preset::Atron`), by module: its recent transmissions and receptions
     /// (`network.rs`); empty otherwise.
     pub air: Vec<Vec<Air>>,
+    /// The longest air time of any packet sent so far (µs): how long `air` records matter.
+    pub longest_air_us: u64,
     pub phys: Vec<Phys>,
     pub attempts: BTreeMap<u64, Attempt>,
     pub next_id: u64,
@@ -320,6 +322,7 @@ impl State {
             modules,
             waiting: BTreeMap::new(),
             air,
+            longest_air_us: 0,
             phys,
             attempts: BTreeMap::new(),
             next_id: 1,
