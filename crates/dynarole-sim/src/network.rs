@@ -122,6 +122,44 @@ struct Target {
 }
 
 impl Arrivals {
+    /// No packet yet: the ids and sequence numbers of a broadcast's packets start at
+    /// `first_id` and `first_seq`; module `from` sent them at `sent_at`.
+    fn first(first_id: u64, first_seq: u64, sent_at: u64, from: usize, bytes: Rc<[u8]>) -> Self {
+        Arrivals {
+            first_id,
+            first_seq,
+            sent_at,
+            air: (0, 0),
+            bytes,
+            // Fits: a run has at most MAX_MODULES modules.
+            from_module: from as u32,
+            next: 0,
+            len: 0,
+            targets: [Target::default(); QUEUES],
+        }
+    }
+
+    /// `sends` (the k-th has rank k) grouped by air time, in the order of each group's first.
+    fn groups(&self, sends: &Sends, mut each: impl FnMut(Arrivals)) {
+        let mut grouped = 0u8;
+        for (k, send) in (0u8..).zip(sends.list()) {
+            if grouped & (1 << k) != 0 {
+                continue;
+            }
+            let mut group = Arrivals {
+                air: send.air,
+                ..self.clone()
+            };
+            for (j, other) in (0u8..).zip(sends.list()).skip(usize::from(k)) {
+                if other.air == send.air {
+                    grouped |= 1 << j;
+                    group.add(j, other);
+                }
+            }
+            each(group);
+        }
+    }
+
     fn add(&mut self, rank: u8, send: &Send) {
         if let Some(slot) = self.targets.get_mut(usize::from(self.len)) {
             *slot = Target {
@@ -354,46 +392,30 @@ impl State {
         if sends.len == 0 {
             return;
         }
-        let (first_id, first_seq) = (self.next_id, self.next_seq);
-        self.next_id += sends.len as u64;
-        self.next_seq += sends.len as u64;
-        self.counters.packets_sent += sends.len as u64;
-        for send in sends.list() {
+        let count = sends.len as u64;
+        let first = Arrivals::first(self.next_id, self.next_seq, self.now, m, Rc::from(bytes));
+        self.next_id += count;
+        self.next_seq += count;
+        self.counters.packets_sent += count;
+        self.modules[m].stats.sent += count;
+        self.note_air(sends, first.first_id);
+        first.groups(sends, |arrivals| {
+            self.push(arrivals.key(), Event::Arrival(Box::new(arrivals)));
+        });
+    }
+
+    /// The air time of packets just sent (the packet ids from `first_id`): the longest so far,
+    /// and, half duplex, the receivers' collision records.
+    fn note_air(&mut self, sends: &Sends, first_id: u64) {
+        for (k, send) in (0u64..).zip(sends.list()) {
             self.longest_air_us = self.longest_air_us.max(send.air.1 - send.air.0);
-        }
-        self.modules[m].stats.sent += sends.len as u64;
-        let frame: Rc<[u8]> = Rc::from(bytes);
-        let mut grouped = 0u8;
-        for (k, send) in (0u8..).zip(sends.list()) {
             if self.preset == Preset::Atron {
                 let hemisphere = self.view().hemisphere(send.to.connector);
-                let air = Air::new(send.air, first_id + u64::from(k), hemisphere);
+                let air = Air::new(send.air, first_id + k, hemisphere);
                 if let Some(log) = self.air.get_mut(send.to.module) {
                     log.push(air);
                 }
             }
-            if grouped & (1 << k) != 0 {
-                continue;
-            }
-            let mut arrivals = Arrivals {
-                first_id,
-                first_seq,
-                sent_at: self.now,
-                air: send.air,
-                bytes: Rc::clone(&frame),
-                from_module: m as u32,
-                next: 0,
-                len: 0,
-                targets: [Target::default(); QUEUES],
-            };
-            for (j, other) in (0u8..).zip(sends.list()) {
-                if j >= k && other.air == send.air {
-                    grouped |= 1 << j;
-                    arrivals.add(j, other);
-                }
-            }
-            let key = arrivals.key();
-            self.push(key, Event::Arrival(Box::new(arrivals)));
         }
     }
 
