@@ -65,6 +65,11 @@ impl RobotWorld {
         self.model.configuration()
     }
 
+    /// The configuration in the data-file format, moved out at the end.
+    pub fn into_configuration(self) -> Option<Configuration> {
+        self.model.into_configuration()
+    }
+
     /// Does `statement` on `module`; the error is the reason the model refuses it.
     pub fn apply(
         &mut self,

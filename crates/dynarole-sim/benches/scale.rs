@@ -1,6 +1,8 @@
 //! Scale benchmark: a flat ATRON structure of 1,000, 10,000 and 100,000 modules spreading
-//! one statement's end state from a corner to every module; prints wall time, simulated time,
-//! events, events per wall second, packets and bytes per module (`README.md`, "Figures").
+//! one statement's end state from a corner to every module; prints wall and CPU time,
+//! simulated time, events, events per wall second, packets and bytes per module (the heap a
+//! counting allocator saw at its peak, and the peak RSS), with a progress line on stderr
+//! every 15 s (`README.md`, "Figures").
 //!
 //! `cargo bench -p dynarole-sim --bench scale` (ussr at 1,000, 10,000 and 100,000 modules,
 //! atron at 1,000 and 10,000; other sizes as arguments, for every preset of
@@ -14,25 +16,32 @@
 //! (lattice phase (0,0,1)), taken row by row (z, then x) from (0, 0) in a square of side
 //! ceil(sqrt(2N)); NS_BROKEN modules at even-even sites, EW modules at odd-odd ones, every
 //! NS_BROKEN module latched to its EW neighbours exactly as in the paper's "eight"
-//! (`examples/atron/eight.json`, checked first). Only the corner module (0, 0) has an ID (0,
+//! (`examples/atron/eight.json`, checked first; the generator is `tests/common/grid.rs`,
+//! shared with the memory test). Only the corner module (0, 0) has an ID (0,
 //! named `M0`): the others have none, so `dr_hal_id` answers 0xFFFF for them.
 
+#[path = "../tests/common/counting.rs"]
+mod counting;
+#[path = "../tests/common/grid.rs"]
+mod grid;
+
+use counting::Counting;
 use dynarole_codegen::{CompileOptions, Protocol};
 use dynarole_core::expand::Plan;
 use dynarole_core::{analyze, parse, Program, RobotRegistry};
 use dynarole_replay::RobotWorld;
 use dynarole_sim::{Preset, Run, Scenario, Simulator, Stepping};
 use dynarole_world::{compare, Configuration};
-use std::collections::{BTreeMap, BTreeSet};
-use std::fmt::Write;
+use grid::{square, structure_json, Site, SOURCE};
+use std::collections::BTreeSet;
 use std::time::Instant;
 
-const EIGHT: &str = include_str!("../../../examples/atron/eight.json");
+/// Counts the heap, so that a row also says the simulator's own bytes per module (peak
+/// RSS also counts the allocator's overheads and what it keeps after a free).
+#[global_allocator]
+static HEAP: Counting = Counting::new();
 
-/// The one statement: M0 (the corner, NS_BROKEN, latched only on connector 4, in its south
-/// hemisphere) turns its joint a quarter; nothing is attached to the turning half.
-const SOURCE: &str = "robot atron;\n\
-    sequence spread {\n    M0.Joint.rotateFromToBy(0, 108, true, 150);\n}\n";
+const EIGHT: &str = include_str!("../../../examples/atron/eight.json");
 
 /// Sizes run by default, per preset: 100,000 modules with the `atron` preset takes about
 /// 5 minutes on its own (random power-on phases make every step touch another module's
@@ -41,83 +50,6 @@ const SIZES: [(Preset, &[usize]); 2] = [
     (Preset::Ussr, &[1_000, 10_000, 100_000]),
     (Preset::Atron, &[1_000, 10_000]),
 ];
-
-/// The connections of a NS_BROKEN module at (x, z): its male connector, the EW neighbour's
-/// offset (dx, dz), and the EW module's female connector (`eight.json`).
-const LATCHES: [(u8, i64, i64, u8); 4] =
-    [(0, 1, -1, 1), (2, -1, -1, 5), (4, 1, 1, 3), (6, -1, 1, 7)];
-
-/// One module of the generated structure.
-struct Site {
-    name: String,
-    id: Option<u32>,
-    x: i64,
-    z: i64,
-}
-
-/// The data-file JSON of a flat structure on `sites` (modules and their latches).
-fn structure_json(name: &str, sites: &[Site]) -> String {
-    let at: BTreeMap<(i64, i64), &str> = sites
-        .iter()
-        .map(|s| ((s.x, s.z), s.name.as_str()))
-        .collect();
-    let mut out = String::with_capacity(sites.len() * 160);
-    let _ = write!(
-        out,
-        "{{\"name\": \"{name}\", \"robot\": \"ATRON\", \"lattice_unit_m\": 0.08, \"modules\": ["
-    );
-    for (k, s) in sites.iter().enumerate() {
-        let separator = if k == 0 { "" } else { "," };
-        let id = s.id.map(|i| format!("\"id\": {i}, ")).unwrap_or_default();
-        let orientation = if s.x.rem_euclid(2) == 0 {
-            "NS_BROKEN"
-        } else {
-            "EW"
-        };
-        let _ = write!(
-            out,
-            "{separator}\n{{\"name\": \"{}\", {id}\"position\": [{}, 0, {}], \"orientation\": \"{orientation}\", \"joint\": 0}}",
-            s.name, s.x, s.z
-        );
-    }
-    out.push_str("\n], \"connections\": [");
-    let mut first = true;
-    for s in sites.iter().filter(|s| s.x.rem_euclid(2) == 0) {
-        for (male, dx, dz, female) in LATCHES {
-            if let Some(other) = at.get(&(s.x + dx, s.z + dz)) {
-                let separator = if first { "" } else { "," };
-                first = false;
-                let _ = write!(
-                    out,
-                    "{separator}\n[\"{}\", {male}, \"{other}\", {female}]",
-                    s.name
-                );
-            }
-        }
-    }
-    out.push_str("\n]}\n");
-    out
-}
-
-/// `n` sites row by row from the corner (0, 0), which is `M0` (ID 0); no other ID.
-fn square(n: usize) -> Vec<Site> {
-    let side = ((2 * n) as f64).sqrt().ceil() as i64;
-    let mut sites = Vec::with_capacity(n);
-    'rows: for z in 0.. {
-        for x in (z % 2..side).step_by(2) {
-            if sites.len() == n {
-                break 'rows;
-            }
-            let (name, id) = if (x, z) == (0, 0) {
-                ("M0".to_string(), Some(0))
-            } else {
-                (format!("s{x}_{z}"), None)
-            };
-            sites.push(Site { name, id, x, z });
-        }
-    }
-    sites
-}
 
 /// A connection without its direction: the two (module, connector) ends, sorted.
 fn unordered(c: &serde_json::Value) -> (String, u64, String, u64) {
@@ -193,8 +125,20 @@ fn peak_kib() -> Option<u64> {
     line.split_whitespace().nth(1)?.parse().ok()
 }
 
-/// Resets VmHWM to the current RSS (Linux 4.0+); false when it cannot.
+/// Resets VmHWM to the current RSS (Linux 4.0+); false when it cannot. The memory freed
+/// since (the structure's JSON and its parse) goes back to the system first, so that the
+/// run cannot reuse it unseen and the RSS it adds is its own.
 fn reset_peak() -> bool {
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    {
+        extern "C" {
+            fn malloc_trim(pad: usize) -> i32;
+        }
+        // SAFETY: glibc's malloc_trim only returns free heap pages to the system.
+        unsafe {
+            malloc_trim(0);
+        }
+    }
     std::fs::write("/proc/self/clear_refs", "5").is_ok()
 }
 
@@ -247,14 +191,57 @@ fn rows() -> Vec<(Preset, usize)> {
     out
 }
 
+/// CPU time of this thread so far (s), from `/proc/thread-self/schedstat` (Linux).
+fn cpu_s() -> Option<f64> {
+    let text = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    let ns: f64 = text.split_whitespace().next()?.parse().ok()?;
+    Some(ns / 1e9)
+}
+
+/// Bytes as MB.
+fn mb(bytes: usize) -> f64 {
+    bytes as f64 / 1e6
+}
+
+/// Runs `work` while a line on stderr says, every `PROGRESS_S` seconds, how long it has run
+/// and how much memory the process holds (a large row runs for minutes).
+fn with_progress<T>(what: &str, work: impl FnOnce() -> T) -> T {
+    const PROGRESS_S: u64 = 15;
+    let done = std::sync::atomic::AtomicBool::new(false);
+    let started = Instant::now();
+    std::thread::scope(|scope| {
+        scope.spawn(|| {
+            let mut next = PROGRESS_S;
+            while !done.load(std::sync::atomic::Ordering::Relaxed) {
+                std::thread::sleep(std::time::Duration::from_millis(200));
+                if started.elapsed().as_secs() >= next {
+                    next += PROGRESS_S;
+                    eprintln!(
+                        "scale: {what}: {:.0} s, RSS {:.0} MB, heap {:.0} MB (peak {:.0} MB)",
+                        started.elapsed().as_secs_f64(),
+                        current_kib().map_or(f64::NAN, |k| k as f64 / 1e3),
+                        mb(HEAP.current()),
+                        mb(HEAP.peak()),
+                    );
+                }
+            }
+        });
+        let out = work();
+        done.store(true, std::sync::atomic::Ordering::Relaxed);
+        out
+    })
+}
+
 /// One row of the table: `preset` on `n` modules (run in a fresh process, so that the peak
 /// RSS is this run's alone).
 fn row(sim: &Simulator, preset: Preset, n: usize) {
     let context = sim.module_context_bytes(preset).expect("builds");
     let started = Instant::now();
-    let json = structure_json(&format!("flat-{n}"), &square(n));
-    let start = Configuration::from_json_str(&json).expect("valid configuration");
-    drop(json);
+    let what = format!("{} {n}", preset.name());
+    let start = with_progress(&format!("{what}, structure"), || {
+        let json = structure_json(&format!("flat-{n}"), &square(n));
+        Configuration::from_json_str(&json).expect("valid configuration")
+    });
     let built = started.elapsed().as_secs_f64();
     let mut scenario = Scenario::default();
     scenario.network.preset = preset;
@@ -266,17 +253,26 @@ fn row(sim: &Simulator, preset: Preset, n: usize) {
     } else {
         peak_kib()
     };
+    let heap_before = HEAP.current();
+    HEAP.reset_peak();
     let started = Instant::now();
-    let report = sim
-        .run(&Run {
+    let cpu_before = cpu_s();
+    let report = with_progress(&format!("{what}, run"), || {
+        sim.run(&Run {
             start: &start,
             expect: None,
             scenario: &scenario,
             seed: 1,
             trace: false,
         })
-        .expect("runs");
+        .expect("runs")
+    });
     let wall = started.elapsed().as_secs_f64();
+    let cpu = match (cpu_before, cpu_s()) {
+        (Some(b), Some(a)) => format!("{:.2}", a - b),
+        _ => "?".into(),
+    };
+    let heap = (HEAP.peak() - heap_before) / n;
     let rss = match (before, peak_kib()) {
         (Some(b), Some(a)) => format!("{:.0}", (a.saturating_sub(b) * 1024) as f64 / n as f64),
         _ => "?".into(),
@@ -286,7 +282,7 @@ fn row(sim: &Simulator, preset: Preset, n: usize) {
         .all_finished_ms
         .expect("every module declared the end");
     println!(
-        "| {} | {n} | {wall:.2} | {built:.2} | {:.3} / {:.3} | {} | {:.2} M | {} | {context} | {rss} |",
+        "| {} | {n} | {wall:.2} | {cpu} | {built:.2} | {:.3} / {:.3} | {} | {:.2} M | {} | {context} | {heap} | {rss} |",
         preset.name(),
         report.completion_ms.unwrap_or(f64::NAN) / 1000.0,
         all / 1000.0,
@@ -321,9 +317,9 @@ fn main() {
         stepping()
     );
     println!(
-        "| preset | modules | wall s | structure s | simulated s (first / all declared the end) | events | events / wall s | packets sent | C context B / module | peak RSS B / module |"
+        "| preset | modules | wall s | CPU s | structure s | simulated s (first / all declared the end) | events | events / wall s | packets sent | C context B / module | peak heap B / module | peak RSS B / module |"
     );
-    println!("|---|---|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|");
     let exe = std::env::current_exe().expect("this benchmark's path");
     for (preset, n) in rows() {
         sim.module_context_bytes(preset).expect("builds"); // into the cache, once

@@ -20,22 +20,28 @@ pub struct Finished {
 
 struct Contexts {
     entry: Entry,
-    /// u64 words, so that every context is aligned for the runtime's pointers and integers.
-    buffers: Vec<Vec<u64>>,
+    /// Every module's context, one after the other in one buffer (no allocation per module),
+    /// in u64 words, so that every context is aligned for the runtime's pointers and integers.
+    words: Vec<u64>,
+    /// Words per context.
+    stride: usize,
+    modules: usize,
 }
 
 impl Contexts {
     fn new(entry: Entry, n: usize) -> Contexts {
-        let words = entry.module_size.div_ceil(8).max(1);
+        let stride = entry.module_size.div_ceil(8).max(1);
         Contexts {
             entry,
-            buffers: vec![vec![0u64; words]; n],
+            words: vec![0u64; n * stride],
+            stride,
+            modules: n,
         }
     }
 
     fn ptr(&mut self, m: usize) -> Option<*mut c_void> {
-        self.buffers
-            .get_mut(m)
+        self.words
+            .get_mut(m * self.stride..(m + 1) * self.stride)
             .map(|b| b.as_mut_ptr().cast::<c_void>())
     }
 
@@ -78,12 +84,12 @@ impl Contexts {
     }
 
     fn receive(&mut self, packet: &Packet) {
-        let Some(ctx) = self.ptr(packet.to.module) else {
+        let Some(ctx) = self.ptr(packet.to().module) else {
             return;
         };
         let len = u8::try_from(packet.bytes.len()).unwrap_or(u8::MAX);
         // SAFETY: an initialised context and `len` readable bytes.
-        unsafe { (self.entry.receive)(ctx, packet.to.connector, packet.bytes.as_ptr(), len) }
+        unsafe { (self.entry.receive)(ctx, packet.to().connector, packet.bytes.as_ptr(), len) }
     }
 
     /// `frame` as the scenario's second robot `robot` sends it; `None` when it is not a frame.
@@ -99,7 +105,7 @@ impl Contexts {
 
     /// What reads the modules' protocol state for the trace; valid while `self` lives.
     fn describer(&mut self) -> Describer {
-        let n = self.buffers.len();
+        let n = self.modules;
         let contexts = (0..n).filter_map(|m| self.ptr(m)).collect();
         Describer::new(self.entry.describe, contexts, n)
     }
@@ -202,6 +208,7 @@ fn dispatch(state: &Rc<RefCell<State>>, contexts: &mut Contexts, event: Event) {
             after_operations(state);
         }
         Event::Step { module, generation } => {
+            let module = module as usize;
             if !state.borrow_mut().step_due(module, generation) {
                 state.borrow_mut().uncount();
                 return;
@@ -218,10 +225,11 @@ fn dispatch(state: &Rc<RefCell<State>>, contexts: &mut Contexts, event: Event) {
             state.borrow_mut().op_done(attempt);
             after_operations(state);
         }
-        Event::Arrival(packet) => {
+        Event::Arrival(arrivals) => {
+            let packet = state.borrow_mut().next_arrival(arrivals);
             if state.borrow_mut().arrive(&packet) {
                 contexts.receive(&packet);
-                after_packet(state, contexts, packet.to.module);
+                after_packet(state, contexts, packet.to().module);
             }
         }
         Event::Reset { module } => {
@@ -234,14 +242,7 @@ fn dispatch(state: &Rc<RefCell<State>>, contexts: &mut Contexts, event: Event) {
             let packet = state.borrow_mut().foreign_packet(entry);
             if let Some((to, frame, robot)) = packet {
                 if let Some(bytes) = contexts.restamp(&frame, robot) {
-                    let packet = Packet {
-                        id: 0,
-                        from: to,
-                        to,
-                        start: 0,
-                        end: 0,
-                        bytes,
-                    };
+                    let packet = Packet::new(0, to, to, (0, 0), bytes.into());
                     if state.borrow().modules[to.module].powered {
                         contexts.receive(&packet);
                         after_packet(state, contexts, to.module);

@@ -98,6 +98,13 @@ pub struct ModelRun<'a> {
     pub trace: bool,
 }
 
+/// What a run's end is compared with.
+#[derive(Clone, Copy)]
+enum Expected<'a> {
+    Configuration(&'a Configuration),
+    Model(&'a dyn RobotModel),
+}
+
 /// A compiled sequence, ready to run any number of times (builds are cached per preset).
 pub struct Simulator {
     sequence: Arc<Sequence>,
@@ -202,44 +209,48 @@ impl Simulator {
 
     /// One run: deterministic in the inputs and the seed.
     pub fn run(&self, run: &Run) -> Result<Report, SimError> {
-        // Built here first so that a configuration of another robot is refused in its terms.
-        let start =
-            RobotWorld::new(run.start.clone(), &self.sequence.robot).map_err(SimError::Input)?;
-        let expect = run.expect.map(|c| c.clone().into_model());
-        self.run_model(&ModelRun {
-            start: start.model(),
-            expect: expect.as_deref(),
-            scenario: run.scenario,
-            seed: run.seed,
-            trace: run.trace,
-        })
+        let world = self.world_for(run)?;
+        let expect = run.expect.map(Expected::Configuration);
+        self.run_world(world, expect, run.scenario, run.seed, run.trace)
     }
 
     /// One run from a robot model: deterministic in the inputs and the seed.
     pub fn run_model(&self, run: &ModelRun) -> Result<Report, SimError> {
-        let world = self.world_for_model(run)?;
-        let preset = run.scenario.network.preset;
+        let world = RobotWorld::from_model(run.start.clone_model(), &self.sequence.robot)
+            .map_err(SimError::Input)?;
+        let world = Self::checked(world, run.scenario)?;
+        let expect = run.expect.map(Expected::Model);
+        self.run_world(world, expect, run.scenario, run.seed, run.trace)
+    }
+
+    /// A run from `world` (checked against the scenario), its end compared with `expect`.
+    fn run_world(
+        &self,
+        world: RobotWorld,
+        expect: Option<Expected>,
+        scenario: &Scenario,
+        seed: u64,
+        trace: bool,
+    ) -> Result<Report, SimError> {
+        let preset = scenario.network.preset;
         let library = self.library(preset)?;
-        let foreign_frames = if run.scenario.foreign.is_empty() {
+        let foreign_frames = if scenario.foreign.is_empty() {
             Vec::new()
         } else {
-            self.other_robots_frames(run, library.entry)?
+            self.other_robots_frames(world.clone(), scenario, seed, library.entry)?
         };
         let mut state = State::new(
             Arc::clone(&self.sequence),
             world,
-            run.scenario.clone(),
-            run.seed,
-            run.trace,
+            scenario.clone(),
+            seed,
+            trace,
         );
         state.foreign_frames = foreign_frames;
         let finished = engine::run(library.entry, state).map_err(SimError::Build)?;
-        Ok(self.report_against(run.expect, run.scenario, run.seed, finished))
+        Ok(self.report_against(expect, scenario, seed, finished))
     }
 
-    /// The second robot of `Scenario::foreign`: the same program from the same start, run
-    /// without faults (same network preset and timing), and the last frame each of its
-    /// modules broadcast (the end, once it finished).
     /// The start configuration's world, once the scenario is checked against it.
     fn world_for(&self, run: &Run) -> Result<RobotWorld, SimError> {
         let world =
@@ -247,14 +258,19 @@ impl Simulator {
         Self::checked(world, run.scenario)
     }
 
-    /// The start model's world, once the scenario is checked against it.
-    fn world_for_model(&self, run: &ModelRun) -> Result<RobotWorld, SimError> {
-        let world = RobotWorld::from_model(run.start.clone_model(), &self.sequence.robot)
-            .map_err(SimError::Input)?;
-        Self::checked(world, run.scenario)
-    }
-
+    /// `world` once it is within the simulator's limits and the scenario is checked against
+    /// it.
     fn checked(world: RobotWorld, scenario: &Scenario) -> Result<RobotWorld, SimError> {
+        let view = world.view();
+        if view.len() > network::MAX_MODULES || usize::from(view.connectors()) > state::QUEUES {
+            return Err(SimError::Input(format!(
+                "{} modules of {} connectors: the simulator runs at most {} modules of at most {} connectors",
+                view.len(),
+                view.connectors(),
+                network::MAX_MODULES,
+                state::QUEUES
+            )));
+        }
         scenario
             .check()
             .map_err(|e| SimError::Input(e.to_string()))?;
@@ -263,23 +279,26 @@ impl Simulator {
         Ok(world)
     }
 
+    /// The second robot of `Scenario::foreign`: the same program from the same start, run
+    /// without faults (same network preset and timing), and the last frame each of its
+    /// modules broadcast (the end, once it finished).
     fn other_robots_frames(
         &self,
-        run: &ModelRun,
+        world: RobotWorld,
+        scenario: &Scenario,
+        seed: u64,
         entry: build::Entry,
     ) -> Result<Vec<Option<Vec<u8>>>, SimError> {
-        let world = RobotWorld::from_model(run.start.clone_model(), &self.sequence.robot)
-            .map_err(SimError::Input)?;
         let scenario = Scenario {
-            timeout_ms: run.scenario.timeout_ms,
+            timeout_ms: scenario.timeout_ms,
             network: Network {
-                preset: run.scenario.network.preset,
+                preset: scenario.network.preset,
                 ..Network::default()
             },
-            timing: run.scenario.timing.clone(),
+            timing: scenario.timing.clone(),
             ..Scenario::default()
         };
-        let mut state = State::new(Arc::clone(&self.sequence), world, scenario, run.seed, false);
+        let mut state = State::new(Arc::clone(&self.sequence), world, scenario, seed, false);
         state.last_frames = Some(vec![None; state.n_modules()]);
         let finished = engine::run(entry, state).map_err(SimError::Build)?;
         Ok(finished.state.last_frames.unwrap_or_default())
@@ -287,15 +306,15 @@ impl Simulator {
 
     /// The report of a run from a configuration file.
     fn report(&self, run: &Run, finished: engine::Finished) -> Report {
-        let expect = run.expect.map(|c| c.clone().into_model());
-        self.report_against(expect.as_deref(), run.scenario, run.seed, finished)
+        let expect = run.expect.map(Expected::Configuration);
+        self.report_against(expect, run.scenario, run.seed, finished)
     }
 
     /// The report of a finished run, its end compared with `expect`; the trace is kept when
     /// the run kept one.
     fn report_against(
         &self,
-        expect: Option<&dyn RobotModel>,
+        expect: Option<Expected>,
         scenario: &Scenario,
         seed: u64,
         finished: engine::Finished,
@@ -306,20 +325,21 @@ impl Simulator {
         } = finished;
         let ms = |t: u64| t as f64 / 1000.0;
         let traced = state.trace.is_some();
-        let (matches, difference) = match expect {
-            Some(expected) => match state.world.model().difference(expected) {
-                None => (Some(true), None),
-                Some(d) => (Some(false), Some(d)),
-            },
-            None => (None, None),
+        // A model is compared before the world is moved out; a configuration after, on
+        // the moved value (no copy of a large robot's configuration).
+        let model_difference = match expect {
+            Some(Expected::Model(expected)) => Some(state.world.model().difference(expected)),
+            _ => None,
         };
         let statements_done = state.phys.iter().filter(|p| p.done.is_some()).count();
+        let view = state.view();
         let modules = state
             .modules
             .iter()
             .zip(&addresses)
-            .map(|(m, address)| ModuleReport {
-                name: m.name.clone(),
+            .enumerate()
+            .map(|(k, (m, address))| ModuleReport {
+                name: view.name(k),
                 id: m.id,
                 address: *address,
                 packets_sent: m.stats.sent,
@@ -351,24 +371,32 @@ impl Simulator {
             violations: std::mem::take(&mut state.violations),
             refusals: std::mem::take(&mut state.refusals),
             modules,
-            configuration_matches: matches,
-            difference,
-            final_configuration: final_configuration_json(&state.world),
+            configuration_matches: None,
+            difference: None,
             trace: state.trace.take(),
             recorded: traced.then(|| std::mem::take(&mut state.recorded)),
+            // Moved out of the world last: the rest of the state is freed with it.
+            final_configuration: state.into_configuration(),
         };
+        let difference = match (expect, model_difference) {
+            (Some(Expected::Configuration(expected)), _) => {
+                Some(match &report.final_configuration {
+                    Some(end) => dynarole_world::compare(end, expected)
+                        .err()
+                        .map(|d| d.to_string()),
+                    None => Some("the robot model has no configuration format".into()),
+                })
+            }
+            (_, difference) => difference,
+        };
+        if let Some(difference) = difference {
+            report.configuration_matches = Some(difference.is_none());
+            report.difference = difference;
+        }
         report.failures = failures(&report, scenario.timeout_ms);
         report.success = report.failures.is_empty();
         report
     }
-}
-
-/// The final configuration in the file format, `null` for a robot that has none.
-fn final_configuration_json(world: &RobotWorld) -> serde_json::Value {
-    world
-        .configuration()
-        .and_then(|c| serde_json::from_str(&c.to_json_string()).ok())
-        .unwrap_or(serde_json::Value::Null)
 }
 
 fn failures(report: &Report, timeout_ms: u64) -> Vec<String> {

@@ -2,22 +2,16 @@
 //! queue per channel (per hemisphere when half duplex), and what can happen to a packet on
 //! the way: a link broken by a turn, a blocked link, a collision, loss, a dead link.
 
+use crate::queue::Key;
 use crate::scenario::Preset;
-use crate::state::{uniform, Event, Packet, State};
+use crate::state::{uniform, Air, Event, Packet, State, QUEUES};
 use dynarole_world::Port;
+use std::rc::Rc;
 
 /// 19200 baud, modelled as 1920 bytes per second.
 const BYTES_PER_SECOND: u64 = 1920;
 /// Send buffer per channel (bytes).
 const SEND_BUFFER: u64 = 128;
-/// Send queues per module, at most (one per connector; ATRON and M-TRAN have 8 and 6).
-const QUEUES: usize = 8;
-/// How long transmissions are remembered for collision checks (µs): longer than any
-/// packet's air time (a packet has at most 255 bytes: 133 ms), so forgetting older ones
-/// changes no check (a packet arriving now started at most that long ago).
-const AIR_MEMORY_US: u64 = 200_000;
-const _: () = assert!(AIR_MEMORY_US > 255 * 1_000_000 / BYTES_PER_SECOND + 1);
-
 /// What happened to a packet at the receiving connector.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Fate {
@@ -54,6 +48,222 @@ fn airtime_us(len: usize) -> u64 {
     (len as u64 * 1_000_000).div_ceil(BYTES_PER_SECOND)
 }
 
+/// The packets of one broadcast (or one `dr_hal_send`) before they go into the queue.
+#[derive(Default)]
+struct Sends {
+    list: [Send; QUEUES],
+    len: usize,
+}
+
+#[derive(Clone, Copy)]
+struct Send {
+    connector: u8,
+    to: Port,
+    /// Start and end on the air.
+    air: (u64, u64),
+}
+
+impl Default for Send {
+    fn default() -> Send {
+        let to = Port {
+            module: 0,
+            connector: 0,
+        };
+        Send {
+            connector: 0,
+            to,
+            air: (0, 0),
+        }
+    }
+}
+
+impl Sends {
+    fn push(&mut self, connector: u8, to: Port, air: (u64, u64)) {
+        if let Some(slot) = self.list.get_mut(self.len) {
+            *slot = Send { connector, to, air };
+            self.len += 1;
+        }
+    }
+
+    fn list(&self) -> &[Send] {
+        self.list.get(..self.len).unwrap_or_default()
+    }
+}
+
+/// The packets of one broadcast that share their time on the air, as one event of the queue
+/// (a broadcast reaches every neighbour at once: at the start of a large run every module's
+/// first broadcast is in flight together, and one event per packet would hold four or more
+/// queue entries per module). Delivered one per event (`State::next_arrival`), each at the
+/// key it would have had alone: the packets of one broadcast take consecutive sequence
+/// numbers and ids (the k-th sent: first + k) and share the instant they were scheduled at
+/// and their end, so no other event comes between them.
+#[derive(Clone, Debug)]
+pub struct Arrivals {
+    first_id: u64,
+    first_seq: u64,
+    sent_at: u64,
+    air: (u64, u64),
+    bytes: Rc<[u8]>,
+    from_module: u32,
+    /// The next packet to deliver, and how many there are.
+    next: u8,
+    len: u8,
+    targets: [Target; QUEUES],
+}
+
+/// One packet of `Arrivals`: where it goes, the sender's connector, and its rank among the
+/// packets of its broadcast.
+#[derive(Clone, Copy, Debug, Default)]
+struct Target {
+    to_module: u32,
+    to_connector: u8,
+    from_connector: u8,
+    rank: u8,
+}
+
+impl Arrivals {
+    /// No packet yet: the ids and sequence numbers of a broadcast's packets start at
+    /// `first_id` and `first_seq`; module `from` sent them at `sent_at`.
+    fn first(first_id: u64, first_seq: u64, sent_at: u64, from: usize, bytes: Rc<[u8]>) -> Self {
+        Arrivals {
+            first_id,
+            first_seq,
+            sent_at,
+            air: (0, 0),
+            bytes,
+            // Fits: a run has at most MAX_MODULES modules.
+            from_module: from as u32,
+            next: 0,
+            len: 0,
+            targets: [Target::default(); QUEUES],
+        }
+    }
+
+    /// `sends` (the k-th has rank k) grouped by air time, in the order of each group's first.
+    fn groups(&self, sends: &Sends, mut each: impl FnMut(Arrivals)) {
+        let mut grouped = 0u8;
+        for (k, send) in (0u8..).zip(sends.list()) {
+            if grouped & (1 << k) != 0 {
+                continue;
+            }
+            let mut group = Arrivals {
+                air: send.air,
+                ..self.clone()
+            };
+            for (j, other) in (0u8..).zip(sends.list()).skip(usize::from(k)) {
+                if other.air == send.air {
+                    grouped |= 1 << j;
+                    group.add(j, other);
+                }
+            }
+            each(group);
+        }
+    }
+
+    fn add(&mut self, rank: u8, send: &Send) {
+        if let Some(slot) = self.targets.get_mut(usize::from(self.len)) {
+            *slot = Target {
+                // Fits: a run has at most MAX_MODULES modules.
+                to_module: send.to.module as u32,
+                to_connector: send.to.connector,
+                from_connector: send.connector,
+                rank,
+            };
+            self.len += 1;
+        }
+    }
+
+    fn current(&self) -> Target {
+        self.targets
+            .get(usize::from(self.next))
+            .copied()
+            .unwrap_or_default()
+    }
+
+    /// The queue key of the next packet: as `State::schedule` gave it when it was sent.
+    fn key(&self) -> Key {
+        let seq = self.first_seq + u64::from(self.current().rank);
+        Key::plain(self.air.1, self.sent_at, seq)
+    }
+
+    /// The next packet.
+    fn packet(&self) -> Packet {
+        let t = self.current();
+        let from = Port {
+            module: self.from_module as usize,
+            connector: t.from_connector,
+        };
+        let to = Port {
+            module: t.to_module as usize,
+            connector: t.to_connector,
+        };
+        let id = self.first_id + u64::from(t.rank);
+        Packet::new(id, from, to, self.air, Rc::clone(&self.bytes))
+    }
+}
+
+/// Where each module's broadcasts go, by sending connector, while the world is unchanged:
+/// one u32 per connector of every module in one vector (4 bytes per connector, no
+/// allocation per module), filled for a module at its first broadcast after a change.
+pub struct Links {
+    /// Connectors per module.
+    connectors: usize,
+    /// Module m's entries are `slots[m * connectors..][..connectors]`: `UNKNOWN` (not looked
+    /// up since the last change), `NONE`, or the receiving port as `module * QUEUES +
+    /// connector`.
+    slots: Vec<u32>,
+}
+
+const UNKNOWN: u32 = u32::MAX;
+const NONE: u32 = u32::MAX - 1;
+
+/// Most modules a run can have: every port must pack into a `Links` slot.
+pub const MAX_MODULES: usize = (NONE as usize) / QUEUES;
+
+impl Links {
+    pub fn new(modules: usize, connectors: u8) -> Links {
+        let connectors = usize::from(connectors);
+        Links {
+            connectors,
+            slots: vec![UNKNOWN; modules * connectors],
+        }
+    }
+
+    /// Forgets every target (the world changed).
+    pub fn clear(&mut self) {
+        self.slots.fill(UNKNOWN);
+    }
+
+    /// Module m's targets by sending connector, if looked up since the last change.
+    fn get(&self, m: usize) -> Option<[Option<Port>; QUEUES]> {
+        let slots = self
+            .slots
+            .get(m * self.connectors..(m + 1) * self.connectors)?;
+        if slots.first().is_none_or(|s| *s == UNKNOWN) {
+            return None;
+        }
+        let mut out = [None; QUEUES];
+        for (target, slot) in out.iter_mut().zip(slots) {
+            *target = (*slot != NONE).then_some(Port {
+                module: *slot as usize / QUEUES,
+                connector: (*slot as usize % QUEUES) as u8,
+            });
+        }
+        Some(out)
+    }
+
+    fn set(&mut self, m: usize, targets: &[Option<Port>; QUEUES]) {
+        let range = m * self.connectors..(m + 1) * self.connectors;
+        if let Some(slots) = self.slots.get_mut(range) {
+            for (slot, target) in slots.iter_mut().zip(targets) {
+                *slot = target.map_or(NONE, |p| {
+                    u32::try_from(p.module * QUEUES + usize::from(p.connector)).unwrap_or(NONE)
+                });
+            }
+        }
+    }
+}
+
 impl State {
     /// `dr_hal_broadcast`: one transmission per channel the module can send on.
     pub fn broadcast(&mut self, m: usize, bytes: &[u8]) {
@@ -66,14 +276,22 @@ impl State {
                 *slot = Some(bytes.to_vec());
             }
         }
-        let targets = match self.links.get_mut(m).and_then(Option::take) {
+        let targets = match self.links.get(m) {
             Some(targets) => targets,
-            None => self.link_targets(m),
+            None => {
+                let targets = self.link_targets(m);
+                self.links.set(m, &targets);
+                targets
+            }
         };
         // The air time reserved on each send queue (one reservation per queue and broadcast).
         let mut slots: [Option<Option<(u64, u64)>>; QUEUES] = [None; QUEUES];
-        for &(from, to) in &targets {
-            let queue = self.send_queue(from.connector);
+        let mut sends = Sends::default();
+        for (connector, to) in (0u8..).zip(targets) {
+            let Some(to) = to else {
+                continue;
+            };
+            let queue = self.send_queue(connector);
             let slot = match slots.get(queue).copied().flatten() {
                 Some(slot) => slot,
                 None => {
@@ -84,15 +302,13 @@ impl State {
                     slot
                 }
             };
-            let Some((start, end)) = slot else {
+            let Some(air) = slot else {
                 self.counters.overflow += 1;
                 continue;
             };
-            self.send(from, to, start, end, bytes);
+            sends.push(connector, to, air);
         }
-        if let Some(cache) = self.links.get_mut(m) {
-            *cache = Some(targets);
-        }
+        self.transmit(m, &sends, bytes);
     }
 
     /// `dr_hal_send`: one transmission on one channel, if anything listens there.
@@ -109,22 +325,27 @@ impl State {
         };
         let queue = self.send_queue(channel);
         match self.reserve(m, queue, bytes.len()) {
-            Some((start, end)) => self.send(from, to, start, end, bytes),
+            Some(air) => {
+                let mut sends = Sends::default();
+                sends.push(channel, to, air);
+                self.transmit(m, &sends, bytes);
+            }
             None => self.counters.overflow += 1,
         }
     }
 
-    /// Where module `m`'s broadcasts go: (sending connector, receiving connector), by
-    /// connector. Cached in `links` until the world changes.
-    fn link_targets(&self, m: usize) -> Vec<(Port, Port)> {
+    /// Where module `m`'s broadcasts go: the receiving connector, by sending connector.
+    /// Cached in `links` until the world changes.
+    fn link_targets(&self, m: usize) -> [Option<Port>; QUEUES] {
         let view = self.view();
-        (0..view.connectors())
-            .map(|c| Port {
+        let mut out = [None; QUEUES];
+        for (connector, target) in (0..view.connectors()).zip(out.iter_mut()) {
+            *target = view.link_target(Port {
                 module: m,
-                connector: c,
-            })
-            .filter_map(|from| view.link_target(from).map(|to| (from, to)))
-            .collect()
+                connector,
+            });
+        }
+        out
     }
 
     /// Full duplex: one queue per channel; half duplex: one UART per hemisphere.
@@ -153,65 +374,97 @@ impl State {
             *slot = end;
         }
         if self.preset == Preset::Atron {
-            self.modules[m].air[queue.min(1)].push((start, end, 0));
+            let air = Air::new((start, end), 0, queue.min(1));
+            // Its own transmissions are forgotten too (not only when it hears a packet), so
+            // that a module that mostly talks keeps a short log.
+            self.prune_air(m);
+            if let Some(log) = self.air.get_mut(m) {
+                log.push(air);
+            }
         }
         Some((start, end))
     }
 
-    fn send(&mut self, from: Port, to: Port, start: u64, end: u64, bytes: &[u8]) {
-        let id = self.next_id;
-        self.next_id += 1;
-        self.counters.packets_sent += 1;
-        self.modules[from.module].stats.sent += 1;
-        if self.preset == Preset::Atron {
-            let h = self.view().hemisphere(to.connector);
-            self.modules[to.module].air[h].push((start, end, id));
+    /// Module `m`'s packets, in the order sent: each takes the next packet id and the next
+    /// sequence number, exactly as if scheduled one by one, but the packets with the same air
+    /// time go into the queue as one event (`Arrivals`).
+    fn transmit(&mut self, m: usize, sends: &Sends, bytes: &[u8]) {
+        if sends.len == 0 {
+            return;
         }
-        let packet = Packet {
-            id,
-            from,
-            to,
-            start,
-            end,
-            bytes: bytes.to_vec(),
-        };
-        self.schedule(end, Event::Arrival(Box::new(packet)));
+        let count = sends.len as u64;
+        let first = Arrivals::first(self.next_id, self.next_seq, self.now, m, Rc::from(bytes));
+        self.next_id += count;
+        self.next_seq += count;
+        self.counters.packets_sent += count;
+        self.modules[m].stats.sent += count;
+        self.note_air(sends, first.first_id);
+        first.groups(sends, |arrivals| {
+            self.push(arrivals.key(), Event::Arrival(Box::new(arrivals)));
+        });
+    }
+
+    /// The air time of packets just sent (the packet ids from `first_id`): the longest so far,
+    /// and, half duplex, the receivers' collision records.
+    fn note_air(&mut self, sends: &Sends, first_id: u64) {
+        for (k, send) in (0u64..).zip(sends.list()) {
+            self.longest_air_us = self.longest_air_us.max(send.air.1 - send.air.0);
+            if self.preset == Preset::Atron {
+                let hemisphere = self.view().hemisphere(send.to.connector);
+                let air = Air::new(send.air, first_id + k, hemisphere);
+                if let Some(log) = self.air.get_mut(send.to.module) {
+                    log.push(air);
+                }
+            }
+        }
+    }
+
+    /// The next packet of `arrivals` (the event being dispatched); the others go back into the
+    /// queue, at the next one's key.
+    pub fn next_arrival(&mut self, mut arrivals: Box<Arrivals>) -> Packet {
+        let packet = arrivals.packet();
+        arrivals.next += 1;
+        if arrivals.next < arrivals.len {
+            let key = arrivals.key();
+            self.push(key, Event::Arrival(arrivals));
+        }
+        packet
     }
 
     /// Decides a packet's fate as it arrives; true when the receiver gets it.
     pub fn arrive(&mut self, packet: &Packet) -> bool {
         let fate = self.fate(packet);
-        self.prune_air(packet.to.module);
+        self.prune_air(packet.to().module);
         self.record_packet(packet, fate.name());
         if fate == Fate::Delivered {
             self.counters.delivered += 1;
-            self.modules[packet.to.module].stats.received += 1;
+            self.modules[packet.to().module].stats.received += 1;
             return true;
         }
         self.counters.count_drop(fate);
-        self.modules[packet.to.module].stats.dropped += 1;
+        self.modules[packet.to().module].stats.dropped += 1;
         if self.tracing() {
             let view = self.view();
             let detail = format!(
                 "{} <- {} ({} bytes)",
-                view.port_name(packet.to),
-                view.port_name(packet.from),
+                view.port_name(packet.to()),
+                view.port_name(packet.from()),
                 packet.bytes.len()
             );
-            self.log(Some(packet.to.module), fate.name(), detail);
+            self.log(Some(packet.to().module), fate.name(), detail);
         }
         false
     }
 
     fn fate(&mut self, p: &Packet) -> Fate {
-        if !self.modules[p.to.module].powered {
+        if !self.modules[p.to().module].powered {
             return Fate::Off;
         }
-        if self.turn_breaks(p.from.module, p.to.module) {
+        if self.turn_breaks(p.from().module, p.to().module) {
             return Fate::Moving;
         }
         let faults = self.faults_on();
-        if faults && (self.blocked(p.from) || self.blocked(p.to)) {
+        if faults && (self.blocked(p.from()) || self.blocked(p.to())) {
             return Fate::Blocked;
         }
         if self.preset == Preset::Atron && self.collides(p) {
@@ -220,11 +473,10 @@ impl State {
         if !faults {
             return Fate::Delivered;
         }
-        let dead = self.modules[p.to.module]
+        let dead = self.modules[p.to().module]
             .dead
-            .get(usize::from(p.to.connector))
-            .copied()
-            .unwrap_or(false);
+            .checked_shr(u32::from(p.to().connector))
+            .is_some_and(|bits| bits & 1 == 1);
         let loss = if dead {
             self.scenario.network.dead_loss
         } else {
@@ -249,7 +501,7 @@ impl State {
         let now_ms = self.now / 1000;
         self.scenario.block.iter().any(|b| {
             b.connector == port.connector
-                && self.modules[port.module].name == b.module
+                && self.view().index(&b.module) == Some(port.module)
                 && (b.from_ms..b.to_ms).contains(&now_ms)
         })
     }
@@ -257,16 +509,22 @@ impl State {
     /// Half duplex: the receiver's hemisphere UART heard another packet, or was sending,
     /// while this one was on the air.
     fn collides(&self, p: &Packet) -> bool {
-        let h = self.view().hemisphere(p.to.connector);
-        self.modules[p.to.module].air[h]
-            .iter()
-            .any(|(start, end, id)| *id != p.id && *start < p.end && *end > p.start)
+        let h = self.view().hemisphere(p.to().connector);
+        self.air.get(p.to().module).is_some_and(|log| {
+            log.iter().any(|a| {
+                a.hemisphere() == h && a.packet() != p.id && a.start < p.end && a.end > p.start
+            })
+        })
     }
 
+    /// Forgets module m's records that no collision check can need: a packet arriving from
+    /// now on is either on the air already (it started at most `longest_air_us` ago) or
+    /// sent later (it starts now or after), so a record that ended before both matters to
+    /// no packet.
     fn prune_air(&mut self, m: usize) {
-        let horizon = self.now.saturating_sub(AIR_MEMORY_US);
-        for log in &mut self.modules[m].air {
-            log.retain(|(_, end, _)| *end >= horizon);
+        let horizon = self.now.saturating_sub(self.longest_air_us);
+        if let Some(log) = self.air.get_mut(m) {
+            log.retain(|a| a.end >= horizon);
         }
     }
 }

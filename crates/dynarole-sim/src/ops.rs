@@ -66,8 +66,9 @@ impl State {
         let s = match call {
             Call::Resume(s) | Call::Retry(s) | Call::First(s) | Call::Reissue(s) => s,
         };
-        if !self.modules[m].waiting.contains(&s) {
-            self.modules[m].waiting.push(s);
+        let waiting = self.waiting.entry(m).or_default();
+        if !waiting.contains(&s) {
+            waiting.push(s);
         }
         let label = self.trace_label(s);
         match call {
@@ -93,14 +94,10 @@ impl State {
 
     /// `dr_hal_op_status`: running while any operation the module waits for runs.
     pub fn op_status(&self, m: usize) -> u8 {
-        let module = &self.modules[m];
-        if module
-            .waiting
-            .iter()
-            .any(|s| self.phys[*s].running.is_some())
-        {
+        let waiting = self.waiting.get(&m).map_or(&[][..], Vec::as_slice);
+        if waiting.iter().any(|s| self.phys[*s].running.is_some()) {
             RUNNING
-        } else if module.failed {
+        } else if self.modules[m].failed {
             FAILED
         } else {
             DONE
@@ -129,10 +126,10 @@ impl State {
     /// A new batch of operations starts once every earlier one has finished.
     fn clear_finished_waits(&mut self, m: usize) {
         let phys = &self.phys;
-        let module = &mut self.modules[m];
-        if module.waiting.iter().all(|s| phys[*s].running.is_none()) {
-            module.waiting.clear();
-            module.failed = false;
+        let waiting = self.waiting.get(&m).map_or(&[][..], Vec::as_slice);
+        if waiting.iter().all(|s| phys[*s].running.is_none()) {
+            self.waiting.remove(&m);
+            self.modules[m].failed = false;
         }
     }
 
@@ -202,7 +199,7 @@ impl State {
         self.violations.push(Violation {
             check: check.to_string(),
             time_ms: self.now as f64 / 1000.0,
-            module: self.modules[m].name.clone(),
+            module: self.view().name(m),
             statement: s,
             text: self.seq.text(s).to_string(),
             involved,
@@ -257,7 +254,7 @@ impl State {
 
     /// Which modules move during a turn, so that their links break while it lasts.
     fn note_turn(&mut self, id: u64, m: usize, s: usize) {
-        let name = self.modules[m].name.clone();
+        let name = self.view().name(m);
         let Some(motion) = self
             .world
             .turn_motion(&self.seq.robot, &self.seq.resolved[s], &name)
@@ -289,13 +286,13 @@ impl State {
             return;
         }
         self.phys[s].running = None;
-        let name = self.modules[m].name.clone();
+        let name = self.view().name(m);
         let label = self.trace_label(s);
         let applied = self
             .world
             .apply(&self.seq.robot, &self.seq.resolved[s], &name);
         // Links may have changed (latches, facing connectors).
-        self.links.iter_mut().for_each(|l| *l = None);
+        self.links.clear();
         match applied {
             Ok(outcome) => {
                 let notes = if self.tracing() {
@@ -335,7 +332,7 @@ impl State {
         }
         self.refusals.push(Refusal {
             time_ms: self.now as f64 / 1000.0,
-            module: self.modules[m].name.clone(),
+            module: self.view().name(m),
             statement: s,
             text: self.seq.text(s).to_string(),
             reason,
@@ -343,9 +340,11 @@ impl State {
     }
 
     fn mark_failed(&mut self, s: usize) {
-        for module in &mut self.modules {
-            if module.waiting.contains(&s) {
-                module.failed = true;
+        for (m, waiting) in &self.waiting {
+            if waiting.contains(&s) {
+                if let Some(module) = self.modules.get_mut(*m) {
+                    module.failed = true;
+                }
             }
         }
     }

@@ -13,6 +13,8 @@ use std::collections::{BinaryHeap, VecDeque};
 const SLOT_US: u64 = 1_000;
 /// Slots of the wheel: its horizon is SLOTS * SLOT_US ahead of the slot being served.
 const SLOTS: usize = 256;
+/// Heaps smaller than this are never searched for stale events (not worth the time).
+const COMPACT_FROM: usize = 4096;
 
 /// Where an event stands in the queue. Events at one time are ordered by when they were
 /// scheduled, then plain events before steps, then plain events by scheduling order
@@ -21,13 +23,18 @@ const SLOTS: usize = 256;
 /// module's previous 5 ms instant, when the fixed stepping schedules it), never on when it
 /// was actually put in the queue: so a tickless run, which schedules its steps at other
 /// moments, dispatches every event in the same order as the fixed stepping.
+///
+/// Fields compare in order (derived `Ord`); `order` packs "is a step" into its top bit above
+/// the tie (sequence numbers and ranks stay far below 2^63), so a key takes 24 bytes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 pub struct Key {
     time: u64,
     scheduled: u64,
-    step: bool,
-    tie: u64,
+    order: u64,
 }
+
+/// The top bit of `Key::order`: set for steps.
+const STEP: u64 = 1 << 63;
 
 impl Key {
     /// A plain event at `time`, scheduled at `scheduled`, the `seq`-th scheduled.
@@ -35,8 +42,7 @@ impl Key {
         Key {
             time,
             scheduled,
-            step: false,
-            tie: seq,
+            order: seq & !STEP,
         }
     }
 
@@ -46,8 +52,7 @@ impl Key {
         Key {
             time,
             scheduled,
-            step: true,
-            tie: rank,
+            order: STEP | rank,
         }
     }
 
@@ -157,6 +162,23 @@ impl Queue {
             heap: BinaryHeap::new(),
             fifo: VecDeque::new(),
             wheel: Wheel::new(),
+        }
+    }
+
+    /// Whether the next push into the heap would make it allocate more (and it is large
+    /// enough for that to matter): the moment to drop stale events (`drop_stale`).
+    pub fn heap_full(&self) -> bool {
+        self.heap.len() == self.heap.capacity() && self.heap.len() >= COMPACT_FROM
+    }
+
+    /// Drops from the heap the events `stale` says would be skipped when popped (steps that
+    /// a later wake-up replaced): the order of the others does not change, and the heap's
+    /// memory follows the events that count. When that frees less than half, the heap grows
+    /// as it would have, so that the next drop comes only after as many pushes again.
+    pub fn drop_stale(&mut self, stale: impl Fn(&Key, &Event) -> bool) {
+        self.heap.retain(|Reverse(s)| !stale(&s.key, &s.event));
+        if self.heap.len() * 2 > self.heap.capacity() {
+            self.heap.reserve(self.heap.capacity());
         }
     }
 

@@ -1,7 +1,8 @@
 //! What a run reports: outcome, times, packets, per-module figures, violations and refused
 //! operations, as data (serialised by `--json`) and as a human summary.
 
-use serde::Serialize;
+use dynarole_world::Configuration;
+use serde::{Serialize, Serializer};
 use std::fmt::Write;
 
 /// Whole-run counters.
@@ -105,13 +106,25 @@ pub struct Report {
     /// Whether the final configuration equals the expected one (`None`: nothing expected).
     pub configuration_matches: Option<bool>,
     pub difference: Option<String>,
-    /// The final configuration, in the data-file JSON format.
-    pub final_configuration: serde_json::Value,
+    /// The final configuration (serialised in the data-file JSON format; `null` for a robot
+    /// with no file format). Kept as the world model's own value, not as JSON: a JSON tree
+    /// costs several times more memory per module.
+    #[serde(serialize_with = "configuration_json")]
+    pub final_configuration: Option<Configuration>,
     #[serde(skip)]
     pub trace: Option<String>,
     /// The trace as data, for the viewer's recording (`Simulator::recording`).
     #[serde(skip)]
     pub recorded: Option<crate::record::Recorded>,
+}
+
+/// A configuration as the JSON object of its data file, made only when a report is serialised.
+fn configuration_json<S: Serializer>(c: &Option<Configuration>, s: S) -> Result<S::Ok, S::Error> {
+    let value: serde_json::Value = match c {
+        Some(c) => serde_json::from_str(&c.to_json_string()).map_err(serde::ser::Error::custom)?,
+        None => serde_json::Value::Null,
+    };
+    value.serialize(s)
 }
 
 impl Report {

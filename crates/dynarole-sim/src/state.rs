@@ -3,17 +3,18 @@
 //! Operations live in `ops.rs`, the infrared network in `network.rs`.
 
 use crate::describe::{Describer, DESCRIPTION_BYTES};
+use crate::network::{Arrivals, Links};
 use crate::queue::{Key, Queue};
 use crate::report::{Counters, Refusal, Violation};
 use crate::scenario::{Preset, Scenario, Stepping};
 use crate::sequence::Sequence;
 use dynarole_replay::RobotWorld;
-use dynarole_world::Port;
-use dynarole_world::View;
+use dynarole_world::{Configuration, Port, View};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write;
+use std::rc::Rc;
 use std::sync::Arc;
 
 /// Controller period of every module (atron.md c).
@@ -27,15 +28,46 @@ pub const NO_ID: u16 = 0xFFFF;
 /// Width of the trace's state column (padded; a longer description widens its line).
 pub const STATE_COLUMN: usize = 28;
 
-/// A packet on its way from one connector to another.
+/// A packet on its way from one connector to another. Compact (ports as a u32 module index
+/// and a connector, the bytes shared by every copy of one broadcast): at the start of a large
+/// run every module's first broadcast is in flight at once.
 #[derive(Clone, Debug)]
 pub struct Packet {
     pub id: u64,
-    pub from: Port,
-    pub to: Port,
     pub start: u64,
     pub end: u64,
-    pub bytes: Vec<u8>,
+    pub bytes: Rc<[u8]>,
+    from: (u32, u8),
+    to: (u32, u8),
+}
+
+impl Packet {
+    pub fn new(id: u64, from: Port, to: Port, (start, end): (u64, u64), bytes: Rc<[u8]>) -> Packet {
+        // Module indices fit: a run has at most `network::MAX_MODULES` modules.
+        let compact = |p: Port| (p.module as u32, p.connector);
+        Packet {
+            id,
+            start,
+            end,
+            bytes,
+            from: compact(from),
+            to: compact(to),
+        }
+    }
+
+    pub fn from(&self) -> Port {
+        Port {
+            module: self.from.0 as usize,
+            connector: self.from.1,
+        }
+    }
+
+    pub fn to(&self) -> Port {
+        Port {
+            module: self.to.0 as usize,
+            connector: self.to.1,
+        }
+    }
 }
 
 #[derive(Clone, Debug)]
@@ -46,14 +78,17 @@ pub enum Event {
     PowerOff {
         module: usize,
     },
+    /// A step of `module` (an index below `network::MAX_MODULES`) in its power-on
+    /// `generation` (u32 fields: the event, and every event, takes 16 bytes).
     Step {
-        module: usize,
-        generation: u64,
+        module: u32,
+        generation: u32,
     },
     OpDone {
         attempt: u64,
     },
-    Arrival(Box<Packet>),
+    /// Packets of one broadcast (`network::Arrivals`), one per event.
+    Arrival(Box<Arrivals>),
     Reset {
         module: usize,
     },
@@ -66,35 +101,77 @@ pub enum Event {
     },
 }
 
-/// The platform data of one module.
+/// The platform data of one module. Sized with care (no heap until the module writes its
+/// storage; what few modules need is kept aside: `State::waiting`, `State::air`): the
+/// simulator's memory grows with the modules (`tests/memory.rs`). Its name is the world's
+/// (`View::name`).
 #[derive(Clone, Debug)]
 pub struct Module {
-    pub name: String,
     pub id: u16,
     pub powered: bool,
+    pub failed: bool,
+    pub leds: u8,
+    /// Receive channels that are dead (permanent link failure): bit c for connector c.
+    pub dead: u8,
     pub power_on_at: u64,
-    pub generation: u64,
+    /// Power cycles so far (at most two per `power` entry of the scenario, plus one).
+    pub generation: u32,
     /// Order of the last power-on among all power-ons (orders steps at one instant).
     pub rank: u64,
     /// The instant of the step in the queue that is this module's next (stale ones are
     /// skipped); `None` while it waits for a packet (tickless) or is off.
     pub next_step: Option<u64>,
+    pub finished_at: Option<u64>,
+    /// When each send queue (channel, or hemisphere when half duplex) is free again.
+    pub busy_until: [u64; QUEUES],
     /// The storage up to the last byte ever written (at most NV_BYTES): bytes beyond it have
     /// never been written and read as 0xFF.
     pub nv: Vec<u8>,
-    /// Statements started since the last time all were finished (what op_status reports on).
-    pub waiting: Vec<usize>,
-    pub failed: bool,
-    pub finished_at: Option<u64>,
-    pub leds: u8,
-    /// When each send queue (channel, or hemisphere when half duplex) is free again.
-    pub busy_until: Vec<u64>,
-    /// Receive channels that are dead (permanent link failure).
-    pub dead: Vec<bool>,
-    /// Recent transmissions and receptions per hemisphere: (start, end, packet id; 0 = own).
-    pub air: [Vec<(u64, u64, u64)>; 2],
     pub stats: ModuleStats,
 }
+
+impl Module {
+    /// Whether a step queued for `time` in power-on `generation` is still this module's
+    /// next (not cancelled by a power cycle, nor replaced by another wake-up).
+    fn step_live(&self, generation: u32, time: u64) -> bool {
+        self.powered && self.generation == generation && self.next_step == Some(time)
+    }
+}
+
+/// One transmission or reception on a module's hemisphere, remembered for collision checks
+/// (24 bytes: a half-duplex module remembers a dozen at a time).
+#[derive(Clone, Copy, Debug)]
+pub struct Air {
+    pub start: u64,
+    pub end: u64,
+    /// The packet's id (0 for the module's own transmission; ids stay far below 2^63), with
+    /// the hemisphere in the top bit.
+    tag: u64,
+}
+
+impl Air {
+    const HEMISPHERE: u64 = 1 << 63;
+
+    pub fn new((start, end): (u64, u64), packet: u64, hemisphere: usize) -> Air {
+        let top = if hemisphere == 0 { 0 } else { Air::HEMISPHERE };
+        Air {
+            start,
+            end,
+            tag: (packet & !Air::HEMISPHERE) | top,
+        }
+    }
+
+    pub fn packet(&self) -> u64 {
+        self.tag & !Air::HEMISPHERE
+    }
+
+    pub fn hemisphere(&self) -> usize {
+        usize::from(self.tag & Air::HEMISPHERE != 0)
+    }
+}
+
+/// Send queues per module, at most (one per connector; ATRON and M-TRAN have 8 and 6).
+pub const QUEUES: usize = 8;
 
 #[derive(Clone, Debug, Default)]
 pub struct ModuleStats {
@@ -128,7 +205,7 @@ pub struct State {
     pub preset: Preset,
     pub now: u64,
     queue: Queue,
-    next_seq: u64,
+    pub(crate) next_seq: u64,
     /// Power-ons so far (each module's `rank`).
     next_rank: u64,
     /// The key of the event being dispatched.
@@ -139,8 +216,16 @@ pub struct State {
     /// The configuration; change it only through `apply` (the link cache depends on it).
     pub world: RobotWorld,
     /// Per module, where its broadcasts go (`network.rs`), while the world is unchanged.
-    pub links: Vec<Option<Vec<(Port, Port)>>>,
+    pub links: Links,
     pub modules: Vec<Module>,
+    /// By module, the statements it started since the last time all were finished (what
+    /// op_status reports on); only modules that run operations have an entry.
+    pub waiting: BTreeMap<usize, Vec<usize>>,
+    /// Half duplex (`Preset::Atron`), by module: its recent transmissions and receptions
+    /// (`network.rs`); empty otherwise.
+    pub air: Vec<Vec<Air>>,
+    /// The longest air time of any packet sent so far (µs): how long `air` records matter.
+    pub longest_air_us: u64,
     pub phys: Vec<Phys>,
     pub attempts: BTreeMap<u64, Attempt>,
     pub next_id: u64,
@@ -193,34 +278,35 @@ impl State {
         let view = world.view();
         let preset = scenario.network.preset;
         let mut setup = stream(seed, 0);
-        let connectors = usize::from(view.connectors());
+        let connectors = view.connectors();
         let modules = (0..view.len())
             .map(|m| Module {
-                name: view.name(m),
                 id: view
                     .id(m)
                     .and_then(|i| u16::try_from(i).ok())
                     .unwrap_or(NO_ID),
                 powered: false,
+                failed: false,
+                leds: 0,
+                dead: (0..connectors)
+                    .filter(|_| uniform(&mut setup) < scenario.network.dead_link_p)
+                    .fold(0, |bits, c| bits | 1 << c),
                 power_on_at: 0,
                 generation: 0,
                 rank: 0,
                 next_step: None,
-                nv: Vec::new(),
-                waiting: Vec::new(),
-                failed: false,
                 finished_at: None,
-                leds: 0,
-                busy_until: vec![0; connectors],
-                dead: (0..connectors)
-                    .map(|_| uniform(&mut setup) < scenario.network.dead_link_p)
-                    .collect(),
-                air: [Vec::new(), Vec::new()],
+                busy_until: [0; QUEUES],
+                nv: Vec::new(),
                 stats: ModuleStats::default(),
             })
             .collect();
         let phys = vec![Phys::default(); seq.len()];
-        let links = vec![None; view.len()];
+        let links = Links::new(view.len(), connectors);
+        let air = match preset {
+            Preset::Atron => vec![Vec::new(); view.len()],
+            Preset::Ussr => Vec::new(),
+        };
         let mut state = State {
             seq,
             scenario,
@@ -234,6 +320,9 @@ impl State {
             world,
             links,
             modules,
+            waiting: BTreeMap::new(),
+            air,
+            longest_air_us: 0,
             phys,
             attempts: BTreeMap::new(),
             next_id: 1,
@@ -334,9 +423,29 @@ impl State {
         self.world.view()
     }
 
+    /// The world's configuration in the data-file format (a robot without one: `None`),
+    /// moved out (not copied) at the end of a run.
+    pub fn into_configuration(self) -> Option<Configuration> {
+        self.world.into_configuration()
+    }
+
     pub fn schedule(&mut self, time: u64, event: Event) {
         let key = Key::plain(time, self.now, self.next_seq);
         self.next_seq += 1;
+        self.push(key, event);
+    }
+
+    /// Into the queue; stale steps go first when the queue would otherwise grow.
+    pub(crate) fn push(&mut self, key: Key, event: Event) {
+        if self.queue.heap_full() {
+            let modules = &self.modules;
+            self.queue.drop_stale(|key, event| match *event {
+                Event::Step { module, generation } => modules
+                    .get(module as usize)
+                    .is_none_or(|x| !x.step_live(generation, key.time())),
+                _ => false,
+            });
+        }
         self.queue.push(key, event);
     }
 
@@ -380,9 +489,10 @@ impl State {
         let Some(trace) = &mut self.trace else {
             return;
         };
-        let name = module
-            .and_then(|m| self.modules.get(m))
-            .map_or("-", |m| m.name.as_str());
+        let name = match module {
+            Some(m) if m < self.modules.len() => self.world.view().name(m),
+            _ => "-".to_string(),
+        };
         let mut buffer = [0u8; DESCRIPTION_BYTES];
         let len = match (module, &self.describer) {
             (Some(m), Some(d)) => d.describe(m, &mut buffer),
@@ -436,7 +546,7 @@ impl State {
         }
         module.powered = true;
         module.power_on_at = now;
-        module.generation += 1;
+        module.generation = module.generation.wrapping_add(1);
         module.rank = self.next_rank;
         self.next_rank += 1;
         self.log(Some(m), "power-on", "");
@@ -453,7 +563,7 @@ impl State {
             return;
         }
         module.powered = false;
-        module.generation += 1;
+        module.generation = module.generation.wrapping_add(1);
         module.next_step = None;
         module.stats.power_cycles += 1;
         self.counters.power_cycles += 1;
@@ -488,12 +598,12 @@ impl State {
 
     /// Whether a step of `m` in `generation` at the current time is still due (not
     /// cancelled by a power cycle, nor replaced by another wake-up); a due step is consumed.
-    pub fn step_due(&mut self, m: usize, generation: u64) -> bool {
+    pub fn step_due(&mut self, m: usize, generation: u32) -> bool {
         let now = self.now;
         let Some(x) = self.modules.get_mut(m) else {
             return false;
         };
-        let due = x.powered && x.generation == generation && x.next_step == Some(now);
+        let due = x.step_live(generation, now);
         if due {
             x.next_step = None;
         }
@@ -516,12 +626,13 @@ impl State {
     pub(crate) fn put_step(&mut self, m: usize, time: u64) {
         let key = self.step_key(m, time);
         let event = Event::Step {
-            module: m,
+            // Fits: a run has at most `network::MAX_MODULES` modules.
+            module: m as u32,
             generation: self.modules[m].generation,
         };
         self.modules[m].next_step = Some(time);
         if self.tickless() {
-            self.queue.push(key, event);
+            self.push(key, event);
         } else {
             self.queue.push_periodic(key, event);
         }
@@ -618,3 +729,10 @@ impl State {
 fn reset_interval(interval_ms: u64, m: usize) -> u64 {
     interval_ms * 1000 + (m as u64) * 1_000_000 / 7
 }
+
+// Sized deliberately: every queued event is a key and an event, and every module a `Module`
+// (`tests/memory.rs` holds the whole run to its budget).
+const _: () = assert!(std::mem::size_of::<Event>() == 16);
+const _: () = assert!(std::mem::size_of::<Key>() == 24);
+const _: () = assert!(std::mem::size_of::<Packet>() == 56);
+const _: () = assert!(std::mem::size_of::<Air>() == 24);

@@ -85,6 +85,11 @@ pub trait RobotModel: fmt::Debug + Send + Sync {
     }
     /// The configuration in the data-file format, for a robot that has one.
     fn configuration(&self) -> Option<Configuration>;
+    /// The configuration moved out of the model at its end (no copy: a large robot's
+    /// simulation ends with this).
+    fn into_configuration(self: Box<Self>) -> Option<Configuration> {
+        self.configuration()
+    }
     /// How the configuration differs from `other`'s (equal up to rigid motion: `None`); the
     /// first line of the answer is a summary.
     fn difference(&self, other: &dyn RobotModel) -> Option<String>;

@@ -1,5 +1,6 @@
 //! What the ATRON and M-TRAN configurations share: modules in file order, the latches between
-//! them, their validation, and the indices that keep look-ups by name, id and port logarithmic.
+//! them, their validation, and the compact indices that keep look-ups by name and id
+//! logarithmic and by port constant.
 
 use crate::common::{ConfigError, Latch, NamedConnection, Port};
 use std::collections::{BTreeMap, BTreeSet};
@@ -35,29 +36,51 @@ pub(crate) trait RobotModule: Sized {
 }
 
 /// Modules and latches, with indices by name, id and port. The indices only follow from the
-/// modules and latches, so comparing them too (derived `PartialEq`) changes no answer.
+/// modules and latches, so comparing them too (derived `PartialEq`) changes no answer. They
+/// are compact (a simulated robot may have a million modules): a name is stored once, in
+/// its module, and a port is one u32.
 #[derive(Clone, PartialEq)]
 pub(crate) struct Structure<M> {
     modules: Vec<M>,
     latches: BTreeSet<Latch>,
-    by_name: BTreeMap<String, usize>,
+    /// Module indices in name order (names are unique), searched by bisection.
+    by_name: Vec<u32>,
     by_id: BTreeMap<u32, usize>,
-    /// Both ends of every latch, each mapped to the other.
-    partners: BTreeMap<Port, Port>,
+    /// Both ends of every latch, each mapped to the other: the entry of port p is
+    /// `partners[packed(p)]`, the packed port latched to it or `FREE`.
+    partners: Vec<u32>,
 }
 
+/// A `partners` entry of a connector that is not latched.
+const FREE: u32 = u32::MAX;
+
 impl<M: RobotModule> Structure<M> {
+    /// Most modules a configuration can have: every port packs into a u32 below `FREE`.
+    fn max_modules() -> usize {
+        (FREE / u32::from(M::CONNECTOR_COUNT)) as usize
+    }
+
     /// Modules without latches, after checking that names are non-empty and unique and that
     /// given ids are unique.
     pub(crate) fn new(modules: Vec<M>) -> Result<Structure<M>, ConfigError> {
-        let mut by_name = BTreeMap::new();
+        if modules.len() > Self::max_modules() {
+            return Err(ConfigError::new(
+                "modules",
+                format!(
+                    "{} modules; at most {} are supported",
+                    modules.len(),
+                    Self::max_modules()
+                ),
+            ));
+        }
+        let mut names = BTreeMap::new();
         let mut by_id = BTreeMap::new();
         for (i, m) in modules.iter().enumerate() {
             let name = m.name();
             if name.is_empty() {
                 return Err(ConfigError::new(format!("modules[{i}].name"), "empty name"));
             }
-            if let Some(j) = by_name.insert(name.to_string(), i) {
+            if let Some(j) = names.insert(name, i) {
                 return Err(ConfigError::new(
                     format!("modules[{i}].name"),
                     format!("duplicate module name \"{name}\" (also modules[{j}])"),
@@ -72,13 +95,40 @@ impl<M: RobotModule> Structure<M> {
                 }
             }
         }
+        // In name order, as `names` holds them (fits: checked against max_modules above).
+        let by_name = names.into_values().map(|i| i as u32).collect();
+        let partners = vec![FREE; modules.len() * usize::from(M::CONNECTOR_COUNT)];
         Ok(Structure {
             modules,
             latches: BTreeSet::new(),
             by_name,
             by_id,
-            partners: BTreeMap::new(),
+            partners,
         })
+    }
+
+    /// Where `port`'s entry is in `partners` (`None` for a port of no module).
+    fn packed(&self, port: Port) -> Option<usize> {
+        (port.module < self.modules.len() && port.connector < M::CONNECTOR_COUNT)
+            .then(|| port.module * usize::from(M::CONNECTOR_COUNT) + usize::from(port.connector))
+    }
+
+    /// The port of a `partners` value.
+    fn unpacked(value: u32) -> Option<Port> {
+        let connectors = u32::from(M::CONNECTOR_COUNT);
+        (value != FREE).then(|| Port {
+            module: (value / connectors) as usize,
+            connector: (value % connectors) as u8,
+        })
+    }
+
+    /// Latches `a` to `b` (or frees `a` when `b` is `None`) in `partners`.
+    fn set_partner(&mut self, a: Port, b: Option<Port>) {
+        // Fits in a u32 below FREE: the module count is checked in `new`.
+        let value = b.and_then(|p| self.packed(p)).map_or(FREE, |v| v as u32);
+        if let Some(slot) = self.packed(a).and_then(|k| self.partners.get_mut(k)) {
+            *slot = value;
+        }
     }
 
     /// Resolves, checks and latches every connection: known modules, connectors in range, one
@@ -154,7 +204,12 @@ impl<M: RobotModule> Structure<M> {
 
     /// Index of the module called `name`.
     pub(crate) fn module_index(&self, name: &str) -> Option<usize> {
-        self.by_name.get(name).copied()
+        let name_of = |i: &u32| self.modules.get(*i as usize).map_or("", |m| m.name());
+        let k = self
+            .by_name
+            .binary_search_by(|i| name_of(i).cmp(name))
+            .ok()?;
+        self.by_name.get(k).map(|i| *i as usize)
     }
 
     /// Index of the module with numeric ID `id`.
@@ -181,21 +236,22 @@ impl<M: RobotModule> Structure<M> {
 
     /// The port latched to `port`, if any.
     pub(crate) fn latched_to(&self, port: Port) -> Option<Port> {
-        self.partners.get(&port).copied()
+        let value = self.packed(port).and_then(|k| self.partners.get(k))?;
+        Self::unpacked(*value)
     }
 
     /// Adds a latch (the caller has checked that both ends are free).
     pub(crate) fn latch(&mut self, latch: Latch) {
         self.latches.insert(latch);
-        self.partners.insert(latch.male, latch.female);
-        self.partners.insert(latch.female, latch.male);
+        self.set_partner(latch.male, Some(latch.female));
+        self.set_partner(latch.female, Some(latch.male));
     }
 
     /// Removes a latch, if present.
     pub(crate) fn unlatch(&mut self, latch: Latch) {
         if self.latches.remove(&latch) {
-            self.partners.remove(&latch.male);
-            self.partners.remove(&latch.female);
+            self.set_partner(latch.male, None);
+            self.set_partner(latch.female, None);
         }
     }
 

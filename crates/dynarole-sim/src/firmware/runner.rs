@@ -181,7 +181,7 @@ pub fn run(
                 void_after: None,
                 text: Vec::new(),
                 stats: ModuleFirmware {
-                    name: state.modules[m].name.clone(),
+                    name: state.view().name(m),
                     ..ModuleFirmware::default()
                 },
             })
@@ -290,7 +290,10 @@ fn dispatch(state: &mut State, boards: &mut [Board], event: Event) {
         // The firmware steps itself (its timer); the end is noted after each of its steps.
         Event::Step { .. } | Event::Foreign { .. } => {}
         Event::OpDone { attempt } => state.op_done(attempt),
-        Event::Arrival(packet) => arrive(state, boards, &packet),
+        Event::Arrival(arrivals) => {
+            let packet = state.next_arrival(arrivals);
+            arrive(state, boards, &packet)
+        }
         Event::Reset { module } => {
             if state.reset(module) {
                 boards[module].restart(now, false);
@@ -306,8 +309,8 @@ fn dispatch(state: &mut State, boards: &mut [Board], event: Event) {
 
 fn arrive(state: &mut State, boards: &mut [Board], packet: &Packet) {
     if state.arrive(packet) {
-        let b = &mut boards[packet.to.module];
-        if b.on.is_some() && !b.core.rx(packet.to.connector, &packet.bytes) {
+        let b = &mut boards[packet.to().module];
+        if b.on.is_some() && !b.core.rx(packet.to().connector, &packet.bytes) {
             b.stats.arbiter_drops += 1;
         }
     }

@@ -1,6 +1,9 @@
 //! Shared by the simulator's tests: compile a sequence from source and run it.
 #![allow(dead_code)]
 
+pub mod counting;
+pub mod grid;
+
 use dynarole_codegen::{CompileOptions, Protocol};
 use dynarole_core::{driver, parse, RobotRegistry};
 use dynarole_sim::{Report, Run, Scenario, Simulator};

@@ -120,6 +120,10 @@ impl RobotModel for World {
         Some(Configuration::Atron(World::configuration(self).clone()))
     }
 
+    fn into_configuration(self: Box<Self>) -> Option<Configuration> {
+        Some(Configuration::Atron(World::into_configuration(*self)))
+    }
+
     fn difference(&self, other: &dyn RobotModel) -> Option<String> {
         model_difference(self, other)
     }

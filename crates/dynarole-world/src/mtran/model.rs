@@ -123,6 +123,10 @@ impl RobotModel for MtranWorld {
         ))
     }
 
+    fn into_configuration(self: Box<Self>) -> Option<Configuration> {
+        Some(Configuration::Mtran(MtranWorld::into_configuration(*self)))
+    }
+
     fn difference(&self, other: &dyn RobotModel) -> Option<String> {
         model_difference(self, other)
     }
