@@ -190,8 +190,10 @@ uint8_t dr_shared_decode(dr_shared_t *s, const uint8_t *in, uint8_t len, uint16_
 }
 
 #if ADAPTIVE
-/* Sends the state now (the adaptive schedule is set by disseminate, below). */
-static void send_state(dr_module_t *m)
+/* Sends the state now: on every channel (`to` = 0), or only on the channels of `to` (a retry
+ * that only some neighbours still need costs one packet per such neighbour, not one per
+ * channel). The adaptive schedule is set by disseminate, below. O(DR_CONF_CHANNELS). */
+static void send_state(dr_module_t *m, dr_channels_t to)
 #else
 /* Sends the state now and schedules the next periodic broadcast. */
 static void broadcast(dr_module_t *m, uint32_t now)
@@ -203,7 +205,20 @@ static void broadcast(dr_module_t *m, uint32_t now)
     (void)dr_shared_encode(&m->shared, frame + DR_PACKET_HEADER, PAYLOAD);
     len = dr_packet_frame(frame, FRAME, &m->identity, DR_PACKET_LATTICE_STATE,
                           frame + DR_PACKET_HEADER, PAYLOAD);
+#if ADAPTIVE
+    if (to != 0u) {
+        uint8_t c;
+        for (c = 0; c < DR_CONF_CHANNELS; c++) {
+            if ((to & (dr_channels_t)((dr_channels_t)1 << c)) != 0u) {
+                dr_hal_send(m, c, frame, len);
+            }
+        }
+    } else {
+        dr_hal_broadcast(m, frame, len);
+    }
+#else
     dr_hal_broadcast(m, frame, len);
+#endif
     m->packets_sent++;
 #if ADAPTIVE
     m->repeated[0] = 0; /* they hear us now: a resend of theirs is news again */
@@ -313,23 +328,33 @@ static void restart_interval(dr_module_t *m)
  * longest interval (nothing is left to tell them: the broadcasts only keep the links alive). */
 static void disseminate(dr_module_t *m, uint32_t now, uint8_t changed)
 {
-    dr_channels_t unacked;
+    dr_channels_t linked = connected(m);
+    dr_channels_t unacked = (dr_channels_t)(linked & (dr_channels_t)~m->acked);
+    dr_channels_t wanting = (dr_channels_t)(unacked | m->lagging);
+    dr_channels_t to = 0;
 #if DR_CONF_LATTICE_RESEND_SPREAD > 0
     uint32_t spread;
 #endif
     if (changed) {
         restart_interval(m);
     }
-    unacked = (dr_channels_t)(connected(m) & (dr_channels_t)~m->acked);
+    /* A retry that only some connected neighbours still need (the others have been heard
+     * with our copy) goes to those channels only. News, answers and the quiet broadcasts go
+     * on every channel: they are also for neighbours facing us without a latch; and without
+     * NV every send does (a neighbour in its rule-1 wait must hear us). */
+    if (!changed && !m->answer && !no_nv(m) && wanting != 0u &&
+        (linked & (dr_channels_t)~wanting) != 0u) {
+        to = wanting;
+    }
 #if DR_CONF_LATTICE_SUPPRESS > 0
     /* Never without NV: a neighbour in its rule-1 wait (or awaiting an echo) must hear us
      * even when our copy is the same as its own. */
     if (changed || m->answer || unacked != 0u || m->consistent < DR_CONF_LATTICE_SUPPRESS ||
         no_nv(m)) {
-        send_state(m);
+        send_state(m, to);
     }
 #else
-    send_state(m);
+    send_state(m, to);
 #endif
     m->consistent = 0;
     m->answer = 0;

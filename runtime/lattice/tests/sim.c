@@ -85,15 +85,12 @@ static void sim_broadcast(struct dr_module *m, uint8_t channel, const uint8_t *b
     uint8_t copies;
     sim_node_t *to;
     sim_packet_t *p;
-    if (channel != DR_FAKE_BROADCAST) {
-        violation("dr_hal_send: the lattice protocol only broadcasts", 0, channel);
-        return;
-    }
     if (from->mute) {
         return;
     }
+    /* Channel c of node i leads to node c (sim_connected): a send reaches that node only. */
     for (j = 0; j < sim.n_nodes; j++) {
-        if (!sim.adj[i][j]) {
+        if (!sim.adj[i][j] || (channel != DR_FAKE_BROADCAST && channel != j)) {
             continue;
         }
         to = &sim.nodes[j];
