@@ -15,10 +15,9 @@ const KNOWN_CIRCLES: &[(&str, &[&str])] = &[
     (
         "dynarole-sim",
         &[
-            "build", "describe", "ffi", "ops", "queue", "record", "report", "state",
+            "build", "describe", "ffi", "network", "ops", "queue", "record", "report", "state",
         ],
     ),
-    ("dynarole-world", &["config", "json", "mtran", "structure"]),
 ];
 
 /// The CLI's modules on the path of `dynarole compile` (every target).

@@ -1,8 +1,8 @@
 //! The one robot API the other crates ask: [`RobotShape`] answers questions about a
 //! configuration (modules, names, ids, connectors, male or female, latches, joints) and
 //! [`RobotModel`] is a robot being reconfigured (its shape, doing an [`Action`], the motion of
-//! a turn). ATRON (`atron/`) and M-TRAN (`mtran/`) each implement both in their own folder; a
-//! new robot is one more implementation, which may live outside this crate.
+//! a turn). ATRON and M-TRAN implement both in `builtin/`, over their folders (`atron/`,
+//! `mtran/`); a new robot is one more implementation, which may live outside this crate.
 
 use crate::common::Port;
 use crate::configuration::Configuration;

@@ -1,13 +1,13 @@
 //! M-TRAN behind the robot API: the configuration answers [`RobotShape`], the
 //! [`MtranWorld`] is the [`RobotModel`] (two joints, angles in degrees, no wrapping).
 
-use super::module::{is_mtran_male, MtranConfiguration, MtranJoint, MTRAN_CONNECTOR_COUNT};
-use super::world::MtranWorld;
 use crate::common::Port;
 use crate::compare::model_difference;
 use crate::configuration::Configuration;
 use crate::model::{Action, RobotModel, RobotShape};
 use crate::motion::TurnMotion;
+use crate::mtran::module::{is_mtran_male, MtranConfiguration, MtranJoint, MTRAN_CONNECTOR_COUNT};
+use crate::mtran::world::MtranWorld;
 use crate::ops::{OpError, Outcome};
 use std::any::Any;
 

@@ -1,9 +1,9 @@
 //! ATRON behind the robot API: the configuration answers [`RobotShape`], the [`World`]
 //! is the [`RobotModel`] (one joint per module, angles in 1/432 turn).
 
-use super::config::AtronConfiguration;
-use super::lattice::{is_male, CONNECTOR_COUNT, JOINT_UNITS_PER_TURN, QUARTER_TURN_UNITS};
-use super::world::World;
+use crate::atron::config::AtronConfiguration;
+use crate::atron::lattice::{is_male, CONNECTOR_COUNT, JOINT_UNITS_PER_TURN, QUARTER_TURN_UNITS};
+use crate::atron::world::World;
 use crate::common::Port;
 use crate::compare::model_difference;
 use crate::configuration::Configuration;
