@@ -70,7 +70,7 @@ pub(crate) fn simultaneous_turns(
         let module = assignment.get(&s.label)?;
         world.turn_motion(&program.robot, s, module)
     };
-    checker.turns_apart(motion(a)?, motion(b)?)
+    checker.turns_apart(motion(a)?, motion(b)?, world)
 }
 
 struct Checker<'a> {
@@ -161,12 +161,12 @@ impl Checker<'_> {
         b: &PlanElement,
         world: &RobotWorld,
     ) -> Option<String> {
-        self.turns_apart(self.motion(a, world)?, self.motion(b, world)?)
+        self.turns_apart(self.motion(a, world)?, self.motion(b, world)?, world)
     }
 
     /// Two turns done at the same time: a shared moving module, or a closest approach below
     /// the limit for some relative timing.
-    fn turns_apart(&self, ma: TurnMotion, mb: TurnMotion) -> Option<String> {
+    fn turns_apart(&self, ma: TurnMotion, mb: TurnMotion, world: &RobotWorld) -> Option<String> {
         let shared: Vec<&str> = ma
             .moving
             .iter()
@@ -180,10 +180,7 @@ impl Checker<'_> {
             ));
         }
         let limit = ma.limit.max(mb.limit);
-        let unit = match self.program.robot.name.as_str() {
-            "mtran" => "block pitches",
-            _ => "lattice units",
-        };
+        let unit = world.model().length_unit();
         closest_approach(&ma, &mb).map(|closest| {
             format!("done at the same time, the turns bring modules within {closest:.3} {unit} of each other (limit {limit})")
         })

@@ -35,6 +35,7 @@ pub use atron::{
     AtronConfiguration, AtronModule, Orientation, OrientationBase, World,
     MIN_SWEEP_DISTANCE_LATTICE,
 };
+pub use builtin::{builtin_quarter_turns, BUILTIN_ROBOTS};
 pub use common::{ConfigError, Latch, Metadata, NamedConnection, Port};
 pub use compare::{compare, Difference, JointDifference, Misplaced};
 pub use configuration::{Configuration, Robot};

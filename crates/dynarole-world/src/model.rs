@@ -77,6 +77,9 @@ pub trait RobotModel: fmt::Debug + Send + Sync {
     /// Quarter turns (rounded up) a joint passes through from `from` to `to` in the given
     /// direction: what a turn's duration is counted in.
     fn quarter_turns(&self, from: i64, to: i64, increasing: bool) -> u64;
+    /// The unit of the positions and distances of its turn motions, for messages
+    /// (`lattice units`).
+    fn length_unit(&self) -> &str;
     /// Module centres, when a turn always moves whole modules about their joints, so that two
     /// turns with disjoint moving sides commute (ATRON); `None` when it moves parts of
     /// modules (M-TRAN blocks) or the robot does not say.

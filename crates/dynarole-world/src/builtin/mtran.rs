@@ -64,9 +64,12 @@ impl RobotShape for MtranConfiguration {
     }
 }
 
+/// The plugin name of the robot.
+pub(super) const NAME: &str = "mtran";
+
 impl RobotModel for MtranWorld {
     fn robot(&self) -> &str {
-        "mtran"
+        NAME
     }
 
     fn shape(&self) -> &dyn RobotShape {
@@ -111,10 +114,12 @@ impl RobotModel for MtranWorld {
         .ok()
     }
 
-    /// The joint does not wrap: the turn is the difference of the angles.
     fn quarter_turns(&self, from: i64, to: i64, _increasing: bool) -> u64 {
-        let delta = (to - from).abs();
-        u64::try_from((delta + QUARTER_DEG - 1) / QUARTER_DEG).unwrap_or(0)
+        quarter_turns(from, to)
+    }
+
+    fn length_unit(&self) -> &str {
+        "block pitches"
     }
 
     fn configuration(&self) -> Option<Configuration> {
@@ -167,4 +172,11 @@ fn mtran_joint(index: u8) -> MtranJoint {
 /// An angle the plugin range-checked; anything else becomes one the world refuses.
 fn degrees(angle: i64) -> i16 {
     i16::try_from(angle).unwrap_or(i16::MAX)
+}
+
+/// Quarter turns of a joint from `from` to `to` (degrees). The joint does not wrap: the turn
+/// is the difference of the angles.
+pub(super) fn quarter_turns(from: i64, to: i64) -> u64 {
+    let delta = (to - from).abs();
+    u64::try_from((delta + QUARTER_DEG - 1) / QUARTER_DEG).unwrap_or(0)
 }
