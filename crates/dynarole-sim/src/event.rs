@@ -10,7 +10,7 @@ pub enum Event {
     PowerOff {
         module: usize,
     },
-    /// A step of `module` (an index below `network::MAX_MODULES`) in its power-on
+    /// A step of `module` (an index below `links::MAX_MODULES`) in its power-on
     /// `generation` (u32 fields: the event, and every event, takes 16 bytes).
     Step {
         module: u32,
@@ -19,7 +19,7 @@ pub enum Event {
     OpDone {
         attempt: u64,
     },
-    /// Packets of one broadcast (`network::Arrivals`), one per event.
+    /// Packets of one broadcast (`packet::Arrivals`), one per event.
     Arrival(Box<Arrivals>),
     Reset {
         module: usize,

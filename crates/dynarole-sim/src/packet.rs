@@ -20,7 +20,7 @@ pub struct Packet {
 
 impl Packet {
     pub fn new(id: u64, from: Port, to: Port, (start, end): (u64, u64), bytes: Rc<[u8]>) -> Packet {
-        // Module indices fit: a run has at most `network::MAX_MODULES` modules.
+        // Module indices fit: a run has at most `links::MAX_MODULES` modules.
         let compact = |p: Port| (p.module as u32, p.connector);
         Packet {
             id,
