@@ -2,7 +2,7 @@
 //! configuration in either order, and two joint turns done at the same time must not sweep
 //! through each other.
 
-use crate::parallel::footprint::MovingSide;
+use crate::motion::{closest_approach, MovingSide};
 use crate::robot_world::RobotWorld;
 use crate::roles::Assignment;
 use dynarole_core::check::ResolvedStatement;
@@ -13,7 +13,7 @@ use dynarole_world::TurnMotion;
 
 /// Warnings for every pair of elements of a parallel group that are not independent, walking
 /// the plans from the world's configuration. Pairs of ATRON turns that their motions prove
-/// independent (`parallel/footprint.rs`) are not run both ways; every other pair is.
+/// independent (`motion.rs`) are not run both ways; every other pair is.
 pub fn check_independence(
     program: &Program,
     plans: &[Plan],
@@ -70,7 +70,7 @@ pub(crate) fn simultaneous_turns(
         let module = assignment.get(&s.label)?;
         world.turn_motion(&program.robot, s, module)
     };
-    checker.turns_apart(motion(a)?, motion(b)?)
+    checker.turns_apart(motion(a)?, motion(b)?, world)
 }
 
 struct Checker<'a> {
@@ -161,12 +161,12 @@ impl Checker<'_> {
         b: &PlanElement,
         world: &RobotWorld,
     ) -> Option<String> {
-        self.turns_apart(self.motion(a, world)?, self.motion(b, world)?)
+        self.turns_apart(self.motion(a, world)?, self.motion(b, world)?, world)
     }
 
     /// Two turns done at the same time: a shared moving module, or a closest approach below
     /// the limit for some relative timing.
-    fn turns_apart(&self, ma: TurnMotion, mb: TurnMotion) -> Option<String> {
+    fn turns_apart(&self, ma: TurnMotion, mb: TurnMotion, world: &RobotWorld) -> Option<String> {
         let shared: Vec<&str> = ma
             .moving
             .iter()
@@ -180,10 +180,7 @@ impl Checker<'_> {
             ));
         }
         let limit = ma.limit.max(mb.limit);
-        let unit = match self.program.robot.name.as_str() {
-            "mtran" => "block pitches",
-            _ => "lattice units",
-        };
+        let unit = world.model().length_unit();
         closest_approach(&ma, &mb).map(|closest| {
             format!("done at the same time, the turns bring modules within {closest:.3} {unit} of each other (limit {limit})")
         })
@@ -231,86 +228,4 @@ fn groups(plan: &Plan) -> Vec<&[PlanElement]> {
     plan.elements
         .split_inclusive(|e| e.separator == dynarole_core::ast::SeparatorKind::Sequential)
         .collect()
-}
-
-/// Halvings of a piece of a path before a closest approach too near the limit to be decided
-/// is reported as a conflict: the piece is then shorter than 2^-40 of the path.
-const MAX_HALVINGS: u32 = 40;
-
-/// Times one pair of points is searched again for a closer approach below the one found.
-const MAX_DESCENTS: usize = 64;
-
-/// The closest approach below the limit that the two turns can bring two of their moving
-/// points to, for some relative timing; `None` when they are proven to stay apart.
-///
-/// Exact, not sampled. For one point of each side, the distance between the moving point of
-/// `a` at one moment and the whole path of the point of `b` is known in closed form
-/// ([`TurnMotion::distance_to_path`]); a piece of `a`'s path whose middle is at distance `d`
-/// from `b`'s path keeps every point within half the piece's length of that middle, so the
-/// whole piece stays at least `d - length / 2` away. Pieces that cannot be decided that way
-/// are halved; a pair of points whose paths' exact bounding boxes are already apart by the
-/// limit is not looked at.
-pub(crate) fn closest_approach(a: &TurnMotion, b: &TurnMotion) -> Option<f64> {
-    // Once a conflict is found, the bar drops to it, so what is reported is the closest
-    // approach of all pairs (to the precision of the halvings), not the first one found.
-    let mut bar = a.limit.max(b.limit);
-    let mut closest = None;
-    let boxes_b: Vec<_> = b.moving.iter().map(|(_, p)| b.path_box(*p)).collect();
-    for (_, pa) in &a.moving {
-        let box_a = a.path_box(*pa);
-        for ((_, pb), box_b) in b.moving.iter().zip(&boxes_b) {
-            for _ in 0..MAX_DESCENTS {
-                if box_distance(&box_a, box_b) >= bar {
-                    break;
-                }
-                match path_approach(a, *pa, b, *pb, bar) {
-                    Some(d) if d < bar => {
-                        closest = Some(d);
-                        bar = d;
-                    }
-                    _ => break,
-                }
-            }
-        }
-    }
-    closest
-}
-
-/// Branch and bound over the path of `pa` (fractions of `a`'s turn) against the whole path of
-/// `pb`: the distance found below `limit`, or the lower bound of a piece that could not be
-/// decided after [`MAX_HALVINGS`] halvings; `None` when every piece stays at least `limit` away.
-fn path_approach(
-    a: &TurnMotion,
-    pa: [f64; 3],
-    b: &TurnMotion,
-    pb: [f64; 3],
-    limit: f64,
-) -> Option<f64> {
-    let length = a.path_length(pa);
-    // Pieces still to decide: (start, end, halvings). A stack: at most one piece per level
-    // waits, so it never holds more than MAX_HALVINGS + 1 pieces.
-    let mut pieces = vec![(0.0_f64, 1.0_f64, 0_u32)];
-    while let Some((start, end, halvings)) = pieces.pop() {
-        let middle = (start + end) / 2.0;
-        let d = b.distance_to_path(pb, a.position_at(pa, middle));
-        if d < limit {
-            return Some(d);
-        }
-        let bound = d - length * (end - start) / 2.0;
-        if bound >= limit {
-            continue;
-        }
-        if halvings == MAX_HALVINGS {
-            return Some(bound.min(limit - f64::EPSILON));
-        }
-        pieces.push((middle, end, halvings + 1));
-        pieces.push((start, middle, halvings + 1));
-    }
-    None
-}
-
-/// The distance between two boxes (low, high); 0 when they overlap.
-fn box_distance(a: &([f64; 3], [f64; 3]), b: &([f64; 3], [f64; 3])) -> f64 {
-    let gap = |k: usize| (b.0[k] - a.1[k]).max(a.0[k] - b.1[k]).max(0.0);
-    (gap(0).powi(2) + gap(1).powi(2) + gap(2).powi(2)).sqrt()
 }

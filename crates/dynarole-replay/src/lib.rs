@@ -4,7 +4,9 @@
 //! Everything a step does or refuses becomes a language [`Diagnostic`] at the statement's
 //! source location, so the CLI renders it like any other message.
 
+mod bitset;
 mod independence;
+mod motion;
 mod parallel;
 mod prepare;
 mod robot_world;

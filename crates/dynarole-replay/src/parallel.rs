@@ -23,8 +23,10 @@ use std::fmt::Write;
 pub(crate) mod footprint;
 mod layout;
 
-use footprint::{Later, MovingSide};
-use layout::{ancestors, has_blocks, levels_layout, series_parallel, written_layout, BitSet};
+use crate::bitset::BitSet;
+use crate::motion::MovingSide;
+use footprint::Later;
+use layout::{ancestors, has_blocks, levels_layout, series_parallel, written_layout};
 pub use layout::{transitive_reduction, Layout};
 
 /// Rounds of "verify the output, add the edge it shows to be missing" before giving up on

@@ -5,7 +5,9 @@
 use dynarole_core::check::ResolvedStatement;
 use dynarole_core::robot::{OperationKind, Value};
 use dynarole_core::RobotApi;
-use dynarole_world::{Action, Configuration, Outcome, RobotModel, TurnMotion, View};
+use dynarole_world::{
+    Action, Configuration, Outcome, RobotModel, TurnMotion, View, BUILTIN_ROBOTS,
+};
 
 /// A robot being reconfigured, of any kind.
 #[derive(Clone, Debug)]
@@ -24,15 +26,16 @@ impl RobotWorld {
         if model.robot() == robot.name {
             return Ok(RobotWorld { model });
         }
-        if ["atron", "mtran"].contains(&robot.name.as_str()) {
+        if BUILTIN_ROBOTS.contains(&robot.name.as_str()) {
             return Err(format!(
                 "the sequence is for robot `{}` but the configuration is an {file_robot} robot",
                 robot.name
             ));
         }
         Err(format!(
-            "robot `{}` has no kinematic model (only atron and mtran have one)",
-            robot.name
+            "robot `{}` has no kinematic model (only {} have one)",
+            robot.name,
+            BUILTIN_ROBOTS.join(" and ")
         ))
     }
 

@@ -2,6 +2,7 @@
 //! platform (`runtime/sim/dr_sim.c`) compiled with the system `cc` into a cache directory
 //! keyed by a hash of everything that goes into the build, then loaded with libloading.
 
+use crate::describe::DescribeFn;
 use crate::ffi;
 use std::ffi::c_void;
 use std::path::{Path, PathBuf};
@@ -22,7 +23,6 @@ pub type InitFn = unsafe extern "C" fn(*mut c_void, *mut c_void);
 pub type StepFn = unsafe extern "C" fn(*mut c_void);
 pub type ReceiveFn = unsafe extern "C" fn(*mut c_void, u8, *const u8, u8);
 pub type QueryFn = unsafe extern "C" fn(*mut c_void) -> u8;
-pub type DescribeFn = unsafe extern "C" fn(*mut c_void, *mut u8, u8) -> u8;
 /// `dr_sim_restamp(in, len, robot, out, cap)`: a frame under another robot's identity.
 pub type RestampFn = unsafe extern "C" fn(*const u8, u8, u16, *mut u8, u8) -> u8;
 /// `dr_sim_next_wakeup(m, &at_ms)`: `dr_module_next_wakeup`'s answer bits.

@@ -101,7 +101,6 @@ pub fn one_at_a_time(seq: &Sequence, timing: &Timing) -> CriticalPath {
 
 /// Each statement's duration with `timing` (see `critical_path`).
 fn durations<'a>(seq: &'a Sequence, timing: &'a Timing) -> impl Fn(usize) -> u64 + 'a {
-    let atron = seq.robot.name == "atron";
     move |s: usize| match seq.kinds[s] {
         OpKind::Extend => timing.extend_ms,
         OpKind::Retract => timing.retract_ms,
@@ -117,7 +116,7 @@ fn durations<'a>(seq: &'a Sequence, timing: &'a Timing) -> impl Fn(usize) -> u64
                 })
                 .find_map(|t| seq.turn_target(t))
                 .unwrap_or(0);
-            timing.turn_ms(seq.quarters(s, current, atron))
+            timing.turn_ms(seq.quarters(s, current))
         }
         OpKind::Other => 0,
     }

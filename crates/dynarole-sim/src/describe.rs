@@ -3,8 +3,11 @@
 //! reported (below both the engine, which owns the buffers, and the state, which writes the
 //! trace).
 
-use crate::build::DescribeFn;
 use std::ffi::c_void;
+
+/// `dr_sim_describe(m, out, cap)`: the compiled program's entry point that writes a module's
+/// protocol state (`build.rs` loads it).
+pub type DescribeFn = unsafe extern "C" fn(*mut c_void, *mut u8, u8) -> u8;
 
 /// Reads each module's protocol state as text for the trace's state column. With contexts,
 /// it holds pointers into the engine's context buffers: the engine installs it in the state

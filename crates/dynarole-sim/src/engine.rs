@@ -6,8 +6,10 @@
 
 use crate::build::Entry;
 use crate::describe::Describer;
+use crate::event::Event;
 use crate::ffi::{self, Installed};
-use crate::state::{Event, Packet, State};
+use crate::packet::Packet;
+use crate::state::State;
 use std::cell::RefCell;
 use std::ffi::c_void;
 use std::rc::Rc;

@@ -14,13 +14,17 @@ mod critical;
 mod describe;
 mod engine;
 mod estimate;
+mod event;
 mod ffi;
 mod firmware;
+mod links;
 mod model_recording;
 mod network;
 mod ops;
+mod packet;
 mod queue;
 mod record;
+mod recorded;
 mod report;
 mod scenario;
 mod sequence;
@@ -32,7 +36,7 @@ pub use critical::CriticalPath;
 pub use estimate::{form_makespan, makespan, shortest};
 pub use firmware::{FirmwareReport, FirmwareSource, ModuleFirmware};
 pub use model_recording::{replay_steps, ModelRecording, ModelRecordingError};
-pub use record::Recorded;
+pub use recorded::Recorded;
 pub use report::{Counters, ModuleReport, Refusal, Report, Violation};
 pub use scenario::{
     Block, Foreign, JointModel, Network, Power, Preset, RandomResets, Reset, Scenario,
@@ -262,13 +266,13 @@ impl Simulator {
     /// it.
     fn checked(world: RobotWorld, scenario: &Scenario) -> Result<RobotWorld, SimError> {
         let view = world.view();
-        if view.len() > network::MAX_MODULES || usize::from(view.connectors()) > state::QUEUES {
+        if view.len() > links::MAX_MODULES || usize::from(view.connectors()) > packet::QUEUES {
             return Err(SimError::Input(format!(
                 "{} modules of {} connectors: the simulator runs at most {} modules of at most {} connectors",
                 view.len(),
                 view.connectors(),
-                network::MAX_MODULES,
-                state::QUEUES
+                links::MAX_MODULES,
+                packet::QUEUES
             )));
         }
         scenario

@@ -2,9 +2,11 @@
 //! queue per channel (per hemisphere when half duplex), and what can happen to a packet on
 //! the way: a link broken by a turn, a blocked link, a collision, loss, a dead link.
 
+use crate::event::Event;
+use crate::packet::{Air, Arrivals, Packet, Target, QUEUES};
 use crate::queue::Key;
 use crate::scenario::Preset;
-use crate::state::{uniform, Air, Event, Packet, State, QUEUES};
+use crate::state::{uniform, State};
 use dynarole_world::Port;
 use std::rc::Rc;
 
@@ -90,37 +92,6 @@ impl Sends {
     }
 }
 
-/// The packets of one broadcast that share their time on the air, as one event of the queue
-/// (a broadcast reaches every neighbour at once: at the start of a large run every module's
-/// first broadcast is in flight together, and one event per packet would hold four or more
-/// queue entries per module). Delivered one per event (`State::next_arrival`), each at the
-/// key it would have had alone: the packets of one broadcast take consecutive sequence
-/// numbers and ids (the k-th sent: first + k) and share the instant they were scheduled at
-/// and their end, so no other event comes between them.
-#[derive(Clone, Debug)]
-pub struct Arrivals {
-    first_id: u64,
-    first_seq: u64,
-    sent_at: u64,
-    air: (u64, u64),
-    bytes: Rc<[u8]>,
-    from_module: u32,
-    /// The next packet to deliver, and how many there are.
-    next: u8,
-    len: u8,
-    targets: [Target; QUEUES],
-}
-
-/// One packet of `Arrivals`: where it goes, the sender's connector, and its rank among the
-/// packets of its broadcast.
-#[derive(Clone, Copy, Debug, Default)]
-struct Target {
-    to_module: u32,
-    to_connector: u8,
-    from_connector: u8,
-    rank: u8,
-}
-
 impl Arrivals {
     /// No packet yet: the ids and sequence numbers of a broadcast's packets start at
     /// `first_id` and `first_seq`; module `from` sent them at `sent_at`.
@@ -199,68 +170,6 @@ impl Arrivals {
         };
         let id = self.first_id + u64::from(t.rank);
         Packet::new(id, from, to, self.air, Rc::clone(&self.bytes))
-    }
-}
-
-/// Where each module's broadcasts go, by sending connector, while the world is unchanged:
-/// one u32 per connector of every module in one vector (4 bytes per connector, no
-/// allocation per module), filled for a module at its first broadcast after a change.
-pub struct Links {
-    /// Connectors per module.
-    connectors: usize,
-    /// Module m's entries are `slots[m * connectors..][..connectors]`: `UNKNOWN` (not looked
-    /// up since the last change), `NONE`, or the receiving port as `module * QUEUES +
-    /// connector`.
-    slots: Vec<u32>,
-}
-
-const UNKNOWN: u32 = u32::MAX;
-const NONE: u32 = u32::MAX - 1;
-
-/// Most modules a run can have: every port must pack into a `Links` slot.
-pub const MAX_MODULES: usize = (NONE as usize) / QUEUES;
-
-impl Links {
-    pub fn new(modules: usize, connectors: u8) -> Links {
-        let connectors = usize::from(connectors);
-        Links {
-            connectors,
-            slots: vec![UNKNOWN; modules * connectors],
-        }
-    }
-
-    /// Forgets every target (the world changed).
-    pub fn clear(&mut self) {
-        self.slots.fill(UNKNOWN);
-    }
-
-    /// Module m's targets by sending connector, if looked up since the last change.
-    fn get(&self, m: usize) -> Option<[Option<Port>; QUEUES]> {
-        let slots = self
-            .slots
-            .get(m * self.connectors..(m + 1) * self.connectors)?;
-        if slots.first().is_none_or(|s| *s == UNKNOWN) {
-            return None;
-        }
-        let mut out = [None; QUEUES];
-        for (target, slot) in out.iter_mut().zip(slots) {
-            *target = (*slot != NONE).then_some(Port {
-                module: *slot as usize / QUEUES,
-                connector: (*slot as usize % QUEUES) as u8,
-            });
-        }
-        Some(out)
-    }
-
-    fn set(&mut self, m: usize, targets: &[Option<Port>; QUEUES]) {
-        let range = m * self.connectors..(m + 1) * self.connectors;
-        if let Some(slots) = self.slots.get_mut(range) {
-            for (slot, target) in slots.iter_mut().zip(targets) {
-                *slot = target.map_or(NONE, |p| {
-                    u32::try_from(p.module * QUEUES + usize::from(p.connector)).unwrap_or(NONE)
-                });
-            }
-        }
     }
 }
 

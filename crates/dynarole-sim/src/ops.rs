@@ -2,9 +2,10 @@
 //! happened to it, how long it takes, what the world says when it completes, and the checks
 //! S1, S2 and S3.
 
+use crate::event::Event;
 use crate::report::{Refusal, Violation};
 use crate::sequence::OpKind;
-use crate::state::{uniform, Attempt, Event, State};
+use crate::state::{uniform, Attempt, State};
 use dynarole_world::Action;
 
 /// How a call of `dr_hal_op_start` relates to what already happened to its statement.

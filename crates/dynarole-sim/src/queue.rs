@@ -5,7 +5,7 @@
 //! order), touched in time order, so that memory is read mostly in sequence; a binary heap
 //! holds the rest (operations' ends, faults, and anything for the slot being served).
 
-use crate::state::Event;
+use crate::event::Event;
 use std::cmp::{Ordering, Reverse};
 use std::collections::{BinaryHeap, VecDeque};
 

@@ -1,60 +1,16 @@
-//! The trace kept as data when a run is traced, and the viewer's recording built from it
-//! (`dynarole_recording::Builder` replays the operations on the world model).
+//! What a traced run notes for its recording (`recorded.rs` holds it), and the viewer's
+//! recording built from it (`dynarole_recording::Builder` replays the operations on the world
+//! model).
 
+use crate::recorded::PacketRow;
 use crate::report::Report;
 use crate::state::State;
 use crate::{Run, SimError, Simulator};
 use dynarole_recording::{Builder, PacketArc, Recording, Source};
 
-/// One trace line as data (time in microseconds).
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct Row {
-    pub time_us: u64,
-    pub module: Option<usize>,
-    pub event: String,
-    pub state: String,
-    pub detail: String,
-}
-
-/// One packet: (start, end) in microseconds, sender and receiver (module, connector), fate.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct PacketRow {
-    pub start_us: u64,
-    pub end_us: u64,
-    pub from: [usize; 2],
-    pub to: [usize; 2],
-    pub fate: &'static str,
-}
-
-/// What a traced run keeps for its recording.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct Recorded {
-    pub rows: Vec<Row>,
-    pub packets: Vec<PacketRow>,
-}
-
-impl Recorded {
-    pub fn row(
-        &mut self,
-        time_us: u64,
-        module: Option<usize>,
-        event: &str,
-        state: &str,
-        detail: &str,
-    ) {
-        self.rows.push(Row {
-            time_us,
-            module,
-            event: event.into(),
-            state: state.into(),
-            detail: detail.into(),
-        });
-    }
-}
-
 impl State {
     /// Notes a packet's fate for the recording (traced runs only).
-    pub fn record_packet(&mut self, packet: &crate::state::Packet, fate: &'static str) {
+    pub fn record_packet(&mut self, packet: &crate::packet::Packet, fate: &'static str) {
         if !self.tracing() {
             return;
         }

@@ -5,6 +5,9 @@ use dynarole_world::Configuration;
 use serde::{Serialize, Serializer};
 use std::fmt::Write;
 
+/// Width of the trace's state column (padded; a longer description widens its line).
+pub const STATE_COLUMN: usize = 28;
+
 /// Whole-run counters.
 #[derive(Clone, Debug, Default, PartialEq, Eq, Serialize)]
 pub struct Counters {
@@ -115,7 +118,7 @@ pub struct Report {
     pub trace: Option<String>,
     /// The trace as data, for the viewer's recording (`Simulator::recording`).
     #[serde(skip)]
-    pub recorded: Option<crate::record::Recorded>,
+    pub recorded: Option<crate::recorded::Recorded>,
 }
 
 /// A configuration as the JSON object of its data file, made only when a report is serialised.
@@ -302,6 +305,6 @@ fn trace_header() -> String {
          #   refused, unknown-op, finished (the module declares the end), S1/S2/S3 (a violation),\n\
          #   timeout; a packet that did not arrive: lost, dead-link, collision, blocked, broken (a\n\
          #   turn broke the link), off (the receiver was off).\n",
-        width = crate::state::STATE_COLUMN
+        width = STATE_COLUMN
     )
 }

@@ -6,7 +6,10 @@
 use dynarole_core::check::ResolvedStatement;
 use dynarole_core::lower::Ir;
 use dynarole_core::RobotApi;
-use dynarole_world::Action;
+use dynarole_world::{builtin_quarter_turns, Action};
+
+/// Degrees in a quarter turn: the estimate's unit for a robot with no built-in model.
+const DEGREES_PER_QUARTER: u64 = 90;
 
 /// The physical kind of an operation (for its duration and the links it breaks).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -88,9 +91,11 @@ impl Sequence {
         }
     }
 
-    /// Quarter turns a turn makes from joint angle `current` (ATRON units of 1/432 turn,
-    /// wrapping; M-TRAN degrees), for the critical path, which has no robot model to ask.
-    pub fn quarters(&self, s: usize, current: i64, atron: bool) -> u64 {
+    /// Quarter turns a turn makes from joint angle `current`, for the critical path, which has
+    /// no robot model to ask: a built-in robot's own count (`builtin_quarter_turns`); for a
+    /// robot defined elsewhere, angles taken as degrees that do not wrap (an estimate: a run
+    /// asks its model).
+    pub fn quarters(&self, s: usize, current: i64) -> u64 {
         let Some(Some(Action::Turn {
             from,
             to,
@@ -100,15 +105,8 @@ impl Sequence {
         else {
             return 0;
         };
-        let (full, quarter) = if atron { (432, 108) } else { (360, 90) };
         let from = from.unwrap_or(current);
-        let delta = if !atron {
-            (to - from).abs()
-        } else if increasing {
-            (to - from).rem_euclid(full)
-        } else {
-            (from - to).rem_euclid(full)
-        };
-        u64::try_from((delta + quarter - 1) / quarter).unwrap_or(0)
+        builtin_quarter_turns(&self.robot.name, from, to, increasing)
+            .unwrap_or_else(|| (to - from).unsigned_abs().div_ceil(DEGREES_PER_QUARTER))
     }
 }

@@ -1,11 +1,17 @@
 //! The simulation state that the HAL callbacks and the event loop share: time, the event
 //! queue, the world, every module's platform data, counters, violations and the trace.
 //! Operations live in `ops.rs`, the infrared network in `network.rs`.
+//!
+//! Layering (no import circle): what the state holds is below it (`event.rs`, `packet.rs`,
+//! `links.rs`, `queue.rs`, `describe.rs`, `report.rs`, `recorded.rs`); what acts on it is above
+//! (`ops.rs`, `network.rs`, `ffi.rs`, `record.rs`, `wake.rs`, the engine).
 
 use crate::describe::{Describer, DESCRIPTION_BYTES};
-use crate::network::{Arrivals, Links};
+use crate::event::Event;
+use crate::links::Links;
+use crate::packet::{Air, Packet, QUEUES};
 use crate::queue::{Key, Queue};
-use crate::report::{Counters, Refusal, Violation};
+use crate::report::{Counters, Refusal, Violation, STATE_COLUMN};
 use crate::scenario::{Preset, Scenario, Stepping};
 use crate::sequence::Sequence;
 use dynarole_replay::RobotWorld;
@@ -14,7 +20,6 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write;
-use std::rc::Rc;
 use std::sync::Arc;
 
 /// Controller period of every module (atron.md c).
@@ -25,82 +30,6 @@ const NV_BYTES: usize = 4096;
 /// runtime's 16 bits): the last 16-bit value, so that no label `M0` to `M65534` names it and
 /// an unlabelled module never takes module 0's role (it did when this was 0).
 pub const NO_ID: u16 = 0xFFFF;
-/// Width of the trace's state column (padded; a longer description widens its line).
-pub const STATE_COLUMN: usize = 28;
-
-/// A packet on its way from one connector to another. Compact (ports as a u32 module index
-/// and a connector, the bytes shared by every copy of one broadcast): at the start of a large
-/// run every module's first broadcast is in flight at once.
-#[derive(Clone, Debug)]
-pub struct Packet {
-    pub id: u64,
-    pub start: u64,
-    pub end: u64,
-    pub bytes: Rc<[u8]>,
-    from: (u32, u8),
-    to: (u32, u8),
-}
-
-impl Packet {
-    pub fn new(id: u64, from: Port, to: Port, (start, end): (u64, u64), bytes: Rc<[u8]>) -> Packet {
-        // Module indices fit: a run has at most `network::MAX_MODULES` modules.
-        let compact = |p: Port| (p.module as u32, p.connector);
-        Packet {
-            id,
-            start,
-            end,
-            bytes,
-            from: compact(from),
-            to: compact(to),
-        }
-    }
-
-    pub fn from(&self) -> Port {
-        Port {
-            module: self.from.0 as usize,
-            connector: self.from.1,
-        }
-    }
-
-    pub fn to(&self) -> Port {
-        Port {
-            module: self.to.0 as usize,
-            connector: self.to.1,
-        }
-    }
-}
-
-#[derive(Clone, Debug)]
-pub enum Event {
-    PowerOn {
-        module: usize,
-    },
-    PowerOff {
-        module: usize,
-    },
-    /// A step of `module` (an index below `network::MAX_MODULES`) in its power-on
-    /// `generation` (u32 fields: the event, and every event, takes 16 bytes).
-    Step {
-        module: u32,
-        generation: u32,
-    },
-    OpDone {
-        attempt: u64,
-    },
-    /// Packets of one broadcast (`network::Arrivals`), one per event.
-    Arrival(Box<Arrivals>),
-    Reset {
-        module: usize,
-    },
-    ResetCheck {
-        module: usize,
-    },
-    /// The next packet of the scenario's `foreign[entry]`.
-    Foreign {
-        entry: usize,
-    },
-}
-
 /// The platform data of one module. Sized with care (no heap until the module writes its
 /// storage; what few modules need is kept aside: `State::waiting`, `State::air`): the
 /// simulator's memory grows with the modules (`tests/memory.rs`). Its name is the world's
@@ -137,41 +66,6 @@ impl Module {
         self.powered && self.generation == generation && self.next_step == Some(time)
     }
 }
-
-/// One transmission or reception on a module's hemisphere, remembered for collision checks
-/// (24 bytes: a half-duplex module remembers a dozen at a time).
-#[derive(Clone, Copy, Debug)]
-pub struct Air {
-    pub start: u64,
-    pub end: u64,
-    /// The packet's id (0 for the module's own transmission; ids stay far below 2^63), with
-    /// the hemisphere in the top bit.
-    tag: u64,
-}
-
-impl Air {
-    const HEMISPHERE: u64 = 1 << 63;
-
-    pub fn new((start, end): (u64, u64), packet: u64, hemisphere: usize) -> Air {
-        let top = if hemisphere == 0 { 0 } else { Air::HEMISPHERE };
-        Air {
-            start,
-            end,
-            tag: (packet & !Air::HEMISPHERE) | top,
-        }
-    }
-
-    pub fn packet(&self) -> u64 {
-        self.tag & !Air::HEMISPHERE
-    }
-
-    pub fn hemisphere(&self) -> usize {
-        usize::from(self.tag & Air::HEMISPHERE != 0)
-    }
-}
-
-/// Send queues per module, at most (one per connector; ATRON and M-TRAN have 8 and 6).
-pub const QUEUES: usize = 8;
 
 #[derive(Clone, Debug, Default)]
 pub struct ModuleStats {
@@ -250,7 +144,7 @@ pub struct State {
     /// What the second robot's modules broadcast last (from that run), by module.
     pub foreign_frames: Vec<Option<Vec<u8>>>,
     /// The trace as data for the viewer's recording (kept with the trace, `record.rs`).
-    pub recorded: crate::record::Recorded,
+    pub recorded: crate::recorded::Recorded,
     /// Modules that have declared the end (`finished_at` set), so that `all_finished`, asked
     /// after every event, does not walk every module.
     finished: usize,
@@ -339,7 +233,7 @@ impl State {
             first_finished: None,
             last_frames: None,
             foreign_frames: Vec::new(),
-            recorded: crate::record::Recorded::default(),
+            recorded: crate::recorded::Recorded::default(),
             finished: 0,
         };
         state.schedule_start(&mut setup);
@@ -626,7 +520,7 @@ impl State {
     pub(crate) fn put_step(&mut self, m: usize, time: u64) {
         let key = self.step_key(m, time);
         let event = Event::Step {
-            // Fits: a run has at most `network::MAX_MODULES` modules.
+            // Fits: a run has at most `links::MAX_MODULES` modules.
             module: m as u32,
             generation: self.modules[m].generation,
         };

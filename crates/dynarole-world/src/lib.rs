@@ -2,8 +2,9 @@
 //!
 //! - [`RobotShape`] / [`RobotModel`]: the one robot API the other crates ask (modules, names,
 //!   ids, connectors, genders, latches, joints; doing an [`Action`]; the motion of a turn).
-//!   Each robot implements it in its own folder (`atron/`, `mtran/`); [`View`] is the
-//!   borrowed handle callers query.
+//!   Each built-in robot's folder (`atron/`, `mtran/`) holds its lattice, configuration and
+//!   world; `builtin/` implements the API over them (the modules' layering is in
+//!   `builtin/mod.rs`); [`View`] is the borrowed handle callers query.
 //! - [`Configuration::from_json_str`] / [`Configuration::to_json_string`]: the data-file JSON
 //!   format, validated, with field paths in every error.
 //! - [`World`]: the ATRON API (extend, retract, rotateFromToBy) on an exact integer lattice,
@@ -34,6 +35,7 @@ pub use atron::{
     AtronConfiguration, AtronModule, Orientation, OrientationBase, World,
     MIN_SWEEP_DISTANCE_LATTICE,
 };
+pub use builtin::{builtin_quarter_turns, BUILTIN_ROBOTS};
 pub use common::{ConfigError, Latch, Metadata, NamedConnection, Port};
 pub use compare::{compare, Difference, JointDifference, Misplaced};
 pub use configuration::{Configuration, Robot};

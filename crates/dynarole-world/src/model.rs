@@ -1,8 +1,8 @@
 //! The one robot API the other crates ask: [`RobotShape`] answers questions about a
 //! configuration (modules, names, ids, connectors, male or female, latches, joints) and
 //! [`RobotModel`] is a robot being reconfigured (its shape, doing an [`Action`], the motion of
-//! a turn). ATRON (`atron/`) and M-TRAN (`mtran/`) each implement both in their own folder; a
-//! new robot is one more implementation, which may live outside this crate.
+//! a turn). ATRON and M-TRAN implement both in `builtin/`, over their folders (`atron/`,
+//! `mtran/`); a new robot is one more implementation, which may live outside this crate.
 
 use crate::common::Port;
 use crate::configuration::Configuration;
@@ -77,6 +77,9 @@ pub trait RobotModel: fmt::Debug + Send + Sync {
     /// Quarter turns (rounded up) a joint passes through from `from` to `to` in the given
     /// direction: what a turn's duration is counted in.
     fn quarter_turns(&self, from: i64, to: i64, increasing: bool) -> u64;
+    /// The unit of the positions and distances of its turn motions, for messages
+    /// (`lattice units`).
+    fn length_unit(&self) -> &str;
     /// Module centres, when a turn always moves whole modules about their joints, so that two
     /// turns with disjoint moving sides commute (ATRON); `None` when it moves parts of
     /// modules (M-TRAN blocks) or the robot does not say.

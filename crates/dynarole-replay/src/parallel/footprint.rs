@@ -17,14 +17,13 @@
 //! `b`'s sweep on `W` is checked against every still module, or, when it was found clear on
 //! the state after `a` (the previous pair of the same later statement), only against the
 //! modules `a` moved: the others are where they were then, and so is `b`'s moving side.
+//!
+//! The pair rule itself is `MovingSide::decide` (`motion.rs`, shared with the independence
+//! check); this file keeps what each later statement carries from one pair to the next.
 
-use super::layout::BitSet;
-use crate::independence::closest_approach;
+use crate::motion::MovingSide;
 use crate::robot_world::RobotWorld;
 use dynarole_core::check::ResolvedStatement;
-use dynarole_core::RobotApi;
-use dynarole_world::geometry::sweep_closest_approach;
-use dynarole_world::TurnMotion;
 use std::cell::{Cell, RefCell};
 use std::rc::Rc;
 
@@ -66,95 +65,5 @@ impl Later {
             fresh || !(a.modules.intersects(&side_b.modules) || a.modules.contains(side_b.pivot));
         *self.side.borrow_mut() = valid.then_some((i, side_b));
         verdict
-    }
-}
-
-/// A turn's motion on one state, with the modules it moves and its own module (by index).
-pub(crate) struct MovingSide {
-    motion: TurnMotion,
-    modules: BitSet,
-    pivot: usize,
-}
-
-impl MovingSide {
-    pub(crate) fn of(
-        robot: &RobotApi,
-        statement: &ResolvedStatement,
-        module: Option<&str>,
-        world: &RobotWorld,
-    ) -> Option<MovingSide> {
-        let module = module?;
-        let motion = world.turn_motion(robot, statement, module)?;
-        let view = world.view();
-        let mut modules = BitSet::new(view.len());
-        for (name, _) in &motion.moving {
-            modules.insert(view.index(name)?);
-        }
-        let pivot = view.index(module)?;
-        Some(MovingSide {
-            motion,
-            modules,
-            pivot,
-        })
-    }
-
-    /// Two turns done from `world`, each accepted on it alone (checked here for both),
-    /// proven independent from their motions: both orders are accepted and end in the same
-    /// configuration, and done at the same time they stay the limit apart. `false` when
-    /// that is not proven (the full check decides).
-    pub(crate) fn proven_independent(&self, other: &MovingSide, world: &RobotWorld) -> bool {
-        // `decide` assumes the earlier turn is accepted on `world` and checks the later one's
-        // sweep; asked both ways round, both sweeps are checked.
-        let (first, second) = (Cell::new(None), Cell::new(None));
-        self.decide(other, world, (0, &first)) == Some(false)
-            && other.decide(self, world, (0, &second)) == Some(false)
-    }
-
-    /// `self` is `a` (statement `i`), `b` the later turn, both on `world` (the state before
-    /// `a`): `Some(ordered)`, or `None` for the full check.
-    fn decide(
-        &self,
-        b: &MovingSide,
-        world: &RobotWorld,
-        (i, clear): (usize, &Cell<Option<usize>>),
-    ) -> Option<bool> {
-        if self.modules.intersects(&b.modules) {
-            return Some(true);
-        }
-
-        let positions = world.model().rigid_module_centres()?;
-        // A turn that moves no module (a free end's joint) leaves every position where it
-        // was, so carrying its module along changes nothing it does; else moving the other's
-        // module changes the other's motion, and the full check decides.
-        let carries = |x: &MovingSide, y: &MovingSide| {
-            x.modules.contains(y.pivot) && !y.motion.moving.is_empty()
-        };
-        if carries(self, b) || carries(b, self) {
-            return None;
-        }
-        if closest_approach(&self.motion, &b.motion).is_some() {
-            return Some(true);
-        }
-
-        // Clear on the state after `a` (checked for the pair `i + 1`): only `a`'s modules moved.
-        let incremental = clear.get() == Some(i + 1);
-        let still: Vec<[f64; 3]> = (0..positions.len())
-            .filter(|k| !b.modules.contains(*k))
-            .filter(|k| !incremental || self.modules.contains(*k))
-            .map(|k| positions[k])
-            .collect();
-        let moving: Vec<[f64; 3]> = b.motion.moving.iter().map(|(_, p)| *p).collect();
-        let approach = sweep_closest_approach(
-            b.motion.pivot,
-            b.motion.axis,
-            b.motion.angle_deg,
-            &moving,
-            &still,
-        );
-        let collides = approach.is_some_and(|a| a.distance < b.motion.limit);
-        if !collides {
-            clear.set(Some(i));
-        }
-        Some(collides)
     }
 }

@@ -2,6 +2,7 @@
 //! and the ways of writing a dependency graph in the language (parallel groups, series-parallel
 //! blocks, the input's own groups).
 
+use crate::bitset::BitSet;
 use dynarole_core::ast::SeparatorKind;
 use dynarole_core::expand::{Plan, PlanKind};
 use std::collections::BTreeMap;
@@ -13,32 +14,6 @@ pub enum Layout {
     Op(usize),
     Seq(Vec<Layout>),
     Par(Vec<Layout>),
-}
-
-/// A fixed-size set of statement indices.
-#[derive(Clone, Debug)]
-pub(super) struct BitSet(Vec<u64>);
-
-impl BitSet {
-    pub(super) fn new(n: usize) -> BitSet {
-        BitSet(vec![0; n.div_ceil(64)])
-    }
-    pub(super) fn contains(&self, i: usize) -> bool {
-        self.0.get(i / 64).is_some_and(|w| w & (1 << (i % 64)) != 0)
-    }
-    pub(super) fn insert(&mut self, i: usize) {
-        if let Some(w) = self.0.get_mut(i / 64) {
-            *w |= 1 << (i % 64);
-        }
-    }
-    pub(super) fn intersects(&self, other: &BitSet) -> bool {
-        self.0.iter().zip(&other.0).any(|(w, o)| w & o != 0)
-    }
-    pub(super) fn union(&mut self, other: &BitSet) {
-        for (w, o) in self.0.iter_mut().zip(&other.0) {
-            *w |= o;
-        }
-    }
 }
 
 /// The ancestors of every statement under `edges` (which point forwards).

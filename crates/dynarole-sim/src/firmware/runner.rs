@@ -9,8 +9,10 @@ use super::emu::{self, Core, Library};
 use super::image::Image;
 use crate::describe::Describer;
 use crate::engine::Finished;
+use crate::event::Event;
 use crate::ops::OpCall;
-use crate::state::{Event, Packet, State};
+use crate::packet::Packet;
+use crate::state::State;
 use std::rc::Rc;
 
 /// The ATmega128's clock: cycles per microsecond of simulated time.

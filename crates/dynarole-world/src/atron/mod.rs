@@ -1,9 +1,9 @@
 //! ATRON: the lattice and module frames (`lattice.rs`), the validated configuration
-//! (`config.rs`), the world and its operations (`world.rs`), and the robot API (`model.rs`).
+//! (`config.rs`) and the world and its operations (`world.rs`); `builtin/atron.rs` puts it
+//! behind the robot API, above the shared `Configuration` and `compare` (which use its types).
 
 pub(crate) mod config;
 pub(crate) mod lattice;
-mod model;
 pub(crate) mod world;
 
 pub use config::{AtronConfiguration, AtronModule};

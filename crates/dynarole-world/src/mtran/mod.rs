@@ -1,7 +1,7 @@
 //! M-TRAN: the module model and the validated configuration (`module.rs`), the world and its
-//! operations (`world.rs`), and the robot API (`model.rs`).
+//! operations (`world.rs`); `builtin/mtran.rs` puts it behind the robot API, above the shared
+//! `Configuration` and `compare` (which use the types here).
 
-mod model;
 pub(crate) mod module;
 pub(crate) mod world;
 

@@ -1,13 +1,13 @@
 //! M-TRAN behind the robot API: the configuration answers [`RobotShape`], the
 //! [`MtranWorld`] is the [`RobotModel`] (two joints, angles in degrees, no wrapping).
 
-use super::module::{is_mtran_male, MtranConfiguration, MtranJoint, MTRAN_CONNECTOR_COUNT};
-use super::world::MtranWorld;
 use crate::common::Port;
 use crate::compare::model_difference;
 use crate::configuration::Configuration;
 use crate::model::{Action, RobotModel, RobotShape};
 use crate::motion::TurnMotion;
+use crate::mtran::module::{is_mtran_male, MtranConfiguration, MtranJoint, MTRAN_CONNECTOR_COUNT};
+use crate::mtran::world::MtranWorld;
 use crate::ops::{OpError, Outcome};
 use std::any::Any;
 
@@ -64,9 +64,12 @@ impl RobotShape for MtranConfiguration {
     }
 }
 
+/// The plugin name of the robot.
+pub(super) const NAME: &str = "mtran";
+
 impl RobotModel for MtranWorld {
     fn robot(&self) -> &str {
-        "mtran"
+        NAME
     }
 
     fn shape(&self) -> &dyn RobotShape {
@@ -111,10 +114,12 @@ impl RobotModel for MtranWorld {
         .ok()
     }
 
-    /// The joint does not wrap: the turn is the difference of the angles.
     fn quarter_turns(&self, from: i64, to: i64, _increasing: bool) -> u64 {
-        let delta = (to - from).abs();
-        u64::try_from((delta + QUARTER_DEG - 1) / QUARTER_DEG).unwrap_or(0)
+        quarter_turns(from, to)
+    }
+
+    fn length_unit(&self) -> &str {
+        "block pitches"
     }
 
     fn configuration(&self) -> Option<Configuration> {
@@ -167,4 +172,11 @@ fn mtran_joint(index: u8) -> MtranJoint {
 /// An angle the plugin range-checked; anything else becomes one the world refuses.
 fn degrees(angle: i64) -> i16 {
     i16::try_from(angle).unwrap_or(i16::MAX)
+}
+
+/// Quarter turns of a joint from `from` to `to` (degrees). The joint does not wrap: the turn
+/// is the difference of the angles.
+pub(super) fn quarter_turns(from: i64, to: i64) -> u64 {
+    let delta = (to - from).abs();
+    u64::try_from((delta + QUARTER_DEG - 1) / QUARTER_DEG).unwrap_or(0)
 }

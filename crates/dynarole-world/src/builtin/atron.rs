@@ -1,9 +1,9 @@
 //! ATRON behind the robot API: the configuration answers [`RobotShape`], the [`World`]
 //! is the [`RobotModel`] (one joint per module, angles in 1/432 turn).
 
-use super::config::AtronConfiguration;
-use super::lattice::{is_male, CONNECTOR_COUNT, JOINT_UNITS_PER_TURN, QUARTER_TURN_UNITS};
-use super::world::World;
+use crate::atron::config::AtronConfiguration;
+use crate::atron::lattice::{is_male, CONNECTOR_COUNT, JOINT_UNITS_PER_TURN, QUARTER_TURN_UNITS};
+use crate::atron::world::World;
 use crate::common::Port;
 use crate::compare::model_difference;
 use crate::configuration::Configuration;
@@ -60,9 +60,12 @@ impl RobotShape for AtronConfiguration {
     }
 }
 
+/// The plugin name of the robot.
+pub(super) const NAME: &str = "atron";
+
 impl RobotModel for World {
     fn robot(&self) -> &str {
-        "atron"
+        NAME
     }
 
     fn shape(&self) -> &dyn RobotShape {
@@ -99,16 +102,12 @@ impl RobotModel for World {
         World::turn_motion(self, module, from, units(to), increasing).ok()
     }
 
-    /// The joint wraps: `(0, 108, false)` is three quarter turns.
     fn quarter_turns(&self, from: i64, to: i64, increasing: bool) -> u64 {
-        let full = i64::from(JOINT_UNITS_PER_TURN);
-        let quarter = i64::from(QUARTER_TURN_UNITS);
-        let delta = if increasing {
-            (to - from).rem_euclid(full)
-        } else {
-            (from - to).rem_euclid(full)
-        };
-        u64::try_from((delta + quarter - 1) / quarter).unwrap_or(0)
+        quarter_turns(from, to, increasing)
+    }
+
+    fn length_unit(&self) -> &str {
+        "lattice units"
     }
 
     fn rigid_module_centres(&self) -> Option<Vec<[f64; 3]>> {
@@ -156,4 +155,17 @@ impl World {
 /// An angle the plugin range-checked; anything else becomes one the world refuses.
 fn units(angle: i64) -> u16 {
     u16::try_from(angle).unwrap_or(u16::MAX)
+}
+
+/// Quarter turns of a joint from `from` to `to` (1/432 turn units). The joint wraps:
+/// `(0, 108, false)` is three quarter turns.
+pub(super) fn quarter_turns(from: i64, to: i64, increasing: bool) -> u64 {
+    let full = i64::from(JOINT_UNITS_PER_TURN);
+    let quarter = i64::from(QUARTER_TURN_UNITS);
+    let delta = if increasing {
+        (to - from).rem_euclid(full)
+    } else {
+        (from - to).rem_euclid(full)
+    };
+    u64::try_from((delta + quarter - 1) / quarter).unwrap_or(0)
 }

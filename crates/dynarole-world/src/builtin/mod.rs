@@ -1,0 +1,42 @@
+//! The built-in robots behind the robot API: each one's `RobotShape` and `RobotModel`
+//! (`atron.rs`, `mtran.rs`), the model made from a configuration of the data files, and the
+//! one place that knows the built-in robots by plugin name (`BUILTIN_ROBOTS`,
+//! `builtin_quarter_turns`).
+//!
+//! The layering that keeps the crate free of import circles: a robot's folder (`atron/`,
+//! `mtran/`: lattice, data-file configuration, world) is below `Configuration` and
+//! `compare`, which are below the API (`model.rs`); only this module, above all of them,
+//! joins a robot to the API.
+
+mod atron;
+mod mtran;
+
+use crate::atron::world::World;
+use crate::configuration::Configuration;
+use crate::model::RobotModel;
+use crate::mtran::world::MtranWorld;
+
+impl Configuration {
+    /// The robot model that starts from this configuration.
+    pub fn into_model(self) -> Box<dyn RobotModel> {
+        match self {
+            Configuration::Atron(c) => Box::new(World::new(c)),
+            Configuration::Mtran(c) => Box::new(MtranWorld::new(c)),
+        }
+    }
+}
+
+/// The plugin names of the robots this crate has a model of.
+pub const BUILTIN_ROBOTS: [&str; 2] = [atron::NAME, mtran::NAME];
+
+/// Quarter turns a joint of the built-in robot `robot` (a plugin name) passes through from
+/// `from` to `to` in the given direction: what its model's `RobotModel::quarter_turns`
+/// answers, for estimates made with no model at hand (the critical path). `None` for a robot
+/// this crate has no model of.
+pub fn builtin_quarter_turns(robot: &str, from: i64, to: i64, increasing: bool) -> Option<u64> {
+    match robot {
+        atron::NAME => Some(atron::quarter_turns(from, to, increasing)),
+        mtran::NAME => Some(mtran::quarter_turns(from, to)),
+        _ => None,
+    }
+}
