@@ -176,14 +176,7 @@ pub fn image(files: &[(String, String)], defines: &[String]) -> Result<Image, St
             ],
         )
     })?;
-    let elf = directory.join("out/firmware.elf");
-    let (text, data, bss) = sizes(&elf)?;
-    Ok(Image {
-        elf,
-        text,
-        data,
-        bss,
-    })
+    built(&directory)
 }
 
 /// The image of the nesC component `nesc` around the generated program `files`, with
@@ -223,14 +216,7 @@ pub fn nesc_image(
             ],
         )
     })?;
-    let elf = directory.join("out/firmware.elf");
-    let (text, data, bss) = sizes(&elf)?;
-    Ok(Image {
-        elf,
-        text,
-        data,
-        bss,
-    })
+    built(&directory)
 }
 
 /// The emulated board's shared library.
@@ -348,4 +334,16 @@ fn cached(
             directory.display()
         ))
     }
+}
+
+/// The image a cached build folder holds, with its sizes.
+fn built(directory: &Path) -> Result<Image, String> {
+    let elf = directory.join("out/firmware.elf");
+    let (text, data, bss) = sizes(&elf)?;
+    Ok(Image {
+        elf,
+        text,
+        data,
+        bss,
+    })
 }
