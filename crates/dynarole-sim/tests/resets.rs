@@ -5,10 +5,11 @@
 
 mod common;
 
+use common::faults::add_module_faults;
 use common::*;
 use dynarole_codegen::Protocol;
-use dynarole_sim::{Block, Power, Report, Reset, Scenario, Simulator};
-use rand::{RngExt, SeedableRng};
+use dynarole_sim::{Report, Reset, Scenario, Simulator};
+use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 
 const CHAIN3_DR: &str = include_str!("data/chain3.dr");
@@ -88,30 +89,7 @@ fn ends_of(report: &Report, module: &str) -> Vec<u64> {
 /// A random mix of resets, power cycles and blocked links in the first `span_ms`.
 fn random_faults(rng: &mut ChaCha8Rng, modules: &[&str], span_ms: u64) -> Scenario {
     let mut scenario = lossy(0.1);
-    let module = |rng: &mut ChaCha8Rng| modules[rng.random_range(0..modules.len())].to_string();
-    for _ in 0..rng.random_range(1..=3) {
-        scenario.reset.push(Reset {
-            module: module(rng),
-            at_ms: rng.random_range(0..span_ms),
-        });
-    }
-    if rng.random_bool(0.5) {
-        let off_ms = rng.random_range(0..span_ms);
-        scenario.power.push(Power {
-            module: module(rng),
-            off_ms,
-            on_ms: off_ms + rng.random_range(10..3_000),
-        });
-    }
-    if rng.random_bool(0.5) {
-        let from_ms = rng.random_range(0..span_ms);
-        scenario.block.push(Block {
-            module: module(rng),
-            connector: rng.random_range(0..8),
-            from_ms,
-            to_ms: from_ms + rng.random_range(100..5_000),
-        });
-    }
+    add_module_faults(rng, &mut scenario, modules, span_ms, 1..=3);
     scenario.faults_until_ms = Some(span_ms + 5_000);
     scenario
 }

@@ -6,13 +6,12 @@
 
 mod common;
 
+use common::faults::add_module_faults;
 use common::*;
 use dynarole_codegen::{CompileOptions, Protocol, TokenRetries};
 use dynarole_core::{analyze, parse, RobotRegistry};
 use dynarole_replay::token_routes;
-use dynarole_sim::{
-    Block, Foreign, Power, Preset, RandomResets, Report, Reset, Run, Scenario, Simulator, Stepping,
-};
+use dynarole_sim::{Foreign, Preset, RandomResets, Report, Run, Scenario, Simulator, Stepping};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -122,30 +121,7 @@ fn assert_same(
 fn random_faults(rng: &mut ChaCha8Rng, modules: &[&str], span_ms: u64) -> Scenario {
     let mut scenario = Scenario::default();
     scenario.network.loss = [0.0, 0.1, 0.3][rng.random_range(0..3)];
-    let module = |rng: &mut ChaCha8Rng| modules[rng.random_range(0..modules.len())].to_string();
-    for _ in 0..rng.random_range(0..=2) {
-        scenario.reset.push(Reset {
-            module: module(rng),
-            at_ms: rng.random_range(0..span_ms),
-        });
-    }
-    if rng.random_bool(0.5) {
-        let off_ms = rng.random_range(0..span_ms);
-        scenario.power.push(Power {
-            module: module(rng),
-            off_ms,
-            on_ms: off_ms + rng.random_range(10..3_000),
-        });
-    }
-    if rng.random_bool(0.5) {
-        let from_ms = rng.random_range(0..span_ms);
-        scenario.block.push(Block {
-            module: module(rng),
-            connector: rng.random_range(0..8),
-            from_ms,
-            to_ms: from_ms + rng.random_range(100..5_000),
-        });
-    }
+    add_module_faults(rng, &mut scenario, modules, span_ms, 0..=2);
     if rng.random_bool(0.2) {
         scenario.random_resets = Some(RandomResets {
             interval_ms: 1_000,

@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 pub mod counting;
+pub mod faults;
 pub mod grid;
 
 use dynarole_codegen::{CompileOptions, Protocol};
