@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{dynarole, repo_root, text};
+use common::{dynarole, nescc_dir, repo_root, text};
 use std::path::PathBuf;
 use std::process::Command;
 
@@ -263,22 +263,6 @@ fn firmware_refuses_an_unknown_mcu_and_foreign_packets() {
     );
 }
 
-/// The directory of nescc 1.4.0, or None (with the reason printed) when this machine cannot
-/// build it; a failed build is a failure, not a skip.
-fn nescc_dir() -> Option<PathBuf> {
-    let out = Command::new(repo_root().join("scripts/ensure-nesc"))
-        .output()
-        .expect("scripts/ensure-nesc runs");
-    match out.status.code() {
-        Some(0) => Some(PathBuf::from(text(&out.stdout).trim())),
-        Some(77) => {
-            eprintln!("skipped: {}", text(&out.stderr));
-            None
-        }
-        _ => panic!("scripts/ensure-nesc failed: {}", text(&out.stderr)),
-    }
-}
-
 /// The nesC component, compiled by nesC 1.4.0 for the ATmega128 and linked with runtime/avr's
 /// platform (`--firmware avr-nesc`), runs in the host run's order too.
 #[test]
@@ -299,11 +283,7 @@ fn the_nesc_component_runs_on_emulated_atmega128s() {
     ];
     let (late, value) = compare_with_host_on(&args, "nesc", true, &Firmware::Nesc(nescc));
     eprintln!("nesC: largest time difference of an operation event: {late:.1} ms");
-    let modules = value["firmware"]["modules"].as_array().expect("modules");
-    assert_eq!(modules.len(), 7);
-    for m in modules {
-        assert!(m["receives"].as_u64().expect("receives") > 0, "{m}");
-    }
+    every_module_receives(&value);
 }
 
 /// Without nesC 1.4.0's compiler, `--firmware avr-nesc` says how to get it (and runs nothing).
@@ -356,12 +336,7 @@ fn the_paper_and_token_protocols_run_on_emulated_atmega128s() {
         ];
         let (late, value) = compare_with_host(&args, protocol, true);
         eprintln!("{protocol}: largest time difference of an operation event: {late:.1} ms");
-        let modules = value["firmware"]["modules"].as_array().expect("modules");
-        assert_eq!(modules.len(), 7);
-        for m in modules {
-            // Every module's firmware hands frames to its runtime.
-            assert!(m["receives"].as_u64().expect("receives") > 0, "{m}");
-        }
+        every_module_receives(&value);
     }
 }
 
@@ -415,5 +390,14 @@ fn the_papers_runs_on_emulated_atmega128s_in_the_host_runs_order() {
         )
         .0;
         eprintln!("{scenario}: largest difference {late:.1} ms");
+    }
+}
+
+/// Each of the 7 modules' firmware handed frames to its runtime (`receives` of the report).
+fn every_module_receives(report: &serde_json::Value) {
+    let modules = report["firmware"]["modules"].as_array().expect("modules");
+    assert_eq!(modules.len(), 7);
+    for m in modules {
+        assert!(m["receives"].as_u64().expect("receives") > 0, "{m}");
     }
 }

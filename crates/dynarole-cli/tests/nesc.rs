@@ -4,26 +4,10 @@
 //! order.
 mod common;
 
-use common::{dynarole, repo_root, text};
+use common::{dynarole, nescc_dir, repo_root, text};
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-
-/// The directory of nescc 1.4.0, or None (with the reason printed) when this machine cannot
-/// install it; a failed build is a failure, not a skip.
-fn nescc_dir() -> Option<PathBuf> {
-    let out = Command::new(repo_root().join("scripts/ensure-nesc"))
-        .output()
-        .expect("scripts/ensure-nesc runs");
-    match out.status.code() {
-        Some(0) => Some(PathBuf::from(text(&out.stdout).trim())),
-        Some(77) => {
-            eprintln!("skipped: {}", text(&out.stderr));
-            None
-        }
-        _ => panic!("scripts/ensure-nesc failed: {}", text(&out.stderr)),
-    }
-}
 
 fn out_dir(name: &str) -> PathBuf {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))

@@ -20,3 +20,19 @@ pub fn repo_root() -> PathBuf {
 pub fn text(bytes: &[u8]) -> String {
     String::from_utf8_lossy(bytes).into_owned()
 }
+
+/// The directory of nescc 1.4.0, or None (with the reason printed) when this machine cannot
+/// install it (`scripts/ensure-nesc` exits 77); a failed build is a failure, not a skip.
+pub fn nescc_dir() -> Option<PathBuf> {
+    let out = Command::new(repo_root().join("scripts/ensure-nesc"))
+        .output()
+        .expect("scripts/ensure-nesc runs");
+    match out.status.code() {
+        Some(0) => Some(PathBuf::from(text(&out.stdout).trim())),
+        Some(77) => {
+            eprintln!("skipped: {}", text(&out.stderr));
+            None
+        }
+        _ => panic!("scripts/ensure-nesc failed: {}", text(&out.stderr)),
+    }
+}
