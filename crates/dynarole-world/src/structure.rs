@@ -23,6 +23,10 @@ pub(crate) trait RobotModule: Sized {
     /// True for the connectors that can be commanded to latch and release.
     fn is_male(connector: u8) -> bool;
 
+    /// True for the connectors on the north side of the module's joints, the side that
+    /// turns against the others.
+    fn is_north_side(connector: u8) -> bool;
+
     /// Why a connection between two male (`both_male`) or two female connectors is wrong.
     fn same_gender_message(label_a: &str, label_b: &str, both_male: bool) -> String;
 

@@ -1,12 +1,14 @@
 //! What the ATRON and M-TRAN worlds share: looking a module up by name, the latch operations
-//! (extend/connect, retract/disconnect) and the verdict on a joint turn's sweep. They differ
-//! only in the connector rules ([`RobotModule`]) and in how a facing connector is found.
+//! (extend/connect, retract/disconnect), the checks of a joint turn (its angles, the loop that
+//! locks a joint, its sweep) and its outcome. They differ only in the connector rules
+//! ([`RobotModule`]), in how a facing connector is found and in the geometry of a turn.
 
 use crate::common::{Latch, Port};
-use crate::geometry::SweepApproach;
-use crate::graph::split_parts;
+use crate::geometry::{sweep_closest_approach, Vec3};
+use crate::graph::{split_at_joint, split_parts, Sides};
 use crate::ops::{OpError, Outcome, Warning};
 use crate::structure::{RobotModule, Structure};
+use std::collections::BTreeSet;
 
 /// A configuration the latch operations work on.
 pub(crate) trait Latching {
@@ -143,26 +145,121 @@ fn free_female<C: Latching>(config: &C, port: Port) -> Result<Port, OpError> {
     Ok(other)
 }
 
-/// The closest approach of a turn, or the collision when it comes under `limit`; `culprits`
-/// names the turning module and the moving and still ones of the closest pair, for the error.
-pub(crate) fn sweep_verdict(
-    approach: Option<SweepApproach>,
-    limit: f64,
-    culprits: impl FnOnce(&SweepApproach) -> [String; 3],
-) -> Result<Option<f64>, OpError> {
-    let Some(approach) = approach else {
-        return Ok(None);
-    };
-    if approach.distance < limit {
-        let [module, moving, still] = culprits(&approach);
-        return Err(OpError::SweepCollision {
+/// The two sides of the joints of module `index`, or the loop of latches that joins them and
+/// locks the joint.
+pub(crate) fn joint_sides<M: RobotModule>(
+    structure: &Structure<M>,
+    index: usize,
+) -> Result<Sides, OpError> {
+    split_at_joint(structure.latches(), index, M::is_north_side, |c| {
+        !M::is_north_side(c)
+    })
+    .map_err(|loop_side| OpError::JointLocked {
+        module: structure.module_name(index),
+        loop_modules: structure.module_names(&loop_side),
+    })
+}
+
+/// Checks that both angles of a turn of `module` are positions the joint can take (`legal`;
+/// `rule` says which they are) and that the joint is at `from` now (`actual`).
+pub(crate) fn check_turn_angles<A: Copy + PartialEq + Into<i32>>(
+    module: String,
+    (from, to): (A, A),
+    actual: A,
+    legal: impl Fn(A) -> bool,
+    rule: &str,
+) -> Result<(), OpError> {
+    if let Some(angle) = [from, to].into_iter().find(|a| !legal(*a)) {
+        return Err(OpError::InvalidAngle {
             module,
-            moving,
-            still,
-            distance: approach.distance,
-            limit,
-            angle_deg: approach.angle_deg,
+            angle: angle.into(),
+            reason: rule.to_string(),
         });
     }
-    Ok(Some(approach.distance))
+    if actual != from {
+        return Err(OpError::WrongStartAngle {
+            module,
+            from: from.into(),
+            actual: actual.into(),
+        });
+    }
+    Ok(())
+}
+
+/// The outcome of a turn asked to go nowhere.
+pub(crate) fn no_motion(module: &str) -> Outcome {
+    warn(Warning::NoMotion {
+        module: module.to_string(),
+    })
+}
+
+/// The outcome of a turn done: the modules `moved` and the closest approach of the sweep.
+pub(crate) fn turned<M: RobotModule>(
+    structure: &Structure<M>,
+    moved: &BTreeSet<usize>,
+    closest_approach: Option<f64>,
+) -> Outcome {
+    Outcome {
+        warnings: Vec::new(),
+        moved: structure.module_names(moved),
+        closest_approach,
+    }
+}
+
+/// A point of the robot during a turn, the centre of a module (ATRON) or of a block
+/// (M-TRAN), with the index of its module.
+pub(crate) struct SweptPoint {
+    pub(crate) module: usize,
+    pub(crate) centre: [f64; 3],
+}
+
+/// A turn as the sweep check sees it: `quarters` signed quarter turns about `axis` through
+/// `pivot`, the points that move and those that stay still, and the smallest distance
+/// allowed between the two (`limit`).
+pub(crate) struct Sweep {
+    pub(crate) pivot: [f64; 3],
+    pub(crate) axis: Vec3,
+    pub(crate) quarters: i32,
+    pub(crate) moving: Vec<SweptPoint>,
+    pub(crate) still: Vec<SweptPoint>,
+    pub(crate) limit: f64,
+}
+
+impl Sweep {
+    /// The closest approach of the turn of module `index`, or the collision when it comes
+    /// under the limit, naming the turning module and the moving and still ones of the
+    /// closest pair.
+    pub(crate) fn verdict<M: RobotModule>(
+        &self,
+        structure: &Structure<M>,
+        index: usize,
+    ) -> Result<Option<f64>, OpError> {
+        let centres = |points: &[SweptPoint]| points.iter().map(|p| p.centre).collect::<Vec<_>>();
+        let Some(approach) = sweep_closest_approach(
+            self.pivot,
+            self.axis,
+            90.0 * f64::from(self.quarters),
+            &centres(&self.moving),
+            &centres(&self.still),
+        ) else {
+            return Ok(None);
+        };
+        if approach.distance < self.limit {
+            let name = |points: &[SweptPoint], i: usize| {
+                points
+                    .get(i)
+                    .map(|p| structure.module_name(p.module))
+                    .unwrap_or_default()
+            };
+            return Err(OpError::SweepCollision {
+                module: structure.module_name(index),
+                moving: name(&self.moving, approach.moving),
+                still: name(&self.still, approach.still),
+                distance: approach.distance,
+                limit: self.limit,
+                angle_deg: approach.angle_deg,
+            });
+        }
+        Ok(Some(approach.distance))
+    }
 }

@@ -1,6 +1,8 @@
 //! The validated ATRON configuration: modules on lattice sites, latches, and its queries.
 
-use super::lattice::{is_joint_position, is_male, LatticePhase, Orientation, CONNECTOR_COUNT};
+use super::lattice::{
+    is_joint_position, is_male, is_north, LatticePhase, Orientation, CONNECTOR_COUNT,
+};
 use crate::common::{check_translation, ConfigError, Latch, Metadata, NamedConnection, Port};
 use crate::geometry::{add, sub, within_bounds, Rotation, Vec3, MAX_COORDINATE};
 use crate::structure::{RobotModule, Structure};
@@ -212,6 +214,10 @@ impl RobotModule for AtronModule {
 
     fn is_male(connector: u8) -> bool {
         is_male(connector)
+    }
+
+    fn is_north_side(connector: u8) -> bool {
+        is_north(connector)
     }
 
     fn same_gender_message(label_a: &str, label_b: &str, both_male: bool) -> String {

@@ -3,17 +3,19 @@
 
 use super::config::{AtronConfiguration, AtronModule};
 use super::lattice::{
-    is_joint_position, is_north, JOINT_UNITS_PER_TURN, MIN_SWEEP_DISTANCE_LATTICE,
-    QUARTER_TURN_UNITS,
+    is_joint_position, JOINT_UNITS_PER_TURN, MIN_SWEEP_DISTANCE_LATTICE, QUARTER_TURN_UNITS,
 };
 use crate::common::Port;
-use crate::geometry::{add, sweep_closest_approach, to_f64, Rotation};
-use crate::graph::split_at_joint;
+use crate::geometry::{add, to_f64, Rotation};
 use crate::motion::TurnMotion;
-use crate::ops::{OpError, Outcome, Warning};
+use crate::ops::{OpError, Outcome};
 use crate::structure::Structure;
-use crate::world_common::{known_module, latch, release, sweep_verdict, warn, Latching};
+use crate::world_common::{
+    check_turn_angles, joint_sides, known_module, latch, no_motion, release, turned, Latching,
+    Sweep, SweptPoint,
+};
 use std::collections::BTreeSet;
+
 /// A turn before it is done: the modules on the moving side and the signed quarter turns
 /// they make about the axis (`joint_quarters` is the change of the joint angle).
 struct PlannedTurn {
@@ -78,9 +80,7 @@ impl World {
         let index = known_module(&self.config.structure, module)?;
         let turn = self.plan_turn(index, from_units, to_units, increasing)?;
         if turn.joint_quarters == 0 {
-            return Ok(warn(Warning::NoMotion {
-                module: module.to_string(),
-            }));
+            return Ok(no_motion(module));
         }
         let (moving, turn_quarters, north_moves, quarters) = (
             turn.moving,
@@ -94,11 +94,7 @@ impl World {
         if !north_moves {
             moved.insert(index);
         }
-        Ok(Outcome {
-            warnings: Vec::new(),
-            moved: self.names(&moved),
-            closest_approach: closest,
-        })
+        Ok(turned(&self.config.structure, &moved, closest))
     }
 
     /// How a turn would move the robot, without doing it or checking its sweep: the pivot,
@@ -145,7 +141,14 @@ impl World {
         to: u16,
         increasing: bool,
     ) -> Result<PlannedTurn, OpError> {
-        self.check_rotation_angles(index, from, to)?;
+        let actual = self.config.module(index).map_or(0, |m| m.joint_units);
+        check_turn_angles(
+            self.name(index),
+            (from, to),
+            actual,
+            is_joint_position,
+            "ATRON joint positions are 0, 108, 216 and 324",
+        )?;
         let joint_quarters = quarter_turns(from, to, increasing);
         if joint_quarters == 0 {
             // No motion: nothing to check, even on a locked joint.
@@ -157,41 +160,14 @@ impl World {
                 joint_quarters,
             });
         }
-        let sides = split_at_joint(self.config.latches(), index, is_north, |c| !is_north(c))
-            .map_err(|loop_side| OpError::JointLocked {
-                module: self.name(index),
-                loop_modules: self.names(&loop_side),
-            })?;
-        let (moving, turn_quarters, north_moves) = sides.moving(joint_quarters);
+        let (moving, turn_quarters, north_moves) =
+            joint_sides(&self.config.structure, index)?.moving(joint_quarters);
         Ok(PlannedTurn {
             moving,
             turn_quarters,
             north_moves,
             joint_quarters,
         })
-    }
-
-    /// Checks the angles and that the joint is at `from`.
-    fn check_rotation_angles(&self, index: usize, from: u16, to: u16) -> Result<(), OpError> {
-        let name = self.name(index);
-        for angle in [from, to] {
-            if !is_joint_position(angle) {
-                return Err(OpError::InvalidAngle {
-                    module: name,
-                    angle: i32::from(angle),
-                    reason: "ATRON joint positions are 0, 108, 216 and 324".to_string(),
-                });
-            }
-        }
-        let actual = self.config.module(index).map_or(0, |m| m.joint_units);
-        if actual != from {
-            return Err(OpError::WrongStartAngle {
-                module: name,
-                from: i32::from(from),
-                actual: i32::from(actual),
-            });
-        }
-        Ok(())
     }
 
     /// The closest approach of the turn, or the collision that forbids it.
@@ -204,28 +180,25 @@ impl World {
         let Some(pivot_module) = self.config.module(index) else {
             return Ok(None);
         };
-        let centre = |i: &usize| self.config.module(*i).map(|m| to_f64(m.position));
-        let moving_list: Vec<usize> = moving.iter().copied().collect();
-        let still_list: Vec<usize> = (0..self.config.modules().len())
-            .filter(|i| !moving.contains(i))
-            .collect();
-        let moving_points: Vec<[f64; 3]> = moving_list.iter().filter_map(centre).collect();
-        let still_points: Vec<[f64; 3]> = still_list.iter().filter_map(centre).collect();
-        let approach = sweep_closest_approach(
-            to_f64(pivot_module.position),
-            pivot_module.orientation.axis(),
-            90.0 * f64::from(turn_quarters),
-            &moving_points,
-            &still_points,
-        );
-        sweep_verdict(approach, MIN_SWEEP_DISTANCE_LATTICE, |a| {
-            let pick = |list: &[usize], i: usize| list.get(i).map(|m| self.name(*m));
-            [
-                self.name(index),
-                pick(&moving_list, a.moving).unwrap_or_default(),
-                pick(&still_list, a.still).unwrap_or_default(),
-            ]
-        })
+        let points = |inside: bool| -> Vec<SweptPoint> {
+            let modules = self.config.modules().iter().enumerate();
+            modules
+                .filter(|(i, _)| moving.contains(i) == inside)
+                .map(|(module, m)| SweptPoint {
+                    module,
+                    centre: to_f64(m.position),
+                })
+                .collect()
+        };
+        let sweep = Sweep {
+            pivot: to_f64(pivot_module.position),
+            axis: pivot_module.orientation.axis(),
+            quarters: turn_quarters,
+            moving: points(true),
+            still: points(false),
+            limit: MIN_SWEEP_DISTANCE_LATTICE,
+        };
+        sweep.verdict(&self.config.structure, index)
     }
 
     /// Turns the moving modules about the joint axis and updates the joint (and the module's
@@ -260,10 +233,6 @@ impl World {
 
     fn name(&self, index: usize) -> String {
         self.config.structure.module_name(index)
-    }
-
-    fn names(&self, indices: &BTreeSet<usize>) -> Vec<String> {
-        self.config.structure.module_names(indices)
     }
 }
 

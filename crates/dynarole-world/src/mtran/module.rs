@@ -399,6 +399,11 @@ impl RobotModule for MtranModule {
         is_mtran_male(connector)
     }
 
+    /// The male connectors are the north block's.
+    fn is_north_side(connector: u8) -> bool {
+        is_mtran_male(connector)
+    }
+
     fn same_gender_message(label_a: &str, label_b: &str, _both_male: bool) -> String {
         format!("{label_a} and {label_b}: a latch joins a male (0-2) and a female (3-5) connector")
     }

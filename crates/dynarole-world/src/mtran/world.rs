@@ -2,16 +2,18 @@
 //! with the same acceptance rules as the ATRON world (see `MTRAN.md`).
 
 use super::module::{
-    is_mtran_male, MtranConfiguration, MtranJoint, MtranModule, MtranOrientation,
-    MTRAN_JOINT_LIMIT_DEG, MTRAN_MIN_SWEEP_DISTANCE_BLOCKS,
+    MtranConfiguration, MtranJoint, MtranModule, MtranOrientation, MTRAN_JOINT_LIMIT_DEG,
+    MTRAN_MIN_SWEEP_DISTANCE_BLOCKS,
 };
 use crate::common::Port;
-use crate::geometry::{add, sub, sweep_closest_approach, Rotation, Vec3};
-use crate::graph::split_at_joint;
+use crate::geometry::{add, sub, Rotation, Vec3};
 use crate::motion::TurnMotion;
-use crate::ops::{OpError, Outcome, Warning};
+use crate::ops::{OpError, Outcome};
 use crate::structure::Structure;
-use crate::world_common::{known_module, latch, release, sweep_verdict, warn, Latching};
+use crate::world_common::{
+    check_turn_angles, joint_sides, known_module, latch, no_motion, release, turned, Latching,
+    Sweep, SweptPoint,
+};
 use std::collections::BTreeSet;
 
 /// An M-TRAN configuration being reconfigured; operations succeed (maybe with warnings) or
@@ -21,10 +23,9 @@ pub struct MtranWorld {
     config: MtranConfiguration,
 }
 
-/// A block taking part in a sweep: its centre (quarter pitches) and its module.
-struct SweptBlock {
-    centre: Vec3,
-    module: usize,
+/// Quarter pitches to block pitches, the unit of the sweep check.
+fn pitches(v: Vec3) -> [f64; 3] {
+    v.map(|c| f64::from(c) / 2.0)
 }
 
 impl MtranWorld {
@@ -70,9 +71,7 @@ impl MtranWorld {
         let index = known_module(&self.config.structure, module)?;
         self.check_angles(index, joint, from_deg, to_deg, positive)?;
         if from_deg == to_deg {
-            return Ok(warn(Warning::NoMotion {
-                module: module.to_string(),
-            }));
+            return Ok(no_motion(module));
         }
         let (moving, turn_quarters, north_moves) = self.plan_turn(index, from_deg, to_deg)?;
         let (pivot, axis) = self.joint_pivot(index, joint);
@@ -94,11 +93,7 @@ impl MtranWorld {
         if let Some(m) = self.config.structure.module_mut(index) {
             m.joints_deg[joint.index()] = to_deg;
         }
-        Ok(Outcome {
-            warnings: Vec::new(),
-            moved: self.names(&moved),
-            closest_approach: closest,
-        })
+        Ok(turned(&self.config.structure, &moved, closest))
     }
 
     /// How a turn would move the robot, without doing it or checking its sweep: the pivot and
@@ -115,7 +110,6 @@ impl MtranWorld {
         let index = known_module(&self.config.structure, module)?;
         self.check_angles(index, joint, from_deg, to_deg, positive)?;
         let (pivot, axis) = self.joint_pivot(index, joint);
-        let pitches = |v: Vec3| v.map(|c| f64::from(c) / 2.0);
         let mut motion = TurnMotion {
             pivot: pitches(pivot),
             axis,
@@ -131,7 +125,7 @@ impl MtranWorld {
         motion.angle_deg = 90.0 * f64::from(turn_quarters);
         motion.moving = blocks
             .iter()
-            .map(|b| (self.name(b.module), pitches(b.centre)))
+            .map(|b| (self.name(b.module), b.centre))
             .collect();
         Ok(motion)
     }
@@ -145,14 +139,7 @@ impl MtranWorld {
         to_deg: i16,
     ) -> Result<(BTreeSet<usize>, i32, bool), OpError> {
         let delta_quarters = i32::from(to_deg - from_deg) / 90;
-        let sides = split_at_joint(self.config.latches(), index, is_mtran_male, |c| {
-            !is_mtran_male(c)
-        })
-        .map_err(|loop_side| OpError::JointLocked {
-            module: self.name(index),
-            loop_modules: self.names(&loop_side),
-        })?;
-        Ok(sides.moving(delta_quarters))
+        Ok(joint_sides(&self.config.structure, index)?.moving(delta_quarters))
     }
 
     /// Range, step, direction and start-angle checks.
@@ -164,32 +151,21 @@ impl MtranWorld {
         to: i16,
         positive: bool,
     ) -> Result<(), OpError> {
-        let name = self.name(index);
-        for angle in [from, to] {
-            if angle.abs() > MTRAN_JOINT_LIMIT_DEG || angle % 90 != 0 {
-                return Err(OpError::InvalidAngle {
-                    module: name,
-                    angle: i32::from(angle),
-                    reason: "M-TRAN joints take -90, 0 or 90 (range -90..90, lattice steps of 90)"
-                        .to_string(),
-                });
-            }
-        }
         let actual = self
             .config
             .structure
             .module(index)
             .map_or(0, |m| m.joints_deg[joint.index()]);
-        if actual != from {
-            return Err(OpError::WrongStartAngle {
-                module: name,
-                from: i32::from(from),
-                actual: i32::from(actual),
-            });
-        }
+        check_turn_angles(
+            self.name(index),
+            (from, to),
+            actual,
+            |angle| angle.abs() <= MTRAN_JOINT_LIMIT_DEG && angle % 90 == 0,
+            "M-TRAN joints take -90, 0 or 90 (range -90..90, lattice steps of 90)",
+        )?;
         if from != to && (to > from) != positive {
             return Err(OpError::InvalidAngle {
-                module: name,
+                module: self.name(index),
                 angle: i32::from(to),
                 reason: format!(
                     "turning {} from {from} cannot reach {to} within the range -90..90",
@@ -223,50 +199,36 @@ impl MtranWorld {
         (pivot, axis): (Vec3, Vec3),
         turn_quarters: i32,
     ) -> Result<Option<f64>, OpError> {
-        let (moving_blocks, still_blocks) = self.partition_blocks(index, north_moves, moving);
-        // Quarter pitches to block pitches.
-        let points = |blocks: &[SweptBlock]| -> Vec<[f64; 3]> {
-            blocks
-                .iter()
-                .map(|b| b.centre.map(|c| f64::from(c) / 2.0))
-                .collect()
-        };
-        let approach = sweep_closest_approach(
-            pivot.map(|c| f64::from(c) / 2.0),
+        let (moving, still) = self.partition_blocks(index, north_moves, moving);
+        let sweep = Sweep {
+            pivot: pitches(pivot),
             axis,
-            90.0 * f64::from(turn_quarters),
-            &points(&moving_blocks),
-            &points(&still_blocks),
-        );
-        sweep_verdict(approach, MTRAN_MIN_SWEEP_DISTANCE_BLOCKS, |a| {
-            let pick = |blocks: &[SweptBlock], i: usize| {
-                blocks
-                    .get(i)
-                    .map(|b| self.name(b.module))
-                    .unwrap_or_default()
-            };
-            [
-                self.name(index),
-                pick(&moving_blocks, a.moving),
-                pick(&still_blocks, a.still),
-            ]
-        })
+            quarters: turn_quarters,
+            moving,
+            still,
+            limit: MTRAN_MIN_SWEEP_DISTANCE_BLOCKS,
+        };
+        sweep.verdict(&self.config.structure, index)
     }
 
     /// Splits all blocks into those that turn and those that stay. Both joints separate the
     /// turning module's north block from its south block, so its north block turns with the
     /// north side and its south block with the south side (the pivot block spins in place).
+    /// Centres in block pitches.
     fn partition_blocks(
         &self,
         index: usize,
         north_moves: bool,
         moving: &BTreeSet<usize>,
-    ) -> (Vec<SweptBlock>, Vec<SweptBlock>) {
+    ) -> (Vec<SweptPoint>, Vec<SweptPoint>) {
         let mut moving_blocks = Vec::new();
         let mut still_blocks = Vec::new();
         for (i, m) in self.config.modules().iter().enumerate() {
             for (b, centre) in m.block_centres().into_iter().enumerate() {
-                let block = SweptBlock { centre, module: i };
+                let block = SweptPoint {
+                    module: i,
+                    centre: pitches(centre),
+                };
                 let turns = if i == index {
                     (b == 0) == north_moves
                 } else {
@@ -284,10 +246,6 @@ impl MtranWorld {
 
     fn name(&self, index: usize) -> String {
         self.config.structure.module_name(index)
-    }
-
-    fn names(&self, indices: &BTreeSet<usize>) -> Vec<String> {
-        self.config.structure.module_names(indices)
     }
 }
 
