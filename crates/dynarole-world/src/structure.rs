@@ -39,6 +39,64 @@ pub(crate) trait RobotModule: Sized {
     ) -> Result<(), ConfigError>;
 }
 
+/// The queries every robot's configuration answers alike, from its `metadata` and
+/// `structure` fields. Expanded inside each configuration's own `impl` (with its module
+/// type), so that they stay inherent methods and callers need no trait in scope.
+macro_rules! configuration_queries {
+    ($module:ty) => {
+        /// The descriptive fields.
+        pub fn metadata(&self) -> &$crate::common::Metadata {
+            &self.metadata
+        }
+
+        /// Modules in file order (the order never changes).
+        pub fn modules(&self) -> &[$module] {
+            self.structure.modules()
+        }
+
+        /// The module at `index`.
+        pub fn module(&self, index: usize) -> Option<&$module> {
+            self.structure.module(index)
+        }
+
+        /// Index of the module called `name`.
+        pub fn module_index(&self, name: &str) -> Option<usize> {
+            self.structure.module_index(name)
+        }
+
+        /// Index of the module with numeric ID `id`.
+        pub fn module_index_by_id(&self, id: u32) -> Option<usize> {
+            self.structure.module_index_by_id(id)
+        }
+
+        /// The latches, ordered by male port.
+        pub fn latches(&self) -> &std::collections::BTreeSet<$crate::common::Latch> {
+            self.structure.latches()
+        }
+
+        /// `M3.C4` for a port.
+        pub fn port_name(&self, port: $crate::common::Port) -> String {
+            self.structure.port_name(port)
+        }
+
+        /// The port latched to `port`, if any.
+        pub fn latched_to(&self, port: $crate::common::Port) -> Option<$crate::common::Port> {
+            self.structure.latched_to(port)
+        }
+
+        /// True when `port` is latched.
+        pub fn is_latched(&self, port: $crate::common::Port) -> bool {
+            self.latched_to(port).is_some()
+        }
+
+        /// The latches as names, male first, in latch order.
+        pub fn named_connections(&self) -> Vec<$crate::common::NamedConnection> {
+            self.structure.named_connections()
+        }
+    };
+}
+pub(crate) use configuration_queries;
+
 /// Modules and latches, with indices by name, id and port. The indices only follow from the
 /// modules and latches, so comparing them too (derived `PartialEq`) changes no answer. They
 /// are compact (a simulated robot may have a million modules): a name is stored once, in

@@ -3,9 +3,9 @@
 use super::lattice::{
     is_joint_position, is_male, is_north, LatticePhase, Orientation, CONNECTOR_COUNT,
 };
-use crate::common::{check_translation, ConfigError, Latch, Metadata, NamedConnection, Port};
+use crate::common::{check_translation, ConfigError, Metadata, NamedConnection, Port};
 use crate::geometry::{add, sub, within_bounds, Rotation, Vec3, MAX_COORDINATE};
-use crate::structure::{RobotModule, Structure};
+use crate::structure::{configuration_queries, RobotModule, Structure};
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt;
 
@@ -66,49 +66,16 @@ impl AtronConfiguration {
         })
     }
 
-    /// The descriptive fields.
-    pub fn metadata(&self) -> &Metadata {
-        &self.metadata
-    }
-
-    /// Modules in file order (the order never changes).
-    pub fn modules(&self) -> &[AtronModule] {
-        self.structure.modules()
-    }
-
-    /// The module at `index`.
-    pub fn module(&self, index: usize) -> Option<&AtronModule> {
-        self.structure.module(index)
-    }
-
-    /// Index of the module called `name`.
-    pub fn module_index(&self, name: &str) -> Option<usize> {
-        self.structure.module_index(name)
-    }
-
-    /// Index of the module with numeric ID `id`.
-    pub fn module_index_by_id(&self, id: u32) -> Option<usize> {
-        self.structure.module_index_by_id(id)
-    }
+    configuration_queries!(AtronModule);
 
     /// Index of the module at lattice site `site`.
     pub fn module_at(&self, site: Vec3) -> Option<usize> {
         self.sites.get(&site).copied()
     }
 
-    /// The latches, ordered by male port.
-    pub fn latches(&self) -> &BTreeSet<Latch> {
-        self.structure.latches()
-    }
-
     /// The structure's lattice phase (`None` only for an empty configuration).
     pub fn phase(&self) -> Option<LatticePhase> {
         self.phase
-    }
-
-    /// `M3.C4` for a port.
-    pub fn port_name(&self, port: Port) -> String {
-        self.structure.port_name(port)
     }
 
     /// The connector of another module that `port` faces (any gender), if a module sits on the
@@ -125,21 +92,6 @@ impl AtronConfiguration {
                 module: other_index,
                 connector,
             })
-    }
-
-    /// The port latched to `port`, if any.
-    pub fn latched_to(&self, port: Port) -> Option<Port> {
-        self.structure.latched_to(port)
-    }
-
-    /// True when `port` is latched.
-    pub fn is_latched(&self, port: Port) -> bool {
-        self.latched_to(port).is_some()
-    }
-
-    /// The latches as names, male first, in latch order.
-    pub fn named_connections(&self) -> Vec<NamedConnection> {
-        self.structure.named_connections()
     }
 
     /// The configuration turned by `rotation` about the origin, then shifted by `translation`

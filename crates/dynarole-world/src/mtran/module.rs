@@ -10,10 +10,10 @@
 //! right-handed about the joint axis, which is the module's local +y (world: `joint_axis`),
 //! relative to the side before it. Joint axes pass through the centre of their block.
 
-use crate::common::{check_translation, ConfigError, Latch, Metadata, NamedConnection, Port};
+use crate::common::{check_translation, ConfigError, Metadata, NamedConnection, Port};
 use crate::geometry::{add, axis_name, scale, sub, within_bounds, Rotation, Vec3, MAX_COORDINATE};
-use crate::structure::{RobotModule, Structure};
-use std::collections::{BTreeMap, BTreeSet};
+use crate::structure::{configuration_queries, RobotModule, Structure};
+use std::collections::BTreeMap;
 use std::fmt;
 
 /// Number of connectors: 0-2 on the north block (male), 3-5 on the south block (female).
@@ -281,35 +281,7 @@ impl MtranConfiguration {
         })
     }
 
-    /// The descriptive fields.
-    pub fn metadata(&self) -> &Metadata {
-        &self.metadata
-    }
-
-    /// Modules in file order.
-    pub fn modules(&self) -> &[MtranModule] {
-        self.structure.modules()
-    }
-
-    /// Index of the module called `name`.
-    pub fn module_index(&self, name: &str) -> Option<usize> {
-        self.structure.module_index(name)
-    }
-
-    /// Index of the module with numeric ID `id`.
-    pub fn module_index_by_id(&self, id: u32) -> Option<usize> {
-        self.structure.module_index_by_id(id)
-    }
-
-    /// The latches, ordered by male port.
-    pub fn latches(&self) -> &BTreeSet<Latch> {
-        self.structure.latches()
-    }
-
-    /// `T10.C3` for a port.
-    pub fn port_name(&self, port: Port) -> String {
-        self.structure.port_name(port)
-    }
+    configuration_queries!(MtranModule);
 
     /// The connector of another module whose face touches `port`'s face with the opposite
     /// normal, if any.
@@ -329,21 +301,6 @@ impl MtranConfiguration {
                     connector,
                 })
         })
-    }
-
-    /// The port latched to `port`, if any.
-    pub fn latched_to(&self, port: Port) -> Option<Port> {
-        self.structure.latched_to(port)
-    }
-
-    /// True when `port` is latched.
-    pub fn is_latched(&self, port: Port) -> bool {
-        self.latched_to(port).is_some()
-    }
-
-    /// The latches as names, male first.
-    pub fn named_connections(&self) -> Vec<NamedConnection> {
-        self.structure.named_connections()
     }
 
     /// The configuration turned by `rotation` about the origin and shifted by `translation`
