@@ -4,7 +4,7 @@
 //! `compile --target promela` writes.
 
 use crate::compile::{CompileArgs, ProtocolOptions};
-use crate::load::{self, Failure};
+use crate::load::{self, Failure, PluginArgs};
 use crate::render;
 use crate::world::{prepare, read_configuration};
 use dynarole_codegen::Fault;
@@ -57,11 +57,11 @@ pub struct Scene {
     pub start: dynarole_world::Configuration,
 }
 
-/// What a model is made from: a checked source, its sequences, a configuration, options.
-pub struct Request<'a> {
-    pub program: &'a dynarole_core::Program<'a>,
-    pub source: &'a str,
-    pub display: &'a str,
+/// What a model is asked of, as `verify` and `compile --target promela` give it: a source
+/// file (and the plugins it may need), its sequences, a configuration, options.
+pub struct Asked<'a> {
+    pub file: &'a Path,
+    pub plugins: &'a PluginArgs,
     pub sequences: &'a [String],
     pub from: &'a Path,
     pub options: &'a ProtocolOptions,
@@ -69,22 +69,50 @@ pub struct Request<'a> {
     pub epochs: u16,
 }
 
+/// What a model is made from: the checked source of what was asked.
+pub struct Request<'a> {
+    pub program: &'a dynarole_core::Program<'a>,
+    pub source: &'a str,
+    /// The source file's name in messages.
+    pub display: &'a str,
+    pub asked: &'a Asked<'a>,
+}
+
+/// Loads and checks the source `asked` names, then runs `then` on the request of its model
+/// (a source that does not check is rendered and exits with 1, as in every command).
+pub fn with_request(
+    asked: &Asked,
+    then: impl FnOnce(&Request) -> Result<ExitCode, Failure>,
+) -> Result<ExitCode, Failure> {
+    load::with_program(asked.file, asked.plugins, |program, source| {
+        let display = asked.file.display().to_string();
+        then(&Request {
+            program,
+            source,
+            display: &display,
+            asked,
+        })
+    })
+}
+
 /// The library's options for these arguments; the model is named after `names`.
 fn build_options(
-    req: &Request,
+    asked: &Asked,
     names: &[String],
     fault: Option<FaultArg>,
 ) -> Result<BuildOptions, Failure> {
     Ok(BuildOptions {
-        compile: req.options.compile_options(req.epochs, names.join(" + "))?,
-        method: match req.model.method {
+        compile: asked
+            .options
+            .compile_options(asked.epochs, names.join(" + "))?,
+        method: match asked.model.method {
             MethodArg::Auto => Method::Auto,
             MethodArg::Full => Method::Full,
             MethodArg::Compositional => Method::Compositional,
         },
-        resets: req.model.resets,
-        reset_only: req.model.reset_only.clone(),
-        late: req.model.late,
+        resets: asked.model.resets,
+        reset_only: asked.model.reset_only.clone(),
+        late: asked.model.late,
         fault: fault.map(|f| match f {
             FaultArg::JoinDropsDone => Fault::JoinDropsDone,
             FaultArg::JoinNoRebase => Fault::JoinNoRebase,
@@ -111,16 +139,17 @@ pub fn build(
     req: &Request,
     fault: Option<FaultArg>,
 ) -> Result<Result<(Built, BuildOptions, Scene), ExitCode>, Failure> {
-    let config = read_configuration(req.from)?;
-    let prepared = match prepare(req.program, req.display, req.sequences, config)? {
+    let asked = req.asked;
+    let config = read_configuration(asked.from)?;
+    let prepared = match prepare(req.program, req.display, asked.sequences, config)? {
         Ok(p) => p,
         Err(diagnostics) => {
             render::diagnostics(req.display, req.source, &diagnostics);
             return Ok(Err(ExitCode::from(1)));
         }
     };
-    let options = build_options(req, &prepared.names, fault)?;
-    let configuration = req.from.display().to_string();
+    let options = build_options(asked, &prepared.names, fault)?;
+    let configuration = asked.from.display().to_string();
     let inputs = Inputs {
         program: req.program,
         names: &prepared.names,
@@ -147,20 +176,16 @@ pub fn compile(args: &CompileArgs, model: &ModelArgs) -> Result<ExitCode, Failur
                 .into(),
         ));
     };
-    load::with_program(args.file, args.plugins, |program, source| {
-        let display = args.file.display().to_string();
-        let request = Request {
-            program,
-            source,
-            display: &display,
-            sequences: args.sequences,
-            from,
-            options: args.options,
-            model,
-            epochs: args.epochs,
-        };
-        write_model(&request, args.out_dir)
-    })
+    let asked = Asked {
+        file: args.file,
+        plugins: args.plugins,
+        sequences: args.sequences,
+        from,
+        options: args.options,
+        model,
+        epochs: args.epochs,
+    };
+    with_request(&asked, |request| write_model(request, args.out_dir))
 }
 
 /// `dynarole compile --target promela`: writes DIR/model.pml (the compositional method:

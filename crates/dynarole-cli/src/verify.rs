@@ -3,7 +3,7 @@
 
 use crate::compile::ProtocolOptions;
 use crate::load::{self, Failure, PluginArgs};
-use crate::model::{build, failed, Request, Scene};
+use crate::model::{build, failed, with_request, Asked, Request, Scene};
 pub use crate::model::{FaultArg, MethodArg, ModelArgs};
 use dynarole_campaign::ProgressMode;
 use dynarole_verify::{
@@ -38,22 +38,18 @@ pub fn run(args: &VerifyArgs) -> Result<ExitCode, Failure> {
         .compile_options(args.epochs, String::new())?
         .protocol;
     dynarole_verify::modelled(protocol).map_err(|e| Failure::Usage(e.to_string()))?;
-    load::with_program(args.file, args.plugins, |program, source| {
-        let display = args.file.display().to_string();
-        let request = Request {
-            program,
-            source,
-            display: &display,
-            sequences: args.sequences,
-            from: args.from,
-            options: args.options,
-            model: args.model,
-            epochs: args.epochs,
-        };
-        match build(&request, args.fault)? {
-            Ok((built, options, scene)) => check(args, &request, &built, &options, &scene),
-            Err(code) => Ok(code),
-        }
+    let asked = Asked {
+        file: args.file,
+        plugins: args.plugins,
+        sequences: args.sequences,
+        from: args.from,
+        options: args.options,
+        model: args.model,
+        epochs: args.epochs,
+    };
+    with_request(&asked, |request| match build(request, args.fault)? {
+        Ok((built, options, scene)) => check(args, request, &built, &options, &scene),
+        Err(code) => Ok(code),
     })
 }
 
