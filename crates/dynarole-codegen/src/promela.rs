@@ -31,6 +31,9 @@ mod lattice;
 mod paper;
 #[path = "promela/template.rs"]
 mod template;
+#[cfg(test)]
+#[path = "promela/test_support.rs"]
+mod test_support;
 
 pub use compositional::{liveness_graph, LivenessGraph};
 
@@ -678,51 +681,19 @@ fn stage_condition(stages: &[usize]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use dynarole_core::{analyze, parse, RobotRegistry};
+    use test_support::{line, lowered};
 
     /// protocol.md's `A; B & C; D;` (a sequential and a parallel unit for the paper switch).
     fn ir() -> Ir {
-        let parsed = parse(include_str!("../../../examples/verify/a_bc_d.dr"));
-        let (program, _) = analyze(&parsed.file, &RobotRegistry::builtin());
-        let program = program.expect("the example analyses");
-        let plan = program.expand("a_bc_d").expect("the sequence exists");
-        program.lower(&[plan]).expect("it fits")
-    }
-
-    fn line() -> Topology {
-        let modules = (0..3u8)
-            .map(|k| TopologyModule {
-                name: format!("M{k}"),
-                address: Some(k),
-            })
-            .collect();
-        let links = [(0, 1), (1, 0), (1, 2), (2, 1)]
-            .into_iter()
-            .map(|(from, to)| TopologyLink {
-                from,
-                to,
-                fair_stages: (0..=4).collect(),
-            })
-            .collect();
-        Topology { modules, links }
+        lowered(include_str!("../../../examples/verify/a_bc_d.dr"), "a_bc_d")
     }
 
     /// Every part of every template file is written by some model (none is dead text).
     #[test]
     fn every_template_part_is_used() {
-        let (ir, topology) = (ir(), line());
+        let (ir, topology) = (ir(), line(&[0, 1, 2, 3, 4]));
         let graph = liveness_graph(&ir, &topology);
-        let options = |protocol: Protocol, late: u8| ModelOptions {
-            compile: CompileOptions {
-                protocol,
-                name: "a_bc_d".into(),
-                ..CompileOptions::default()
-            },
-            resets: 1,
-            reset_modules: Vec::new(),
-            late,
-            fault: None,
-        };
+        let options = |protocol, late| test_support::options("a_bc_d", protocol, late);
         template::RENDERED.with(|r| r.borrow_mut().clear());
         let full = generate_promela(&ir, &topology, &options(Protocol::Lattice, 1));
         let paper = generate_promela(&ir, &topology, &options(Protocol::Paper, 1));

@@ -8,49 +8,20 @@ use dynarole_codegen::{
     Protocol, Topology, TopologyLink, TopologyModule,
 };
 use dynarole_core::lower::Ir;
-use dynarole_core::{analyze, parse, RobotRegistry};
+
+#[path = "../src/promela/test_support.rs"]
+mod test_support;
+use test_support::{line, lowered};
 
 const AB_C: &str = include_str!("../../../examples/verify/ab_c.dr");
 
 fn ir() -> Ir {
-    let parsed = parse(AB_C);
-    let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
-    let program = program.unwrap_or_else(|| panic!("{diagnostics:?}"));
-    let plan = program.expand("ab_c").expect("sequence exists");
-    program.lower(&[plan]).expect("fits")
+    lowered(AB_C, "ab_c")
 }
 
-/// M0 - M1 - M2 in a line; each link both ways, in the stages given (4 stages: 0..=3).
-fn line(stages: &[usize]) -> Topology {
-    let modules = (0..3u8)
-        .map(|k| TopologyModule {
-            name: format!("M{k}"),
-            address: Some(k),
-        })
-        .collect();
-    let links = [(0, 1), (1, 0), (1, 2), (2, 1)]
-        .into_iter()
-        .map(|(from, to)| TopologyLink {
-            from,
-            to,
-            fair_stages: stages.to_vec(),
-        })
-        .collect();
-    Topology { modules, links }
-}
-
+/// The options of the model of `ab_c`.
 fn options(protocol: Protocol, late: u8) -> ModelOptions {
-    ModelOptions {
-        compile: CompileOptions {
-            protocol,
-            name: "ab_c".into(),
-            ..CompileOptions::default()
-        },
-        resets: 1,
-        reset_modules: Vec::new(),
-        late,
-        fault: None,
-    }
+    test_support::options("ab_c", protocol, late)
 }
 
 #[test]
@@ -136,11 +107,7 @@ fn the_paper_switch_is_tables_so_a_step_does_not_grow_with_the_sequence() {
     let long = "robot atron;\nsequence long {\n".to_string()
         + &"    M0.Joint.rotateFromToBy(0, 108, true, 150) &\n    M1.Joint.rotateFromToBy(0, 108, true, 150);\n    M2.Joint.rotateFromToBy(0, 108, true, 150);\n".repeat(10)
         + "}\n";
-    let parsed = parse(&long);
-    let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
-    let program = program.unwrap_or_else(|| panic!("{diagnostics:?}"));
-    let plan = program.expand("long").expect("sequence exists");
-    let long_ir = program.lower(&[plan]).expect("fits");
+    let long_ir = lowered(&long, "long");
     let topology = line(&[0, 1, 2, 3]);
     let short = generate_promela(&ir(), &topology, &options(Protocol::Paper, 1)).expect("models");
     let long = generate_promela(&long_ir, &topology, &options(Protocol::Paper, 1)).expect("models");
