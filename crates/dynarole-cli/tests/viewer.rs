@@ -18,28 +18,53 @@ const PROGRAM: &str = "examples/atron/eight2car.dr";
 const SCENARIO: &str = "examples/scenarios/fig8-reset-connecting.toml";
 const RESET_MS: f64 = 4500.0;
 
-/// Debian's chromium, installed when missing; `None` (the test says why) when that is
-/// impossible on this machine.
-fn chromium() -> Option<PathBuf> {
-    let script = repo_root().join("scripts/ensure-chromium");
-    let status = Command::new(script).status();
-    if !matches!(status, Ok(s) if s.success()) {
-        eprintln!("SKIPPED: chromium could not be installed (scripts/ensure-chromium failed)");
-        return None;
+/// Runs `scripts/ensure-SCRIPT ARGS`, which installs `what` when missing; false (the test
+/// says why it skips) when that is impossible on this machine.
+fn installed(script: &str, args: &[&str], what: &str) -> bool {
+    let path = format!("scripts/ensure-{script}");
+    let status = Command::new(repo_root().join(&path)).args(args).status();
+    let ok = matches!(status, Ok(s) if s.success());
+    if !ok {
+        let call = [path.as_str()]
+            .iter()
+            .chain(args)
+            .copied()
+            .collect::<Vec<_>>();
+        eprintln!(
+            "SKIPPED: {what} could not be installed ({} failed)",
+            call.join(" ")
+        );
     }
-    Some(PathBuf::from("chromium"))
+    ok
+}
+
+/// Debian's chromium, installed when missing; `None` when that is impossible here.
+fn chromium() -> Option<PathBuf> {
+    installed("chromium", &[], "chromium").then(|| PathBuf::from("chromium"))
 }
 
 /// The window of every headless run (the rest: the flags the video export uses too).
 const WINDOW: &str = "--window-size=1200,800";
 
+/// The browser run headless in the window of every run.
+fn headless(browser: &Path) -> Command {
+    let mut command = Command::new(browser);
+    command
+        .args(dynarole_cli::video::HEADLESS_FLAGS)
+        .arg(WINDOW);
+    command
+}
+
+/// Times as the page's `#probe=` and `--poses-at` take them: milliseconds, comma-separated.
+fn time_list(times: &[f64]) -> String {
+    let list: Vec<String> = times.iter().map(|t| format!("{t}")).collect();
+    list.join(",")
+}
+
 /// Opens `page` at the given times and returns what its probe wrote.
 fn probe(browser: &Path, page: &Path, times: &[f64]) -> Value {
-    let list: Vec<String> = times.iter().map(|t| format!("{t}")).collect();
-    let url = format!("file://{}#probe={}", page.display(), list.join(","));
-    let out = Command::new(browser)
-        .args(dynarole_cli::video::HEADLESS_FLAGS)
-        .arg(WINDOW)
+    let url = format!("file://{}#probe={}", page.display(), time_list(times));
+    let out = headless(browser)
         .arg("--dump-dom")
         .arg(&url)
         .output()
@@ -77,8 +102,7 @@ struct Simulated {
 fn recorded(dir: &Path, command: &[&str], times: &[f64], expected_exit: i32) -> Simulated {
     let page = dir.join("run.html");
     let record = dir.join("run.json");
-    let list: Vec<String> = times.iter().map(|t| format!("{t}")).collect();
-    let joined = list.join(",");
+    let joined = time_list(times);
     let mut args = command.to_vec();
     args.extend([
         "--html",
@@ -286,6 +310,20 @@ fn check_marker(sample: &Value, kind: &str, at_ms: f64, module: &str, end: f64) 
     );
 }
 
+/// Runs `command` (which exits with `expected_exit`) twice, in scratch folders named after
+/// `name`: once to learn its [`sample_times`], then with the poses at them.
+fn recorded_at_samples(name: &str, command: &[&str], expected_exit: i32) -> (Simulated, Vec<f64>) {
+    let first = recorded(
+        &scratch(&format!("{name}-times")),
+        command,
+        &[],
+        expected_exit,
+    );
+    let times = sample_times(&first.recording);
+    let run = recorded(&scratch(name), command, &times, expected_exit);
+    (run, times)
+}
+
 /// Samples every `step` milliseconds of a recording, plus the middle of each turn.
 fn sample_times(recording: &Value) -> Vec<f64> {
     let end = recording["end_ms"].as_f64().expect("end");
@@ -319,9 +357,7 @@ fn a_replay_on_the_model_plays_in_the_page() {
         "--expect",
         "examples/atron/car.json",
     ];
-    let first = recorded(&scratch("replay-times"), &command, &[], 0);
-    let times = sample_times(&first.recording);
-    let run = recorded(&scratch("replay"), &command, &times, 0);
+    let (run, times) = recorded_at_samples("replay", &command, 0);
     assert_eq!(run.recording["kind"], "replay");
     check_page(&browser, &run, &times, PROGRAM);
 }
@@ -342,9 +378,7 @@ fn an_mtran_simulation_turns_smoothly_in_the_page() {
         "--expect",
         "examples/mtran/mtran-snake4-moved.json",
     ];
-    let first = recorded(&scratch("mtran-times"), &command, &[], 0);
-    let times = sample_times(&first.recording);
-    let run = recorded(&scratch("mtran"), &command, &times, 0);
+    let (run, times) = recorded_at_samples("mtran", &command, 0);
     assert_eq!(run.recording["robot"], "mtran");
     let turns = run.recording["motions"]
         .as_array()
@@ -361,9 +395,7 @@ fn an_mtran_simulation_turns_smoothly_in_the_page() {
 #[test]
 fn a_counterexample_plays_in_the_page_with_the_broken_property() {
     let Some(browser) = chromium() else { return };
-    let spin = Command::new(repo_root().join("scripts/ensure-spin")).status();
-    if !matches!(spin, Ok(s) if s.success()) {
-        eprintln!("SKIPPED: spin could not be installed (scripts/ensure-spin failed)");
+    if !installed("spin", &[], "spin") {
         return;
     }
     let program = "examples/verify/ab_c.dr";
@@ -375,9 +407,7 @@ fn a_counterexample_plays_in_the_page_with_the_broken_property() {
         "--protocol",
         "paper",
     ];
-    let first = recorded(&scratch("verify-times"), &command, &[], 1);
-    let times = sample_times(&first.recording);
-    let run = recorded(&scratch("verify"), &command, &times, 1);
+    let (run, times) = recorded_at_samples("verify", &command, 1);
     assert_eq!(run.recording["kind"], "counterexample");
     let summary = run.recording["summary"][0].as_str().expect("summary");
     assert_eq!(summary, "VIOLATED: S1");
@@ -420,9 +450,7 @@ fn screenshot_of_eight2car_mid_run() {
     let shot = scratch("screenshot").join("eight2car.png");
     let _ = std::fs::remove_file(&shot);
     let url = format!("file://{}#t=16000", run.page.display());
-    let out = Command::new(&browser)
-        .args(dynarole_cli::video::HEADLESS_FLAGS)
-        .arg(WINDOW)
+    let out = headless(&browser)
         .arg(format!("--screenshot={}", shot.display()))
         .arg(&url)
         .output()
@@ -446,11 +474,7 @@ fn a_recording_becomes_a_video() {
     if chromium().is_none() {
         return;
     }
-    let ffmpeg = Command::new(repo_root().join("scripts/ensure-chromium"))
-        .arg("--ffmpeg")
-        .status();
-    if !matches!(ffmpeg, Ok(s) if s.success()) {
-        eprintln!("SKIPPED: ffmpeg could not be installed (scripts/ensure-chromium --ffmpeg)");
+    if !installed("chromium", &["--ffmpeg"], "ffmpeg") {
         return;
     }
     let dir = scratch("video");
