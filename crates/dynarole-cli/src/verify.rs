@@ -1,10 +1,9 @@
 //! `dynarole verify`: the model checked (`model.rs` builds it), its report printed as it comes
 //! (progress on stderr), its verdict turned into an exit code, and a counterexample recorded.
 
-use crate::compile::ProtocolOptions;
-use crate::load::{self, Failure, PluginArgs};
-use crate::model::{build, failed, with_request, Asked, Request, Scene};
-pub use crate::model::{FaultArg, MethodArg, ModelArgs};
+use crate::load::{self, Failure};
+use crate::model::{build, failed, with_request, Request, Scene};
+pub use crate::model::{Asked, FaultArg, MethodArg, ModelArgs};
 use dynarole_campaign::ProgressMode;
 use dynarole_verify::{
     BuildOptions, Built, Entry, Header, Observer, Phase, Source, Verdict, VerifyOptions,
@@ -14,14 +13,9 @@ use std::path::Path;
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
 
-/// What `verify` was asked to do.
+/// What `verify` was asked to do: the model (`asked`) and how to check it.
 pub struct VerifyArgs<'a> {
-    pub file: &'a Path,
-    pub sequences: &'a [String],
-    pub from: &'a Path,
-    pub options: &'a ProtocolOptions,
-    pub model: &'a ModelArgs,
-    pub epochs: u16,
+    pub asked: Asked<'a>,
     pub memory_mb: u64,
     pub time_s: u64,
     pub bitstate: bool,
@@ -29,25 +23,16 @@ pub struct VerifyArgs<'a> {
     pub keep: Option<&'a Path>,
     pub fault: Option<FaultArg>,
     pub record: &'a crate::view::RecordArgs,
-    pub plugins: &'a PluginArgs,
 }
 
 pub fn run(args: &VerifyArgs) -> Result<ExitCode, Failure> {
-    let protocol = args
+    let asked = &args.asked;
+    let protocol = asked
         .options
-        .compile_options(args.epochs, String::new())?
+        .compile_options(asked.epochs, String::new())?
         .protocol;
     dynarole_verify::modelled(protocol).map_err(|e| Failure::Usage(e.to_string()))?;
-    let asked = Asked {
-        file: args.file,
-        plugins: args.plugins,
-        sequences: args.sequences,
-        from: args.from,
-        options: args.options,
-        model: args.model,
-        epochs: args.epochs,
-    };
-    with_request(&asked, |request| match build(request, args.fault)? {
+    with_request(asked, |request| match build(request, args.fault)? {
         Ok((built, options, scene)) => check(args, request, &built, &options, &scene),
         Err(code) => Ok(code),
     })
@@ -68,7 +53,7 @@ fn check(
     };
     std::fs::create_dir_all(&dir)
         .map_err(|e| Failure::Internal(format!("cannot create {}: {e}", dir.display())))?;
-    let header = dynarole_verify::header(built, options, &args.from.display().to_string());
+    let header = dynarole_verify::header(built, options, &args.asked.from.display().to_string());
     let verify = VerifyOptions {
         memory_mb: args.memory_mb,
         time_s: args.time_s,
