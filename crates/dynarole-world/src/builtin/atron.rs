@@ -1,10 +1,9 @@
 //! ATRON behind the robot API: the configuration answers [`RobotShape`], the [`World`]
 //! is the [`RobotModel`] (one joint per module, angles in 1/432 turn).
 
-use crate::atron::config::AtronConfiguration;
-use crate::atron::lattice::{is_male, CONNECTOR_COUNT, JOINT_UNITS_PER_TURN, QUARTER_TURN_UNITS};
+use crate::atron::config::{AtronConfiguration, AtronModule};
+use crate::atron::lattice::{JOINT_UNITS_PER_TURN, QUARTER_TURN_UNITS};
 use crate::atron::world::World;
-use crate::common::Port;
 use crate::compare::model_difference;
 use crate::configuration::Configuration;
 use crate::geometry::to_f64;
@@ -13,51 +12,11 @@ use crate::motion::TurnMotion;
 use crate::ops::{OpError, Outcome};
 use std::any::Any;
 
-impl RobotShape for AtronConfiguration {
-    fn connectors(&self) -> u8 {
-        CONNECTOR_COUNT
-    }
+super::robot_shape!(AtronConfiguration, AtronModule, joint_angle);
 
-    fn is_male(&self, connector: u8) -> bool {
-        is_male(connector)
-    }
-
-    fn len(&self) -> usize {
-        self.modules().len()
-    }
-
-    fn name(&self, m: usize) -> Option<&str> {
-        self.module(m).map(|x| x.name.as_str())
-    }
-
-    fn id(&self, m: usize) -> Option<u32> {
-        self.module(m).and_then(|x| x.id)
-    }
-
-    fn index(&self, name: &str) -> Option<usize> {
-        self.module_index(name)
-    }
-
-    fn index_by_id(&self, id: u32) -> Option<usize> {
-        self.module_index_by_id(id)
-    }
-
-    /// ATRON has one joint; every joint index reads it.
-    fn joint(&self, m: usize, _joint: u8) -> Option<i64> {
-        self.module(m).map(|x| i64::from(x.joint_units))
-    }
-
-    fn latched_to(&self, port: Port) -> Option<Port> {
-        AtronConfiguration::latched_to(self, port)
-    }
-
-    fn facing(&self, port: Port) -> Option<Port> {
-        AtronConfiguration::facing(self, port)
-    }
-
-    fn port_name(&self, port: Port) -> String {
-        AtronConfiguration::port_name(self, port)
-    }
+/// ATRON has one joint; every joint index reads it.
+fn joint_angle(module: &AtronModule, _joint: u8) -> Option<i64> {
+    Some(i64::from(module.joint_units))
 }
 
 /// The plugin name of the robot.

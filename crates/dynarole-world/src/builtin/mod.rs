@@ -26,6 +26,60 @@ impl Configuration {
     }
 }
 
+/// `impl RobotShape` for a built-in robot's configuration (`$config`, of `$module`s): the
+/// questions its modules, latches and connector rules answer alike for every built-in robot;
+/// `$joint(module, joint)` reads a joint's angle in the plugin's unit, the robot's own part.
+macro_rules! robot_shape {
+    ($config:ty, $module:ty, $joint:path) => {
+        impl $crate::model::RobotShape for $config {
+            fn connectors(&self) -> u8 {
+                <$module as $crate::structure::RobotModule>::CONNECTOR_COUNT
+            }
+
+            fn is_male(&self, connector: u8) -> bool {
+                <$module as $crate::structure::RobotModule>::is_male(connector)
+            }
+
+            fn len(&self) -> usize {
+                self.modules().len()
+            }
+
+            fn name(&self, m: usize) -> Option<&str> {
+                self.module(m).map(|x| x.name.as_str())
+            }
+
+            fn id(&self, m: usize) -> Option<u32> {
+                self.module(m).and_then(|x| x.id)
+            }
+
+            fn index(&self, name: &str) -> Option<usize> {
+                self.module_index(name)
+            }
+
+            fn index_by_id(&self, id: u32) -> Option<usize> {
+                self.module_index_by_id(id)
+            }
+
+            fn joint(&self, m: usize, joint: u8) -> Option<i64> {
+                self.module(m).and_then(|x| $joint(x, joint))
+            }
+
+            fn latched_to(&self, port: $crate::common::Port) -> Option<$crate::common::Port> {
+                <$config>::latched_to(self, port)
+            }
+
+            fn facing(&self, port: $crate::common::Port) -> Option<$crate::common::Port> {
+                <$config>::facing(self, port)
+            }
+
+            fn port_name(&self, port: $crate::common::Port) -> String {
+                <$config>::port_name(self, port)
+            }
+        }
+    };
+}
+use robot_shape;
+
 /// The plugin names of the robots this crate has a model of.
 pub const BUILTIN_ROBOTS: [&str; 2] = [atron::NAME, mtran::NAME];
 

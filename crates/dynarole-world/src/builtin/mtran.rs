@@ -1,12 +1,11 @@
 //! M-TRAN behind the robot API: the configuration answers [`RobotShape`], the
 //! [`MtranWorld`] is the [`RobotModel`] (two joints, angles in degrees, no wrapping).
 
-use crate::common::Port;
 use crate::compare::model_difference;
 use crate::configuration::Configuration;
 use crate::model::{Action, RobotModel, RobotShape};
 use crate::motion::TurnMotion;
-use crate::mtran::module::{is_mtran_male, MtranConfiguration, MtranJoint, MTRAN_CONNECTOR_COUNT};
+use crate::mtran::module::{MtranConfiguration, MtranJoint, MtranModule};
 use crate::mtran::world::MtranWorld;
 use crate::ops::{OpError, Outcome};
 use std::any::Any;
@@ -14,54 +13,14 @@ use std::any::Any;
 /// Degrees in a quarter turn.
 const QUARTER_DEG: i64 = 90;
 
-impl RobotShape for MtranConfiguration {
-    fn connectors(&self) -> u8 {
-        MTRAN_CONNECTOR_COUNT
-    }
+super::robot_shape!(MtranConfiguration, MtranModule, joint_angle);
 
-    fn is_male(&self, connector: u8) -> bool {
-        is_mtran_male(connector)
-    }
-
-    fn len(&self) -> usize {
-        self.modules().len()
-    }
-
-    fn name(&self, m: usize) -> Option<&str> {
-        self.modules().get(m).map(|x| x.name.as_str())
-    }
-
-    fn id(&self, m: usize) -> Option<u32> {
-        self.modules().get(m).and_then(|x| x.id)
-    }
-
-    fn index(&self, name: &str) -> Option<usize> {
-        self.module_index(name)
-    }
-
-    fn index_by_id(&self, id: u32) -> Option<usize> {
-        self.module_index_by_id(id)
-    }
-
-    fn joint(&self, m: usize, joint: u8) -> Option<i64> {
-        let module = self.modules().get(m)?;
-        module
-            .joints_deg
-            .get(usize::from(joint))
-            .map(|d| i64::from(*d))
-    }
-
-    fn latched_to(&self, port: Port) -> Option<Port> {
-        MtranConfiguration::latched_to(self, port)
-    }
-
-    fn facing(&self, port: Port) -> Option<Port> {
-        MtranConfiguration::facing(self, port)
-    }
-
-    fn port_name(&self, port: Port) -> String {
-        MtranConfiguration::port_name(self, port)
-    }
+/// Joint `joint` (0 north, 1 south) in degrees.
+fn joint_angle(module: &MtranModule, joint: u8) -> Option<i64> {
+    module
+        .joints_deg
+        .get(usize::from(joint))
+        .map(|d| i64::from(*d))
 }
 
 /// The plugin name of the robot.
