@@ -89,15 +89,23 @@ fn finish(result: Result<Done, Error>) -> Result<ExitCode, Failure> {
             print_done(&done);
             Ok(ExitCode::SUCCESS)
         }
-        Err(Error::Diagnostics {
+        Err(e) => refused(e),
+    }
+}
+
+/// The end of a campaign that cannot run: the problems of a sequence file rendered (exit 1),
+/// or the failure of its input.
+fn refused(error: Error) -> Result<ExitCode, Failure> {
+    match error {
+        Error::Diagnostics {
             path,
             source,
             diagnostics,
-        }) => {
+        } => {
             render::diagnostics(&path.display().to_string(), &source, &diagnostics);
             Ok(ExitCode::from(1))
         }
-        Err(e) => Err(input_failure(e)),
+        e => Err(input_failure(e)),
     }
 }
 
@@ -133,15 +141,7 @@ fn emit_jobs(args: &CampaignArgs, emit: &EmitArgs, dir: PathBuf) -> Result<ExitC
     // A campaign that cannot run is refused here, not in each of N jobs.
     let runs = match dynarole_campaign::count_runs(args.file) {
         Ok(runs) => runs,
-        Err(Error::Diagnostics {
-            path,
-            source,
-            diagnostics,
-        }) => {
-            render::diagnostics(&path.display().to_string(), &source, &diagnostics);
-            return Ok(ExitCode::from(1));
-        }
-        Err(e) => return Err(input_failure(e)),
+        Err(e) => return refused(e),
     };
     let scheduler = match emit.scheduler {
         Emit::Slurm => Scheduler::Slurm,
