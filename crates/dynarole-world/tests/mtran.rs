@@ -186,6 +186,11 @@ fn mtran_rejections() -> Result<(), String> {
         rotate(&mut world, 0, 90, false),
         Err(OpError::InvalidAngle { .. })
     ));
+    // The most negative angle has no absolute value: refused, never a panic.
+    assert!(matches!(
+        rotate(&mut world, 0, i16::MIN, false),
+        Err(OpError::InvalidAngle { .. })
+    ));
     // Fold the snake into a U at T11 (legal: T12 lies beside T10), then turn T12 inwards:
     // T12's south block would swing onto T10's south block.
     let fold = [

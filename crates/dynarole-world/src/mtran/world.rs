@@ -160,7 +160,10 @@ impl MtranWorld {
             self.name(index),
             (from, to),
             actual,
-            |angle| angle.abs() <= MTRAN_JOINT_LIMIT_DEG && angle % 90 == 0,
+            // A range, not `abs()`: i16::MIN has no absolute value.
+            |angle| {
+                (-MTRAN_JOINT_LIMIT_DEG..=MTRAN_JOINT_LIMIT_DEG).contains(&angle) && angle % 90 == 0
+            },
             "M-TRAN joints take -90, 0 or 90 (range -90..90, lattice steps of 90)",
         )?;
         if from != to && (to > from) != positive {
