@@ -11,7 +11,8 @@
  * - Operations and sensors: the board's controller, through an 8-bit bus (PORTB out, PINA
  *   in, strobes on PORTD). A bus transaction runs with interrupts off (the receive
  *   interrupt also uses the bus). The controller raises INT0 when an operation ends.
- * - Non-volatile storage: the EEPROM (avr-libc's eeprom_read_block / eeprom_update_block).
+ * - Non-volatile storage: the EEPROM, through its registers (a byte is written only when it
+ *   differs, as avr-libc's eeprom_update_block does).
  * - main: initialises, runs dr_module_receive for each frame, and dr_module_step only at the
  *   step instants (every DR_AVR_STEP_MS from the first) that dr_module_next_wakeup names;
  *   in between it sleeps (idle mode) until that instant's timer, a frame or an operation's
@@ -20,7 +21,6 @@
  *
  * Built with the generated program: avr-gcc -mmcu=atmega128 -Os -I OUT -I runtime/avr
  * OUT/dr_packet.c OUT/dr_<protocol>.c OUT/dr_program.c dr_avr.c (runtime/avr/Makefile). */
-#include <avr/eeprom.h>
 #include <avr/interrupt.h>
 #include <avr/io.h>
 #include <avr/sleep.h>
@@ -34,14 +34,18 @@
 #if DR_CONF_MAX_ARGS > DR_AVR_MAX_ARGS
 #error "the board takes at most DR_AVR_MAX_ARGS operation arguments"
 #endif
+#if DR_AVR_REG_OP != DR_AVR_REG_STATEMENT + 2u || DR_AVR_REG_INDEX != DR_AVR_REG_OP + 1u || \
+    DR_AVR_REG_ADDRESS != DR_AVR_REG_INDEX + 1u || DR_AVR_REG_GO != DR_AVR_REG_ADDRESS + 1u
+#error "dr_hal_op_start writes STATEMENT through GO in one transaction"
+#endif
 
 /* Frames waiting to be sent (a third send waits for the first to leave). */
 #define TX_FRAMES 2u
 /* Received frames waiting for dr_module_receive (a third waits at the board). */
-#define RX_SLOTS 2u
+#define RX_SLOTS 2u /* the receive interrupt picks between rx[0] and rx[1] */
 /* Timer1 ticks per millisecond (16 MHz / 64), and what one overflow of its 16 bits adds:
  * 262 ms and 36 ticks. */
-#define TICKS_PER_MS (DR_AVR_F_CPU / 64u / 1000u)
+#define TICKS_PER_MS ((uint16_t)(DR_AVR_F_CPU / 64u / 1000u))
 #define OVERFLOW_MS (65536u / TICKS_PER_MS)
 #define OVERFLOW_TICKS (65536u % TICKS_PER_MS)
 /* A wake-up closer than this many ticks is waited for awake: the compare might be missed. */
@@ -54,10 +58,10 @@ struct tx_frame {
     uint8_t bytes[DR_CONF_MAX_PACKET];
 };
 
+/* A received frame: its length is its byte 1 (dr_packet.h). */
 struct rx_slot {
     volatile uint8_t full;
     uint8_t channel;
-    uint8_t len;
     uint8_t bytes[DR_CONF_MAX_PACKET];
 };
 
@@ -69,9 +73,11 @@ extern dr_module_t DynaRoleP__self;
 #else
 static dr_module_t module;
 #endif
-/* The clock at the last overflow: whole milliseconds, and ticks into the next one. */
-static volatile uint32_t clock_ms;
-static volatile uint8_t clock_ticks;
+/* The clock at the last overflow main has counted: whole milliseconds, and ticks into the
+ * next one (main only); the overflows the interrupt has seen since. */
+static uint32_t clock_ms;
+static uint8_t clock_ticks;
+static volatile uint8_t overflows;
 static uint16_t random_state;
 /* Set by INT0: an operation ended since main last looked. */
 static volatile uint8_t op_ended;
@@ -82,62 +88,61 @@ static volatile uint8_t tx_count;
 static volatile uint8_t tx_pos;
 
 static struct rx_slot rx[RX_SLOTS];
-static uint8_t rx_fill; /* bytes of the frame being received (receive interrupt only) */
-static uint8_t rx_slot; /* the slot it goes to, or RX_SLOTS when it is dropped */
+/* The receive interrupt's own: bytes of the frame being received, its length (from its
+ * second byte on) and the slot it goes to (none when it is dropped). */
+static uint8_t rx_fill;
+static uint8_t rx_len;
+static struct rx_slot *rx_cur;
 
 /* --- the controller's bus (callers keep interrupts off) --- */
 
-static void strobe(uint8_t bit)
+/* A rising edge on strobe `bit` of PORTD. Always inlined with a constant bit: one sbi and
+ * one cbi. */
+static inline __attribute__((always_inline)) void strobe(uint8_t bit)
 {
     PORTD = (uint8_t)(PORTD | (1u << bit));
     PORTD = (uint8_t)(PORTD & ~(1u << bit));
 }
 
-static void bus_address(uint8_t reg)
+static inline __attribute__((always_inline)) void bus_address(uint8_t reg)
 {
     PORTB = reg;
     strobe(DR_AVR_STROBE_ADDR);
 }
 
-static void bus_write(uint8_t reg, const uint8_t *bytes, uint8_t len)
+/* Writes one byte to the addressed register (the address then advances by one). */
+static inline __attribute__((always_inline)) void bus_put(uint8_t v)
 {
-    uint8_t i;
-    bus_address(reg);
-    for (i = 0; i < len; i++) {
-        PORTB = bytes[i];
-        strobe(DR_AVR_STROBE_WRITE);
-    }
+    PORTB = v;
+    strobe(DR_AVR_STROBE_WRITE);
 }
 
-static void bus_read(uint8_t reg, uint8_t *bytes, uint8_t len)
+/* Reads the addressed register (the address then advances by one). */
+static inline __attribute__((always_inline)) uint8_t bus_get(void)
 {
-    uint8_t i;
+    strobe(DR_AVR_STROBE_READ);
+    __asm__ __volatile__("nop"); /* the input synchroniser's latency */
+    return PINA;
+}
+
+/* Registers reg and reg + 1 as a little-endian value (a one-byte register is the low byte:
+ * reads have no side effect on the board). */
+static uint16_t read_u16(uint8_t reg)
+{
+    uint8_t lo;
+    uint8_t hi;
+    uint8_t sreg = SREG;
+    cli();
     bus_address(reg);
-    for (i = 0; i < len; i++) {
-        strobe(DR_AVR_STROBE_READ);
-        __asm__ __volatile__("nop"); /* the input synchroniser's latency */
-        bytes[i] = PINA;
-    }
+    lo = bus_get();
+    hi = bus_get();
+    SREG = sreg;
+    return (uint16_t)(lo | (uint16_t)((uint16_t)hi << 8));
 }
 
 static uint8_t read_u8(uint8_t reg)
 {
-    uint8_t v;
-    uint8_t sreg = SREG;
-    cli();
-    bus_read(reg, &v, 1);
-    SREG = sreg;
-    return v;
-}
-
-static uint16_t read_u16(uint8_t reg)
-{
-    uint8_t b[2];
-    uint8_t sreg = SREG;
-    cli();
-    bus_read(reg, b, 2);
-    SREG = sreg;
-    return (uint16_t)(b[0] | (uint16_t)((uint16_t)b[1] << 8));
+    return (uint8_t)read_u16(reg);
 }
 
 #ifdef DR_AVR_DESCRIBE
@@ -166,63 +171,66 @@ static void write_u8(uint8_t reg, uint8_t v)
 {
     uint8_t sreg = SREG;
     cli();
-    bus_write(reg, &v, 1);
+    bus_address(reg);
+    bus_put(v);
     SREG = sreg;
 }
 
 /* --- interrupts --- */
 
-/* Adds one overflow of Timer1 to a clock reading. */
-static void add_overflow(uint32_t *ms, uint8_t *ticks)
-{
-    uint16_t t = (uint16_t)(*ticks + OVERFLOW_TICKS);
-    *ms += OVERFLOW_MS;
-    if (t >= TICKS_PER_MS) {
-        t = (uint16_t)(t - TICKS_PER_MS);
-        (*ms)++;
-    }
-    *ticks = (uint8_t)t;
-}
-
+/* Counts the overflow: main adds it to the clock (read_clock), so that the 32-bit clock
+ * arithmetic is in one place and this interrupt saves one register. */
 ISR(TIMER1_OVF_vect)
 {
-    uint32_t ms = clock_ms;
-    uint8_t ticks = clock_ticks;
-    add_overflow(&ms, &ticks);
-    clock_ms = ms;
-    clock_ticks = ticks;
+    overflows++;
 }
 
 /* Only wakes the MCU: main looks at the clock. */
 EMPTY_INTERRUPT(TIMER1_COMPA_vect)
 
-ISR(INT0_vect)
+/* Sets op_ended and nothing else: naked, as neither ldi nor sts changes SREG. */
+ISR(INT0_vect, ISR_NAKED)
 {
-    op_ended = 1;
+    __asm__ __volatile__("push r24\n\t"
+                         "ldi r24, 1\n\t"
+                         "sts %0, r24\n\t"
+                         "pop r24\n\t"
+                         "reti" : : "i"(&op_ended) : "memory");
 }
 
 /* Milliseconds since power-on; in *into the ticks since the last whole one, in *count the
- * counter read. Called with interrupts off. An overflow not yet taken by its interrupt is
- * counted here. */
+ * counter read. Called with interrupts off (main only). First adds the overflows counted
+ * since the last call, and the one whose interrupt is still pending when the counter had
+ * wrapped before it was read (its flag is cleared: the interrupt would count it again). */
 static uint32_t read_clock(uint8_t *into, uint16_t *count_read)
 {
     uint16_t count = TCNT1;
-    uint32_t ms = clock_ms;
-    uint8_t ticks = clock_ticks;
+    uint16_t n = overflows;
     uint16_t whole;
     uint16_t rest;
     if ((TIFR & (1u << TOV1)) && count < 0x8000u) {
-        add_overflow(&ms, &ticks);
+        TIFR = (uint8_t)(1u << TOV1);
+        n++;
+    }
+    overflows = 0;
+    for (; n != 0u; n--) {
+        rest = (uint16_t)(clock_ticks + OVERFLOW_TICKS);
+        clock_ms += OVERFLOW_MS;
+        if (rest >= TICKS_PER_MS) {
+            rest = (uint16_t)(rest - TICKS_PER_MS);
+            clock_ms++;
+        }
+        clock_ticks = (uint8_t)rest;
     }
     whole = (uint16_t)(count / TICKS_PER_MS);
-    rest = (uint16_t)(count - whole * TICKS_PER_MS + ticks);
+    rest = (uint16_t)(count % TICKS_PER_MS + clock_ticks);
     if (rest >= TICKS_PER_MS) {
         whole++;
         rest = (uint16_t)(rest - TICKS_PER_MS);
     }
     *into = (uint8_t)rest;
     *count_read = count;
-    return ms + whole;
+    return clock_ms + whole;
 }
 
 static void tx_start(void)
@@ -256,50 +264,44 @@ ISR(USART0_TX_vect)
     }
 }
 
-static uint8_t free_rx_slot(void)
-{
-    uint8_t i;
-    for (i = 0; i < RX_SLOTS; i++) {
-        if (!rx[i].full) {
-            return i;
-        }
-    }
-    return RX_SLOTS;
-}
-
-static void rx_end(void)
+/* The frame's end: the arbiter may pass the next one. Inlined: a call would make the
+ * receive interrupt save every call-clobbered register. */
+static inline __attribute__((always_inline)) void rx_end(void)
 {
     rx_fill = 0;
-    PORTD = (uint8_t)(PORTD | (1u << DR_AVR_STROBE_RELEASE));
-    PORTD = (uint8_t)(PORTD & ~(1u << DR_AVR_STROBE_RELEASE));
+    strobe(DR_AVR_STROBE_RELEASE);
 }
 
+/* Receives one byte. The first byte of a frame picks a free slot (none: the frame is read
+ * but dropped) and reads its channel from the arbiter; the second is its length. */
 ISR(USART0_RX_vect)
 {
     uint8_t b = UDR0;
-    uint8_t len;
-    if (rx_fill == 0u) {
-        rx_slot = free_rx_slot();
-        if (rx_slot < RX_SLOTS) {
-            bus_read(DR_AVR_REG_RX_CHANNEL, &rx[rx_slot].channel, 1);
+    uint8_t n = rx_fill;
+    struct rx_slot *s = rx_cur;
+    if (n == 0u) {
+        s = !rx[0].full ? &rx[0] : !rx[1].full ? &rx[1] : 0;
+        rx_cur = s;
+        if (s) {
+            bus_address(DR_AVR_REG_RX_CHANNEL);
+            s->channel = bus_get();
         }
     }
-    if (rx_slot < RX_SLOTS) {
-        rx[rx_slot].bytes[rx_fill] = b;
+    if (s) {
+        s->bytes[n] = b;
     }
-    rx_fill++;
-    if (rx_fill < 2u) {
-        return;
+    n++;
+    rx_fill = n;
+    if (n == 2u) {
+        if (b < 2u || b > DR_CONF_MAX_PACKET) {
+            rx_end(); /* no frame of ours: dropped (README.md: framing) */
+            return;
+        }
+        rx_len = b;
     }
-    len = rx_slot < RX_SLOTS ? rx[rx_slot].bytes[1] : DR_CONF_MAX_PACKET;
-    if (len < 2u || len > DR_CONF_MAX_PACKET) {
-        rx_end(); /* no frame of ours: dropped (README.md: framing) */
-        return;
-    }
-    if (rx_fill >= len) {
-        if (rx_slot < RX_SLOTS) {
-            rx[rx_slot].len = len;
-            rx[rx_slot].full = 1;
+    if (n >= 2u && n >= rx_len) {
+        if (s) {
+            s->full = 1;
         }
         rx_end();
     }
@@ -370,28 +372,29 @@ void dr_hal_send(struct dr_module *m, uint8_t channel, const uint8_t *bytes, uin
     }
 }
 
+/* One transaction for the arguments, then one from STATEMENT through GO (the registers
+ * follow each other: statement, op, index, address, GO). The arguments' bytes go as they
+ * are in memory: the AVR is little-endian, as the board's registers. */
 void dr_hal_op_start(struct dr_module *m, uint16_t statement, uint8_t op, uint8_t index,
                      const int16_t *args)
 {
-    uint8_t head[5];
-    uint8_t a[2 * DR_CONF_MAX_ARGS];
+    const uint8_t *a = (const uint8_t *)args;
     uint8_t i;
     uint8_t sreg;
     describe();
-    head[0] = (uint8_t)(statement & 0xFFu);
-    head[1] = (uint8_t)(statement >> 8);
-    head[2] = op;
-    head[3] = index;
-    head[4] = m->address;
-    for (i = 0; i < DR_CONF_MAX_ARGS; i++) {
-        a[2 * i] = (uint8_t)((uint16_t)args[i] & 0xFFu);
-        a[2 * i + 1] = (uint8_t)((uint16_t)args[i] >> 8);
-    }
     sreg = SREG;
     cli();
-    bus_write(DR_AVR_REG_ARGS, a, (uint8_t)sizeof a);
-    bus_write(DR_AVR_REG_STATEMENT, head, (uint8_t)sizeof head);
-    bus_write(DR_AVR_REG_GO, head, 1);
+    bus_address(DR_AVR_REG_ARGS);
+    for (i = 0; i < 2u * DR_CONF_MAX_ARGS; i++) {
+        bus_put(a[i]);
+    }
+    bus_address(DR_AVR_REG_STATEMENT);
+    bus_put((uint8_t)statement);
+    bus_put((uint8_t)(statement >> 8));
+    bus_put(op);
+    bus_put(index);
+    bus_put(m->address);
+    bus_put((uint8_t)statement); /* GO: any value */
     SREG = sreg;
 }
 
@@ -446,30 +449,51 @@ void dr_hal_leds(struct dr_module *m, uint8_t value)
     write_u8(DR_AVR_REG_LEDS, value);
 }
 
-/* Whether [addr, addr + len) lies in the EEPROM. */
+/* Whether [addr, addr + len) lies in the EEPROM (E2END + 1 - len cannot wrap: len < 256). */
 static uint8_t in_eeprom(uint16_t addr, uint8_t len)
 {
-    return (uint8_t)((uint32_t)addr + len <= (uint32_t)E2END + 1u);
+    return (uint8_t)(addr <= (uint16_t)(E2END + 1u - len));
+}
+
+/* Byte `addr` of the EEPROM, once its last write has finished. */
+static uint8_t eeprom_get(uint16_t addr)
+{
+    while (EECR & (1u << EEWE)) {
+    }
+    EEAR = addr;
+    EECR = (uint8_t)(EECR | (1u << EERE));
+    return EEDR;
 }
 
 void dr_hal_nv_read(struct dr_module *m, uint16_t addr, uint8_t *buf, uint8_t len)
 {
+    uint8_t ok = in_eeprom(addr, len);
     uint8_t i;
     (void)m;
-    if (!in_eeprom(addr, len)) {
-        for (i = 0; i < len; i++) {
-            buf[i] = 0xFFu;
-        }
-        return;
+    for (i = 0; i < len; i++) {
+        buf[i] = ok ? eeprom_get((uint16_t)(addr + i)) : 0xFFu;
     }
-    eeprom_read_block(buf, (const void *)(uintptr_t)addr, len);
 }
 
+/* Writes only the bytes that differ (an EEPROM cell takes about 100,000 writes). */
 void dr_hal_nv_write(struct dr_module *m, uint16_t addr, const uint8_t *buf, uint8_t len)
 {
+    uint8_t i;
+    uint8_t sreg;
     (void)m;
-    if (in_eeprom(addr, len)) {
-        eeprom_update_block(buf, (void *)(uintptr_t)addr, len);
+    if (!in_eeprom(addr, len)) {
+        return;
+    }
+    for (i = 0; i < len; i++) {
+        if (eeprom_get((uint16_t)(addr + i)) != buf[i]) {
+            EEDR = buf[i];
+            /* EEWE within four cycles of EEMWE: two sbi with interrupts off. */
+            sreg = SREG;
+            cli();
+            EECR = (uint8_t)(EECR | (1u << EEMWE));
+            EECR = (uint8_t)(EECR | (1u << EEWE));
+            SREG = sreg;
+        }
     }
 }
 
@@ -496,8 +520,9 @@ static void board_init(void)
     UBRR0L = (uint8_t)(UBRR_VALUE & 0xFFu);
     UCSR0C = (uint8_t)((1u << UCSZ01) | (1u << UCSZ00));
     UCSR0B = (uint8_t)((1u << RXEN0) | (1u << TXEN0) | (1u << RXCIE0));
-    /* Idle sleep mode (SM2..SM0 = 0): the timer and the USART keep running. */
-    MCUCR = (uint8_t)(MCUCR & ~((1u << SM0) | (1u << SM1) | (1u << SM2)));
+    /* Idle sleep mode (SM2..SM0 = 0: the timer and the USART keep running), sleep enabled
+     * once for all (sleep_until_work is the only sleep instruction). */
+    MCUCR = (uint8_t)(1u << SE);
 }
 
 /* Hands every received frame to the runtime (PE3 high meanwhile). */
@@ -508,9 +533,9 @@ static void receive_all(void)
         if (rx[i].full) {
             PORTE = (uint8_t)(PORTE | (1u << DR_AVR_PIN_RECEIVE));
 #ifdef DR_AVR_NESC
-            dr_platform_receive(rx[i].channel, rx[i].bytes, rx[i].len);
+            dr_platform_receive(rx[i].channel, rx[i].bytes, rx[i].bytes[1]);
 #else
-            dr_module_receive(&module, rx[i].channel, rx[i].bytes, rx[i].len);
+            dr_module_receive(&module, rx[i].channel, rx[i].bytes, rx[i].bytes[1]);
 #endif
             PORTE = (uint8_t)(PORTE & ~(1u << DR_AVR_PIN_RECEIVE));
             rx[i].full = 0;
@@ -572,7 +597,7 @@ static uint8_t arm_wake(uint32_t at)
     uint16_t count;
     uint32_t now = read_clock(&into, &count);
     uint32_t ahead;
-    uint32_t ticks;
+    uint16_t ticks;
     TIMSK = (uint8_t)(TIMSK & ~(1u << OCIE1A));
     if (!has_due) {
         return 1;
@@ -584,11 +609,11 @@ static uint8_t arm_wake(uint32_t at)
     if (ahead > OVERFLOW_MS) {
         return 1;
     }
-    ticks = ahead * TICKS_PER_MS - into;
+    ticks = (uint16_t)((uint16_t)ahead * TICKS_PER_MS - into); /* at most 65,500 */
     if (ticks < MIN_SLEEP_TICKS) {
         return 0;
     }
-    OCR1A = (uint16_t)(count + (uint16_t)ticks);
+    OCR1A = (uint16_t)(count + ticks);
     TIFR = (uint8_t)(1u << OCF1A);
     TIMSK = (uint8_t)(TIMSK | (1u << OCIE1A));
     return 1;
@@ -600,10 +625,8 @@ static void sleep_until_work(void)
 {
     cli();
     if (!any_received() && !(op_wait && op_ended) && arm_wake(due)) {
-        sleep_enable();
         sei();
         sleep_cpu();
-        sleep_disable();
     }
     sei();
 }
@@ -658,24 +681,39 @@ int main(void)
 
 #else
 
-static uint32_t first_step; /* the instants are first_step + k * DR_AVR_STEP_MS */
-static uint32_t next_free;  /* the first instant not stepped yet */
+#if 255 % DR_AVR_STEP_MS != 0
+#error "steps_past: DR_AVR_STEP_MS must divide 255"
+#endif
 
-/* The first instant at or after `t`. */
-static uint32_t instant_at_or_after(uint32_t t)
+/* The first instant not stepped yet: the instants are every DR_AVR_STEP_MS from the first
+ * step, so this one and those after it. */
+static uint32_t next_free;
+
+/* How far `d` ms lies past an instant when `d` ms after one: d % DR_AVR_STEP_MS, from the
+ * sum of d's bytes (256 leaves 1 in the division by any divisor of 255), in 16 bits. */
+static uint8_t steps_past(uint32_t d)
 {
-    uint32_t since = t - first_step + DR_AVR_STEP_MS - 1u;
-    return first_step + since - since % DR_AVR_STEP_MS;
+    uint16_t sum = (uint16_t)((uint8_t)d + (uint8_t)(d >> 8) + (uint8_t)(d >> 16) +
+                              (uint8_t)(d >> 24));
+    return (uint8_t)(sum % DR_AVR_STEP_MS);
 }
 
 /* The first instant at or after `t` that has not been stepped. */
 static uint32_t instant_from(uint32_t t)
 {
-    return before(t, next_free) ? next_free : instant_at_or_after(t);
+    uint32_t d = t - next_free;
+    uint8_t past;
+    if ((int32_t)d <= 0) {
+        return next_free;
+    }
+    past = steps_past(d);
+    return past ? t + (DR_AVR_STEP_MS - past) : t;
 }
 
-static void want_step_at(uint32_t at)
+/* A step is wanted at the first free instant from `t` (or earlier, if one is). */
+static void want_step_from(uint32_t t)
 {
+    uint32_t at = instant_from(t);
     if (!has_due || before(at, due)) {
         due = at;
         has_due = 1;
@@ -690,12 +728,12 @@ static void plan(void)
     has_due = 0;
     op_wait = 0;
     if (answer & DR_WAKE_AT) {
-        want_step_at(instant_from(at));
+        want_step_from(at);
     }
     if (answer & DR_WAKE_OP) {
         op_ended = 0; /* cleared first: an end after the read below still sets it */
         if (dr_hal_op_status(&module) != DR_OP_RUNNING) {
-            want_step_at(instant_from(dr_hal_now_ms(&module)));
+            want_step_from(dr_hal_now_ms(&module));
         } else {
             op_wait = 1;
         }
@@ -707,9 +745,8 @@ int main(void)
     start();
     dr_program_init(&module, 0);
     started();
-    first_step = dr_hal_now_ms(&module);
-    next_free = first_step;
-    due = first_step;
+    next_free = dr_hal_now_ms(&module);
+    due = next_free;
     has_due = 1;
     for (;;) {
         if (any_received()) {
@@ -718,11 +755,11 @@ int main(void)
         }
         if (op_wait && op_ended) {
             op_wait = 0;
-            want_step_at(instant_from(dr_hal_now_ms(&module)));
+            want_step_from(dr_hal_now_ms(&module));
         }
         if (has_due && !before(dr_hal_now_ms(&module), due)) {
             /* Instants that passed while the MCU was busy are not stepped (fell behind). */
-            next_free = instant_at_or_after(dr_hal_now_ms(&module) + 1u);
+            next_free = instant_from(dr_hal_now_ms(&module) + 1u);
             step(0);
             plan();
         }
