@@ -94,6 +94,48 @@ static uint8_t rx_fill;
 static uint8_t rx_len;
 static struct rx_slot *rx_cur;
 
+/* --- start-up (the image is linked with -nostartfiles) ---
+ * avr-libc's start-up has all 35 vectors of the ATmega128; the firmware enables only
+ * interrupts up to USART0_TX (vector 20), so its table stops there: a vector that is never
+ * enabled needs no entry. Then, as avr-libc's: r1 = 0 (the compiler's zero register),
+ * SREG cleared, the stack at the top of RAM; libgcc's __do_copy_data and __do_clear_bss
+ * (.init4, linked because the program has .data and .bss) initialise the RAM; main never
+ * returns. Unused vectors restart the firmware, as avr-libc's __bad_interrupt does. */
+#define DR_AVR_STR(x) #x
+#define DR_AVR_XSTR(x) DR_AVR_STR(x)
+__asm__(".pushsection .vectors,\"ax\",@progbits\n"
+        ".global __vectors\n"
+        "__vectors:\n"
+        "jmp __init\n"
+        "jmp __vector_1\n"   /* INT0: an operation ended */
+        ".rept 10\n"
+        "jmp __vectors\n"    /* INT1..INT7, TIMER2_COMP, TIMER2_OVF, TIMER1_CAPT */
+        ".endr\n"
+        "jmp __vector_12\n"  /* TIMER1_COMPA: the next step */
+        "jmp __vectors\n"    /* TIMER1_COMPB */
+        "jmp __vector_14\n"  /* TIMER1_OVF: the clock */
+        ".rept 3\n"
+        "jmp __vectors\n"    /* TIMER0_COMP, TIMER0_OVF, SPI_STC */
+        ".endr\n"
+        "jmp __vector_18\n"  /* USART0_RX */
+        "jmp __vector_19\n"  /* USART0_UDRE */
+        "jmp __vector_20\n"  /* USART0_TX */
+        ".section .init0,\"ax\",@progbits\n"
+        ".global __init\n"
+        "__init:\n"
+        "clr r1\n"
+        "out __SREG__, r1\n"
+        "ldi r28, lo8(" DR_AVR_XSTR(RAMEND) ")\n"
+        "ldi r29, hi8(" DR_AVR_XSTR(RAMEND) ")\n"
+        "out __SP_H__, r29\n"
+        "out __SP_L__, r28\n"
+        ".section .init9,\"ax\",@progbits\n"
+        "jmp main\n"
+        ".popsection\n");
+/* Reached from .init9 above: kept and named main under -flto; it never returns, so it saves
+ * no registers (OS_main). */
+int main(void) __attribute__((OS_main, used, externally_visible));
+
 /* --- the controller's bus (callers keep interrupts off) --- */
 
 /* A rising edge on strobe `bit` of PORTD. Always inlined with a constant bit: one sbi and
