@@ -5,8 +5,9 @@
  *   (every 262.144 ms); dr_hal_now_ms counts whole milliseconds from the overflows and the
  *   counter. Output compare A wakes the MCU at the next step the module asked for.
  * - Infrared: USART0 at DR_AVR_BAUD; PORTC selects the transmitters (all for a broadcast, one
- *   for dr_hal_send). Frames go out from a small queue, interrupt driven; the transmitter
- *   enables change only once the previous frame has left the shift register. Received
+ *   for dr_hal_send). Frames go out from a small queue, a byte at each transmit-complete
+ *   interrupt, so that the transmitter enables change only once the previous frame has
+ *   left the shift register. Received
  *   frames are delimited by their length byte (dr_packet.h: byte 1) and kept in two slots.
  * - Operations and sensors: the board's controller, through an 8-bit bus (PORTB out, PINA
  *   in, strobes on PORTD). A bus transaction runs with interrupts off (the receive
@@ -85,7 +86,7 @@ static volatile uint8_t op_ended;
 static struct tx_frame tx[TX_FRAMES];
 static volatile uint8_t tx_head;
 static volatile uint8_t tx_count;
-static volatile uint8_t tx_pos;
+static uint8_t tx_pos; /* the next byte of the frame at the head */
 
 static struct rx_slot rx[RX_SLOTS];
 /* The receive interrupt's own: bytes of the frame being received, its length (from its
@@ -118,7 +119,7 @@ __asm__(".pushsection .vectors,\"ax\",@progbits\n"
         "jmp __vectors\n"    /* TIMER0_COMP, TIMER0_OVF, SPI_STC */
         ".endr\n"
         "jmp __vector_18\n"  /* USART0_RX */
-        "jmp __vector_19\n"  /* USART0_UDRE */
+        "jmp __vectors\n"    /* USART0_UDRE */
         "jmp __vector_20\n"  /* USART0_TX */
         ".section .init0,\"ax\",@progbits\n"
         ".global __init\n"
@@ -275,33 +276,34 @@ static uint32_t read_clock(uint8_t *into, uint16_t *count_read)
     return clock_ms + whole;
 }
 
-static void tx_start(void)
-{
-    PORTC = tx[tx_head].mask;
-    tx_pos = 0;
-    UCSR0B = (uint8_t)(UCSR0B | (1u << UDRIE0));
-}
-
-ISR(USART0_UDRE_vect)
+/* Enables the transmitters of the frame at the head of the queue and puts its first byte
+ * on the line. Interrupts are off. */
+static inline __attribute__((always_inline)) void tx_start(void)
 {
     const struct tx_frame *f = &tx[tx_head];
-    UDR0 = f->bytes[tx_pos];
-    tx_pos++;
-    if (tx_pos >= f->len) {
-        /* The last byte is loaded: wait until it has left before changing the enables. */
-        UCSR0B = (uint8_t)(UCSR0B & ~(1u << UDRIE0));
-        UCSR0A = (uint8_t)(UCSR0A | (1u << TXC0));
-        UCSR0B = (uint8_t)(UCSR0B | (1u << TXCIE0));
-    }
+    PORTC = f->mask;
+    UDR0 = f->bytes[0];
+    tx_pos = 1;
 }
 
+/* A byte has left and the USART holds no other: the frame's next byte, or, after its last,
+ * the transmitters off and the next frame. Only this interrupt feeds the USART, one byte
+ * at a time, so the enables change only once a frame's last bit has left. */
 ISR(USART0_TX_vect)
 {
-    UCSR0B = (uint8_t)(UCSR0B & ~(1u << TXCIE0));
+    uint8_t head = tx_head;
+    uint8_t p = tx_pos;
+    uint8_t n;
+    if (p < tx[head].len) {
+        UDR0 = tx[head].bytes[p];
+        tx_pos = (uint8_t)(p + 1u);
+        return;
+    }
     PORTC = 0;
-    tx_head = (uint8_t)((tx_head + 1u) % TX_FRAMES);
-    tx_count--;
-    if (tx_count != 0u) {
+    tx_head = (uint8_t)((head + 1u) % TX_FRAMES);
+    n = (uint8_t)(tx_count - 1u);
+    tx_count = n;
+    if (n != 0u) {
         tx_start();
     }
 }
@@ -561,7 +563,7 @@ static void board_init(void)
     UBRR0H = (uint8_t)(UBRR_VALUE >> 8);
     UBRR0L = (uint8_t)(UBRR_VALUE & 0xFFu);
     UCSR0C = (uint8_t)((1u << UCSZ01) | (1u << UCSZ00));
-    UCSR0B = (uint8_t)((1u << RXEN0) | (1u << TXEN0) | (1u << RXCIE0));
+    UCSR0B = (uint8_t)((1u << RXEN0) | (1u << TXEN0) | (1u << RXCIE0) | (1u << TXCIE0));
     /* Idle sleep mode (SM2..SM0 = 0: the timer and the USART keep running), sleep enabled
      * once for all (sleep_until_work is the only sleep instruction). */
     MCUCR = (uint8_t)(1u << SE);
