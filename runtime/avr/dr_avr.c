@@ -43,7 +43,7 @@
 /* Frames waiting to be sent (a third send waits for the first to leave). */
 #define TX_FRAMES 2u
 /* Received frames waiting for dr_module_receive (a third waits at the board). */
-#define RX_SLOTS 2u /* the receive interrupt picks between rx[0] and rx[1] */
+#define RX_SLOTS 2u /* rx[0] and rx[1], named in the receive interrupt and any_received */
 /* Timer1 ticks per millisecond (16 MHz / 64), and what one overflow of its 16 bits adds:
  * 262 ms and 36 ticks. */
 #define TICKS_PER_MS ((uint16_t)(DR_AVR_F_CPU / 64u / 1000u))
@@ -543,9 +543,10 @@ void dr_hal_nv_write(struct dr_module *m, uint16_t addr, const uint8_t *buf, uin
 
 /* --- main --- */
 
+/* From the reset values (the start-up runs only after a reset): port A is an input, Timer1
+ * in normal mode (counts 0..0xFFFF), the USART framed 8N1, the interrupts off. */
 static void board_init(void)
 {
-    DDRA = 0x00;
     DDRB = 0xFF;
     DDRC = 0xFF;
     PORTC = 0;
@@ -553,16 +554,16 @@ static void board_init(void)
                      (1u << DR_AVR_STROBE_READ) | (1u << DR_AVR_STROBE_RELEASE));
     DDRE = (uint8_t)((1u << DR_AVR_PIN_STEP) | (1u << DR_AVR_PIN_RECEIVE) |
                      (1u << DR_AVR_PIN_FINISHED));
-    TCCR1A = 0; /* normal mode: counts 0..0xFFFF */
     TCCR1B = (uint8_t)((1u << CS11) | (1u << CS10));
-    TIMSK = (uint8_t)(TIMSK | (1u << TOIE1));
+    TIMSK = (uint8_t)(1u << TOIE1);
     /* INT0 on its rising edge: an operation ended. */
     EICRA = (uint8_t)((1u << ISC01) | (1u << ISC00));
     EIFR = (uint8_t)(1u << INTF0);
-    EIMSK = (uint8_t)(EIMSK | (1u << INT0));
+    EIMSK = (uint8_t)(1u << INT0);
+#if UBRR_VALUE > 0xFFu
     UBRR0H = (uint8_t)(UBRR_VALUE >> 8);
+#endif
     UBRR0L = (uint8_t)(UBRR_VALUE & 0xFFu);
-    UCSR0C = (uint8_t)((1u << UCSZ01) | (1u << UCSZ00));
     UCSR0B = (uint8_t)((1u << RXEN0) | (1u << TXEN0) | (1u << RXCIE0) | (1u << TXCIE0));
     /* Idle sleep mode (SM2..SM0 = 0: the timer and the USART keep running), sleep enabled
      * once for all (sleep_until_work is the only sleep instruction). */
@@ -572,17 +573,17 @@ static void board_init(void)
 /* Hands every received frame to the runtime (PE3 high meanwhile). */
 static void receive_all(void)
 {
-    uint8_t i;
-    for (i = 0; i < RX_SLOTS; i++) {
-        if (rx[i].full) {
+    struct rx_slot *s;
+    for (s = rx; s != rx + RX_SLOTS; s++) {
+        if (s->full) {
             PORTE = (uint8_t)(PORTE | (1u << DR_AVR_PIN_RECEIVE));
 #ifdef DR_AVR_NESC
-            dr_platform_receive(rx[i].channel, rx[i].bytes, rx[i].bytes[1]);
+            dr_platform_receive(s->channel, s->bytes, s->bytes[1]);
 #else
-            dr_module_receive(&module, rx[i].channel, rx[i].bytes, rx[i].bytes[1]);
+            dr_module_receive(&module, s->channel, s->bytes, s->bytes[1]);
 #endif
             PORTE = (uint8_t)(PORTE & ~(1u << DR_AVR_PIN_RECEIVE));
-            rx[i].full = 0;
+            s->full = 0;
             describe();
         }
     }
@@ -590,13 +591,7 @@ static void receive_all(void)
 
 static uint8_t any_received(void)
 {
-    uint8_t i;
-    for (i = 0; i < RX_SLOTS; i++) {
-        if (rx[i].full) {
-            return 1;
-        }
-    }
-    return 0;
+    return (uint8_t)(rx[0].full | rx[1].full);
 }
 
 /* One step (PE2 high meanwhile); PE4 shows whether the module knows the sequence ended.
@@ -793,17 +788,19 @@ int main(void)
     due = next_free;
     has_due = 1;
     for (;;) {
+        uint32_t now;
         if (any_received()) {
             receive_all();
             plan();
         }
+        now = dr_hal_now_ms(&module);
         if (op_wait && op_ended) {
             op_wait = 0;
-            want_step_from(dr_hal_now_ms(&module));
+            want_step_from(now);
         }
-        if (has_due && !before(dr_hal_now_ms(&module), due)) {
+        if (has_due && !before(now, due)) {
             /* Instants that passed while the MCU was busy are not stepped (fell behind). */
-            next_free = instant_from(dr_hal_now_ms(&module) + 1u);
+            next_free = instant_from(now + 1u);
             step(0);
             plan();
         }
