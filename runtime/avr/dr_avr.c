@@ -1,14 +1,15 @@
 /* dr_avr.c - the platform of dr_hal.h on an ATRON hemisphere board (ATmega128, 16 MHz), and
  * the firmware's main loop. README.md describes the board (dr_avr_board.h: pins, registers).
  *
- * - Time: Timer1 runs freely at 250 kHz (4 us a tick) and interrupts only when it overflows
- *   (every 262.144 ms); dr_hal_now_ms counts whole milliseconds from the overflows and the
- *   counter. Output compare A wakes the MCU at the next step the module asked for.
+ * - Time: Timer1 counts at 250 kHz (4 us a tick) in periods of exactly 256 ms (CTC mode,
+ *   compare A) and interrupts only at a period's end; dr_hal_now_ms is 256 ms a period plus
+ *   the whole milliseconds of the counter. Compare B wakes the MCU at the next step the
+ *   module asked for.
  * - Infrared: USART0 at DR_AVR_BAUD; PORTC selects the transmitters (all for a broadcast, one
  *   for dr_hal_send). Frames go out from a small queue, a byte at each transmit-complete
  *   interrupt, so that the transmitter enables change only once the previous frame has
- *   left the shift register. Received
- *   frames are delimited by their length byte (dr_packet.h: byte 1) and kept in two slots.
+ *   left the shift register. Received frames are delimited by their length byte
+ *   (dr_packet.h: byte 1) and kept in two slots.
  * - Operations and sensors: the board's controller, through an 8-bit bus (PORTB out, PINA
  *   in, strobes on PORTD). A bus transaction runs with interrupts off (the receive
  *   interrupt also uses the bus). The controller raises INT0 when an operation ends.
@@ -44,11 +45,12 @@
 #define TX_FRAMES 2u
 /* Received frames waiting for dr_module_receive (a third waits at the board). */
 #define RX_SLOTS 2u /* rx[0] and rx[1], named in the receive interrupt and any_received */
-/* Timer1 ticks per millisecond (16 MHz / 64), and what one overflow of its 16 bits adds:
- * 262 ms and 36 ticks. */
+/* Timer1 ticks per millisecond (16 MHz / 64), and its period: it counts 0..PERIOD_TICKS - 1
+ * (64,000 ticks, 256 ms), so that the clock is a whole number of periods plus the counter's
+ * milliseconds, without carries between the two. */
 #define TICKS_PER_MS ((uint16_t)(DR_AVR_F_CPU / 64u / 1000u))
-#define OVERFLOW_MS (65536u / TICKS_PER_MS)
-#define OVERFLOW_TICKS (65536u % TICKS_PER_MS)
+#define PERIOD_MS 256u
+#define PERIOD_TICKS ((uint16_t)(PERIOD_MS * TICKS_PER_MS))
 /* A wake-up closer than this many ticks is waited for awake: the compare might be missed. */
 #define MIN_SLEEP_TICKS 8u
 #define UBRR_VALUE (DR_AVR_F_CPU / 16u / DR_AVR_BAUD - 1u)
@@ -74,11 +76,11 @@ extern dr_module_t DynaRoleP__self;
 #else
 static dr_module_t module;
 #endif
-/* The clock at the last overflow main has counted: whole milliseconds, and ticks into the
- * next one (main only); the overflows the interrupt has seen since. */
+/* The clock at the start of the last period main has counted (main only), and the periods
+ * the interrupt has seen since (main reads the clock at least once a period: the period's
+ * interrupt wakes it). */
 static uint32_t clock_ms;
-static uint8_t clock_ticks;
-static volatile uint8_t overflows;
+static volatile uint8_t periods;
 static uint16_t random_state;
 /* Set by INT0: an operation ended since main last looked. */
 static volatile uint8_t op_ended;
@@ -112,9 +114,9 @@ __asm__(".pushsection .vectors,\"ax\",@progbits\n"
         ".rept 10\n"
         "jmp __vectors\n"    /* INT1..INT7, TIMER2_COMP, TIMER2_OVF, TIMER1_CAPT */
         ".endr\n"
-        "jmp __vector_12\n"  /* TIMER1_COMPA: the next step */
-        "jmp __vectors\n"    /* TIMER1_COMPB */
-        "jmp __vector_14\n"  /* TIMER1_OVF: the clock */
+        "jmp __vector_12\n"  /* TIMER1_COMPA: the clock's period */
+        "jmp __vector_13\n"  /* TIMER1_COMPB: the next step */
+        "jmp __vectors\n"    /* TIMER1_OVF */
         ".rept 3\n"
         "jmp __vectors\n"    /* TIMER0_COMP, TIMER0_OVF, SPI_STC */
         ".endr\n"
@@ -221,15 +223,15 @@ static void write_u8(uint8_t reg, uint8_t v)
 
 /* --- interrupts --- */
 
-/* Counts the overflow: main adds it to the clock (read_clock), so that the 32-bit clock
+/* Counts the period: main adds it to the clock (read_clock), so that the 32-bit clock
  * arithmetic is in one place and this interrupt saves one register. */
-ISR(TIMER1_OVF_vect)
+ISR(TIMER1_COMPA_vect)
 {
-    overflows++;
+    periods++;
 }
 
 /* Only wakes the MCU: main looks at the clock. */
-EMPTY_INTERRUPT(TIMER1_COMPA_vect)
+EMPTY_INTERRUPT(TIMER1_COMPB_vect)
 
 /* Sets op_ended and nothing else: naked, as neither ldi nor sts changes SREG. */
 ISR(INT0_vect, ISR_NAKED)
@@ -241,39 +243,22 @@ ISR(INT0_vect, ISR_NAKED)
                          "reti" : : "i"(&op_ended) : "memory");
 }
 
-/* Milliseconds since power-on; in *into the ticks since the last whole one, in *count the
- * counter read. Called with interrupts off (main only). First adds the overflows counted
- * since the last call, and the one whose interrupt is still pending when the counter had
- * wrapped before it was read (its flag is cleared: the interrupt would count it again). */
-static uint32_t read_clock(uint8_t *into, uint16_t *count_read)
+/* Milliseconds since power-on, and in *count_read the counter read. Called with interrupts
+ * off (main only). First adds the periods counted since the last call, and the one whose
+ * interrupt is still pending when the counter had restarted before it was read (its flag
+ * is cleared: the interrupt would count it again). */
+static uint32_t read_clock(uint16_t *count_read)
 {
     uint16_t count = TCNT1;
-    uint16_t n = overflows;
-    uint16_t whole;
-    uint16_t rest;
-    if ((TIFR & (1u << TOV1)) && count < 0x8000u) {
-        TIFR = (uint8_t)(1u << TOV1);
+    uint8_t n = periods;
+    if ((TIFR & (1u << OCF1A)) && count < PERIOD_TICKS / 2u) {
+        TIFR = (uint8_t)(1u << OCF1A);
         n++;
     }
-    overflows = 0;
-    for (; n != 0u; n--) {
-        rest = (uint16_t)(clock_ticks + OVERFLOW_TICKS);
-        clock_ms += OVERFLOW_MS;
-        if (rest >= TICKS_PER_MS) {
-            rest = (uint16_t)(rest - TICKS_PER_MS);
-            clock_ms++;
-        }
-        clock_ticks = (uint8_t)rest;
-    }
-    whole = (uint16_t)(count / TICKS_PER_MS);
-    rest = (uint16_t)(count % TICKS_PER_MS + clock_ticks);
-    if (rest >= TICKS_PER_MS) {
-        whole++;
-        rest = (uint16_t)(rest - TICKS_PER_MS);
-    }
-    *into = (uint8_t)rest;
+    periods = 0;
+    clock_ms += (uint32_t)n * PERIOD_MS;
     *count_read = count;
-    return clock_ms + whole;
+    return clock_ms + (uint8_t)(count / TICKS_PER_MS);
 }
 
 /* Enables the transmitters of the frame at the head of the queue and puts its first byte
@@ -356,12 +341,11 @@ ISR(USART0_RX_vect)
 uint32_t dr_hal_now_ms(struct dr_module *m)
 {
     uint32_t v;
-    uint8_t into;
     uint16_t count;
     uint8_t sreg = SREG;
     (void)m;
     cli();
-    v = read_clock(&into, &count);
+    v = read_clock(&count);
     SREG = sreg;
     return v;
 }
@@ -554,8 +538,11 @@ static void board_init(void)
                      (1u << DR_AVR_STROBE_READ) | (1u << DR_AVR_STROBE_RELEASE));
     DDRE = (uint8_t)((1u << DR_AVR_PIN_STEP) | (1u << DR_AVR_PIN_RECEIVE) |
                      (1u << DR_AVR_PIN_FINISHED));
-    TCCR1B = (uint8_t)((1u << CS11) | (1u << CS10));
-    TIMSK = (uint8_t)(1u << TOIE1);
+    /* Timer1 in CTC mode 4 (TOP = OCR1A): compare A ends each period, compare B wakes the
+     * MCU for its next step. */
+    OCR1A = (uint16_t)(PERIOD_TICKS - 1u);
+    TCCR1B = (uint8_t)((1u << WGM12) | (1u << CS11) | (1u << CS10));
+    TIMSK = (uint8_t)(1u << OCIE1A);
     /* INT0 on its rising edge: an operation ended. */
     EICRA = (uint8_t)((1u << ISC01) | (1u << ISC00));
     EIFR = (uint8_t)(1u << INTF0);
@@ -628,34 +615,32 @@ static uint8_t before(uint32_t a, uint32_t b)
     return (uint8_t)((int32_t)(a - b) < 0);
 }
 
-/* Arms compare A to wake the MCU when the clock reaches `at` (ms), if it is within one
- * overflow; the overflow interrupt wakes it anyway. False when `at` is too close to sleep.
+/* Arms compare B to wake the MCU when the clock reaches `at` (ms), if that is in the current
+ * period; the period's end wakes it anyway. False when `at` is too close to sleep.
  * Interrupts are off. */
 static uint8_t arm_wake(uint32_t at)
 {
-    uint8_t into;
     uint16_t count;
-    uint32_t now = read_clock(&into, &count);
-    uint32_t ahead;
-    uint16_t ticks;
-    TIMSK = (uint8_t)(TIMSK & ~(1u << OCIE1A));
+    uint32_t now = read_clock(&count);
+    uint32_t offset = at - clock_ms;
+    uint16_t target;
+    TIMSK = (uint8_t)(TIMSK & ~(1u << OCIE1B));
     if (!has_due) {
         return 1;
     }
     if (!before(now, at)) {
         return 0;
     }
-    ahead = at - now;
-    if (ahead > OVERFLOW_MS) {
+    if (offset >= PERIOD_MS) {
         return 1;
     }
-    ticks = (uint16_t)((uint16_t)ahead * TICKS_PER_MS - into); /* at most 65,500 */
-    if (ticks < MIN_SLEEP_TICKS) {
+    target = (uint16_t)((uint16_t)offset * TICKS_PER_MS); /* after count: now < at */
+    if ((uint16_t)(target - count) < MIN_SLEEP_TICKS) {
         return 0;
     }
-    OCR1A = (uint16_t)(count + ticks);
-    TIFR = (uint8_t)(1u << OCF1A);
-    TIMSK = (uint8_t)(TIMSK | (1u << OCIE1A));
+    OCR1B = target;
+    TIFR = (uint8_t)(1u << OCF1B);
+    TIMSK = (uint8_t)(TIMSK | (1u << OCIE1B));
     return 1;
 }
 
