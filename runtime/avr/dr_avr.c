@@ -41,7 +41,8 @@
 #error "dr_hal_op_start writes STATEMENT through GO in one transaction"
 #endif
 
-/* Frames waiting to be sent (a third send waits for the first to leave). */
+/* Frames waiting to be sent (a third send waits for the first to leave; tx_after alternates
+ * between the two). */
 #define TX_FRAMES 2u
 /* Received frames waiting for dr_module_receive (a third waits at the board). */
 #define RX_SLOTS 2u /* rx[0] and rx[1], named in the receive interrupt and any_received */
@@ -86,15 +87,14 @@ static uint16_t random_state;
 static volatile uint8_t op_ended;
 
 static struct tx_frame tx[TX_FRAMES];
-static volatile uint8_t tx_head;
+static struct tx_frame *volatile tx_head = &tx[0];
 static volatile uint8_t tx_count;
 static uint8_t tx_pos; /* the next byte of the frame at the head */
 
-static struct rx_slot rx[RX_SLOTS];
-/* The receive interrupt's own: bytes of the frame being received, its length (from its
- * second byte on) and the slot it goes to (none when it is dropped). */
+/* The slots, and a spare one where a frame goes when both are full (dropped). */
+static struct rx_slot rx[RX_SLOTS + 1u];
+/* The receive interrupt's own: bytes of the frame being received and its slot. */
 static uint8_t rx_fill;
-static uint8_t rx_len;
 static struct rx_slot *rx_cur;
 
 /* --- start-up (the image is linked with -nostartfiles) ---
@@ -261,11 +261,16 @@ static uint32_t read_clock(uint16_t *count_read)
     return clock_ms + (uint8_t)(count / TICKS_PER_MS);
 }
 
-/* Enables the transmitters of the frame at the head of the queue and puts its first byte
- * on the line. Interrupts are off. */
-static inline __attribute__((always_inline)) void tx_start(void)
+/* The frame after `f` in the queue. */
+static inline __attribute__((always_inline)) struct tx_frame *tx_after(struct tx_frame *f)
 {
-    const struct tx_frame *f = &tx[tx_head];
+    return f == &tx[0] ? &tx[1] : &tx[0];
+}
+
+/* Enables the transmitters of frame `f`, the head of the queue, and puts its first byte on
+ * the line. Interrupts are off. */
+static inline __attribute__((always_inline)) void tx_start(const struct tx_frame *f)
+{
     PORTC = f->mask;
     UDR0 = f->bytes[0];
     tx_pos = 1;
@@ -276,20 +281,21 @@ static inline __attribute__((always_inline)) void tx_start(void)
  * at a time, so the enables change only once a frame's last bit has left. */
 ISR(USART0_TX_vect)
 {
-    uint8_t head = tx_head;
+    struct tx_frame *f = tx_head;
     uint8_t p = tx_pos;
     uint8_t n;
-    if (p < tx[head].len) {
-        UDR0 = tx[head].bytes[p];
+    if (p < f->len) {
+        UDR0 = f->bytes[p];
         tx_pos = (uint8_t)(p + 1u);
         return;
     }
     PORTC = 0;
-    tx_head = (uint8_t)((head + 1u) % TX_FRAMES);
+    f = tx_after(f);
+    tx_head = f;
     n = (uint8_t)(tx_count - 1u);
     tx_count = n;
     if (n != 0u) {
-        tx_start();
+        tx_start(f);
     }
 }
 
@@ -301,37 +307,32 @@ static inline __attribute__((always_inline)) void rx_end(void)
     strobe(DR_AVR_STROBE_RELEASE);
 }
 
-/* Receives one byte. The first byte of a frame picks a free slot (none: the frame is read
- * but dropped) and reads its channel from the arbiter; the second is its length. */
+/* Receives one byte. The first byte of a frame picks a free slot (none: the spare slot,
+ * whose frames are dropped) and reads its channel from the arbiter; the second is its
+ * length. */
 ISR(USART0_RX_vect)
 {
     uint8_t b = UDR0;
     uint8_t n = rx_fill;
     struct rx_slot *s = rx_cur;
     if (n == 0u) {
-        s = !rx[0].full ? &rx[0] : !rx[1].full ? &rx[1] : 0;
+        s = !rx[0].full ? &rx[0] : !rx[1].full ? &rx[1] : &rx[RX_SLOTS];
         rx_cur = s;
-        if (s) {
-            bus_address(DR_AVR_REG_RX_CHANNEL);
-            s->channel = bus_get();
-        }
+        bus_address(DR_AVR_REG_RX_CHANNEL);
+        s->channel = bus_get();
     }
-    if (s) {
-        s->bytes[n] = b;
-    }
+    s->bytes[n] = b;
     n++;
     rx_fill = n;
-    if (n == 2u) {
-        if (b < 2u || b > DR_CONF_MAX_PACKET) {
-            rx_end(); /* no frame of ours: dropped (README.md: framing) */
-            return;
-        }
-        rx_len = b;
+    if (n < 2u) {
+        return;
     }
-    if (n >= 2u && n >= rx_len) {
-        if (s) {
-            s->full = 1;
-        }
+    if (n == 2u && (b < 2u || b > DR_CONF_MAX_PACKET)) {
+        rx_end(); /* no frame of ours: dropped (README.md: framing) */
+        return;
+    }
+    if (n >= s->bytes[1]) {
+        s->full = 1; /* the spare slot's flag is never read */
         rx_end();
     }
 }
@@ -363,23 +364,24 @@ uint16_t dr_hal_random(struct dr_module *m)
 static void enqueue(uint8_t mask, const uint8_t *bytes, uint8_t len)
 {
     struct tx_frame *f;
-    uint8_t i;
+    uint8_t *to;
+    uint8_t n;
     if (len == 0u || len > DR_CONF_MAX_PACKET) {
         return;
     }
     while (tx_count >= TX_FRAMES) {
-        /* the transmit interrupts free a frame within its air time */
+        /* the transmit interrupt frees a frame within its air time */
     }
-    f = &tx[(uint8_t)((uint8_t)(tx_head + tx_count) % TX_FRAMES)];
+    f = tx_count != 0u ? tx_after(tx_head) : tx_head;
     f->mask = mask;
     f->len = len;
-    for (i = 0; i < len; i++) {
-        f->bytes[i] = bytes[i];
+    for (to = f->bytes, n = len; n != 0u; n--) {
+        *to++ = *bytes++;
     }
     cli();
     tx_count++;
     if (tx_count == 1u) {
-        tx_start();
+        tx_start(f);
     }
     sei();
 }
