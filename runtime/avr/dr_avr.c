@@ -50,7 +50,7 @@
  * (64,000 ticks, 256 ms), so that the clock is a whole number of periods plus the counter's
  * milliseconds, without carries between the two. */
 #define TICKS_PER_MS ((uint16_t)(DR_AVR_F_CPU / 64u / 1000u))
-#define PERIOD_MS 256u
+#define PERIOD_MS 256u /* read_clock shifts by 8 */
 #define PERIOD_TICKS ((uint16_t)(PERIOD_MS * TICKS_PER_MS))
 /* A wake-up closer than this many ticks is waited for awake: the compare might be missed. */
 #define MIN_SLEEP_TICKS 8u
@@ -77,10 +77,9 @@ extern dr_module_t DynaRoleP__self;
 #else
 static dr_module_t module;
 #endif
-/* The clock at the start of the last period main has counted (main only), and the periods
- * the interrupt has seen since (main reads the clock at least once a period: the period's
- * interrupt wakes it). */
-static uint32_t clock_ms;
+/* The periods main has counted (main only), and those the interrupt has seen since (main
+ * reads the clock at least once a period: the period's interrupt wakes it). */
+static uint32_t clock_periods;
 static volatile uint8_t periods;
 static uint16_t random_state;
 /* Set by INT0: an operation ended since main last looked. */
@@ -224,10 +223,19 @@ static void write_u8(uint8_t reg, uint8_t v)
 /* --- interrupts --- */
 
 /* Counts the period: main adds it to the clock (read_clock), so that the 32-bit clock
- * arithmetic is in one place and this interrupt saves one register. */
-ISR(TIMER1_COMPA_vect)
+ * arithmetic is in one place. Naked: it saves only r24 and SREG (inc changes it). */
+ISR(TIMER1_COMPA_vect, ISR_NAKED)
 {
-    periods++;
+    __asm__ __volatile__("push r24\n\t"
+                         "in r24, __SREG__\n\t"
+                         "push r24\n\t"
+                         "lds r24, %0\n\t"
+                         "inc r24\n\t"
+                         "sts %0, r24\n\t"
+                         "pop r24\n\t"
+                         "out __SREG__, r24\n\t"
+                         "pop r24\n\t"
+                         "reti" : : "i"(&periods) : "memory");
 }
 
 /* Only wakes the MCU: main looks at the clock. */
@@ -256,9 +264,9 @@ static uint32_t read_clock(uint16_t *count_read)
         n++;
     }
     periods = 0;
-    clock_ms += (uint32_t)n * PERIOD_MS;
+    clock_periods += n;
     *count_read = count;
-    return clock_ms + (uint8_t)(count / TICKS_PER_MS);
+    return (clock_periods << 8) | (uint8_t)(count / TICKS_PER_MS); /* PERIOD_MS = 1 << 8 */
 }
 
 /* The frame after `f` in the queue. */
@@ -624,7 +632,7 @@ static uint8_t arm_wake(uint32_t at)
 {
     uint16_t count;
     uint32_t now = read_clock(&count);
-    uint32_t offset = at - clock_ms;
+    uint32_t offset = at - (now & ~(uint32_t)(PERIOD_MS - 1u)); /* from the period's start */
     uint16_t target;
     TIMSK = (uint8_t)(TIMSK & ~(1u << OCIE1B));
     if (!has_due) {
