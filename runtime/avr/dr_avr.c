@@ -387,8 +387,9 @@ static void enqueue(uint8_t mask, const uint8_t *bytes, uint8_t len)
         *to++ = *bytes++;
     }
     cli();
-    tx_count++;
-    if (tx_count == 1u) {
+    n = (uint8_t)(tx_count + 1u);
+    tx_count = n;
+    if (n == 1u) {
         tx_start(f);
     }
     sei();
@@ -781,8 +782,7 @@ int main(void)
     dr_program_init(&module, 0);
     started();
     next_free = dr_hal_now_ms(&module);
-    due = next_free;
-    has_due = 1;
+    want_step_from(next_free); /* the first step: at once */
     for (;;) {
         uint32_t now;
         if (any_received()) {
