@@ -538,13 +538,13 @@ void dr_hal_nv_write(struct dr_module *m, uint16_t addr, const uint8_t *buf, uin
 
 /* --- main --- */
 
-/* From the reset values (the start-up runs only after a reset): port A is an input, Timer1
- * in normal mode (counts 0..0xFFFF), the USART framed 8N1, the interrupts off. */
+/* From the reset values (the start-up runs only after a reset): port A an input, the
+ * transmitter enables (PORTC) off, TCCR1A 0 (the waveform bits of CTC mode 4 are in TCCR1B),
+ * the USART framed 8N1, the interrupts off. */
 static void board_init(void)
 {
     DDRB = 0xFF;
     DDRC = 0xFF;
-    PORTC = 0;
     DDRD = (uint8_t)((1u << DR_AVR_STROBE_ADDR) | (1u << DR_AVR_STROBE_WRITE) |
                      (1u << DR_AVR_STROBE_READ) | (1u << DR_AVR_STROBE_RELEASE));
     DDRE = (uint8_t)((1u << DR_AVR_PIN_STEP) | (1u << DR_AVR_PIN_RECEIVE) |
@@ -743,7 +743,10 @@ __attribute__((noinline)) static uint32_t instant_from(uint32_t t)
         return next_free;
     }
     past = steps_past(d);
-    return past ? t + (DR_AVR_STEP_MS - past) : t;
+    if (past != 0u) {
+        d += DR_AVR_STEP_MS - past;
+    }
+    return next_free + d;
 }
 
 /* A step is wanted at the first free instant from `t` (or earlier, if one is). */
