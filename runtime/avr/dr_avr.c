@@ -620,34 +620,28 @@ static uint32_t due;        /* the instant of the next step, when has_due */
 static uint8_t has_due;
 static uint8_t op_wait;     /* a step is wanted once the operation has ended */
 
-/* Whether clock reading a comes before b (the clock wraps after 49 days). */
-static uint8_t before(uint32_t a, uint32_t b)
-{
-    return (uint8_t)((int32_t)(a - b) < 0);
-}
-
 /* Arms compare B to wake the MCU when the clock reaches `at` (ms), if that is in the current
- * period; the period's end wakes it anyway. False when `at` is too close to sleep.
- * Interrupts are off. */
+ * period; the period's end wakes it anyway. False when `at` has passed or is too close to
+ * sleep. Interrupts are off. */
 static uint8_t arm_wake(uint32_t at)
 {
     uint16_t count;
-    uint32_t now = read_clock(&count);
-    uint32_t offset = at - (now & ~(uint32_t)(PERIOD_MS - 1u)); /* from the period's start */
+    /* `at` from the current period's start: negative when before it (passed) */
+    uint32_t offset = at - (read_clock(&count) & ~(uint32_t)(PERIOD_MS - 1u));
     uint16_t target;
     TIMSK = (uint8_t)(TIMSK & ~(1u << OCIE1B));
     if (!has_due) {
         return 1;
     }
-    if (!before(now, at)) {
+    if ((int32_t)offset < 0) {
         return 0;
     }
     if (offset >= PERIOD_MS) {
         return 1;
     }
-    target = (uint16_t)((uint16_t)offset * TICKS_PER_MS); /* after count: now < at */
-    if ((uint16_t)(target - count) < MIN_SLEEP_TICKS) {
-        return 0;
+    target = (uint16_t)((uint16_t)offset * TICKS_PER_MS);
+    if (target < (uint16_t)(count + MIN_SLEEP_TICKS)) {
+        return 0; /* passed, or too close */
     }
     OCR1B = target;
     TIFR = (uint8_t)(1u << OCF1B);
@@ -716,6 +710,12 @@ int main(void)
 }
 
 #else
+
+/* Whether clock reading a comes before b (the clock wraps after 49 days). */
+static uint8_t before(uint32_t a, uint32_t b)
+{
+    return (uint8_t)((int32_t)(a - b) < 0);
+}
 
 #if 255 % DR_AVR_STEP_MS != 0
 #error "steps_past: DR_AVR_STEP_MS must divide 255"
