@@ -1,17 +1,20 @@
 /* dr_avr.c - the platform of dr_hal.h on an ATRON hemisphere board (ATmega128, 16 MHz), and
  * the firmware's main loop. README.md describes the board (dr_avr_board.h: pins, registers).
  *
- * - Time: Timer1 runs freely at 250 kHz (4 us a tick) and interrupts only when it overflows
- *   (every 262.144 ms); dr_hal_now_ms counts whole milliseconds from the overflows and the
- *   counter. Output compare A wakes the MCU at the next step the module asked for.
+ * - Time: Timer1 counts at 250 kHz (4 us a tick) in periods of exactly 256 ms (CTC mode,
+ *   compare A) and interrupts only at a period's end; dr_hal_now_ms is 256 ms a period plus
+ *   the whole milliseconds of the counter. Compare B wakes the MCU at the next step the
+ *   module asked for.
  * - Infrared: USART0 at DR_AVR_BAUD; PORTC selects the transmitters (all for a broadcast, one
- *   for dr_hal_send). Frames go out from a small queue, interrupt driven; the transmitter
- *   enables change only once the previous frame has left the shift register. Received
- *   frames are delimited by their length byte (dr_packet.h: byte 1) and kept in two slots.
+ *   for dr_hal_send). Frames go out from a small queue, a byte at each transmit-complete
+ *   interrupt, so that the transmitter enables change only once the previous frame has
+ *   left the shift register. Received frames are delimited by their length byte
+ *   (dr_packet.h: byte 1) and kept in two slots.
  * - Operations and sensors: the board's controller, through an 8-bit bus (PORTB out, PINA
  *   in, strobes on PORTD). A bus transaction runs with interrupts off (the receive
  *   interrupt also uses the bus). The controller raises INT0 when an operation ends.
- * - Non-volatile storage: the EEPROM (avr-libc's eeprom_read_block / eeprom_update_block).
+ * - Non-volatile storage: the EEPROM, through its registers (a byte is written only when it
+ *   differs, as avr-libc's eeprom_update_block does).
  * - main: initialises, runs dr_module_receive for each frame, and dr_module_step only at the
  *   step instants (every DR_AVR_STEP_MS from the first) that dr_module_next_wakeup names;
  *   in between it sleeps (idle mode) until that instant's timer, a frame or an operation's
@@ -20,7 +23,6 @@
  *
  * Built with the generated program: avr-gcc -mmcu=atmega128 -Os -I OUT -I runtime/avr
  * OUT/dr_packet.c OUT/dr_<protocol>.c OUT/dr_program.c dr_avr.c (runtime/avr/Makefile). */
-#include <avr/eeprom.h>
 #include <avr/interrupt.h>
 #include <avr/io.h>
 #include <avr/sleep.h>
@@ -34,16 +36,22 @@
 #if DR_CONF_MAX_ARGS > DR_AVR_MAX_ARGS
 #error "the board takes at most DR_AVR_MAX_ARGS operation arguments"
 #endif
+#if DR_AVR_REG_OP != DR_AVR_REG_STATEMENT + 2u || DR_AVR_REG_INDEX != DR_AVR_REG_OP + 1u || \
+    DR_AVR_REG_ADDRESS != DR_AVR_REG_INDEX + 1u || DR_AVR_REG_GO != DR_AVR_REG_ADDRESS + 1u
+#error "dr_hal_op_start writes STATEMENT through GO in one transaction"
+#endif
 
-/* Frames waiting to be sent (a third send waits for the first to leave). */
+/* Frames waiting to be sent (a third send waits for the first to leave; tx_after alternates
+ * between the two). */
 #define TX_FRAMES 2u
 /* Received frames waiting for dr_module_receive (a third waits at the board). */
-#define RX_SLOTS 2u
-/* Timer1 ticks per millisecond (16 MHz / 64), and what one overflow of its 16 bits adds:
- * 262 ms and 36 ticks. */
-#define TICKS_PER_MS (DR_AVR_F_CPU / 64u / 1000u)
-#define OVERFLOW_MS (65536u / TICKS_PER_MS)
-#define OVERFLOW_TICKS (65536u % TICKS_PER_MS)
+#define RX_SLOTS 2u /* rx[0] and rx[1], named in the receive interrupt and any_received */
+/* Timer1 ticks per millisecond (16 MHz / 64), and its period: it counts 0..PERIOD_TICKS - 1
+ * (64,000 ticks, 256 ms), so that the clock is a whole number of periods plus the counter's
+ * milliseconds, without carries between the two. */
+#define TICKS_PER_MS ((uint16_t)(DR_AVR_F_CPU / 64u / 1000u))
+#define PERIOD_MS 256u /* read_clock shifts by 8 */
+#define PERIOD_TICKS ((uint16_t)(PERIOD_MS * TICKS_PER_MS))
 /* A wake-up closer than this many ticks is waited for awake: the compare might be missed. */
 #define MIN_SLEEP_TICKS 8u
 #define UBRR_VALUE (DR_AVR_F_CPU / 16u / DR_AVR_BAUD - 1u)
@@ -54,10 +62,10 @@ struct tx_frame {
     uint8_t bytes[DR_CONF_MAX_PACKET];
 };
 
+/* A received frame: its length is its byte 1 (dr_packet.h). */
 struct rx_slot {
     volatile uint8_t full;
     uint8_t channel;
-    uint8_t len;
     uint8_t bytes[DR_CONF_MAX_PACKET];
 };
 
@@ -69,75 +77,116 @@ extern dr_module_t DynaRoleP__self;
 #else
 static dr_module_t module;
 #endif
-/* The clock at the last overflow: whole milliseconds, and ticks into the next one. */
-static volatile uint32_t clock_ms;
-static volatile uint8_t clock_ticks;
+/* The periods main has counted (main only), and those the interrupt has seen since (main
+ * reads the clock at least once a period: the period's interrupt wakes it). */
+static uint32_t clock_periods;
+static volatile uint8_t periods;
 static uint16_t random_state;
 /* Set by INT0: an operation ended since main last looked. */
 static volatile uint8_t op_ended;
 
 static struct tx_frame tx[TX_FRAMES];
-static volatile uint8_t tx_head;
+static struct tx_frame *volatile tx_head = &tx[0];
 static volatile uint8_t tx_count;
-static volatile uint8_t tx_pos;
+static uint8_t tx_pos; /* the next byte of the frame at the head */
 
-static struct rx_slot rx[RX_SLOTS];
-static uint8_t rx_fill; /* bytes of the frame being received (receive interrupt only) */
-static uint8_t rx_slot; /* the slot it goes to, or RX_SLOTS when it is dropped */
+/* The slots, and a spare one where a frame goes when both are full (dropped). */
+static struct rx_slot rx[RX_SLOTS + 1u];
+/* The receive interrupt's own: bytes of the frame being received and its slot. */
+static uint8_t rx_fill;
+static struct rx_slot *rx_cur;
+
+/* --- start-up (the image is linked with -nostartfiles) ---
+ * avr-libc's start-up has all 35 vectors of the ATmega128; the firmware enables only
+ * interrupts up to USART0_TX (vector 20), so its table stops there: a vector that is never
+ * enabled needs no entry. Then, as avr-libc's: r1 = 0 (the compiler's zero register),
+ * SREG cleared, the stack at the top of RAM; libgcc's __do_copy_data and __do_clear_bss
+ * (.init4, linked because the program has .data and .bss) initialise the RAM; main never
+ * returns. Unused vectors restart the firmware, as avr-libc's __bad_interrupt does. */
+#define DR_AVR_STR(x) #x
+#define DR_AVR_XSTR(x) DR_AVR_STR(x)
+__asm__(".pushsection .vectors,\"ax\",@progbits\n"
+        ".global __vectors\n"
+        "__vectors:\n"
+        "jmp __init\n"
+        "jmp __vector_1\n"   /* INT0: an operation ended */
+        ".rept 10\n"
+        "jmp __vectors\n"    /* INT1..INT7, TIMER2_COMP, TIMER2_OVF, TIMER1_CAPT */
+        ".endr\n"
+        "jmp __vector_12\n"  /* TIMER1_COMPA: the clock's period */
+        "jmp __vector_13\n"  /* TIMER1_COMPB: the next step */
+        "jmp __vectors\n"    /* TIMER1_OVF */
+        ".rept 3\n"
+        "jmp __vectors\n"    /* TIMER0_COMP, TIMER0_OVF, SPI_STC */
+        ".endr\n"
+        "jmp __vector_18\n"  /* USART0_RX */
+        "jmp __vectors\n"    /* USART0_UDRE */
+        "jmp __vector_20\n"  /* USART0_TX */
+        ".section .init0,\"ax\",@progbits\n"
+        ".global __init\n"
+        "__init:\n"
+        "clr r1\n"
+        "out __SREG__, r1\n"
+        "ldi r28, lo8(" DR_AVR_XSTR(RAMEND) ")\n"
+        "ldi r29, hi8(" DR_AVR_XSTR(RAMEND) ")\n"
+        "out __SP_H__, r29\n"
+        "out __SP_L__, r28\n"
+        ".section .init9,\"ax\",@progbits\n"
+        "jmp main\n"
+        ".popsection\n");
+/* Reached from .init9 above: kept and named main under -flto; it never returns, so it saves
+ * no registers (OS_main). */
+int main(void) __attribute__((OS_main, used, externally_visible));
 
 /* --- the controller's bus (callers keep interrupts off) --- */
 
-static void strobe(uint8_t bit)
+/* A rising edge on strobe `bit` of PORTD. Always inlined with a constant bit: one sbi and
+ * one cbi. */
+static inline __attribute__((always_inline)) void strobe(uint8_t bit)
 {
     PORTD = (uint8_t)(PORTD | (1u << bit));
     PORTD = (uint8_t)(PORTD & ~(1u << bit));
 }
 
-static void bus_address(uint8_t reg)
+static inline __attribute__((always_inline)) void bus_address(uint8_t reg)
 {
     PORTB = reg;
     strobe(DR_AVR_STROBE_ADDR);
 }
 
-static void bus_write(uint8_t reg, const uint8_t *bytes, uint8_t len)
+/* Writes one byte to the addressed register (the address then advances by one). */
+static inline __attribute__((always_inline)) void bus_put(uint8_t v)
 {
-    uint8_t i;
-    bus_address(reg);
-    for (i = 0; i < len; i++) {
-        PORTB = bytes[i];
-        strobe(DR_AVR_STROBE_WRITE);
-    }
+    PORTB = v;
+    strobe(DR_AVR_STROBE_WRITE);
 }
 
-static void bus_read(uint8_t reg, uint8_t *bytes, uint8_t len)
+/* Reads the addressed register (the address then advances by one). */
+static inline __attribute__((always_inline)) uint8_t bus_get(void)
 {
-    uint8_t i;
+    strobe(DR_AVR_STROBE_READ);
+    __asm__ __volatile__("nop"); /* the input synchroniser's latency */
+    return PINA;
+}
+
+/* Registers reg and reg + 1 as a little-endian value (a one-byte register is the low byte:
+ * reads have no side effect on the board). */
+static uint16_t read_u16(uint8_t reg)
+{
+    uint8_t lo;
+    uint8_t hi;
+    uint8_t sreg = SREG;
+    cli();
     bus_address(reg);
-    for (i = 0; i < len; i++) {
-        strobe(DR_AVR_STROBE_READ);
-        __asm__ __volatile__("nop"); /* the input synchroniser's latency */
-        bytes[i] = PINA;
-    }
+    lo = bus_get();
+    hi = bus_get();
+    SREG = sreg;
+    return (uint16_t)(lo | (uint16_t)((uint16_t)hi << 8));
 }
 
 static uint8_t read_u8(uint8_t reg)
 {
-    uint8_t v;
-    uint8_t sreg = SREG;
-    cli();
-    bus_read(reg, &v, 1);
-    SREG = sreg;
-    return v;
-}
-
-static uint16_t read_u16(uint8_t reg)
-{
-    uint8_t b[2];
-    uint8_t sreg = SREG;
-    cli();
-    bus_read(reg, b, 2);
-    SREG = sreg;
-    return (uint16_t)(b[0] | (uint16_t)((uint16_t)b[1] << 8));
+    return (uint8_t)read_u16(reg);
 }
 
 #ifdef DR_AVR_DESCRIBE
@@ -166,141 +215,132 @@ static void write_u8(uint8_t reg, uint8_t v)
 {
     uint8_t sreg = SREG;
     cli();
-    bus_write(reg, &v, 1);
+    bus_address(reg);
+    bus_put(v);
     SREG = sreg;
 }
 
 /* --- interrupts --- */
 
-/* Adds one overflow of Timer1 to a clock reading. */
-static void add_overflow(uint32_t *ms, uint8_t *ticks)
+/* Counts the period: main adds it to the clock (read_clock), so that the 32-bit clock
+ * arithmetic is in one place. Naked: it saves only r24 and SREG (inc changes it). */
+ISR(TIMER1_COMPA_vect, ISR_NAKED)
 {
-    uint16_t t = (uint16_t)(*ticks + OVERFLOW_TICKS);
-    *ms += OVERFLOW_MS;
-    if (t >= TICKS_PER_MS) {
-        t = (uint16_t)(t - TICKS_PER_MS);
-        (*ms)++;
-    }
-    *ticks = (uint8_t)t;
-}
-
-ISR(TIMER1_OVF_vect)
-{
-    uint32_t ms = clock_ms;
-    uint8_t ticks = clock_ticks;
-    add_overflow(&ms, &ticks);
-    clock_ms = ms;
-    clock_ticks = ticks;
+    __asm__ __volatile__("push r24\n\t"
+                         "in r24, __SREG__\n\t"
+                         "push r24\n\t"
+                         "lds r24, %0\n\t"
+                         "inc r24\n\t"
+                         "sts %0, r24\n\t"
+                         "pop r24\n\t"
+                         "out __SREG__, r24\n\t"
+                         "pop r24\n\t"
+                         "reti" : : "i"(&periods) : "memory");
 }
 
 /* Only wakes the MCU: main looks at the clock. */
-EMPTY_INTERRUPT(TIMER1_COMPA_vect)
+EMPTY_INTERRUPT(TIMER1_COMPB_vect)
 
-ISR(INT0_vect)
+/* Sets op_ended and nothing else: naked, as neither ldi nor sts changes SREG. */
+ISR(INT0_vect, ISR_NAKED)
 {
-    op_ended = 1;
+    __asm__ __volatile__("push r24\n\t"
+                         "ldi r24, 1\n\t"
+                         "sts %0, r24\n\t"
+                         "pop r24\n\t"
+                         "reti" : : "i"(&op_ended) : "memory");
 }
 
-/* Milliseconds since power-on; in *into the ticks since the last whole one, in *count the
- * counter read. Called with interrupts off. An overflow not yet taken by its interrupt is
- * counted here. */
-static uint32_t read_clock(uint8_t *into, uint16_t *count_read)
+/* Milliseconds since power-on, and in *count_read the counter read. Called with interrupts
+ * off (main only). First adds the periods counted since the last call, and the one whose
+ * interrupt is still pending when the counter had restarted before it was read (its flag
+ * is cleared: the interrupt would count it again). */
+static uint32_t read_clock(uint16_t *count_read)
 {
     uint16_t count = TCNT1;
-    uint32_t ms = clock_ms;
-    uint8_t ticks = clock_ticks;
-    uint16_t whole;
-    uint16_t rest;
-    if ((TIFR & (1u << TOV1)) && count < 0x8000u) {
-        add_overflow(&ms, &ticks);
+    uint8_t n = periods;
+    if ((TIFR & (1u << OCF1A)) && count < PERIOD_TICKS / 2u) {
+        TIFR = (uint8_t)(1u << OCF1A);
+        n++;
     }
-    whole = (uint16_t)(count / TICKS_PER_MS);
-    rest = (uint16_t)(count - whole * TICKS_PER_MS + ticks);
-    if (rest >= TICKS_PER_MS) {
-        whole++;
-        rest = (uint16_t)(rest - TICKS_PER_MS);
-    }
-    *into = (uint8_t)rest;
+    periods = 0;
+    clock_periods += n;
     *count_read = count;
-    return ms + whole;
+    return (clock_periods << 8) | (uint8_t)(count / TICKS_PER_MS); /* PERIOD_MS = 1 << 8 */
 }
 
-static void tx_start(void)
+/* The frame after `f` in the queue. */
+static inline __attribute__((always_inline)) struct tx_frame *tx_after(struct tx_frame *f)
 {
-    PORTC = tx[tx_head].mask;
-    tx_pos = 0;
-    UCSR0B = (uint8_t)(UCSR0B | (1u << UDRIE0));
+    return f == &tx[0] ? &tx[1] : &tx[0];
 }
 
-ISR(USART0_UDRE_vect)
+/* Enables the transmitters of frame `f`, the head of the queue, and puts its first byte on
+ * the line. Interrupts are off. */
+static inline __attribute__((always_inline)) void tx_start(const struct tx_frame *f)
 {
-    const struct tx_frame *f = &tx[tx_head];
-    UDR0 = f->bytes[tx_pos];
-    tx_pos++;
-    if (tx_pos >= f->len) {
-        /* The last byte is loaded: wait until it has left before changing the enables. */
-        UCSR0B = (uint8_t)(UCSR0B & ~(1u << UDRIE0));
-        UCSR0A = (uint8_t)(UCSR0A | (1u << TXC0));
-        UCSR0B = (uint8_t)(UCSR0B | (1u << TXCIE0));
-    }
+    PORTC = f->mask;
+    UDR0 = f->bytes[0];
+    tx_pos = 1;
 }
 
+/* A byte has left and the USART holds no other: the frame's next byte, or, after its last,
+ * the transmitters off and the next frame. Only this interrupt feeds the USART, one byte
+ * at a time, so the enables change only once a frame's last bit has left. */
 ISR(USART0_TX_vect)
 {
-    UCSR0B = (uint8_t)(UCSR0B & ~(1u << TXCIE0));
+    struct tx_frame *f = tx_head;
+    uint8_t p = tx_pos;
+    uint8_t n;
+    if (p < f->len) {
+        UDR0 = f->bytes[p];
+        tx_pos = (uint8_t)(p + 1u);
+        return;
+    }
     PORTC = 0;
-    tx_head = (uint8_t)((tx_head + 1u) % TX_FRAMES);
-    tx_count--;
-    if (tx_count != 0u) {
-        tx_start();
+    f = tx_after(f);
+    tx_head = f;
+    n = (uint8_t)(tx_count - 1u);
+    tx_count = n;
+    if (n != 0u) {
+        tx_start(f);
     }
 }
 
-static uint8_t free_rx_slot(void)
-{
-    uint8_t i;
-    for (i = 0; i < RX_SLOTS; i++) {
-        if (!rx[i].full) {
-            return i;
-        }
-    }
-    return RX_SLOTS;
-}
-
-static void rx_end(void)
+/* The frame's end: the arbiter may pass the next one. Inlined: a call would make the
+ * receive interrupt save every call-clobbered register. */
+static inline __attribute__((always_inline)) void rx_end(void)
 {
     rx_fill = 0;
-    PORTD = (uint8_t)(PORTD | (1u << DR_AVR_STROBE_RELEASE));
-    PORTD = (uint8_t)(PORTD & ~(1u << DR_AVR_STROBE_RELEASE));
+    strobe(DR_AVR_STROBE_RELEASE);
 }
 
+/* Receives one byte. The first byte of a frame picks a free slot (none: the spare slot,
+ * whose frames are dropped) and reads its channel from the arbiter; the second is its
+ * length. */
 ISR(USART0_RX_vect)
 {
     uint8_t b = UDR0;
-    uint8_t len;
-    if (rx_fill == 0u) {
-        rx_slot = free_rx_slot();
-        if (rx_slot < RX_SLOTS) {
-            bus_read(DR_AVR_REG_RX_CHANNEL, &rx[rx_slot].channel, 1);
-        }
+    uint8_t n = rx_fill;
+    struct rx_slot *s = rx_cur;
+    if (n == 0u) {
+        s = !rx[0].full ? &rx[0] : !rx[1].full ? &rx[1] : &rx[RX_SLOTS];
+        rx_cur = s;
+        bus_address(DR_AVR_REG_RX_CHANNEL);
+        s->channel = bus_get();
     }
-    if (rx_slot < RX_SLOTS) {
-        rx[rx_slot].bytes[rx_fill] = b;
-    }
-    rx_fill++;
-    if (rx_fill < 2u) {
+    s->bytes[n] = b;
+    n++;
+    rx_fill = n;
+    if (n < 2u) {
         return;
     }
-    len = rx_slot < RX_SLOTS ? rx[rx_slot].bytes[1] : DR_CONF_MAX_PACKET;
-    if (len < 2u || len > DR_CONF_MAX_PACKET) {
+    if (n == 2u && (b < 2u || b > DR_CONF_MAX_PACKET)) {
         rx_end(); /* no frame of ours: dropped (README.md: framing) */
         return;
     }
-    if (rx_fill >= len) {
-        if (rx_slot < RX_SLOTS) {
-            rx[rx_slot].len = len;
-            rx[rx_slot].full = 1;
-        }
+    if (n >= s->bytes[1]) {
+        s->full = 1; /* the spare slot's flag is never read */
         rx_end();
     }
 }
@@ -310,12 +350,11 @@ ISR(USART0_RX_vect)
 uint32_t dr_hal_now_ms(struct dr_module *m)
 {
     uint32_t v;
-    uint8_t into;
     uint16_t count;
     uint8_t sreg = SREG;
     (void)m;
     cli();
-    v = read_clock(&into, &count);
+    v = read_clock(&count);
     SREG = sreg;
     return v;
 }
@@ -333,23 +372,25 @@ uint16_t dr_hal_random(struct dr_module *m)
 static void enqueue(uint8_t mask, const uint8_t *bytes, uint8_t len)
 {
     struct tx_frame *f;
-    uint8_t i;
+    uint8_t *to;
+    uint8_t n;
     if (len == 0u || len > DR_CONF_MAX_PACKET) {
         return;
     }
     while (tx_count >= TX_FRAMES) {
-        /* the transmit interrupts free a frame within its air time */
+        /* the transmit interrupt frees a frame within its air time */
     }
-    f = &tx[(uint8_t)((uint8_t)(tx_head + tx_count) % TX_FRAMES)];
+    f = tx_count != 0u ? tx_after(tx_head) : tx_head;
     f->mask = mask;
     f->len = len;
-    for (i = 0; i < len; i++) {
-        f->bytes[i] = bytes[i];
+    for (to = f->bytes, n = len; n != 0u; n--) {
+        *to++ = *bytes++;
     }
     cli();
-    tx_count++;
-    if (tx_count == 1u) {
-        tx_start();
+    n = (uint8_t)(tx_count + 1u);
+    tx_count = n;
+    if (n == 1u) {
+        tx_start(f);
     }
     sei();
 }
@@ -370,28 +411,29 @@ void dr_hal_send(struct dr_module *m, uint8_t channel, const uint8_t *bytes, uin
     }
 }
 
+/* One transaction for the arguments, then one from STATEMENT through GO (the registers
+ * follow each other: statement, op, index, address, GO). The arguments' bytes go as they
+ * are in memory: the AVR is little-endian, as the board's registers. */
 void dr_hal_op_start(struct dr_module *m, uint16_t statement, uint8_t op, uint8_t index,
                      const int16_t *args)
 {
-    uint8_t head[5];
-    uint8_t a[2 * DR_CONF_MAX_ARGS];
+    const uint8_t *a = (const uint8_t *)args;
     uint8_t i;
     uint8_t sreg;
     describe();
-    head[0] = (uint8_t)(statement & 0xFFu);
-    head[1] = (uint8_t)(statement >> 8);
-    head[2] = op;
-    head[3] = index;
-    head[4] = m->address;
-    for (i = 0; i < DR_CONF_MAX_ARGS; i++) {
-        a[2 * i] = (uint8_t)((uint16_t)args[i] & 0xFFu);
-        a[2 * i + 1] = (uint8_t)((uint16_t)args[i] >> 8);
-    }
     sreg = SREG;
     cli();
-    bus_write(DR_AVR_REG_ARGS, a, (uint8_t)sizeof a);
-    bus_write(DR_AVR_REG_STATEMENT, head, (uint8_t)sizeof head);
-    bus_write(DR_AVR_REG_GO, head, 1);
+    bus_address(DR_AVR_REG_ARGS);
+    for (i = 0; i < 2u * DR_CONF_MAX_ARGS; i++) {
+        bus_put(a[i]);
+    }
+    bus_address(DR_AVR_REG_STATEMENT);
+    bus_put((uint8_t)statement);
+    bus_put((uint8_t)(statement >> 8));
+    bus_put(op);
+    bus_put(index);
+    bus_put(m->address);
+    bus_put((uint8_t)statement); /* GO: any value */
     SREG = sreg;
 }
 
@@ -446,74 +488,101 @@ void dr_hal_leds(struct dr_module *m, uint8_t value)
     write_u8(DR_AVR_REG_LEDS, value);
 }
 
-/* Whether [addr, addr + len) lies in the EEPROM. */
+/* Whether [addr, addr + len) lies in the EEPROM (E2END + 1 - len cannot wrap: len < 256). */
 static uint8_t in_eeprom(uint16_t addr, uint8_t len)
 {
-    return (uint8_t)((uint32_t)addr + len <= (uint32_t)E2END + 1u);
+    return (uint8_t)(addr <= (uint16_t)(E2END + 1u - len));
+}
+
+/* Byte `addr` of the EEPROM, once its last write has finished. */
+static uint8_t eeprom_get(uint16_t addr)
+{
+    while (EECR & (1u << EEWE)) {
+    }
+    EEAR = addr;
+    EECR = (uint8_t)(EECR | (1u << EERE));
+    return EEDR;
 }
 
 void dr_hal_nv_read(struct dr_module *m, uint16_t addr, uint8_t *buf, uint8_t len)
 {
+    uint8_t ok = in_eeprom(addr, len);
     uint8_t i;
     (void)m;
-    if (!in_eeprom(addr, len)) {
-        for (i = 0; i < len; i++) {
-            buf[i] = 0xFFu;
-        }
-        return;
+    for (i = 0; i < len; i++) {
+        buf[i] = ok ? eeprom_get((uint16_t)(addr + i)) : 0xFFu;
     }
-    eeprom_read_block(buf, (const void *)(uintptr_t)addr, len);
 }
 
+/* Writes only the bytes that differ (an EEPROM cell takes about 100,000 writes). */
 void dr_hal_nv_write(struct dr_module *m, uint16_t addr, const uint8_t *buf, uint8_t len)
 {
+    uint8_t i;
+    uint8_t sreg;
     (void)m;
-    if (in_eeprom(addr, len)) {
-        eeprom_update_block(buf, (void *)(uintptr_t)addr, len);
+    if (!in_eeprom(addr, len)) {
+        return;
+    }
+    for (i = 0; i < len; i++) {
+        if (eeprom_get((uint16_t)(addr + i)) != buf[i]) {
+            EEDR = buf[i];
+            /* EEWE within four cycles of EEMWE: two sbi with interrupts off. */
+            sreg = SREG;
+            cli();
+            EECR = (uint8_t)(EECR | (1u << EEMWE));
+            EECR = (uint8_t)(EECR | (1u << EEWE));
+            SREG = sreg;
+        }
     }
 }
 
 /* --- main --- */
 
+/* From the reset values (the start-up runs only after a reset): port A an input, the
+ * transmitter enables (PORTC) off, TCCR1A 0 (the waveform bits of CTC mode 4 are in TCCR1B),
+ * the USART framed 8N1, the interrupts off. */
 static void board_init(void)
 {
-    DDRA = 0x00;
     DDRB = 0xFF;
     DDRC = 0xFF;
-    PORTC = 0;
     DDRD = (uint8_t)((1u << DR_AVR_STROBE_ADDR) | (1u << DR_AVR_STROBE_WRITE) |
                      (1u << DR_AVR_STROBE_READ) | (1u << DR_AVR_STROBE_RELEASE));
     DDRE = (uint8_t)((1u << DR_AVR_PIN_STEP) | (1u << DR_AVR_PIN_RECEIVE) |
                      (1u << DR_AVR_PIN_FINISHED));
-    TCCR1A = 0; /* normal mode: counts 0..0xFFFF */
-    TCCR1B = (uint8_t)((1u << CS11) | (1u << CS10));
-    TIMSK = (uint8_t)(TIMSK | (1u << TOIE1));
+    /* Timer1 in CTC mode 4 (TOP = OCR1A): compare A ends each period, compare B wakes the
+     * MCU for its next step. */
+    OCR1A = (uint16_t)(PERIOD_TICKS - 1u);
+    TCCR1B = (uint8_t)((1u << WGM12) | (1u << CS11) | (1u << CS10));
+    TIMSK = (uint8_t)(1u << OCIE1A);
     /* INT0 on its rising edge: an operation ended. */
     EICRA = (uint8_t)((1u << ISC01) | (1u << ISC00));
     EIFR = (uint8_t)(1u << INTF0);
-    EIMSK = (uint8_t)(EIMSK | (1u << INT0));
+    EIMSK = (uint8_t)(1u << INT0);
+#if UBRR_VALUE > 0xFFu
     UBRR0H = (uint8_t)(UBRR_VALUE >> 8);
+#endif
     UBRR0L = (uint8_t)(UBRR_VALUE & 0xFFu);
-    UCSR0C = (uint8_t)((1u << UCSZ01) | (1u << UCSZ00));
-    UCSR0B = (uint8_t)((1u << RXEN0) | (1u << TXEN0) | (1u << RXCIE0));
-    /* Idle sleep mode (SM2..SM0 = 0): the timer and the USART keep running. */
-    MCUCR = (uint8_t)(MCUCR & ~((1u << SM0) | (1u << SM1) | (1u << SM2)));
+    UCSR0B = (uint8_t)((1u << RXEN0) | (1u << TXEN0) | (1u << RXCIE0) | (1u << TXCIE0));
+    /* Idle sleep mode (SM2..SM0 = 0: the timer and the USART keep running), sleep enabled
+     * once for all (sleep_until_work is the only sleep instruction). */
+    MCUCR = (uint8_t)(1u << SE);
 }
 
-/* Hands every received frame to the runtime (PE3 high meanwhile). */
-static void receive_all(void)
+/* Hands every received frame to the runtime (PE3 high meanwhile). Not inlined (nor
+ * instant_from): -flto would, at a cost in flash (measured). */
+__attribute__((noinline)) static void receive_all(void)
 {
-    uint8_t i;
-    for (i = 0; i < RX_SLOTS; i++) {
-        if (rx[i].full) {
+    struct rx_slot *s;
+    for (s = rx; s != rx + RX_SLOTS; s++) {
+        if (s->full) {
             PORTE = (uint8_t)(PORTE | (1u << DR_AVR_PIN_RECEIVE));
 #ifdef DR_AVR_NESC
-            dr_platform_receive(rx[i].channel, rx[i].bytes, rx[i].len);
+            dr_platform_receive(s->channel, s->bytes, s->bytes[1]);
 #else
-            dr_module_receive(&module, rx[i].channel, rx[i].bytes, rx[i].len);
+            dr_module_receive(&module, s->channel, s->bytes, s->bytes[1]);
 #endif
             PORTE = (uint8_t)(PORTE & ~(1u << DR_AVR_PIN_RECEIVE));
-            rx[i].full = 0;
+            s->full = 0;
             describe();
         }
     }
@@ -521,13 +590,7 @@ static void receive_all(void)
 
 static uint8_t any_received(void)
 {
-    uint8_t i;
-    for (i = 0; i < RX_SLOTS; i++) {
-        if (rx[i].full) {
-            return 1;
-        }
-    }
-    return 0;
+    return (uint8_t)(rx[0].full | rx[1].full);
 }
 
 /* One step (PE2 high meanwhile); PE4 shows whether the module knows the sequence ended.
@@ -557,40 +620,32 @@ static uint32_t due;        /* the instant of the next step, when has_due */
 static uint8_t has_due;
 static uint8_t op_wait;     /* a step is wanted once the operation has ended */
 
-/* Whether clock reading a comes before b (the clock wraps after 49 days). */
-static uint8_t before(uint32_t a, uint32_t b)
-{
-    return (uint8_t)((int32_t)(a - b) < 0);
-}
-
-/* Arms compare A to wake the MCU when the clock reaches `at` (ms), if it is within one
- * overflow; the overflow interrupt wakes it anyway. False when `at` is too close to sleep.
- * Interrupts are off. */
+/* Arms compare B to wake the MCU when the clock reaches `at` (ms), if that is in the current
+ * period; the period's end wakes it anyway. False when `at` has passed or is too close to
+ * sleep. Interrupts are off. */
 static uint8_t arm_wake(uint32_t at)
 {
-    uint8_t into;
     uint16_t count;
-    uint32_t now = read_clock(&into, &count);
-    uint32_t ahead;
-    uint32_t ticks;
-    TIMSK = (uint8_t)(TIMSK & ~(1u << OCIE1A));
+    /* `at` from the current period's start: negative when before it (passed) */
+    uint32_t offset = at - (read_clock(&count) & ~(uint32_t)(PERIOD_MS - 1u));
+    uint16_t target;
+    TIMSK = (uint8_t)(TIMSK & ~(1u << OCIE1B));
     if (!has_due) {
         return 1;
     }
-    if (!before(now, at)) {
+    if ((int32_t)offset < 0) {
         return 0;
     }
-    ahead = at - now;
-    if (ahead > OVERFLOW_MS) {
+    if (offset >= PERIOD_MS) {
         return 1;
     }
-    ticks = ahead * TICKS_PER_MS - into;
-    if (ticks < MIN_SLEEP_TICKS) {
-        return 0;
+    target = (uint16_t)((uint16_t)offset * TICKS_PER_MS);
+    if (target < (uint16_t)(count + MIN_SLEEP_TICKS)) {
+        return 0; /* passed, or too close */
     }
-    OCR1A = (uint16_t)(count + (uint16_t)ticks);
-    TIFR = (uint8_t)(1u << OCF1A);
-    TIMSK = (uint8_t)(TIMSK | (1u << OCIE1A));
+    OCR1B = target;
+    TIFR = (uint8_t)(1u << OCF1B);
+    TIMSK = (uint8_t)(TIMSK | (1u << OCIE1B));
     return 1;
 }
 
@@ -600,10 +655,8 @@ static void sleep_until_work(void)
 {
     cli();
     if (!any_received() && !(op_wait && op_ended) && arm_wake(due)) {
-        sleep_enable();
         sei();
         sleep_cpu();
-        sleep_disable();
     }
     sei();
 }
@@ -658,24 +711,48 @@ int main(void)
 
 #else
 
-static uint32_t first_step; /* the instants are first_step + k * DR_AVR_STEP_MS */
-static uint32_t next_free;  /* the first instant not stepped yet */
-
-/* The first instant at or after `t`. */
-static uint32_t instant_at_or_after(uint32_t t)
+/* Whether clock reading a comes before b (the clock wraps after 49 days). */
+static uint8_t before(uint32_t a, uint32_t b)
 {
-    uint32_t since = t - first_step + DR_AVR_STEP_MS - 1u;
-    return first_step + since - since % DR_AVR_STEP_MS;
+    return (uint8_t)((int32_t)(a - b) < 0);
+}
+
+#if 255 % DR_AVR_STEP_MS != 0
+#error "steps_past: DR_AVR_STEP_MS must divide 255"
+#endif
+
+/* The first instant not stepped yet: the instants are every DR_AVR_STEP_MS from the first
+ * step, so this one and those after it. */
+static uint32_t next_free;
+
+/* How far `d` ms lies past an instant when `d` ms after one: d % DR_AVR_STEP_MS, from the
+ * sum of d's bytes (256 leaves 1 in the division by any divisor of 255), in 16 bits. */
+static uint8_t steps_past(uint32_t d)
+{
+    uint16_t sum = (uint16_t)((uint8_t)d + (uint8_t)(d >> 8) + (uint8_t)(d >> 16) +
+                              (uint8_t)(d >> 24));
+    return (uint8_t)(sum % DR_AVR_STEP_MS);
 }
 
 /* The first instant at or after `t` that has not been stepped. */
-static uint32_t instant_from(uint32_t t)
+__attribute__((noinline)) static uint32_t instant_from(uint32_t t)
 {
-    return before(t, next_free) ? next_free : instant_at_or_after(t);
+    uint32_t d = t - next_free;
+    uint8_t past;
+    if ((int32_t)d <= 0) {
+        return next_free;
+    }
+    past = steps_past(d);
+    if (past != 0u) {
+        d += DR_AVR_STEP_MS - past;
+    }
+    return next_free + d;
 }
 
-static void want_step_at(uint32_t at)
+/* A step is wanted at the first free instant from `t` (or earlier, if one is). */
+static void want_step_from(uint32_t t)
 {
+    uint32_t at = instant_from(t);
     if (!has_due || before(at, due)) {
         due = at;
         has_due = 1;
@@ -690,12 +767,12 @@ static void plan(void)
     has_due = 0;
     op_wait = 0;
     if (answer & DR_WAKE_AT) {
-        want_step_at(instant_from(at));
+        want_step_from(at);
     }
     if (answer & DR_WAKE_OP) {
         op_ended = 0; /* cleared first: an end after the read below still sets it */
         if (dr_hal_op_status(&module) != DR_OP_RUNNING) {
-            want_step_at(instant_from(dr_hal_now_ms(&module)));
+            want_step_from(dr_hal_now_ms(&module));
         } else {
             op_wait = 1;
         }
@@ -707,22 +784,22 @@ int main(void)
     start();
     dr_program_init(&module, 0);
     started();
-    first_step = dr_hal_now_ms(&module);
-    next_free = first_step;
-    due = first_step;
-    has_due = 1;
+    next_free = dr_hal_now_ms(&module);
+    want_step_from(next_free); /* the first step: at once */
     for (;;) {
+        uint32_t now;
         if (any_received()) {
             receive_all();
             plan();
         }
+        now = dr_hal_now_ms(&module);
         if (op_wait && op_ended) {
             op_wait = 0;
-            want_step_at(instant_from(dr_hal_now_ms(&module)));
+            want_step_from(now);
         }
-        if (has_due && !before(dr_hal_now_ms(&module), due)) {
+        if (has_due && !before(now, due)) {
             /* Instants that passed while the MCU was busy are not stepped (fell behind). */
-            next_free = instant_at_or_after(dr_hal_now_ms(&module) + 1u);
+            next_free = instant_from(now + 1u);
             step(0);
             plan();
         }
