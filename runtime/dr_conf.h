@@ -145,6 +145,18 @@
 #define DR_CONF_NV DR_CONF_NV_EITHER
 #endif
 
+/* Lattice protocol: width of the report counters (packets sent, received, malformed,
+ * foreign), 16 or 32 bits. Only reports read them (the simulator keeps its own counts): on an
+ * 8-bit core 16 bits save 8 B of RAM per module and the 32-bit increments' flash (they wrap
+ * after 65,536 packets). */
+#ifndef DR_CONF_COUNTER_BITS
+#if defined(__AVR__)
+#define DR_CONF_COUNTER_BITS 16
+#else
+#define DR_CONF_COUNTER_BITS 32
+#endif
+#endif
+
 /* Lattice protocol: where the persisted state lives in non-volatile storage (two copies, one
  * after the other). */
 #ifndef DR_CONF_LATTICE_NV_ADDR

@@ -32,6 +32,7 @@ typedef char dr_lattice_check_window[(DR_CONF_WINDOW % 8 == 0 && DR_CONF_WINDOW 
 typedef char dr_lattice_check_packet[(4 + DR_CONF_WINDOW / 4 + DR_PACKET_OVERHEAD <=
                                       DR_CONF_MAX_PACKET) ? 1 : -1];
 typedef char dr_lattice_check_channels[(DR_CONF_CHANNELS >= 1 && DR_CONF_CHANNELS <= 32) ? 1 : -1];
+typedef char dr_lattice_check_counters[(DR_CONF_COUNTER_BITS == 16 || DR_CONF_COUNTER_BITS == 32) ? 1 : -1];
 
 #if defined(__GNUC__)
 #define NOINLINE __attribute__((noinline))
@@ -41,7 +42,7 @@ typedef char dr_lattice_check_channels[(DR_CONF_CHANNELS >= 1 && DR_CONF_CHANNEL
 
 /* A counter for reports. One call where an inlined 32-bit increment would take about 26 B of
  * flash on an 8-bit core at each counter (kept out of line even under -flto). */
-static NOINLINE void count(uint32_t *counter)
+static NOINLINE void count(dr_counter_t *counter)
 {
     (*counter)++;
 }

@@ -78,6 +78,13 @@ typedef struct {
     uint8_t started[DR_CONF_WINDOW / 8];
 } dr_shared_t;
 
+/* A report counter (DR_CONF_COUNTER_BITS). */
+#if DR_CONF_COUNTER_BITS == 16
+typedef uint16_t dr_counter_t;
+#else
+typedef uint32_t dr_counter_t;
+#endif
+
 /* All per-module state (one per module; the simulator has many, an MCU one). */
 typedef struct dr_module {
     void *platform;                    /* the platform's own data; the runtime never reads it */
@@ -113,10 +120,10 @@ typedef struct dr_module {
                                           16 bits): a failed one is retried an interval on */
 #endif
     /* counters, for reports */
-    uint32_t packets_sent;
-    uint32_t packets_received;
-    uint32_t packets_malformed;
-    uint32_t packets_foreign;
+    dr_counter_t packets_sent;
+    dr_counter_t packets_received;
+    dr_counter_t packets_malformed;
+    dr_counter_t packets_foreign;
     uint16_t resets;
 } dr_module_t;
 
