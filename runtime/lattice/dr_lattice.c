@@ -19,8 +19,8 @@
 
 #define W ((uint16_t)DR_CONF_WINDOW)
 #define NBYTES ((uint8_t)(DR_CONF_WINDOW / 8))
-/* Payload: epoch (2, big-endian), low (2, big-endian), done (W/8), started (W/8). */
-#define PAYLOAD ((uint8_t)(4u + 2u * NBYTES))
+/* Payload: epoch (2, big-endian), low (2, big-endian), done (W/8). */
+#define PAYLOAD ((uint8_t)(4u + NBYTES))
 #define FRAME ((uint8_t)(PAYLOAD + DR_PACKET_OVERHEAD))
 /* NV record: program id, address, payload, CRC-16 (big-endian) over the bytes before it. */
 #define RECORD ((uint8_t)(5u + PAYLOAD + 2u))
@@ -29,7 +29,7 @@
 /* Compile-time checks of the configuration (a negative array size fails the build). */
 typedef char dr_lattice_check_window[(DR_CONF_WINDOW % 8 == 0 && DR_CONF_WINDOW >= 8 &&
                                       DR_CONF_WINDOW <= 1000) ? 1 : -1];
-typedef char dr_lattice_check_packet[(4 + DR_CONF_WINDOW / 4 + DR_PACKET_OVERHEAD <=
+typedef char dr_lattice_check_packet[(4 + DR_CONF_WINDOW / 8 + DR_PACKET_OVERHEAD <=
                                       DR_CONF_MAX_PACKET) ? 1 : -1];
 typedef char dr_lattice_check_channels[(DR_CONF_CHANNELS >= 1 && DR_CONF_CHANNELS <= 32) ? 1 : -1];
 typedef char dr_lattice_check_counters[(DR_CONF_COUNTER_BITS == 16 || DR_CONF_COUNTER_BITS == 32) ? 1 : -1];
@@ -67,14 +67,11 @@ static void shift(dr_shared_t *s, uint16_t k)
         src = (uint16_t)(i + (k >> 3));
         if (src < NBYTES) {
             s->done[i] = (uint8_t)(s->done[src] >> r);
-            s->started[i] = (uint8_t)(s->started[src] >> r);
             if (r != 0u && src + 1u < NBYTES) {
                 s->done[i] = (uint8_t)(s->done[i] | (s->done[src + 1u] << (8u - r)));
-                s->started[i] = (uint8_t)(s->started[i] | (s->started[src + 1u] << (8u - r)));
             }
         } else {
             s->done[i] = 0;
-            s->started[i] = 0;
         }
     }
 }
@@ -88,9 +85,8 @@ static uint8_t trim(dr_shared_t *s, uint16_t n_statements)
     uint8_t found = 0;
     for (i = (uint16_t)(n_statements - s->low); i < W; i++) {
         mask = (uint8_t)(1u << (i & 7u));
-        found = (uint8_t)(found | ((s->done[i >> 3] | s->started[i >> 3]) & mask));
+        found = (uint8_t)(found | (s->done[i >> 3] & mask));
         s->done[i >> 3] = (uint8_t)(s->done[i >> 3] & ~mask);
-        s->started[i >> 3] = (uint8_t)(s->started[i >> 3] & ~mask);
     }
     return found;
 }
@@ -136,7 +132,6 @@ void dr_shared_join(dr_shared_t *into, const dr_shared_t *other, uint16_t n_stat
         }
         for (i = 0; i < NBYTES; i++) {
             into->done[i] = (uint8_t)(into->done[i] | o.done[i]);
-            into->started[i] = (uint8_t)(into->started[i] | o.started[i]);
         }
     }
     dr_shared_normalise(into, n_statements);
@@ -152,7 +147,7 @@ uint8_t dr_shared_is_done(const dr_shared_t *s, uint16_t statement)
     return statement < W ? bit(s->done, statement) : 0u;
 }
 
-/* Returns the payload length (4 + DR_CONF_WINDOW / 4), or 0 when cap is too small. */
+/* Returns the payload length (4 + DR_CONF_WINDOW / 8), or 0 when cap is too small. */
 uint8_t dr_shared_encode(const dr_shared_t *s, uint8_t *out, uint8_t cap)
 {
     uint8_t i;
@@ -165,7 +160,6 @@ uint8_t dr_shared_encode(const dr_shared_t *s, uint8_t *out, uint8_t cap)
     out[3] = (uint8_t)(s->low & 0xFFu);
     for (i = 0; i < NBYTES; i++) {
         out[4u + i] = s->done[i];
-        out[4u + NBYTES + i] = s->started[i];
     }
     return PAYLOAD;
 }
@@ -185,7 +179,6 @@ uint8_t dr_shared_decode(dr_shared_t *s, const uint8_t *in, uint8_t len, uint16_
     }
     for (i = 0; i < NBYTES; i++) {
         s->done[i] = in[4u + i];
-        s->started[i] = in[4u + NBYTES + i];
     }
     return (uint8_t)!trim(s, n_statements);
 }
@@ -390,8 +383,7 @@ static void disseminate(dr_module_t *m, uint32_t now, uint8_t changed)
 #endif
 }
 
-/* Whether two normalised copies hold the same facts that decide anything (epoch, low, done;
- * the started bits travel but decide nothing). O(W/8). */
+/* Whether two normalised copies hold the same facts (epoch, low, done). O(W/8). */
 static uint8_t same_facts(const dr_shared_t *a, const dr_shared_t *b)
 {
     uint8_t i;
@@ -521,7 +513,6 @@ static uint8_t start_next(dr_module_t *m)
     if (i == W) {
         return 0;
     }
-    set_bit(m->shared.started, i);
     m->running = (uint16_t)(m->shared.low + i);
     m->running_epoch = m->shared.epoch;
     issue(m);
@@ -549,7 +540,6 @@ void dr_module_init(dr_module_t *m, const dr_program_t *program, void *platform)
     m->shared.low = 0;
     for (i = 0; i < NBYTES; i++) {
         m->shared.done[i] = 0;
-        m->shared.started[i] = 0;
     }
     dr_shared_normalise(&m->shared, program->n_statements);
     m->unechoed = DR_NONE;
@@ -634,7 +624,7 @@ void dr_module_step(dr_module_t *m)
     }
     if (m->running == DR_NONE && m->unheard == 0u && m->unechoed == DR_NONE) {
 #if ADAPTIVE
-        (void)start_next(m); /* not news: the started bits decide nothing */
+        (void)start_next(m); /* not news: a start changes no shared fact */
 #else
         changed = (uint8_t)(changed | start_next(m));
 #endif

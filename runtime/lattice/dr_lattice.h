@@ -70,12 +70,13 @@ typedef uint32_t dr_channels_t;
 #endif
 
 /* The shared state: epoch, low-water mark (every statement below it is complete in this
- * epoch) and, for the window of statements above it, the completed and started bits. */
+ * epoch) and, for the window of statements above it, the completed bits. Which statements
+ * have started is not shared: nothing decides on it (a module's own running operation is
+ * `running`). */
 typedef struct {
     uint16_t epoch;
     uint16_t low;
     uint8_t done[DR_CONF_WINDOW / 8];
-    uint8_t started[DR_CONF_WINDOW / 8];
 } dr_shared_t;
 
 /* A report counter (DR_CONF_COUNTER_BITS). */

@@ -42,7 +42,7 @@ pub fn generate_c(
     };
     // Token: the largest packet, a safe token's hand-over (acknowledgements have 2 bytes).
     let (machine, packet_payload) = match options.protocol {
-        Protocol::Lattice => (lattice_tables(ir, options), 4 + ir.window / 4),
+        Protocol::Lattice => (lattice_tables(ir, options), 4 + ir.window / 8),
         Protocol::Paper => (paper_machine(ir, options)?, 3 + pending_slots),
         Protocol::Token => (token_tables(ir, options)?, 8),
     };

@@ -63,8 +63,8 @@ fn paper_machine_for_fig5_has_the_states_of_fig2() {
 fn lattice_tables_for_fig5() {
     let generated = compile(FIG5, "eight2car", &options(Protocol::Lattice));
     assert_eq!(
-        generated.packet_bytes, 17,
-        "11 framing + 4 (epoch, low) + 2 x window/8"
+        generated.packet_bytes, 16,
+        "11 framing + 4 (epoch, low) + window/8"
     );
     let text = format!(
         "{FIG5}\n----- dr_program_conf.h -----\n{}\n----- dr_program.c (lattice) -----\n{}",
