@@ -24,6 +24,15 @@
 #define DR_CONF_WINDOW 16
 #endif
 
+/* Lattice protocol: entries of the program's dependency table and rows of its argument
+ * table (the compiler sets both; they choose the width of the statement table's indices). */
+#ifndef DR_CONF_DEP_ENTRIES
+#define DR_CONF_DEP_ENTRIES 65535
+#endif
+#ifndef DR_CONF_ARG_ROWS
+#define DR_CONF_ARG_ROWS 65535
+#endif
+
 /* Most arguments of one operation. */
 #ifndef DR_CONF_MAX_ARGS
 #define DR_CONF_MAX_ARGS 4

@@ -475,8 +475,10 @@ static void heard_copy(dr_module_t *m, uint8_t channel, const dr_shared_t *befor
 static void issue(dr_module_t *m)
 {
     dr_statement_t st;
+    int16_t args[DR_CONF_MAX_ARGS];
     dr_hal_table_read(&st, &m->program->statements[m->running], sizeof st);
-    dr_hal_op_start(m, m->running, st.op, st.index, st.args);
+    dr_hal_table_read(args, &m->program->args[st.args * DR_CONF_MAX_ARGS], sizeof args);
+    dr_hal_op_start(m, m->running, st.op, st.index, args);
 #if ADAPTIVE
     m->issued_ms = (uint16_t)dr_hal_now_ms(m);
 #endif

@@ -11,8 +11,8 @@
 
 static dr_statement_t statements[N_STMT];
 static const dr_dep_t no_deps[1] = { 0 };
-static const dr_program_t program = { 0x5Au, N_STMT, statements, no_deps, 3u, sim_address_of,
-                                      0u };
+static const dr_program_t program = { 0x5Au, N_STMT, statements, no_deps, sim_args, 3u,
+                                      sim_address_of, 0u };
 
 /* A frame of `payload` with any header bytes and a correct CRC. */
 /* A frame written byte by byte (not through dr_packet_frame), so that each header field can
