@@ -240,11 +240,19 @@ fn roles(ir: &Ir, robot: &RobotApi) -> String {
     let mut out = String::from("/* The module's address: exactly one label must describe it. */\n");
     out.push_str("static uint8_t dr_program_address_of(struct dr_module *m)\n{\n");
     out.push_str("    uint8_t found = DR_NO_ADDRESS;\n    uint8_t n = 0;\n");
+    // The ID is asked once for every `M<k>` label (a call per label costs flash on an MCU).
+    let by_id = ir
+        .addresses
+        .iter()
+        .any(|a| matches!(a.label, Label::Module(_)));
+    if by_id {
+        out.push_str("    uint16_t id = dr_hal_id(m);\n");
+    }
     // No label, or only constant predicates, ask the module nothing.
     out.push_str("    (void)m;\n");
     for address in &ir.addresses {
         let test = match (&address.label, &address.predicate) {
-            (Label::Module(id), _) => format!("dr_hal_id(m) == {id}u"),
+            (Label::Module(id), _) => format!("id == {id}u"),
             (Label::Role(_), Some(predicate)) => predicate::to_c(predicate, robot),
             (Label::Role(_), None) => "0".into(),
         };
