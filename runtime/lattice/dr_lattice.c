@@ -109,10 +109,11 @@ void dr_shared_normalise(dr_shared_t *s, uint16_t n_statements)
     shift(s, i);
     s->low = (uint16_t)(s->low + i);
     if (s->low == n_statements && s->epoch != TOP_EPOCH) {
-        /* Everything complete in epoch e is the start of epoch e + 1. */
+        /* Everything complete in epoch e is the start of epoch e + 1. The done set is
+         * already empty: its bits are of statements at or above low = n_statements, which
+         * trim cleared. */
         s->epoch++;
         s->low = 0;
-        shift(s, W);
     }
 }
 
