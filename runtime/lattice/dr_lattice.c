@@ -77,16 +77,22 @@ static void shift(dr_shared_t *s, uint16_t k)
 }
 
 /* Clears the bits of statements at or above n_statements; returns whether there were any.
- * Precondition: s->low <= n_statements. O(W). */
+ * Precondition: s->low <= n_statements. O(W/8): a byte at a time. */
 static uint8_t trim(dr_shared_t *s, uint16_t n_statements)
 {
-    uint16_t i;
+    uint16_t kept = (uint16_t)(n_statements - s->low); /* bits kept from here on */
+    uint8_t k;
     uint8_t mask;
     uint8_t found = 0;
-    for (i = (uint16_t)(n_statements - s->low); i < W; i++) {
-        mask = (uint8_t)(1u << (i & 7u));
-        found = (uint8_t)(found | (s->done[i >> 3] & mask));
-        s->done[i >> 3] = (uint8_t)(s->done[i >> 3] & ~mask);
+    for (k = 0; k < NBYTES; k++) {
+        if (kept >= 8u) {
+            kept = (uint16_t)(kept - 8u);
+        } else {
+            mask = (uint8_t)((1u << kept) - 1u);
+            kept = 0;
+            found = (uint8_t)(found | (s->done[k] & (uint8_t)~mask));
+            s->done[k] = (uint8_t)(s->done[k] & mask);
+        }
     }
     return found;
 }
@@ -104,7 +110,8 @@ void dr_shared_normalise(dr_shared_t *s, uint16_t n_statements)
         s->low = n_statements;
     }
     (void)trim(s, n_statements);
-    for (i = 0; i < W && (uint16_t)(s->low + i) < n_statements && bit(s->done, i); i++) {
+    /* The completed prefix (a done bit is of a statement below n_statements: trim). */
+    for (i = 0; i < W && bit(s->done, i); i++) {
     }
     shift(s, i);
     s->low = (uint16_t)(s->low + i);
