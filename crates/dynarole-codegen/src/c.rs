@@ -239,6 +239,21 @@ fn program_prelude(ir: &Ir, options: &CompileOptions) -> String {
 fn roles(ir: &Ir, robot: &RobotApi) -> String {
     let mut out = String::from("/* The module's address: exactly one label must describe it. */\n");
     out.push_str("static uint8_t dr_program_address_of(struct dr_module *m)\n{\n");
+    // Labels M0 to M<n-1> only (`M<k>` is address k): the ID is the address, and no two
+    // labels describe one module.
+    let ids_only = !ir.addresses.is_empty()
+        && ir.addresses.iter().enumerate().all(|(k, a)| match a.label {
+            Label::Module(id) => usize::try_from(id).is_ok_and(|id| id == k),
+            Label::Role(_) => false,
+        });
+    if ids_only {
+        let _ = writeln!(
+            out,
+            "    /* Labels M0 to M{last} only: the module's ID is its address. */\n    uint16_t id = dr_hal_id(m);\n    return id <= {last}u ? (uint8_t)id : DR_NO_ADDRESS;\n}}\n",
+            last = ir.addresses.len() - 1
+        );
+        return out;
+    }
     out.push_str("    uint8_t found = DR_NO_ADDRESS;\n    uint8_t n = 0;\n");
     // The ID is asked once for every `M<k>` label (a call per label costs flash on an MCU).
     let by_id = ir

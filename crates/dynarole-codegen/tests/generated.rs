@@ -98,6 +98,28 @@ fn roles_become_predicates_over_the_hal() {
     );
 }
 
+#[test]
+fn module_labels_from_m0_up_make_the_id_the_address() {
+    let address_of = |labels: &str| {
+        let source = format!("robot atron;\nsequence s {{ {labels} }}\n");
+        let generated = compile(&source, "s", &options(Protocol::Lattice));
+        let program = file(&generated, "dr_program.c");
+        let start = program
+            .find("static uint8_t dr_program_address_of")
+            .expect("address_of");
+        program[start..].to_string()
+    };
+    // M0, M1, M2: the ID is the address, one comparison.
+    let contiguous = address_of(
+        "M1.Connector[0].retract(); M0.Connector[0].retract(); M2.Connector[0].extend();",
+    );
+    assert!(contiguous.contains("return id <= 2u ? (uint8_t)id : DR_NO_ADDRESS;"));
+    // M0 and M2 (no M1): module 1 has no address, so every label is tested.
+    let gap = address_of("M0.Connector[0].retract(); M2.Connector[0].extend();");
+    assert!(gap.contains("if (id == 2u) { /* M2 */"), "{gap}");
+    assert!(!gap.contains("id <= "), "{gap}");
+}
+
 fn out_dir(name: &str) -> PathBuf {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
         .join("codegen")
