@@ -24,6 +24,15 @@
 #define DR_CONF_WINDOW 16
 #endif
 
+/* Lattice protocol: entries of the program's dependency table and rows of its argument
+ * table (the compiler sets both; they choose the width of the statement table's indices). */
+#ifndef DR_CONF_DEP_ENTRIES
+#define DR_CONF_DEP_ENTRIES 65535
+#endif
+#ifndef DR_CONF_ARG_ROWS
+#define DR_CONF_ARG_ROWS 65535
+#endif
+
 /* Most arguments of one operation. */
 #ifndef DR_CONF_MAX_ARGS
 #define DR_CONF_MAX_ARGS 4
@@ -143,6 +152,18 @@
 #define DR_CONF_NV_NONE 2
 #ifndef DR_CONF_NV
 #define DR_CONF_NV DR_CONF_NV_EITHER
+#endif
+
+/* Lattice protocol: width of the report counters (packets sent, received, malformed,
+ * foreign), 16 or 32 bits. Only reports read them (the simulator keeps its own counts): on an
+ * 8-bit core 16 bits save 8 B of RAM per module and the 32-bit increments' flash (they wrap
+ * after 65,536 packets). */
+#ifndef DR_CONF_COUNTER_BITS
+#if defined(__AVR__)
+#define DR_CONF_COUNTER_BITS 16
+#else
+#define DR_CONF_COUNTER_BITS 32
+#endif
 #endif
 
 /* Lattice protocol: where the persisted state lives in non-volatile storage (two copies, one

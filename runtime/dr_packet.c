@@ -161,9 +161,7 @@ enum dr_packet_result dr_packet_unframe(const uint8_t *in, uint8_t len, const dr
                                         uint8_t kind, const uint8_t **payload,
                                         uint8_t *payload_len)
 {
-    uint8_t expected[6];
     uint8_t diff;
-    uint8_t i;
     /* The CRC over the frame with its own CRC appended is 0 exactly when the CRC matches. */
     if (len < DR_PACKET_OVERHEAD || in[0] != DR_PACKET_MAGIC || in[1] != len ||
         dr_crc16(in, len) != 0u) {
@@ -174,11 +172,13 @@ enum dr_packet_result dr_packet_unframe(const uint8_t *in, uint8_t len, const dr
         return DR_PACKET_MALFORMED;
     }
 #endif
-    put_identity(expected, self);
-    diff = (uint8_t)(in[8] ^ kind);
-    for (i = 0; i < 6u; i++) {
-        diff = (uint8_t)(diff | (in[2u + i] ^ expected[i]));
-    }
+    /* The identity's bytes (as put_identity writes them) and the kind, each compared where
+     * it is: constant shifts, no copy of the identity. */
+    diff = (uint8_t)((in[2] ^ (uint8_t)(self->robot >> 8)) | (in[3] ^ (uint8_t)self->robot));
+    diff = (uint8_t)(diff | (in[4] ^ (uint8_t)(self->fingerprint >> 24)) |
+                     (in[5] ^ (uint8_t)(self->fingerprint >> 16)));
+    diff = (uint8_t)(diff | (in[6] ^ (uint8_t)(self->fingerprint >> 8)) |
+                     (in[7] ^ (uint8_t)self->fingerprint) | (in[8] ^ kind));
     if (diff != 0u) {
         return DR_PACKET_FOREIGN;
     }

@@ -19,8 +19,8 @@
 
 #define W ((uint16_t)DR_CONF_WINDOW)
 #define NBYTES ((uint8_t)(DR_CONF_WINDOW / 8))
-/* Payload: epoch (2, big-endian), low (2, big-endian), done (W/8), started (W/8). */
-#define PAYLOAD ((uint8_t)(4u + 2u * NBYTES))
+/* Payload: epoch (2, big-endian), low (2, big-endian), done (W/8). */
+#define PAYLOAD ((uint8_t)(4u + NBYTES))
 #define FRAME ((uint8_t)(PAYLOAD + DR_PACKET_OVERHEAD))
 /* NV record: program id, address, payload, CRC-16 (big-endian) over the bytes before it. */
 #define RECORD ((uint8_t)(5u + PAYLOAD + 2u))
@@ -29,9 +29,10 @@
 /* Compile-time checks of the configuration (a negative array size fails the build). */
 typedef char dr_lattice_check_window[(DR_CONF_WINDOW % 8 == 0 && DR_CONF_WINDOW >= 8 &&
                                       DR_CONF_WINDOW <= 1000) ? 1 : -1];
-typedef char dr_lattice_check_packet[(4 + DR_CONF_WINDOW / 4 + DR_PACKET_OVERHEAD <=
+typedef char dr_lattice_check_packet[(4 + DR_CONF_WINDOW / 8 + DR_PACKET_OVERHEAD <=
                                       DR_CONF_MAX_PACKET) ? 1 : -1];
 typedef char dr_lattice_check_channels[(DR_CONF_CHANNELS >= 1 && DR_CONF_CHANNELS <= 32) ? 1 : -1];
+typedef char dr_lattice_check_counters[(DR_CONF_COUNTER_BITS == 16 || DR_CONF_COUNTER_BITS == 32) ? 1 : -1];
 
 #if defined(__GNUC__)
 #define NOINLINE __attribute__((noinline))
@@ -41,7 +42,7 @@ typedef char dr_lattice_check_channels[(DR_CONF_CHANNELS >= 1 && DR_CONF_CHANNEL
 
 /* A counter for reports. One call where an inlined 32-bit increment would take about 26 B of
  * flash on an 8-bit core at each counter (kept out of line even under -flto). */
-static NOINLINE void count(uint32_t *counter)
+static NOINLINE void count(dr_counter_t *counter)
 {
     (*counter)++;
 }
@@ -66,30 +67,32 @@ static void shift(dr_shared_t *s, uint16_t k)
         src = (uint16_t)(i + (k >> 3));
         if (src < NBYTES) {
             s->done[i] = (uint8_t)(s->done[src] >> r);
-            s->started[i] = (uint8_t)(s->started[src] >> r);
             if (r != 0u && src + 1u < NBYTES) {
                 s->done[i] = (uint8_t)(s->done[i] | (s->done[src + 1u] << (8u - r)));
-                s->started[i] = (uint8_t)(s->started[i] | (s->started[src + 1u] << (8u - r)));
             }
         } else {
             s->done[i] = 0;
-            s->started[i] = 0;
         }
     }
 }
 
 /* Clears the bits of statements at or above n_statements; returns whether there were any.
- * Precondition: s->low <= n_statements. O(W). */
+ * Precondition: s->low <= n_statements. O(W/8): a byte at a time. */
 static uint8_t trim(dr_shared_t *s, uint16_t n_statements)
 {
-    uint16_t i;
+    uint16_t kept = (uint16_t)(n_statements - s->low); /* bits kept from here on */
+    uint8_t k;
     uint8_t mask;
     uint8_t found = 0;
-    for (i = (uint16_t)(n_statements - s->low); i < W; i++) {
-        mask = (uint8_t)(1u << (i & 7u));
-        found = (uint8_t)(found | ((s->done[i >> 3] | s->started[i >> 3]) & mask));
-        s->done[i >> 3] = (uint8_t)(s->done[i >> 3] & ~mask);
-        s->started[i >> 3] = (uint8_t)(s->started[i >> 3] & ~mask);
+    for (k = 0; k < NBYTES; k++) {
+        if (kept >= 8u) {
+            kept = (uint16_t)(kept - 8u);
+        } else {
+            mask = (uint8_t)((1u << kept) - 1u);
+            kept = 0;
+            found = (uint8_t)(found | (s->done[k] & (uint8_t)~mask));
+            s->done[k] = (uint8_t)(s->done[k] & mask);
+        }
     }
     return found;
 }
@@ -107,15 +110,17 @@ void dr_shared_normalise(dr_shared_t *s, uint16_t n_statements)
         s->low = n_statements;
     }
     (void)trim(s, n_statements);
-    for (i = 0; i < W && (uint16_t)(s->low + i) < n_statements && bit(s->done, i); i++) {
+    /* The completed prefix (a done bit is of a statement below n_statements: trim). */
+    for (i = 0; i < W && bit(s->done, i); i++) {
     }
     shift(s, i);
     s->low = (uint16_t)(s->low + i);
     if (s->low == n_statements && s->epoch != TOP_EPOCH) {
-        /* Everything complete in epoch e is the start of epoch e + 1. */
+        /* Everything complete in epoch e is the start of epoch e + 1. The done set is
+         * already empty: its bits are of statements at or above low = n_statements, which
+         * trim cleared. */
         s->epoch++;
         s->low = 0;
-        shift(s, W);
     }
 }
 
@@ -135,7 +140,6 @@ void dr_shared_join(dr_shared_t *into, const dr_shared_t *other, uint16_t n_stat
         }
         for (i = 0; i < NBYTES; i++) {
             into->done[i] = (uint8_t)(into->done[i] | o.done[i]);
-            into->started[i] = (uint8_t)(into->started[i] | o.started[i]);
         }
     }
     dr_shared_normalise(into, n_statements);
@@ -151,7 +155,7 @@ uint8_t dr_shared_is_done(const dr_shared_t *s, uint16_t statement)
     return statement < W ? bit(s->done, statement) : 0u;
 }
 
-/* Returns the payload length (4 + DR_CONF_WINDOW / 4), or 0 when cap is too small. */
+/* Returns the payload length (4 + DR_CONF_WINDOW / 8), or 0 when cap is too small. */
 uint8_t dr_shared_encode(const dr_shared_t *s, uint8_t *out, uint8_t cap)
 {
     uint8_t i;
@@ -164,7 +168,6 @@ uint8_t dr_shared_encode(const dr_shared_t *s, uint8_t *out, uint8_t cap)
     out[3] = (uint8_t)(s->low & 0xFFu);
     for (i = 0; i < NBYTES; i++) {
         out[4u + i] = s->done[i];
-        out[4u + NBYTES + i] = s->started[i];
     }
     return PAYLOAD;
 }
@@ -184,7 +187,6 @@ uint8_t dr_shared_decode(dr_shared_t *s, const uint8_t *in, uint8_t len, uint16_
     }
     for (i = 0; i < NBYTES; i++) {
         s->done[i] = in[4u + i];
-        s->started[i] = in[4u + NBYTES + i];
     }
     return (uint8_t)!trim(s, n_statements);
 }
@@ -310,6 +312,12 @@ typedef char dr_lattice_check_doublings[(DR_CONF_LATTICE_DOUBLINGS <= 16 &&
                                          DR_CONF_LATTICE_INTERVAL_MS <= 0xFFFF &&
                                          DR_CONF_LATTICE_RESEND_SPREAD <= 100) ? 1 : -1];
 
+/* The resend spread of the smallest interval, when every spread (that base doubled at most
+ * DR_CONF_LATTICE_UNACKED_DOUBLINGS times) is exactly it doubled and fits 16 bits. */
+#define SPREAD_16_BASE (DR_CONF_LATTICE_INTERVAL_MS * DR_CONF_LATTICE_RESEND_SPREAD / 100u)
+#define SPREAD_16 ((DR_CONF_LATTICE_INTERVAL_MS * DR_CONF_LATTICE_RESEND_SPREAD) % 100u == 0u && \
+                   (SPREAD_16_BASE << DR_CONF_LATTICE_UNACKED_DOUBLINGS) < 0xFFFFu)
+
 /* Back to the smallest interval, with every resend allowed again. */
 static void restart_interval(dr_module_t *m)
 {
@@ -378,10 +386,18 @@ static void disseminate(dr_module_t *m, uint32_t now, uint8_t changed)
         /* A try toward an unacknowledged neighbour at a random time in the last SPREAD % of
          * its interval: the modules that heard the same news at the same time would
          * otherwise resend in step and collide again. */
+#if SPREAD_16
+        /* The same value in 16 bits, without a 32-bit multiplication and division (libgcc
+         * helpers on an 8-bit core): here doublings <= DR_CONF_LATTICE_UNACKED_DOUBLINGS. */
+        spread = (unsigned)SPREAD_16_BASE << m->doublings;
+        m->next_broadcast_ms -= spread;
+        m->next_broadcast_ms += (uint32_t)(dr_hal_random(m) % (uint16_t)(spread + 1u));
+#else
         spread = (((uint32_t)DR_CONF_LATTICE_INTERVAL_MS << m->doublings) *
                   DR_CONF_LATTICE_RESEND_SPREAD) / 100u;
         m->next_broadcast_ms -= spread;
         m->next_broadcast_ms += (uint32_t)(dr_hal_random(m) % (spread + 1u));
+#endif
     }
 #endif
 #if DR_CONF_BROADCAST_JITTER_MS > 0
@@ -389,8 +405,7 @@ static void disseminate(dr_module_t *m, uint32_t now, uint8_t changed)
 #endif
 }
 
-/* Whether two normalised copies hold the same facts that decide anything (epoch, low, done;
- * the started bits travel but decide nothing). O(W/8). */
+/* Whether two normalised copies hold the same facts (epoch, low, done). O(W/8). */
 static uint8_t same_facts(const dr_shared_t *a, const dr_shared_t *b)
 {
     uint8_t i;
@@ -468,8 +483,10 @@ static void heard_copy(dr_module_t *m, uint8_t channel, const dr_shared_t *befor
 static void issue(dr_module_t *m)
 {
     dr_statement_t st;
+    int16_t args[DR_CONF_MAX_ARGS];
     dr_hal_table_read(&st, &m->program->statements[m->running], sizeof st);
-    dr_hal_op_start(m, m->running, st.op, st.index, st.args);
+    dr_hal_table_read(args, &m->program->args[st.args * DR_CONF_MAX_ARGS], sizeof args);
+    dr_hal_op_start(m, m->running, st.op, st.index, args);
 #if ADAPTIVE
     m->issued_ms = (uint16_t)dr_hal_now_ms(m);
 #endif
@@ -520,7 +537,6 @@ static uint8_t start_next(dr_module_t *m)
     if (i == W) {
         return 0;
     }
-    set_bit(m->shared.started, i);
     m->running = (uint16_t)(m->shared.low + i);
     m->running_epoch = m->shared.epoch;
     issue(m);
@@ -548,7 +564,6 @@ void dr_module_init(dr_module_t *m, const dr_program_t *program, void *platform)
     m->shared.low = 0;
     for (i = 0; i < NBYTES; i++) {
         m->shared.done[i] = 0;
-        m->shared.started[i] = 0;
     }
     dr_shared_normalise(&m->shared, program->n_statements);
     m->unechoed = DR_NONE;
@@ -633,7 +648,7 @@ void dr_module_step(dr_module_t *m)
     }
     if (m->running == DR_NONE && m->unheard == 0u && m->unechoed == DR_NONE) {
 #if ADAPTIVE
-        (void)start_next(m); /* not news: the started bits decide nothing */
+        (void)start_next(m); /* not news: a start changes no shared fact */
 #else
         changed = (uint8_t)(changed | start_next(m));
 #endif

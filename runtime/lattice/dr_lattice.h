@@ -37,6 +37,20 @@ typedef uint8_t dr_dep_t;
 typedef uint16_t dr_dep_t;
 #endif
 
+/* A position in the dependency table, and a row of the argument table: one byte each when
+ * the program's tables are that small (DR_CONF_DEP_ENTRIES and DR_CONF_ARG_ROWS, which the
+ * compiler sets), so each statement takes 6 bytes of flash. */
+#if DR_CONF_DEP_ENTRIES <= 255
+typedef uint8_t dr_dep_at_t;
+#else
+typedef uint16_t dr_dep_at_t;
+#endif
+#if DR_CONF_ARG_ROWS <= 256
+typedef uint8_t dr_args_at_t;
+#else
+typedef uint16_t dr_args_at_t;
+#endif
+
 /* One statement of the compiled sequence (generated, constant). Statement indices are source
  * order after expansion; `deps` lists the statements that must be complete before this one
  * starts (the previous parallel group, and the same module's previous statement). */
@@ -45,8 +59,8 @@ typedef struct {
     uint8_t op;                        /* operation code, DR_OP_* of the generated header */
     uint8_t index;                     /* part index (connector, joint); 0 when none */
     uint8_t n_deps;
-    uint16_t first_dep;                /* position of its first dependency in deps[] */
-    int16_t args[DR_CONF_MAX_ARGS];
+    dr_dep_at_t first_dep;             /* position of its first dependency in deps[] */
+    dr_args_at_t args;                 /* its arguments: row `args` of the program's args[] */
 } dr_statement_t;
 
 /* A compiled sequence (generated, constant). */
@@ -55,6 +69,8 @@ typedef struct {
     uint16_t n_statements;
     const dr_statement_t *statements;
     const dr_dep_t *deps;
+    const int16_t *args;               /* argument lists, DR_CONF_MAX_ARGS per row (each
+                                          distinct list once) */
     uint16_t n_epochs;                 /* runs of the whole sequence before the end; 0: forever */
     uint8_t (*address_of)(struct dr_module *m); /* evaluates the role predicates */
     uint8_t options;                   /* DR_PROGRAM_* bits; 0: the default behaviour */
@@ -70,13 +86,21 @@ typedef uint32_t dr_channels_t;
 #endif
 
 /* The shared state: epoch, low-water mark (every statement below it is complete in this
- * epoch) and, for the window of statements above it, the completed and started bits. */
+ * epoch) and, for the window of statements above it, the completed bits. Which statements
+ * have started is not shared: nothing decides on it (a module's own running operation is
+ * `running`). */
 typedef struct {
     uint16_t epoch;
     uint16_t low;
     uint8_t done[DR_CONF_WINDOW / 8];
-    uint8_t started[DR_CONF_WINDOW / 8];
 } dr_shared_t;
+
+/* A report counter (DR_CONF_COUNTER_BITS). */
+#if DR_CONF_COUNTER_BITS == 16
+typedef uint16_t dr_counter_t;
+#else
+typedef uint32_t dr_counter_t;
+#endif
 
 /* All per-module state (one per module; the simulator has many, an MCU one). */
 typedef struct dr_module {
@@ -113,10 +137,10 @@ typedef struct dr_module {
                                           16 bits): a failed one is retried an interval on */
 #endif
     /* counters, for reports */
-    uint32_t packets_sent;
-    uint32_t packets_received;
-    uint32_t packets_malformed;
-    uint32_t packets_foreign;
+    dr_counter_t packets_sent;
+    dr_counter_t packets_received;
+    dr_counter_t packets_malformed;
+    dr_counter_t packets_foreign;
     uint16_t resets;
 } dr_module_t;
 

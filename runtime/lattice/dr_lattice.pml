@@ -13,7 +13,7 @@ truth records each completion). The `{{print_*}}` holes are trail events (promel
 #define W {{w}}
 #define WMASK {{wmask}}
 
-/* ---- Module state: dr_module_t (the `started` bits are never read by the runtime) ---- */
+/* ---- Module state: dr_module_t ---- */
 byte epoch[N_MODULES];         /* shared.epoch */
 byte low[N_MODULES];           /* shared.low */
 int done[N_MODULES];           /* shared.done: bit i = statement low + i */
@@ -132,7 +132,7 @@ inline join(m) {
 }
 
 /* start_next(): the first statement of module m in [low, low + W) that is not done and
- * whose dependencies are all done; starts it (the `started` bit is not modelled). */
+ * whose dependencies are all done; starts it. */
 inline start_next(m) {
     if
     :: ADDR(m) >= MANY_ADDRESSES || epoch[m] >= N_EPOCHS -> skip

@@ -42,7 +42,7 @@ pub fn generate_c(
     };
     // Token: the largest packet, a safe token's hand-over (acknowledgements have 2 bytes).
     let (machine, packet_payload) = match options.protocol {
-        Protocol::Lattice => (lattice_tables(ir, options), 4 + ir.window / 4),
+        Protocol::Lattice => (lattice_tables(ir, options), 4 + ir.window / 8),
         Protocol::Paper => (paper_machine(ir, options)?, 3 + pending_slots),
         Protocol::Token => (token_tables(ir, options)?, 8),
     };
@@ -179,6 +179,14 @@ fn program_conf(
             options.dissemination.c_macro(),
             options.dissemination.name()
         );
+        // The widths of the statement table's indices (dr_lattice.h).
+        let (rows, _) = argument_rows(ir);
+        let _ = writeln!(
+            out,
+            "#define DR_CONF_DEP_ENTRIES {}",
+            dependency_entries(ir)
+        );
+        let _ = writeln!(out, "#define DR_CONF_ARG_ROWS {}", rows.len());
     }
     if packet_bytes > DEFAULT_MAX_PACKET {
         let _ = writeln!(out, "#define DR_CONF_MAX_PACKET {packet_bytes}");
@@ -231,12 +239,35 @@ fn program_prelude(ir: &Ir, options: &CompileOptions) -> String {
 fn roles(ir: &Ir, robot: &RobotApi) -> String {
     let mut out = String::from("/* The module's address: exactly one label must describe it. */\n");
     out.push_str("static uint8_t dr_program_address_of(struct dr_module *m)\n{\n");
+    // Labels M0 to M<n-1> only (`M<k>` is address k): the ID is the address, and no two
+    // labels describe one module.
+    let ids_only = !ir.addresses.is_empty()
+        && ir.addresses.iter().enumerate().all(|(k, a)| match a.label {
+            Label::Module(id) => usize::try_from(id).is_ok_and(|id| id == k),
+            Label::Role(_) => false,
+        });
+    if ids_only {
+        let _ = writeln!(
+            out,
+            "    /* Labels M0 to M{last} only: the module's ID is its address. */\n    uint16_t id = dr_hal_id(m);\n    return id <= {last}u ? (uint8_t)id : DR_NO_ADDRESS;\n}}\n",
+            last = ir.addresses.len() - 1
+        );
+        return out;
+    }
     out.push_str("    uint8_t found = DR_NO_ADDRESS;\n    uint8_t n = 0;\n");
+    // The ID is asked once for every `M<k>` label (a call per label costs flash on an MCU).
+    let by_id = ir
+        .addresses
+        .iter()
+        .any(|a| matches!(a.label, Label::Module(_)));
+    if by_id {
+        out.push_str("    uint16_t id = dr_hal_id(m);\n");
+    }
     // No label, or only constant predicates, ask the module nothing.
     out.push_str("    (void)m;\n");
     for address in &ir.addresses {
         let test = match (&address.label, &address.predicate) {
-            (Label::Module(id), _) => format!("dr_hal_id(m) == {id}u"),
+            (Label::Module(id), _) => format!("id == {id}u"),
             (Label::Role(_), Some(predicate)) => predicate::to_c(predicate, robot),
             (Label::Role(_), None) => "0".into(),
         };
@@ -252,6 +283,36 @@ fn roles(ir: &Ir, robot: &RobotApi) -> String {
     }
     out.push_str("    return n > 1u ? DR_MANY_ADDRESSES : found;\n}\n\n");
     out
+}
+
+/// Entries of the lattice dependency table: every statement's `waits_for`, one after another.
+fn dependency_entries(ir: &Ir) -> usize {
+    ir.statements.iter().map(|s| s.waits_for().len()).sum()
+}
+
+/// The lattice argument table: each distinct argument list once (padded with zeros to
+/// `max_args`, in order of first use; one row of zeros when there are no statements), and
+/// each statement's row. Most statements share their arguments (every connector operation
+/// has none), so a row number in the statement table costs less flash than the arguments.
+fn argument_rows(ir: &Ir) -> (Vec<Vec<i16>>, Vec<usize>) {
+    let mut rows: Vec<Vec<i16>> = Vec::new();
+    let mut row_of = Vec::with_capacity(ir.statements.len());
+    for s in &ir.statements {
+        let mut args = s.args.clone();
+        args.resize(ir.max_args.max(1), 0);
+        let row = match rows.iter().position(|r| *r == args) {
+            Some(row) => row,
+            None => {
+                rows.push(args);
+                rows.len() - 1
+            }
+        };
+        row_of.push(row);
+    }
+    if rows.is_empty() {
+        rows.push(vec![0; ir.max_args.max(1)]);
+    }
+    (rows, row_of)
 }
 
 fn lattice_tables(ir: &Ir, options: &CompileOptions) -> String {
@@ -270,31 +331,36 @@ fn lattice_tables(ir: &Ir, options: &CompileOptions) -> String {
     if count == 0 {
         out.push_str("    0u /* no dependencies */\n");
     }
+    out.push_str("};\n\n/* Argument lists, each once (DR_CONF_MAX_ARGS per row). */\n");
+    out.push_str("static const int16_t dr_program_args[] DR_TABLE = {\n");
+    let (rows, row_of) = argument_rows(ir);
+    for (row, args) in rows.iter().enumerate() {
+        let args: Vec<String> = args.iter().map(|a| a.to_string()).collect();
+        let _ = writeln!(out, "    {}, /* {row} */", args.join(", "));
+    }
     out.push_str("};\n\nstatic const dr_statement_t dr_program_statements[] DR_TABLE = {\n");
     for (i, s) in ir.statements.iter().enumerate() {
         let (part, op) = &ir.operations[usize::from(s.op)];
-        let mut args: Vec<String> = s.args.iter().map(|a| a.to_string()).collect();
-        args.resize(ir.max_args.max(1), "0".into());
         let _ = writeln!(
             out,
-            "    {{ {}u, {}, {}u, {}u, {}u, {{ {} }} }}, /* {i}: {} */",
+            "    {{ {}u, {}, {}u, {}u, {}u, {}u }}, /* {i}: {} */",
             s.address,
             op_macro(part, op),
             s.index,
             s.waits_for().len(),
             first[i],
-            args.join(", "),
+            row_of[i],
             s.text
         );
     }
     if ir.statements.is_empty() {
         // C99 has no empty arrays; n_statements stays 0, so the runtime never reads it.
-        out.push_str("    { 0u, 0u, 0u, 0u, 0u, { 0 } } /* no statements */\n");
+        out.push_str("    { 0u, 0u, 0u, 0u, 0u, 0u } /* no statements */\n");
     }
     out.push_str("};\n\n");
     let _ = writeln!(
         out,
-        "const dr_program_t dr_program = {{\n    DR_PROGRAM_FINGERPRINT,\n    {}u, /* statements */\n    dr_program_statements,\n    dr_program_deps,\n    {}u, /* epochs (0: forever) */\n    dr_program_address_of,\n    {} /* options */\n}};\n",
+        "const dr_program_t dr_program = {{\n    DR_PROGRAM_FINGERPRINT,\n    {}u, /* statements */\n    dr_program_statements,\n    dr_program_deps,\n    dr_program_args,\n    {}u, /* epochs (0: forever) */\n    dr_program_address_of,\n    {} /* options */\n}};\n",
         ir.statements.len(),
         options.epochs,
         if options.no_nv { "DR_PROGRAM_NO_NV" } else { "0u" }

@@ -63,8 +63,8 @@ fn paper_machine_for_fig5_has_the_states_of_fig2() {
 fn lattice_tables_for_fig5() {
     let generated = compile(FIG5, "eight2car", &options(Protocol::Lattice));
     assert_eq!(
-        generated.packet_bytes, 17,
-        "11 framing + 4 (epoch, low) + 2 x window/8"
+        generated.packet_bytes, 16,
+        "11 framing + 4 (epoch, low) + window/8"
     );
     let text = format!(
         "{FIG5}\n----- dr_program_conf.h -----\n{}\n----- dr_program.c (lattice) -----\n{}",
@@ -96,6 +96,28 @@ fn roles_become_predicates_over_the_hal() {
             &program[roles_start..roles_end]
         )
     );
+}
+
+#[test]
+fn module_labels_from_m0_up_make_the_id_the_address() {
+    let address_of = |labels: &str| {
+        let source = format!("robot atron;\nsequence s {{ {labels} }}\n");
+        let generated = compile(&source, "s", &options(Protocol::Lattice));
+        let program = file(&generated, "dr_program.c");
+        let start = program
+            .find("static uint8_t dr_program_address_of")
+            .expect("address_of");
+        program[start..].to_string()
+    };
+    // M0, M1, M2: the ID is the address, one comparison.
+    let contiguous = address_of(
+        "M1.Connector[0].retract(); M0.Connector[0].retract(); M2.Connector[0].extend();",
+    );
+    assert!(contiguous.contains("return id <= 2u ? (uint8_t)id : DR_NO_ADDRESS;"));
+    // M0 and M2 (no M1): module 1 has no address, so every label is tested.
+    let gap = address_of("M0.Connector[0].retract(); M2.Connector[0].extend();");
+    assert!(gap.contains("if (id == 2u) { /* M2 */"), "{gap}");
+    assert!(!gap.contains("id <= "), "{gap}");
 }
 
 fn out_dir(name: &str) -> PathBuf {

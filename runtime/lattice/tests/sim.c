@@ -42,6 +42,8 @@ static uint32_t duration(uint16_t statement)
     return 20u + ((uint32_t)statement * 37u) % 60u;
 }
 
+int16_t sim_args[SIM_MAX_STATEMENTS * DR_CONF_MAX_ARGS];
+
 void sim_statement(dr_statement_t *st, uint8_t address, uint16_t self, uint8_t n_deps,
                    uint16_t first_dep)
 {
@@ -50,8 +52,9 @@ void sim_statement(dr_statement_t *st, uint8_t address, uint16_t self, uint8_t n
     st->op = 1;
     st->index = 0;
     st->n_deps = n_deps;
-    st->first_dep = first_dep;
-    st->args[0] = (int16_t)self;
+    st->first_dep = (dr_dep_at_t)first_dep;
+    st->args = (dr_args_at_t)self;
+    sim_args[self * DR_CONF_MAX_ARGS] = (int16_t)self;
 }
 
 uint8_t sim_address_of(struct dr_module *m)

@@ -111,8 +111,11 @@ extern sim_t sim;
 extern unsigned long sim_skippable_steps;
 extern unsigned long sim_skippable_acted;
 
-/* A statement of a test program: op 1, index 0, args[0] = its own index (the fake platform
- * uses it to know which statement an operation belongs to). */
+/* The argument table of every test program: row k is (k, 0, ...). */
+extern int16_t sim_args[SIM_MAX_STATEMENTS * DR_CONF_MAX_ARGS];
+/* A statement of a test program: op 1, index 0, argument row `self` (its first argument is
+ * its own index: the fake platform uses it to know which statement an operation belongs
+ * to). */
 void sim_statement(dr_statement_t *st, uint8_t address, uint16_t self, uint8_t n_deps,
                    uint16_t first_dep);
 uint8_t sim_address_of(struct dr_module *m);

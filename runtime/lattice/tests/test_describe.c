@@ -94,9 +94,7 @@ void test_describe(void)
         check_text(&m, "e1 low0 done10f run-");
     }
 
-    /* the started set is not part of the description */
     memset(m.shared.done, 0, sizeof m.shared.done);
-    memset(m.shared.started, 0xFF, sizeof m.shared.started);
     check_text(&m, "e1 low0 done0 run-");
 
     /* DR_PROGRAM_NO_NV: the channels not heard since the restart (hexadecimal), and the own

@@ -11,8 +11,8 @@
 static dr_statement_t two_st[2];
 static const dr_dep_t two_deps[] = { 0 };
 /* `A; B;`: A on address 0, B (after A) on address 1. */
-static dr_program_t two = { 0x61u, 2u, two_st, two_deps, 1u, sim_address_of, 0u };
-static dr_program_t two_no_nv = { 0x62u, 2u, two_st, two_deps, 1u, sim_address_of,
+static dr_program_t two = { 0x61u, 2u, two_st, two_deps, sim_args, 1u, sim_address_of, 0u };
+static dr_program_t two_no_nv = { 0x62u, 2u, two_st, two_deps, sim_args, 1u, sim_address_of,
                                   DR_PROGRAM_NO_NV };
 
 static void build(void)

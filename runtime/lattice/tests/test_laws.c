@@ -19,8 +19,7 @@ static uint32_t next(void)
 static int same(const dr_shared_t *a, const dr_shared_t *b)
 {
     return a->epoch == b->epoch && a->low == b->low &&
-           memcmp(a->done, b->done, sizeof a->done) == 0 &&
-           memcmp(a->started, b->started, sizeof a->started) == 0;
+           memcmp(a->done, b->done, sizeof a->done) == 0;
 }
 
 static void set(uint8_t *bits, uint16_t i)
@@ -49,9 +48,6 @@ static void random_state(dr_shared_t *s, uint16_t n)
         if (next() % 4u < density) {
             set(s->done, i);
         }
-        if (next() % 4u < density) {
-            set(s->started, i);
-        }
     }
     dr_shared_normalise(s, n);
 }
@@ -63,7 +59,7 @@ static dr_shared_t joined(const dr_shared_t *a, const dr_shared_t *b, uint16_t n
     return r;
 }
 
-/* Everything a knows (done or started in its epoch) is still known by r. */
+/* Everything a knows (done in its epoch) is still known by r. */
 static int covers(const dr_shared_t *r, const dr_shared_t *a, uint16_t n)
 {
     uint16_t s;
@@ -75,10 +71,6 @@ static int covers(const dr_shared_t *r, const dr_shared_t *a, uint16_t n)
     }
     for (s = 0; s < n; s++) {
         if (dr_shared_is_done(a, s) && !dr_shared_is_done(r, s)) {
-            return 0;
-        }
-        if (s >= a->low && s - a->low < WIN && get(a->started, (uint16_t)(s - a->low)) &&
-            s >= r->low && !(s - r->low < WIN && get(r->started, (uint16_t)(s - r->low)))) {
             return 0;
         }
     }
@@ -135,19 +127,21 @@ static void normalise_cases(void)
     CHECK_EQ(s.low, 0);
     CHECK(dr_shared_is_done(&s, 1) && dr_shared_is_done(&s, 2) && !dr_shared_is_done(&s, 0));
     set(s.done, 0);
-    set(s.started, 3);
     dr_shared_normalise(&s, 5);
     CHECK_EQ(s.low, 3);
     CHECK_EQ(s.epoch, 0);
-    CHECK(get(s.started, 0)); /* statement 3, re-based */
     CHECK(!dr_shared_is_done(&s, 3));
+    CHECK(s.done[0] == 0u);
+    set(s.done, 1);
+    dr_shared_normalise(&s, 5);
+    CHECK_EQ(s.low, 3);
+    CHECK(get(s.done, 1) && dr_shared_is_done(&s, 4)); /* statement 4, re-based */
     /* Completing the epoch rolls it over. */
     set(s.done, 0);
-    set(s.done, 1);
     dr_shared_normalise(&s, 5);
     CHECK_EQ(s.epoch, 1);
     CHECK_EQ(s.low, 0);
-    CHECK(s.done[0] == 0u && s.started[0] == 0u);
+    CHECK(s.done[0] == 0u);
     /* The top is never rolled over. */
     memset(&s, 0, sizeof s);
     s.epoch = 0xFFFFu;
@@ -162,11 +156,9 @@ static void normalise_cases(void)
     CHECK_EQ(s.low, 0);
     /* Bits beyond the last statement are dropped; so is a low beyond it. */
     memset(&s, 0, sizeof s);
-    s.done[0] = 0xF0u;
-    s.started[0] = 0xFEu;
+    s.done[0] = 0xF6u;
     dr_shared_normalise(&s, 3);
-    CHECK_EQ(s.done[0], 0);
-    CHECK_EQ(s.started[0], 0x06);
+    CHECK_EQ(s.done[0], 0x06);
     memset(&s, 0, sizeof s);
     s.low = 9;
     dr_shared_normalise(&s, 3);
@@ -188,11 +180,10 @@ static void normalise_cases(void)
         set(a.done, 1);   /* statement 3 */
         set(b.done, 0);   /* statement 0 */
         set(b.done, 1);   /* statement 1 */
-        set(b.started, 2); /* statement 2 */
         set(b.done, 4);   /* statement 4 */
         dr_shared_join(&a, &b, 10);
         CHECK_EQ(a.low, 2);
-        CHECK(get(a.started, 0) && !dr_shared_is_done(&a, 2));
+        CHECK(!dr_shared_is_done(&a, 2));
         CHECK(dr_shared_is_done(&a, 3) && dr_shared_is_done(&a, 4) && !dr_shared_is_done(&a, 5));
         /* A higher epoch wins wholesale. */
         memset(&b, 0, sizeof b);

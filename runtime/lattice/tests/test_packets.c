@@ -5,14 +5,14 @@
 #include "dr_packet.h"
 #include "sim.h"
 
-#define PAYLOAD_LEN (4u + DR_CONF_WINDOW / 4u)
+#define PAYLOAD_LEN (4u + DR_CONF_WINDOW / 8u)
 #define FRAME_LEN (PAYLOAD_LEN + DR_PACKET_OVERHEAD)
 #define N_STMT 12u
 
 static dr_statement_t statements[N_STMT];
 static const dr_dep_t no_deps[1] = { 0 };
-static const dr_program_t program = { 0x5Au, N_STMT, statements, no_deps, 3u, sim_address_of,
-                                      0u };
+static const dr_program_t program = { 0x5Au, N_STMT, statements, no_deps, sim_args, 3u,
+                                      sim_address_of, 0u };
 
 /* A frame of `payload` with any header bytes and a correct CRC. */
 /* A frame written byte by byte (not through dr_packet_frame), so that each header field can
@@ -38,13 +38,12 @@ static uint8_t frame_raw(uint8_t *out, uint8_t magic, uint16_t robot, uint32_t f
     return total;
 }
 
-static void state_with(dr_shared_t *s, uint16_t epoch, uint16_t low, uint8_t done0, uint8_t started0)
+static void state_with(dr_shared_t *s, uint16_t epoch, uint16_t low, uint8_t done0)
 {
     memset(s, 0, sizeof *s);
     s->epoch = epoch;
     s->low = low;
     s->done[0] = done0;
-    s->started[0] = started0;
 }
 
 void test_packets(void)
@@ -69,24 +68,22 @@ void test_packets(void)
     CHECK_EQ(sim.nodes[0].fake.leds, 0xFF); /* no address: shown on the LEDs */
 
     /* Round trip, size. */
-    state_with(&s, 0x0102u, 3u, 0x0Au, 0x1Eu);
+    state_with(&s, 0x0102u, 3u, 0x1Au); /* statements 4, 6 and 7 done */
     len = dr_shared_encode(&s, payload, sizeof payload);
     CHECK_EQ(len, PAYLOAD_LEN);
     CHECK_EQ(payload[0], 0x01);
     CHECK_EQ(payload[1], 0x02);
     CHECK_EQ(payload[2], 0x00);
     CHECK_EQ(payload[3], 0x03);
-    CHECK_EQ(payload[4], 0x0A);
-    CHECK_EQ(payload[4 + DR_CONF_WINDOW / 8], 0x1E);
+    CHECK_EQ(payload[4], 0x1A);
     CHECK(dr_shared_decode(&d, payload, len, N_STMT));
-    CHECK(d.epoch == s.epoch && d.low == s.low && memcmp(d.done, s.done, sizeof d.done) == 0 &&
-          memcmp(d.started, s.started, sizeof d.started) == 0);
+    CHECK(d.epoch == s.epoch && d.low == s.low && memcmp(d.done, s.done, sizeof d.done) == 0);
     CHECK_EQ(dr_shared_encode(&s, payload, (uint8_t)(PAYLOAD_LEN - 1u)), 0);
     CHECK(!dr_shared_decode(&d, payload, (uint8_t)(len - 1u), N_STMT));
     CHECK(!dr_shared_decode(&d, payload, (uint8_t)(len + 1u), N_STMT));
     /* Inconsistent: low beyond the statements; bits beyond the statements. */
     CHECK(!dr_shared_decode(&d, payload, len, 2u));
-    CHECK(!dr_shared_decode(&d, payload, len, 4u)); /* started bit 4 is statement 7 */
+    CHECK(!dr_shared_decode(&d, payload, len, 4u)); /* done bit 1 is statement 4 */
     CHECK(dr_shared_decode(&d, payload, len, 8u));  /* ... bits up to statement 7 fit in 8 */
     CHECK(!dr_shared_decode(&d, payload, len, 7u));
 
@@ -94,7 +91,7 @@ void test_packets(void)
     flen = dr_packet_frame(frame, sizeof frame, &m->identity, DR_PACKET_LATTICE_STATE,
                            payload, len);
     CHECK_EQ(flen, FRAME_LEN);
-    state_with(&s, 1u, 2u, 0x01u, 0x03u); /* epoch 1, statements 0-2 done, 3 started */
+    state_with(&s, 1u, 2u, 0x01u); /* epoch 1, statements 0-2 done */
     len = dr_shared_encode(&s, payload, sizeof payload);
     flen = dr_packet_frame(frame, sizeof frame, &m->identity, DR_PACKET_LATTICE_STATE,
                            payload, len);
@@ -151,17 +148,17 @@ void test_packets(void)
                                             DR_PACKET_LATTICE_STATE, payload,
                                             (uint8_t)(len - 1u)));
     /* Valid frame, low > n_statements: malformed. */
-    state_with(&s, 1u, (uint16_t)(N_STMT + 1u), 0u, 0u);
+    state_with(&s, 1u, (uint16_t)(N_STMT + 1u), 0u);
     (void)dr_shared_encode(&s, payload, sizeof payload);
     dr_module_receive(m, 0, bad, frame_raw(bad, DR_PACKET_MAGIC, DR_ROBOT_ID, program.fingerprint,
                                             DR_PACKET_LATTICE_STATE, payload, len));
     /* Valid frame, a bit for a statement that does not exist: malformed. */
-    state_with(&s, 1u, (uint16_t)(N_STMT - 1u), 0u, 0x02u);
+    state_with(&s, 1u, (uint16_t)(N_STMT - 1u), 0x02u);
     (void)dr_shared_encode(&s, payload, sizeof payload);
     dr_module_receive(m, 0, bad, frame_raw(bad, DR_PACKET_MAGIC, DR_ROBOT_ID, program.fingerprint,
                                             DR_PACKET_LATTICE_STATE, payload, len));
     /* Valid frame, an epoch beyond the end (3 epochs: 3 is the end, 4 cannot exist). */
-    state_with(&s, 4u, 0u, 0u, 0u);
+    state_with(&s, 4u, 0u, 0u);
     (void)dr_shared_encode(&s, payload, sizeof payload);
     dr_module_receive(m, 0, bad, frame_raw(bad, DR_PACKET_MAGIC, DR_ROBOT_ID, program.fingerprint,
                                             DR_PACKET_LATTICE_STATE, payload, len));
@@ -170,7 +167,7 @@ void test_packets(void)
     CHECK_EQ(m->shared.epoch, 1);
     CHECK_EQ(m->shared.low, 3);
     /* The end itself is accepted and is final. */
-    state_with(&s, 3u, 0u, 0u, 0u);
+    state_with(&s, 3u, 0u, 0u);
     (void)dr_shared_encode(&s, payload, sizeof payload);
     dr_module_receive(m, 0, bad, frame_raw(bad, DR_PACKET_MAGIC, DR_ROBOT_ID, program.fingerprint,
                                             DR_PACKET_LATTICE_STATE, payload, len));

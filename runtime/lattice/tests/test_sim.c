@@ -17,9 +17,9 @@ static const dr_dep_t p2_deps[] = { 0, 0, 1, 2, 0 };
 static dr_statement_t p3_st[4];
 static const dr_dep_t p3_deps[] = { 0, 1, 2 };
 
-static dr_program_t p1 = { 0x11u, 3u, p1_st, p1_deps, 1u, sim_address_of, 0u };
-static dr_program_t p2 = { 0x22u, 4u, p2_st, p2_deps, 1u, sim_address_of, 0u };
-static dr_program_t p3 = { 0x33u, 4u, p3_st, p3_deps, 1u, sim_address_of, 0u };
+static dr_program_t p1 = { 0x11u, 3u, p1_st, p1_deps, sim_args, 1u, sim_address_of, 0u };
+static dr_program_t p2 = { 0x22u, 4u, p2_st, p2_deps, sim_args, 1u, sim_address_of, 0u };
+static dr_program_t p3 = { 0x33u, 4u, p3_st, p3_deps, sim_args, 1u, sim_address_of, 0u };
 
 static const uint8_t addr3[] = { 0, 1, 2 };
 
@@ -88,6 +88,7 @@ static void generate(uint16_t n, uint8_t modules, uint16_t epochs)
     g_prog.n_statements = n;
     g_prog.statements = g_st;
     g_prog.deps = g_deps;
+    g_prog.args = sim_args;
     g_prog.n_epochs = epochs;
     g_prog.address_of = sim_address_of;
     g_prog.options = 0;
@@ -362,9 +363,9 @@ static void test_old_epoch_completion(void)
 {
     static dr_statement_t st[2];
     static const dr_dep_t deps[] = { 0 };
-    dr_program_t p = { 0x77u, 2u, st, deps, 3u, sim_address_of, 0u };
+    dr_program_t p = { 0x77u, 2u, st, deps, sim_args, 3u, sim_address_of, 0u };
     static const uint8_t one[] = { 0 };
-    uint8_t payload[4u + DR_CONF_WINDOW / 4u];
+    uint8_t payload[4u + DR_CONF_WINDOW / 8u];
     uint8_t frame[DR_CONF_MAX_PACKET];
     uint8_t len;
     uint32_t until;
@@ -442,6 +443,7 @@ static void test_window_too_small(void)
     g_prog.n_statements = n;
     g_prog.statements = g_st;
     g_prog.deps = g_deps;
+    g_prog.args = sim_args;
     g_prog.n_epochs = 1;
     g_prog.address_of = sim_address_of;
     g_prog.options = 0;
@@ -602,7 +604,7 @@ static void test_no_nv_rules(void)
     static dr_statement_t st[2];
     static const dr_dep_t deps[] = { 0 };
     static const uint8_t nodes[] = { 0, DR_NO_ADDRESS };
-    dr_program_t q = { 0x55u, 2u, st, deps, 1u, sim_address_of, DR_PROGRAM_NO_NV };
+    dr_program_t q = { 0x55u, 2u, st, deps, sim_args, 1u, sim_address_of, DR_PROGRAM_NO_NV };
     uint32_t t;
     sim_statement(&st[0], 0, 0, 0, 0);
     sim_statement(&st[1], 0, 1, 1, 0);
@@ -835,8 +837,8 @@ static void test_no_nv_limits(void)
     static const uint8_t two[] = { 0, 1 };
     dr_program_t q2 = without_nv(&p2);
     static const uint8_t with_relay[] = { 0, DR_NO_ADDRESS };
-    dr_program_t ab = { 0x56u, 2u, st, deps, 1u, sim_address_of, DR_PROGRAM_NO_NV };
-    uint8_t payload[4u + DR_CONF_WINDOW / 4u];
+    dr_program_t ab = { 0x56u, 2u, st, deps, sim_args, 1u, sim_address_of, DR_PROGRAM_NO_NV };
+    uint8_t payload[4u + DR_CONF_WINDOW / 8u];
     sim_packet_t *stale;
     dr_shared_t old;
     uint32_t c_started;
@@ -895,8 +897,7 @@ static void test_no_nv_limits(void)
     c_started = sim.last_start_ms[0][1];
     sim.quiet = 1;
     sim_reset(0);
-    memset(&old, 0, sizeof old);
-    old.started[0] = 1; /* the relay's state while A ran */
+    memset(&old, 0, sizeof old); /* the relay's state while A ran: nothing done */
     stale = &sim.nodes[0].inbox[sim.nodes[0].n_inbox++];
     stale->at = sim.time;
     stale->from = 1;
