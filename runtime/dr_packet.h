@@ -28,6 +28,7 @@
 #define DR_PACKET_LATTICE_STATE 1u
 #define DR_PACKET_PAPER_STATE 2u
 #define DR_PACKET_TOKEN 3u
+#define DR_PACKET_LATTICE_ASK 4u /* a lattice state that asks for the receiver's copy */
 
 /* Who a packet belongs to: the robot (or swarm) identity, set at compile time (`dynarole
  * compile --robot-id`) or at flash time (-DDR_ROBOT_ID=N), and the fingerprint of the

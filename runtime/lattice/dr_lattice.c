@@ -192,10 +192,12 @@ uint8_t dr_shared_decode(dr_shared_t *s, const uint8_t *in, uint8_t len, uint16_
 }
 
 #if ADAPTIVE
-/* Sends the state now: on every channel (`to` = 0), or only on the channels of `to` (a retry
- * that only some neighbours still need costs one packet per such neighbour, not one per
- * channel). The adaptive schedule is set by disseminate, below. O(DR_CONF_CHANNELS). */
-static void send_state(dr_module_t *m, dr_channels_t to)
+/* Sends the state now, as a frame of `kind` (DR_PACKET_LATTICE_ASK: a retry, answered at
+ * once by a receiver that holds our copy): on every channel (`to` = 0), or only on the
+ * channels of `to` (a retry or an answer that only some neighbours need costs one packet per
+ * such neighbour, not one per channel). The adaptive schedule is set by disseminate, below.
+ * O(DR_CONF_CHANNELS). */
+static void send_state(dr_module_t *m, dr_channels_t to, uint8_t kind)
 #else
 /* Sends the state now and schedules the next periodic broadcast. */
 static void broadcast(dr_module_t *m, uint32_t now)
@@ -205,8 +207,11 @@ static void broadcast(dr_module_t *m, uint32_t now)
     uint8_t len;
     /* Encoded in place: dr_packet_frame then copies each payload byte onto itself. */
     (void)dr_shared_encode(&m->shared, frame + DR_PACKET_HEADER, PAYLOAD);
-    len = dr_packet_frame(frame, FRAME, &m->identity, DR_PACKET_LATTICE_STATE,
-                          frame + DR_PACKET_HEADER, PAYLOAD);
+#if !ADAPTIVE
+#define kind DR_PACKET_LATTICE_STATE
+#endif
+    len = dr_packet_frame(frame, FRAME, &m->identity, kind, frame + DR_PACKET_HEADER, PAYLOAD);
+#undef kind
 #if ADAPTIVE
     if (to != 0u) {
         uint8_t c;
@@ -223,8 +228,7 @@ static void broadcast(dr_module_t *m, uint32_t now)
 #endif
     m->packets_sent++;
 #if ADAPTIVE
-    m->repeated[0] = 0; /* they hear us now: a resend of theirs is news again */
-    m->repeated[1] = 0;
+    m->asking = 0; /* answered */
 #else
     m->next_broadcast_ms = now + DR_CONF_BROADCAST_MS;
 #if DR_CONF_BROADCAST_JITTER_MS > 0
@@ -318,6 +322,12 @@ typedef char dr_lattice_check_doublings[(DR_CONF_LATTICE_DOUBLINGS <= 16 &&
 #define SPREAD_16 ((DR_CONF_LATTICE_INTERVAL_MS * DR_CONF_LATTICE_RESEND_SPREAD) % 100u == 0u && \
                    (SPREAD_16_BASE << DR_CONF_LATTICE_UNACKED_DOUBLINGS) < 0xFFFFu)
 
+/* Bits of m->answer: the next broadcast answers (it is never suppressed) ... */
+#define ANSWER_THEM 1u /* ... a neighbour heard behind or asking: on its channel (with the others
+                          still wanting our copy) */
+#define ANSWER_NEWS 2u /* ... our copy grew: on every channel, the sender's too (the relay is
+                          its acknowledgement) */
+
 /* Back to the smallest interval, with every resend allowed again. */
 static void restart_interval(dr_module_t *m)
 {
@@ -338,19 +348,24 @@ static void disseminate(dr_module_t *m, uint32_t now, uint8_t changed)
 {
     dr_channels_t linked = connected(m);
     dr_channels_t unacked = (dr_channels_t)(linked & (dr_channels_t)~m->acked);
-    dr_channels_t wanting = (dr_channels_t)(unacked | m->lagging);
+    dr_channels_t wanting = (dr_channels_t)(unacked | m->lagging | m->asking);
     dr_channels_t to = 0;
+    /* A retry (nothing new, nothing to answer, a connected neighbour not heard with our copy)
+     * asks: a receiver that holds our copy answers at once. */
+    uint8_t kind = (uint8_t)((!changed && m->answer == 0u && unacked != 0u)
+                                 ? DR_PACKET_LATTICE_ASK
+                                 : DR_PACKET_LATTICE_STATE);
 #if DR_CONF_LATTICE_RESEND_SPREAD > 0
     uint32_t spread;
 #endif
     if (changed) {
         restart_interval(m);
     }
-    /* A retry that only some connected neighbours still need (the others have been heard
-     * with our copy) goes to those channels only. News, answers and the quiet broadcasts go
+    /* A retry or an answer that only some neighbours need (the others have been heard with
+     * our copy and did not ask) goes to those channels only. News and the quiet broadcasts go
      * on every channel: they are also for neighbours facing us without a latch; and without
      * NV every send does (a neighbour in its rule-1 wait must hear us). */
-    if (!changed && !m->answer && !no_nv(m) && wanting != 0u &&
+    if (!changed && (m->answer & ANSWER_NEWS) == 0u && !no_nv(m) && wanting != 0u &&
         (linked & (dr_channels_t)~wanting) != 0u) {
         to = wanting;
     }
@@ -359,10 +374,10 @@ static void disseminate(dr_module_t *m, uint32_t now, uint8_t changed)
      * even when our copy is the same as its own. */
     if (changed || m->answer || unacked != 0u || m->consistent < DR_CONF_LATTICE_SUPPRESS ||
         no_nv(m)) {
-        send_state(m, to);
+        send_state(m, to, kind);
     }
 #else
-    send_state(m, to);
+    send_state(m, to, kind);
 #endif
     m->consistent = 0;
     m->answer = 0;
@@ -430,13 +445,14 @@ static void send_soon(dr_module_t *m)
 }
 
 /* After the join of a packet `in` heard on `channel` (`before`: our copy before it). News
- * (our copy grew) and a sender that lacks something we hold (it is behind: answer it) are
- * sent at the next step, with the interval back to the smallest; a packet equal to our copy
- * acknowledges that channel, and the third one from the same channel since our last
- * broadcast is answered too: that neighbour keeps resending because it has not heard us
- * with its copy (our packet was lost), and nothing else would make us speak. O(W). */
+ * (our copy grew: relayed on every channel, the sender's too) and a sender that lacks
+ * something we hold (it is behind: answer it) are sent at the next step, with the interval
+ * back to the smallest; a packet equal to our copy acknowledges that channel, and when it
+ * asks (`asked`: a DR_PACKET_LATTICE_ASK frame, a retry) it is answered at the next step on
+ * that channel: the sender retries because it has not heard us with its copy (our packet
+ * was lost), and nothing else would make us speak. O(W). */
 static void heard_copy(dr_module_t *m, uint8_t channel, const dr_shared_t *before,
-                       dr_shared_t *in)
+                       dr_shared_t *in, uint8_t asked)
 {
     dr_channels_t bit_c = 0;
     uint8_t grew = (uint8_t)!same_facts(before, &m->shared);
@@ -451,22 +467,22 @@ static void heard_copy(dr_module_t *m, uint8_t channel, const dr_shared_t *befor
         send_soon(m);
         if (grew) {
             m->acked = 0;
+            m->answer = ANSWER_NEWS;
         }
     }
     if (behind) {
-        m->answer = 1; /* never suppressed (the sender may be on a channel not connected) */
+        m->answer = (uint8_t)(m->answer | ANSWER_THEM);
         m->acked = (dr_channels_t)(m->acked & (dr_channels_t)~bit_c);
         m->lagging = (dr_channels_t)(m->lagging | bit_c);
     } else {
         m->acked = (dr_channels_t)(m->acked | bit_c);
         m->lagging = (dr_channels_t)(m->lagging & (dr_channels_t)~bit_c);
         if (!grew) {
-            if ((m->repeated[1] & bit_c) != 0u) {
-                m->answer = 1;
+            if (asked) {
+                m->answer = (uint8_t)(m->answer | ANSWER_THEM);
+                m->asking = (dr_channels_t)(m->asking | bit_c);
                 send_soon(m);
             }
-            m->repeated[1] = (dr_channels_t)(m->repeated[1] | (m->repeated[0] & bit_c));
-            m->repeated[0] = (dr_channels_t)(m->repeated[0] | bit_c);
             if (m->consistent < 0xFFu) {
                 m->consistent++;
             }
@@ -588,8 +604,7 @@ void dr_module_init(dr_module_t *m, const dr_program_t *program, void *platform)
     m->answer = 0;
     m->acked = 0;
     m->lagging = 0;
-    m->repeated[0] = 0;
-    m->repeated[1] = 0;
+    m->asking = 0;
 #endif
 }
 
@@ -697,9 +712,14 @@ void dr_module_receive(dr_module_t *m, uint8_t channel, const uint8_t *bytes, ui
     dr_shared_t before;
 #endif
     enum dr_packet_result r;
+    uint8_t kind = DR_PACKET_LATTICE_STATE;
     count(&m->packets_received);
-    r = dr_packet_unframe(bytes, len, &m->identity, DR_PACKET_LATTICE_STATE, &payload,
-                          &payload_len);
+#if ADAPTIVE
+    if (len >= DR_PACKET_HEADER && bytes[DR_PACKET_HEADER - 1u] == DR_PACKET_LATTICE_ASK) {
+        kind = DR_PACKET_LATTICE_ASK; /* a retry: its sender awaits our copy */
+    }
+#endif
+    r = dr_packet_unframe(bytes, len, &m->identity, kind, &payload, &payload_len);
     if (r == DR_PACKET_FOREIGN) {
         count(&m->packets_foreign);
     } else if (r != DR_PACKET_OK || !dr_shared_decode(&in, payload, payload_len, p->n_statements) ||
@@ -721,7 +741,7 @@ void dr_module_receive(dr_module_t *m, uint8_t channel, const uint8_t *bytes, ui
 #endif
         dr_shared_join(&m->shared, &in, p->n_statements);
 #if ADAPTIVE
-        heard_copy(m, channel, &before, &in);
+        heard_copy(m, channel, &before, &in, (uint8_t)(kind == DR_PACKET_LATTICE_ASK));
 #endif
     }
 }

@@ -127,12 +127,13 @@ typedef struct dr_module {
     uint8_t doublings;
     uint8_t resends;
     uint8_t consistent;
-    uint8_t answer;                    /* a neighbour was heard behind (or resending): the
-                                          next broadcast answers it, never suppressed */
+    uint8_t answer;                    /* a neighbour was heard behind (or asking), or our
+                                          copy grew: the next broadcast answers, never
+                                          suppressed */
     dr_channels_t acked;
     dr_channels_t lagging;             /* heard behind and not heard with our copy since */
-    dr_channels_t repeated[2];         /* heard with our copy once / twice since our last
-                                          broadcast (a third time: it is resending) */
+    dr_channels_t asking;              /* heard asking (a retry) with our copy since our
+                                          last broadcast: the next one answers them */
     uint16_t issued_ms;                /* when the running operation was last issued (low
                                           16 bits): a failed one is retried an interval on */
 #endif

@@ -6,7 +6,9 @@
 //! completion over the mechanical critical path plus one 100 ms period per hand-over, and
 //! over the same bound with each module's statements one at a time (as the runtime runs them).
 //!
-//! `cargo bench -p dynarole-sim --bench dissemination` (`SEEDS=20` for a quick look)
+//! `cargo bench -p dynarole-sim --bench dissemination` (`SEEDS=20` for a quick look; `CASE=tour`
+//! or `LOSS=0.6` for one case or loss level; `ADAPTIVE_ONLY=1` skips the fixed runs: the
+//! columns against fixed then compare adaptive with itself)
 
 use dynarole_codegen::{CompileOptions, Dissemination, Protocol};
 use dynarole_core::{analyze, parse, RobotRegistry};
@@ -143,18 +145,30 @@ fn main() {
         .ok()
         .and_then(|s| s.parse().ok())
         .unwrap_or(200);
+    let only_case = std::env::var("CASE").ok();
+    let only_loss: Option<f64> = std::env::var("LOSS").ok().and_then(|s| s.parse().ok());
+    let modes: &[Dissemination] = if std::env::var_os("ADAPTIVE_ONLY").is_some() {
+        &[Dissemination::Adaptive]
+    } else {
+        &[Dissemination::Fixed, Dissemination::Adaptive]
+    };
     println!("| case | loss | dissemination | success | packets/run | median s | p95 s | fixed/adaptive packets | median vs fixed | p95 vs fixed |");
     println!("|---|---|---|---|---|---|---|---|---|---|");
     let mut bounds = Vec::new();
-    for case in &CASES {
+    for case in CASES
+        .iter()
+        .filter(|c| only_case.as_deref().is_none_or(|n| n == c.name))
+    {
         let path_sim = simulator(case.sequence, Dissemination::Fixed);
-        for loss in LOSSES {
+        for loss in LOSSES
+            .into_iter()
+            .filter(|l| only_loss.is_none_or(|o| o == *l))
+        {
             let scenario = scenario(loss);
-            let points: Vec<(Dissemination, Point)> =
-                [Dissemination::Fixed, Dissemination::Adaptive]
-                    .into_iter()
-                    .map(|d| (d, measure(case, d, &scenario, seeds)))
-                    .collect();
+            let points: Vec<(Dissemination, Point)> = modes
+                .iter()
+                .map(|&d| (d, measure(case, d, &scenario, seeds)))
+                .collect();
             let fixed = &points[0].1;
             for (d, p) in &points {
                 println!(

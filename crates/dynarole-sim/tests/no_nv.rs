@@ -106,9 +106,10 @@ fn a_restart_with_every_link_blocked_waits_for_the_neighbours() {
     }
 }
 
-/// M3 is reset 50 ms before the end of its 2 s retract of connector 6 (statement 18, M3.C6
+/// M3 is reset 10 ms before the end of its 2 s retract of connector 6 (statement 18, M3.C6
 /// latched to M1.C7). The retract goes on and completes while M3 waits to hear its neighbours
-/// (about one broadcast period); M3's
+/// (its first packet after the restart asks, and the answers take a few tens of ms: a reset
+/// 50 ms before the end left M3 done waiting before the retract ended); M3's
 /// connector 6 is male, so once unlatched it still sends to M1 but no longer hears it. M3
 /// forgets that channel once it has heard another neighbour, and the sequence finishes with
 /// nothing re-issued but the interrupted retract (a no-op).
@@ -124,7 +125,7 @@ fn a_neighbour_unlatched_during_the_wait_is_not_waited_for() {
     let mut scenario = Scenario::default();
     scenario.reset.push(Reset {
         module: "M3".into(),
-        at_ms: start as u64 + 1_950,
+        at_ms: start as u64 + 1_990,
     });
     let report = run(&sim, &scenario, 52, true);
     assert!(report.success, "{}", report.summary());

@@ -154,9 +154,9 @@ static void test_interval(void)
 
 /* A module restarted with its NV record after a quiet end holds the copy its neighbour holds
  * (B, the last statement, is its own: its record has the end), so the neighbour has nothing
- * to say (and suppresses its periodic broadcasts); the restarted module resends for want of
- * an acknowledgement, and the neighbour answers its third packet. Then both are quiet
- * (without that answer: a packet every 400 ms for good). */
+ * new to say (and suppresses its periodic broadcasts); the restarted module's first packet
+ * asks (it has acknowledged no one), and the neighbour answers it at its next step. Then
+ * both are quiet (without that answer: a packet every capped interval for good). */
 static void test_resend_is_answered(void)
 {
     static const uint8_t addr[] = { 0, 1 };
@@ -166,11 +166,85 @@ static void test_resend_is_answered(void)
     CHECK(sim_run(10000u));
     run_ticks(30000u);
     sim_reset(1);
-    run_ticks(1000u);
+    run_ticks(4u * SIM_TICK_MS + DR_CONF_LATTICE_RELAY_JITTER_MS);
     CHECK_EQ(m->acked, 1u); /* channel 0: node 0 */
     before = m->packets_sent;
     run_ticks(5000u);
     CHECK(m->packets_sent - before <= 5000u / SIM_LONGEST_GAP_MS + 1u);
+    CHECK_EQ(sim.violations, 0);
+}
+
+/* A relay of news goes on every channel, the one it came from too: it is the sender's
+ * acknowledgement (sent only to the others, the sender resent for want of it). A's module
+ * (node 0) completes; the middle node relays at once, and node 0 has it acknowledged before
+ * its first resend would be due. */
+static void test_relay_acknowledges(void)
+{
+    static const uint8_t addr[] = { 0, DR_NO_ADDRESS, 1 };
+    dr_module_t *m = &sim.nodes[0].mod;
+    uint32_t before;
+    sim_setup(&two, 3, addr, 78u);
+    while (!sim.reported[0][0] && sim.time < 10000u) {
+        run_ticks(SIM_TICK_MS);
+    }
+    CHECK(sim.reported[0][0]);
+    before = m->packets_sent; /* its news went out in the step that saw the completion */
+    run_ticks(2u * SIM_TICK_MS + DR_CONF_LATTICE_RELAY_JITTER_MS + SIM_TICK_MS);
+    CHECK_EQ(m->acked, 2u); /* channel 1: the middle node */
+    CHECK_EQ(m->packets_sent, before);
+    CHECK(sim_run(10000u));
+    CHECK_EQ(sim.violations, 0);
+}
+
+/* Our copy heard in a plain state frame is not answered (a quiet broadcast, a relay); heard
+ * in an asking frame (a retry: its sender has not heard us with it) it is, at the next step,
+ * on that channel only, and as a plain frame (an asking answer would be answered again). */
+static void test_ask_is_answered(void)
+{
+    static const uint8_t addr[] = { 0, DR_NO_ADDRESS, 1 };
+    dr_module_t *m = &sim.nodes[1].mod;
+    uint8_t payload[DR_CONF_MAX_PACKET];
+    uint8_t frame[DR_CONF_MAX_PACKET];
+    uint8_t len;
+    uint8_t flen;
+    uint16_t inbox0;
+    uint16_t inbox2;
+    uint32_t due;
+    sim_setup(&two, 3, addr, 79u);
+    CHECK(sim_run(10000u));
+    run_ticks(30000u);
+    len = dr_shared_encode(&m->shared, payload, sizeof payload);
+    flen = dr_packet_frame(frame, sizeof frame, &m->identity, DR_PACKET_LATTICE_STATE, payload,
+                           len);
+    due = m->next_broadcast_ms;
+    dr_module_receive(m, 0, frame, flen);
+    CHECK_EQ(m->answer, 0);
+    CHECK_EQ(m->asking, 0u);
+    CHECK_EQ(m->next_broadcast_ms, due);
+    flen = dr_packet_frame(frame, sizeof frame, &m->identity, DR_PACKET_LATTICE_ASK, payload,
+                           len);
+    dr_module_receive(m, 0, frame, flen);
+    CHECK(m->answer != 0u);
+    CHECK_EQ(m->asking, 1u); /* channel 0: node 0 */
+    due = m->next_broadcast_ms - dr_hal_now_ms(m);
+    CHECK(due <= DR_CONF_LATTICE_RELAY_JITTER_MS);
+    CHECK_EQ(m->packets_malformed + m->packets_foreign, 0);
+    inbox0 = sim.nodes[0].n_inbox;
+    inbox2 = sim.nodes[2].n_inbox;
+    sim.time += due;
+    dr_module_step(m);
+    CHECK_EQ(sim.nodes[0].n_inbox, inbox0 + 1u);
+    CHECK_EQ(sim.nodes[2].n_inbox, inbox2);
+    CHECK_EQ(sim.nodes[0].inbox[inbox0].bytes[DR_PACKET_HEADER - 1u], DR_PACKET_LATTICE_STATE);
+    CHECK_EQ(m->asking, 0u);
+    CHECK_EQ(m->answer, 0);
+    /* A restarted module has acknowledged no one: its first packet asks. */
+    inbox2 = sim.nodes[1].n_inbox;
+    sim_reset(0);
+    dr_module_step(&sim.nodes[0].mod);
+    CHECK_EQ(sim.nodes[1].n_inbox, inbox2 + 1u);
+    CHECK_EQ(sim.nodes[1].inbox[inbox2].bytes[DR_PACKET_HEADER - 1u], DR_PACKET_LATTICE_ASK);
+    CHECK(sim_run(10000u));
     CHECK_EQ(sim.violations, 0);
 }
 
@@ -215,6 +289,8 @@ void test_dissemination(void)
 #if ADAPTIVE
     test_interval();
     test_resend_is_answered();
+    test_relay_acknowledges();
+    test_ask_is_answered();
     test_lagging_neighbour();
 #endif
 }
