@@ -5,8 +5,8 @@
 #include <string.h>
 #include "fuzz.h"
 
-static const uint8_t kinds[3] = {
-    DR_PACKET_LATTICE_STATE, DR_PACKET_PAPER_STATE, DR_PACKET_TOKEN
+static const uint8_t kinds[4] = {
+    DR_PACKET_LATTICE_STATE, DR_PACKET_LATTICE_ASK, DR_PACKET_PAPER_STATE, DR_PACKET_TOKEN
 };
 
 /* Received bytes, for each kind: accepted means a payload inside them that frames back to
