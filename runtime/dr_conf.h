@@ -24,6 +24,13 @@
 #define DR_CONF_WINDOW 16
 #endif
 
+/* Lattice protocol: most statements a module runs at once (a batch, started when none runs):
+ * its first startable statement and its startable ones among the next BATCH - 1, 1 to 9 (1:
+ * one at a time). The meaning's dependencies keep the others in order. */
+#ifndef DR_CONF_LATTICE_BATCH
+#define DR_CONF_LATTICE_BATCH 8
+#endif
+
 /* Most arguments of one operation. */
 #ifndef DR_CONF_MAX_ARGS
 #define DR_CONF_MAX_ARGS 4

@@ -39,7 +39,8 @@ typedef uint16_t dr_dep_t;
 
 /* One statement of the compiled sequence (generated, constant). Statement indices are source
  * order after expansion; `deps` lists the statements that must be complete before this one
- * starts (the previous parallel group, and the same module's previous statement). */
+ * starts (the previous parallel group: the sequence's meaning; a module's statements that
+ * may overlap run together, README.md "Start"). */
 typedef struct {
     uint8_t address;                   /* the module (role or M<k>) that runs it */
     uint8_t op;                        /* operation code, DR_OP_* of the generated header */
@@ -85,8 +86,10 @@ typedef struct dr_module {
     dr_identity_t identity;            /* DR_ROBOT_ID and the program's fingerprint */
     uint8_t address;
     dr_shared_t shared;
-    uint16_t running;                  /* statement being executed here, or DR_NONE */
+    uint16_t running;                  /* first statement of the batch being executed
+                                          here, or DR_NONE */
     uint16_t running_epoch;            /* the epoch it started in */
+    uint8_t batch;                     /* the batch's others: bit k = statement running+1+k */
     /* DR_PROGRAM_NO_NV only (otherwise unheard = 0 and unechoed = DR_NONE, always): */
     uint16_t unechoed;                 /* own completion (its epoch: running_epoch) that no
                                           neighbour has sent back yet, or DR_NONE */
