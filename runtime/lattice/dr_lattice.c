@@ -468,11 +468,10 @@ static void heard_copy(dr_module_t *m, uint8_t channel, const dr_shared_t *befor
 }
 #endif
 
-/* Statement k of the running batch (k = 0: `running`), or DR_NONE when k is not in it. */
-static uint16_t member(const dr_module_t *m, uint8_t k)
+/* The running batch as a set relative to `running`: bit k = statement running + k. */
+static uint16_t members(const dr_module_t *m)
 {
-    uint16_t in = (uint16_t)(((uint16_t)m->batch << 1) | 1u);
-    return (((unsigned)in >> k) & 1u) != 0u ? (uint16_t)(m->running + k) : DR_NONE;
+    return (uint16_t)(((uint16_t)m->batch << 1) | 1u);
 }
 
 /* Starts (again) every operation of the running batch: the HAL reports DONE once all have
@@ -481,11 +480,10 @@ static uint16_t member(const dr_module_t *m, uint8_t k)
 static void issue(dr_module_t *m)
 {
     dr_statement_t st;
-    uint16_t s;
-    uint8_t k;
-    for (k = 0; k < DR_CONF_LATTICE_BATCH; k++) {
-        s = member(m, k);
-        if (s != DR_NONE) {
+    uint16_t s = m->running;
+    uint16_t in;
+    for (in = members(m); in != 0u; in >>= 1, s++) {
+        if ((in & 1u) != 0u) {
             dr_hal_table_read(&st, &m->program->statements[s], sizeof st);
             dr_hal_op_start(m, s, st.op, st.index, st.args);
         }
@@ -542,18 +540,17 @@ static uint8_t start_next(dr_module_t *m)
 {
     uint16_t i = next_startable(m, 0);
     uint16_t j;
+    uint16_t in = 0;
     if (i == W) {
         return 0;
     }
     m->running = (uint16_t)(m->shared.low + i);
     m->running_epoch = m->shared.epoch;
-    m->batch = 0;
     for (j = i; j < W && j - i < DR_CONF_LATTICE_BATCH; j = next_startable(m, (uint16_t)(j + 1u))) {
         set_bit(m->shared.started, j);
-        if (j != i) {
-            m->batch = (uint8_t)(m->batch | (1u << (j - i - 1u)));
-        }
+        in = (uint16_t)(in | (1u << (j - i)));
     }
+    m->batch = (uint8_t)(in >> 1);
     issue(m);
     return 1;
 }
@@ -623,7 +620,7 @@ void dr_module_step(dr_module_t *m)
 #endif
     uint16_t i;
     uint16_t s;
-    uint8_t k;
+    uint16_t in;
     enum dr_op_status status;
     if (m->running != DR_NONE) {
         status = dr_hal_op_status(m);
@@ -632,10 +629,10 @@ void dr_module_step(dr_module_t *m)
                 m->running = DR_NONE; /* a completion from an older epoch: dropped */
             } else if (status == DR_OP_DONE) {
                 /* The whole batch: one normalise, one persist, one news. */
-                for (k = 0; k < DR_CONF_LATTICE_BATCH; k++) {
-                    s = member(m, k);
+                s = m->running;
+                for (in = members(m); in != 0u; in >>= 1, s++) {
                     i = (uint16_t)(s - m->shared.low);
-                    if (s != DR_NONE && s >= m->shared.low && i < W) {
+                    if ((in & 1u) != 0u && s >= m->shared.low && i < W) {
                         set_bit(m->shared.done, i);
                     }
                 }
