@@ -145,7 +145,8 @@ void dr_module_init(dr_module_t *m, const dr_program_t *program, void *platform)
  * - dr_module_finished: the last epoch is complete. Cost: O(1).
  * - dr_module_describe: `e<epoch> low<low> done<window> run<statement>`, decimal except `done`, the completed set
  * of the window as a hexadecimal number (bit i: statement low + i; no leading zeros), and
- * `run-` when nothing runs here; e.g. "e0 low3 done5 run4". With DR_PROGRAM_NO_NV, what the
+ * `run-` when nothing runs here; a batch's other statements follow the first as `+<hex>`
+ * (bit k: statement run + 1 + k); e.g. "e0 low3 done5 run4", "e0 low22 done0 run22+1". With DR_PROGRAM_NO_NV, what the
  * module waits for follows: ` hear<channels>` (hexadecimal, bit c = channel c) while a
  * neighbour connected at the restart has not been heard, ` echo<statement>` while its own
  * completion has not been sent back; e.g. "e0 low0 done0 run- hear11". Cost: O(W/4). */
