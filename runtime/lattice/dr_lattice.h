@@ -112,7 +112,7 @@ typedef struct dr_module {
     dr_channels_t lagging;             /* heard behind and not heard with our copy since */
     dr_channels_t repeated[2];         /* heard with our copy once / twice since our last
                                           broadcast (a third time: it is resending) */
-    uint16_t issued_ms;                /* when the running operation was last issued (low
+    uint16_t issued_ms;                /* when the running batch was last issued (low
                                           16 bits): a failed one is retried an interval on */
 #endif
     /* counters, for reports */
@@ -132,7 +132,7 @@ typedef struct dr_module {
 void dr_module_init(dr_module_t *m, const dr_program_t *program, void *platform);
 /* The entry points of dr_module.h, for this protocol:
  * - dr_module_step: merging is done on receipt; a step starts or polls the module's own
- *   operation and broadcasts when due. Cost: O(statements).
+ *   operations (a batch, README.md "Start") and broadcasts when due. Cost: O(statements).
  * - dr_module_receive: with DR_PROGRAM_NO_NV a valid packet counts as hearing that
  *   neighbour. Cost: O(len + W).
  * - dr_module_next_wakeup: always DR_WAKE_AT the broadcast deadline (next_broadcast_ms,
