@@ -45,7 +45,10 @@ fn a_batch_of_one_modules_statements_is_proved() {
     for extra in runs {
         let (code, out) = verify("examples/verify/ab_same_c.dr", extra);
         assert_eq!(code, Some(0), "{extra:?}: {out}");
-        assert!(out.contains("L (finishes, weak fairness): verified"), "{out}");
+        assert!(
+            out.contains("L (finishes, weak fairness): verified"),
+            "{out}"
+        );
         assert!(out.contains("result: verified"), "{extra:?}: {out}");
     }
 }
