@@ -18,8 +18,8 @@
 #endif
 
 /* Lattice protocol: statements tracked above the low-water mark, a multiple of 8. The
- * compiler computes the window the sequence needs and sets it; packets carry 2 * window / 8
- * bytes of sets. */
+ * compiler computes the window the sequence needs and sets it; packets carry window / 8
+ * bytes of the done set. */
 #ifndef DR_CONF_WINDOW
 #define DR_CONF_WINDOW 16
 #endif
@@ -31,6 +31,13 @@
 #endif
 #ifndef DR_CONF_ARG_ROWS
 #define DR_CONF_ARG_ROWS 65535
+#endif
+
+/* Lattice protocol: most statements a module runs at once (a batch, started when none runs):
+ * its first startable statement and its startable ones among the next BATCH - 1, 1 to 9 (1:
+ * one at a time). The meaning's dependencies keep the others in order. */
+#ifndef DR_CONF_LATTICE_BATCH
+#define DR_CONF_LATTICE_BATCH 8
 #endif
 
 /* Most arguments of one operation. */

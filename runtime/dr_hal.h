@@ -11,8 +11,9 @@
 struct dr_module; /* defined by the protocol's runtime; its entry points: dr_module.h */
 
 /* Status of the operations started with dr_hal_op_start: DR_OP_DONE once every operation
- * started so far has taken effect (a module runs one operation at a time, except the paper
- * protocol's blocks, which start several on one module and wait for all of them). */
+ * started so far has taken effect, DR_OP_FAILED once all have ended and one failed (a new
+ * start after either begins a new set). Several run on one module at once: the paper
+ * protocol's blocks and the lattice protocol's batches start several and wait for all. */
 enum dr_op_status {
     DR_OP_RUNNING = 0,
     DR_OP_DONE = 1,

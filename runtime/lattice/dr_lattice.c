@@ -33,6 +33,9 @@ typedef char dr_lattice_check_packet[(4 + DR_CONF_WINDOW / 8 + DR_PACKET_OVERHEA
                                       DR_CONF_MAX_PACKET) ? 1 : -1];
 typedef char dr_lattice_check_channels[(DR_CONF_CHANNELS >= 1 && DR_CONF_CHANNELS <= 32) ? 1 : -1];
 typedef char dr_lattice_check_counters[(DR_CONF_COUNTER_BITS == 16 || DR_CONF_COUNTER_BITS == 32) ? 1 : -1];
+/* A batch's other statements are the bits of dr_module_t.batch (8). */
+typedef char dr_lattice_check_batch[(DR_CONF_LATTICE_BATCH >= 1 && DR_CONF_LATTICE_BATCH <= 9) ? 1
+                                                                                            : -1];
 
 #if defined(__GNUC__)
 #define NOINLINE __attribute__((noinline))
@@ -496,22 +499,38 @@ static void heard_copy(dr_module_t *m, uint8_t channel, const dr_shared_t *befor
 }
 #endif
 
+/* The running batch as a set relative to `running`: bit k = statement running + k. */
+static uint16_t members(const dr_module_t *m)
+{
+    return (uint16_t)(((uint16_t)m->batch << 1) | 1u);
+}
+
+/* Starts (again) every operation of the running batch: the HAL reports DONE once all have
+ * taken effect, FAILED once all have ended and one failed (operations are idempotent, so a
+ * failure re-issues them all). */
 static void issue(dr_module_t *m)
 {
     dr_statement_t st;
     int16_t args[DR_CONF_MAX_ARGS];
-    dr_hal_table_read(&st, &m->program->statements[m->running], sizeof st);
-    dr_hal_table_read(args, &m->program->args[st.args * DR_CONF_MAX_ARGS], sizeof args);
-    dr_hal_op_start(m, m->running, st.op, st.index, args);
+    uint16_t s = m->running;
+    uint16_t in;
+    for (in = members(m); in != 0u; in >>= 1, s++) {
+        if ((in & 1u) != 0u) {
+            dr_hal_table_read(&st, &m->program->statements[s], sizeof st);
+            dr_hal_table_read(args, &m->program->args[st.args * DR_CONF_MAX_ARGS], sizeof args);
+            dr_hal_op_start(m, s, st.op, st.index, args);
+        }
+    }
 #if ADAPTIVE
     m->issued_ms = (uint16_t)dr_hal_now_ms(m);
 #endif
 }
 
-/* This module's first statement in the window that is not done and whose dependencies are
- * all done, as its offset from the low-water mark; W when there is none (or the module has
- * no single address, or the last epoch is over). Reads *m only. O(W * deps). */
-static uint16_t next_startable(const dr_module_t *m)
+/* This module's first statement at or above offset `from` of the window that is not done and
+ * whose dependencies are all done, as its offset from the low-water mark; W when there is
+ * none (or the module has no single address, or the last epoch is over). Reads *m only.
+ * O(W * deps). */
+static uint16_t next_startable(const dr_module_t *m, uint16_t from)
 {
     const dr_program_t *p = m->program;
     dr_statement_t st;
@@ -523,7 +542,7 @@ static uint16_t next_startable(const dr_module_t *m)
     if (m->address >= DR_MANY_ADDRESSES || dr_module_finished(m)) {
         return W;
     }
-    for (i = 0; i < W; i++) {
+    for (i = from; i < W; i++) {
         s = (uint16_t)(sh->low + i);
         if (s >= p->n_statements) {
             break;
@@ -546,15 +565,24 @@ static uint16_t next_startable(const dr_module_t *m)
     return W;
 }
 
-/* Starts next_startable's statement (after a reset this re-enters an interrupted one). */
+/* Starts a batch: next_startable's statement and the module's other startable statements
+ * among the DR_CONF_LATTICE_BATCH - 1 after it, all at once (their dependencies are done, so
+ * the sequence lets them overlap). After a reset this re-enters the interrupted ones. Called
+ * only when nothing runs here: a statement's completion never waits for a later one. */
 static uint8_t start_next(dr_module_t *m)
 {
-    uint16_t i = next_startable(m);
+    uint16_t i = next_startable(m, 0);
+    uint16_t j;
+    uint16_t in = 0;
     if (i == W) {
         return 0;
     }
     m->running = (uint16_t)(m->shared.low + i);
     m->running_epoch = m->shared.epoch;
+    for (j = i; j < W && j - i < DR_CONF_LATTICE_BATCH; j = next_startable(m, (uint16_t)(j + 1u))) {
+        in = (uint16_t)(in | (1u << (j - i)));
+    }
+    m->batch = (uint8_t)(in >> 1);
     issue(m);
     return 1;
 }
@@ -596,6 +624,7 @@ void dr_module_init(dr_module_t *m, const dr_program_t *program, void *platform)
     dr_hal_leds(m, m->address);
     m->running = DR_NONE;
     m->running_epoch = 0;
+    m->batch = 0;
     m->next_broadcast_ms = dr_hal_now_ms(m);
 #if ADAPTIVE
     /* Speak at once (a restarted module's copy may be behind: its neighbours answer). */
@@ -620,6 +649,8 @@ void dr_module_step(dr_module_t *m)
     uint8_t retrying = 0;
 #endif
     uint16_t i;
+    uint16_t s;
+    uint16_t in;
     enum dr_op_status status;
     if (m->running != DR_NONE) {
         status = dr_hal_op_status(m);
@@ -627,16 +658,22 @@ void dr_module_step(dr_module_t *m)
             if (m->running_epoch != m->shared.epoch) {
                 m->running = DR_NONE; /* a completion from an older epoch: dropped */
             } else if (status == DR_OP_DONE) {
-                i = (uint16_t)(m->running - m->shared.low);
-                if (m->running >= m->shared.low && i < W) {
-                    set_bit(m->shared.done, i);
+                /* The whole batch: one normalise, one persist, one news. */
+                s = m->running;
+                for (in = members(m); in != 0u; in >>= 1, s++) {
+                    i = (uint16_t)(s - m->shared.low);
+                    if ((in & 1u) != 0u && s >= m->shared.low && i < W) {
+                        set_bit(m->shared.done, i);
+                    }
                 }
                 dr_shared_normalise(&m->shared, m->program->n_statements);
                 if (!no_nv(m)) {
                     persist(m);
                 } else if (connected(m)) {
                     /* Rule 2: not acted on (nothing starts here) until a neighbour echoes it;
-                     * the broadcast below still carries it. running_epoch keeps its epoch. */
+                     * the broadcast below still carries it. running_epoch keeps its epoch.
+                     * One member stands for the batch: all became done in this one update,
+                     * so a copy that holds one descends from it and holds all. */
                     m->unechoed = m->running;
                 }
                 m->running = DR_NONE;
@@ -695,7 +732,7 @@ uint8_t dr_module_next_wakeup(dr_module_t *m, uint32_t *at_ms)
     }
     if ((m->unheard != 0u && m->heard) ||
         (m->running == DR_NONE && m->unheard == 0u && m->unechoed == DR_NONE &&
-         next_startable(m) != W)) {
+         next_startable(m, 0) != W)) {
         *at_ms = now;
     }
     return wake;

@@ -53,7 +53,8 @@ typedef uint16_t dr_args_at_t;
 
 /* One statement of the compiled sequence (generated, constant). Statement indices are source
  * order after expansion; `deps` lists the statements that must be complete before this one
- * starts (the previous parallel group, and the same module's previous statement). */
+ * starts (the previous parallel group: the sequence's meaning; a module's statements that
+ * may overlap run together, README.md "Start"). */
 typedef struct {
     uint8_t address;                   /* the module (role or M<k>) that runs it */
     uint8_t op;                        /* operation code, DR_OP_* of the generated header */
@@ -109,8 +110,10 @@ typedef struct dr_module {
     dr_identity_t identity;            /* DR_ROBOT_ID and the program's fingerprint */
     uint8_t address;
     dr_shared_t shared;
-    uint16_t running;                  /* statement being executed here, or DR_NONE */
+    uint16_t running;                  /* first statement of the batch being executed
+                                          here, or DR_NONE */
     uint16_t running_epoch;            /* the epoch it started in */
+    uint8_t batch;                     /* the batch's others: bit k = statement running+1+k */
     /* DR_PROGRAM_NO_NV only (otherwise unheard = 0 and unechoed = DR_NONE, always): */
     uint16_t unechoed;                 /* own completion (its epoch: running_epoch) that no
                                           neighbour has sent back yet, or DR_NONE */
@@ -134,7 +137,7 @@ typedef struct dr_module {
     dr_channels_t lagging;             /* heard behind and not heard with our copy since */
     dr_channels_t asking;              /* heard asking (a retry) with our copy since our
                                           last broadcast: the next one answers them */
-    uint16_t issued_ms;                /* when the running operation was last issued (low
+    uint16_t issued_ms;                /* when the running batch was last issued (low
                                           16 bits): a failed one is retried an interval on */
 #endif
     /* counters, for reports */
@@ -154,7 +157,7 @@ typedef struct dr_module {
 void dr_module_init(dr_module_t *m, const dr_program_t *program, void *platform);
 /* The entry points of dr_module.h, for this protocol:
  * - dr_module_step: merging is done on receipt; a step starts or polls the module's own
- *   operation and broadcasts when due. Cost: O(statements).
+ *   operations (a batch, README.md "Start") and broadcasts when due. Cost: O(statements).
  * - dr_module_receive: with DR_PROGRAM_NO_NV a valid packet counts as hearing that
  *   neighbour. Cost: O(len + W).
  * - dr_module_next_wakeup: always DR_WAKE_AT the broadcast deadline (next_broadcast_ms,
@@ -167,7 +170,8 @@ void dr_module_init(dr_module_t *m, const dr_program_t *program, void *platform)
  * - dr_module_finished: the last epoch is complete. Cost: O(1).
  * - dr_module_describe: `e<epoch> low<low> done<window> run<statement>`, decimal except `done`, the completed set
  * of the window as a hexadecimal number (bit i: statement low + i; no leading zeros), and
- * `run-` when nothing runs here; e.g. "e0 low3 done5 run4". With DR_PROGRAM_NO_NV, what the
+ * `run-` when nothing runs here; a batch's other statements follow the first as `+<hex>`
+ * (bit k: statement run + 1 + k); e.g. "e0 low3 done5 run4", "e0 low22 done0 run22+1". With DR_PROGRAM_NO_NV, what the
  * module waits for follows: ` hear<channels>` (hexadecimal, bit c = channel c) while a
  * neighbour connected at the restart has not been heard, ` echo<statement>` while its own
  * completion has not been sent back; e.g. "e0 low0 done0 run- hear11". Cost: O(W/4). */

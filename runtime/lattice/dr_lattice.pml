@@ -12,13 +12,15 @@ truth records each completion). The `{{print_*}}` holes are trail events (promel
 @@ lattice
 #define W {{w}}
 #define WMASK {{wmask}}
+#define BATCH {{batch}}         /* DR_CONF_LATTICE_BATCH */
 
 /* ---- Module state: dr_module_t ---- */
 byte epoch[N_MODULES];         /* shared.epoch */
 byte low[N_MODULES];           /* shared.low */
 int done[N_MODULES];           /* shared.done: bit i = statement low + i */
-byte running[N_MODULES] = NONE;
+byte running[N_MODULES] = NONE; /* the batch's first statement */
 byte running_epoch[N_MODULES];
+byte batch[N_MODULES];         /* the batch's others: bit k = statement running + 1 + k */
 {{#nv}}
 /* The NV record (address and state; written at each completion). */
 byte nv_epoch[N_MODULES];
@@ -131,30 +133,37 @@ inline join(m) {
     normalise(m)
 }
 
-/* start_next(): the first statement of module m in [low, low + W) that is not done and
- * whose dependencies are all done; starts it. */
+/* start_next() with next_startable() and issue(): a batch, the first statement of module m
+ * in [low, low + W) that is not done and whose dependencies are all done, and the others
+ * such among the BATCH - 1 after it; starts them all, in order (the `started` bits are not
+ * modelled). Called only when nothing runs on m. */
 inline start_next(m) {
     if
     :: ADDR(m) >= MANY_ADDRESSES || epoch[m] >= N_EPOCHS -> skip
     :: else ->
         t_i = 0;
         do
-        :: t_i >= W || low[m] + t_i >= N_STATEMENTS -> break
+        :: t_i >= W || low[m] + t_i >= N_STATEMENTS ||
+           (running[m] != NONE && low[m] + t_i - running[m] >= BATCH) -> break
         :: else ->
             t_s = low[m] + t_i;
             if
-            :: ST_ADDR(t_s) != ADDR(m) || ((done[m] >> t_i) & 1) -> t_i++
+            :: ST_ADDR(t_s) != ADDR(m) || ((done[m] >> t_i) & 1) -> skip
             :: else ->
                 deps_done(m, t_s);
                 if
-                :: t_ok ->
+                :: t_ok && running[m] == NONE ->
                     running[m] = t_s;
                     running_epoch[m] = epoch[m];
-                    issue(m, t_s, epoch[m]);
-                    break
-                :: else -> t_i++
+                    batch[m] = 0;
+                    issue(m, t_s, epoch[m])
+                :: t_ok && running[m] != NONE ->
+                    batch[m] = batch[m] | (1 << (t_s - running[m] - 1));
+                    issue(m, t_s, epoch[m])
+                :: else -> skip
                 fi
-            fi
+            fi;
+            t_i++
         od
     fi
 }
@@ -188,21 +197,37 @@ inline persist(m) {
 
 {{/no_nv}}
 {{/wants}}
-/* dr_module_step(m): poll the running operation (a completion from an older epoch is
- * dropped; a completion sets the done bit, normalises, persists), then start the next
- * statement if nothing runs here. The broadcast is the links' business. */
+/* dr_module_step(m): poll the running batch (dr_hal_op_status: DONE once none of m's
+ * operations runs; a completion from an older epoch is dropped; a completion sets the done
+ * bits of the whole batch, normalises, persists once), then start the next batch if nothing
+ * runs here. The broadcast is the links' business. */
 inline step(m) {
     if
-    :: running[m] != NONE && !p_run[running[m]] ->
+    :: running[m] != NONE && !BUSY(m) ->
         if
         :: running_epoch[m] != epoch[m] ->
             running[m] = NONE
         :: else ->
-            t_i = running[m] - low[m];
-            if
-            :: running[m] >= low[m] && t_i < W -> done[m] = done[m] | (1 << t_i)
-            :: else -> skip
-            fi;
+            t_i = 0;
+            do
+            :: t_i < BATCH ->
+                t_s = running[m] + t_i;
+                if
+                :: t_i == 0 || ((batch[m] >> (t_i - 1)) & 1) ->
+                    if
+                    :: t_s >= low[m] && t_s - low[m] < W -> done[m] = done[m] | (1 << (t_s - low[m]))
+                    :: else -> skip
+                    fi;
+                    {{print_complete}};
+{{#record}}
+                    record(m, t_s);
+{{/record}}
+                    skip
+                :: else -> skip
+                fi;
+                t_i++
+            :: else -> break
+            od;
             normalise(m);
 {{#no_nv}}
             if
@@ -216,10 +241,6 @@ inline step(m) {
 {{#no_persist}}
             /* persist(): not observable without resets (no NV in the model) */
 {{/no_persist}}
-            {{print_complete}};
-{{#record}}
-            record(m, running[m]);
-{{/record}}
             running[m] = NONE
         fi
     :: else -> skip
@@ -308,7 +329,8 @@ inline reset(m) {
     join(m);
 {{/nv}}
     running[m] = NONE;
-    running_epoch[m] = 0
+    running_epoch[m] = 0;
+    batch[m] = 0
 }
 
 /* The first dr_module_init of every module: the bottom state (zero), nothing running. */

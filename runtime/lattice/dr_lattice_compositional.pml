@@ -15,8 +15,8 @@ init.
 bit t_rec[N_STATEMENTS];  /* recorded: some module's copy holds it done */
 bit t_end;                /* every statement recorded: T is in epoch 1 */
 byte t_stage;             /* the first statement not recorded */
-byte e_run[N_MODULES] = NONE; /* the other modules: statement running, or done and not
-                                 recorded yet (the module has not polled it) */
+bit e_pend[N_STATEMENTS]; /* the other modules' statements started and not recorded yet
+                            (running, or done and not polled) */
 
 /* Every statement s waits for (dr_program_deps) is recorded. Sets t_ok. */
 inline waits_recorded(s) {
@@ -139,17 +139,20 @@ proctype fair_news() {
 {{defines}}
 
 @@ env
-/* Module {{k}} ({{name}}), abstracted: it starts one of its statements that is not in T and
- * whose dependencies are all in T (its copy is below T and keeps its own completions),
- * the operation finishes after an unknown time (its actuator: one process with the module,
- * as only one of the three kinds of step is enabled at a time, which keeps weak fairness
- * per process exact), and it records the statement in T. With LIVENESS, a start is fair
- * only in the stages where the links that surely exist carry the dependencies to it. */
+/* Module {{k}} ({{name}}), abstracted: it starts any of its statements that is not in T,
+ * not started already and whose dependencies are all in T (its copy is below T and keeps
+ * its own completions), several at once (a batch; or one at a time), each operation
+ * finishes after an unknown time (its actuator: one process with the module), and it
+ * records each finished statement in T (a batch recorded at once is these records one after
+ * the other). Every step starts, finishes or records one of its statements, so between
+ * resets it takes finitely many: weak fairness per process makes each step that stays
+ * enabled happen. With LIVENESS, a start is fair only in the stages where the links that
+ * surely exist carry the dependencies to it. */
 proctype env_{{k}}() {
     do
 {{starts}}
 {{finishes}}
-    :: d_step { e_run[{{k}}] != NONE && !p_run[e_run[{{k}}]] -> record({{k}}, e_run[{{k}}]); e_run[{{k}}] = NONE }
+{{records}}
     od
 }
 

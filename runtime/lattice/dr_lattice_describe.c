@@ -48,6 +48,10 @@ uint8_t dr_module_describe(const dr_module_t *m, char *out, uint8_t cap)
         dr_text_char(out, cap, &n, '-');
     } else {
         dr_text_decimal(out, cap, &n, m->running);
+        if (m->batch != 0u) {
+            dr_text_char(out, cap, &n, '+'); /* the batch's others */
+            text_hex(out, cap, &n, m->batch);
+        }
     }
     /* DR_PROGRAM_NO_NV: what the module waits for before it may start anything. */
     if (m->unheard != 0u) {

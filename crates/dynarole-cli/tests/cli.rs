@@ -898,8 +898,18 @@ fn a_program_at_the_statement_limit_checks() {
     );
     let out = dynarole(&["check", scratch("long.dr", &source).to_str().expect("path")]);
     assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
-    // On 200 modules each waits for two (its group and its module): past the 16-bit table.
-    let many: Vec<String> = (0..60_000).map(|i| retract(i % 200)).collect();
+    // Groups of two on 200 modules, each statement waiting for the two of the group before:
+    // past the 16-bit table.
+    let many: Vec<String> = (0..30_000)
+        .map(|i| {
+            let first = retract(2 * i % 200);
+            format!(
+                "{} & {}",
+                first.trim_end_matches(';'),
+                retract((2 * i + 1) % 200)
+            )
+        })
+        .collect();
     let source = format!("robot atron;\nsequence s {{\n{}\n}}\n", many.join("\n"));
     let out = dynarole(&[
         "check",

@@ -32,6 +32,27 @@ fn the_lattice_protocol_is_proved_on_a_line_with_a_reset_and_a_late_packet() {
     assert!(out.contains("at most 1 reset(s)"), "{out}");
 }
 
+/// Two statements of one module in one group, which the lattice runtime starts as one batch
+/// and completes together: proved with a reset (and a late packet), without NV, and module by
+/// module.
+#[test]
+fn a_batch_of_one_modules_statements_is_proved() {
+    let runs: [&[&str]; 3] = [
+        &["--resets", "1", "--late", "1"],
+        &["--resets", "1", "--no-nv"],
+        &["--method", "compositional", "--resets", "1"],
+    ];
+    for extra in runs {
+        let (code, out) = verify("examples/verify/ab_same_c.dr", extra);
+        assert_eq!(code, Some(0), "{extra:?}: {out}");
+        assert!(
+            out.contains("L (finishes, weak fairness): verified"),
+            "{out}"
+        );
+        assert!(out.contains("result: verified"), "{extra:?}: {out}");
+    }
+}
+
 #[test]
 fn every_paper_merge_variant_starts_a_statement_too_early_without_any_loss() {
     for merge in ["printed", "java", "c-port"] {

@@ -468,7 +468,7 @@ impl Gen<'_> {
             ),
             (
                 "waits",
-                "what it waits for (dr_program_deps: deps and the module's previous statement)",
+                "what it waits for (dr_program_deps: its deps, the order the sequence means)",
                 of(&|st| st.waits_for()),
             ),
         ]

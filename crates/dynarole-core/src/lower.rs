@@ -66,8 +66,10 @@ pub struct IrStatement {
     /// Statements that must be complete before this one starts: the previous parallel group
     /// (within its block). This is the ordering the sequence means, which checkers verify.
     pub deps: Vec<u16>,
-    /// The same module's previous statement: a module runs one operation at a time, in source
-    /// order. The lattice protocol waits for it too; the paper protocol's blocks do not.
+    /// The same module's previous statement (source order): the order of a module that runs
+    /// one operation at a time, a bound the simulator's critical path reports. No protocol
+    /// waits for it: the lattice runs a module's overlapping statements together, the paper
+    /// protocol's blocks too.
     pub previous_on_module: Option<u16>,
     /// `;` or `&` after it in the flattened source (the paper protocol's view).
     pub separator: SeparatorKind,
@@ -295,7 +297,7 @@ fn push_statement(
             "more than {MAX_STATEMENTS} statements (statement numbers are 16 bits)"
         )));
     }
-    // The module's previous statement may come on top of these.
+    // n_deps is one byte; the limit stays MAX_WAITS - 1 (what the message names).
     if deps.len() >= MAX_WAITS {
         return Err(limit(format!("this statement waits for the {} statements of the parallel group before it; the lattice tables hold at most {} per statement", deps.len(), MAX_WAITS - 1)));
     }
@@ -397,11 +399,11 @@ pub struct PaperUnit {
 }
 
 impl IrStatement {
-    /// Everything the lattice protocol waits for: the dependencies and the module's previous
-    /// statement, sorted and without repeats.
+    /// Everything the lattice protocol waits for, sorted and without repeats: the dependencies
+    /// only (what the sequence means). A module's statements that these let overlap run at
+    /// once (a batch); those they order, the module runs in that order.
     pub fn waits_for(&self) -> Vec<u16> {
-        let mut all: BTreeSet<u16> = self.deps.iter().copied().collect();
-        all.extend(self.previous_on_module);
+        let all: BTreeSet<u16> = self.deps.iter().copied().collect();
         all.into_iter().collect()
     }
 }

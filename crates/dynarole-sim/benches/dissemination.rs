@@ -4,7 +4,8 @@
 //! a Markdown table (docs/benchmarks.md, "Adaptive dissemination"): success, packets sent per
 //! run, median and 95th-percentile completion of the successful runs, and at loss 0 the mean
 //! completion over the mechanical critical path plus one 100 ms period per hand-over, and
-//! over the same bound with each module's statements one at a time (as the runtime runs them).
+//! over the same bound with each module's statements one at a time (as the runtime ran them
+//! before a module started its overlapping statements together, as one batch).
 //!
 //! `cargo bench -p dynarole-sim --bench dissemination` (`SEEDS=20` for a quick look; `CASE=tour`
 //! or `LOSS=0.6` for one case or loss level; `ADAPTIVE_ONLY=1` skips the fixed runs: the

@@ -32,8 +32,8 @@ impl CriticalPath {
 enum Order {
     /// The IR's `deps`: what the sequence means.
     Meaning,
-    /// Also `previous_on_module`: a module runs one operation at a time, in source order, as
-    /// the lattice runtime does (two `&` statements of one module run one after the other).
+    /// Also `previous_on_module`: a module runs one operation at a time, in source order (two
+    /// `&` statements of one module one after the other; the lattice runtime overlaps them).
     OneAtATime,
 }
 

@@ -160,8 +160,9 @@ impl Simulator {
         critical::critical_path(&self.sequence, timing)
     }
 
-    /// `critical_path` with each module's statements run one at a time, in source order, as
-    /// the lattice runtime runs them (`critical.rs`): also a lower bound, and a tighter one.
+    /// `critical_path` with each module's statements run one at a time, in source order
+    /// (`critical.rs`): the bound of a runtime that runs one operation per module at a time
+    /// (the lattice runtime with `DR_CONF_LATTICE_BATCH` 1, and before batches).
     pub fn critical_path_one_at_a_time(&self, timing: &Timing) -> CriticalPath {
         critical::one_at_a_time(&self.sequence, timing)
     }

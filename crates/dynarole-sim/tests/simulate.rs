@@ -295,14 +295,21 @@ fn the_trace_shows_each_modules_protocol_state() {
         let finished: Vec<&Line> = lines.iter().filter(|l| l.event == "finished").collect();
         assert_eq!(finished.len(), 7, "{trace}");
         assert!(finished.iter().all(|l| l.state.starts_with(end)), "{trace}");
-        // A module that starts a statement is running it (lattice: `run<statement>`).
+        // A module that starts a statement is running it (lattice: `run<statement>`, or in
+        // its batch, `run<first>+<others>`).
         if protocol == Protocol::Lattice {
-            assert!(lines.iter().filter(|l| l.event == "start").all(|l| l
-                .detail
-                .split(' ')
-                .next()
-                .map(|s| s.replacen('#', "run", 1))
-                == l.state.split(' ').nth(3).map(str::to_string)));
+            assert!(lines.iter().filter(|l| l.event == "start").all(|l| {
+                let statement = l.detail.split(' ').next().and_then(|s| s.strip_prefix('#'));
+                let run = l
+                    .state
+                    .split(' ')
+                    .nth(3)
+                    .and_then(|s| s.strip_prefix("run"));
+                match (statement.and_then(|s| s.parse().ok()), run) {
+                    (Some(s), Some(run)) => runs_statement(run, s),
+                    _ => false,
+                }
+            }));
         }
     }
 }

@@ -116,8 +116,72 @@ static void sim_broadcast(struct dr_module *m, uint8_t channel, const uint8_t *b
     }
 }
 
-/* The operation the fake noted: checked (S1, S2, the right module, one at a time), recorded,
- * timed. */
+/* Whether statement s belongs to the batch m runs (its `running` and `batch` fields). */
+static uint8_t in_batch(const dr_module_t *m, uint16_t s)
+{
+    uint16_t k = (uint16_t)(s - m->running);
+    if (m->running == DR_NONE || s < m->running || k >= DR_CONF_LATTICE_BATCH) {
+        return 0;
+    }
+    return (uint8_t)(k == 0u || ((m->batch >> (k - 1u)) & 1u));
+}
+
+static uint8_t op_ended(const sim_op_t *o)
+{
+    return (uint8_t)(!o->active || o->failed || sim.time >= o->until);
+}
+
+uint8_t sim_op_running(const sim_node_t *n)
+{
+    uint8_t k;
+    for (k = 0; k < SIM_OPS; k++) {
+        if (!op_ended(&n->ops[k])) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
+uint32_t sim_op_until(const sim_node_t *n)
+{
+    uint8_t k;
+    uint32_t until = 0;
+    for (k = 0; k < SIM_OPS; k++) {
+        if (n->ops[k].active && n->ops[k].until > until) {
+            until = n->ops[k].until;
+        }
+    }
+    return until;
+}
+
+/* The slot for statement s in n's batch: a new batch once every earlier operation has ended
+ * (as the HAL's status reports on everything started since); NULL when the batch is full. */
+static sim_op_t *op_slot(sim_node_t *n, uint16_t s)
+{
+    uint8_t k;
+    uint8_t used = 0;
+    sim_op_t *free_slot = NULL;
+    if (!sim_op_running(n)) {
+        memset(n->ops, 0, sizeof n->ops);
+    }
+    for (k = 0; k < SIM_OPS; k++) {
+        if (n->ops[k].active && n->ops[k].stmt == s) {
+            return &n->ops[k];
+        }
+        if (n->ops[k].active) {
+            used++;
+        } else if (free_slot == NULL) {
+            free_slot = &n->ops[k];
+        }
+    }
+    if (used + 1u > sim.largest_batch) {
+        sim.largest_batch = (uint16_t)(used + 1u);
+    }
+    return free_slot;
+}
+
+/* The operation the fake noted: checked (S1, S2, the right module, a statement of the batch
+ * the runtime says runs, no new batch while an earlier one runs), recorded, timed. */
 static void sim_op_start(struct dr_module *m)
 {
     sim_node_t *n = node_of(m);
@@ -126,8 +190,10 @@ static void sim_op_start(struct dr_module *m)
     uint16_t r = m->running_epoch;
     uint16_t t;
     uint16_t d;
+    uint8_t k;
     uint32_t latest;
-    if (s >= p->n_statements || m->running != s) {
+    sim_op_t *o;
+    if (s >= p->n_statements || !in_batch(m, s)) {
         violation("op of an unknown statement", r, s);
         return;
     }
@@ -137,8 +203,10 @@ static void sim_op_start(struct dr_module *m)
     if (p->statements[s].address != n->address) {
         violation("op started on the wrong module", r, s);
     }
-    if (n->op_active && !n->op_failed && sim.time < n->op_until) {
-        violation("op started while another runs", r, s);
+    for (k = 0; k < SIM_OPS; k++) {
+        if (!op_ended(&n->ops[k]) && n->ops[k].started_ms != sim.time) {
+            violation("op started while an earlier batch runs", r, s);
+        }
     }
     if (r < SIM_MAX_EPOCHS && sim.checks) {
         /* S1: every dependency done in this epoch, and the whole previous epoch done. */
@@ -183,11 +251,17 @@ static void sim_op_start(struct dr_module *m)
         sim.last_start_ms[r][s] = sim.time;
     }
     sim.total_starts++;
-    n->op_active = 1;
-    n->op_failed = 0;
-    n->op_stmt = s;
-    n->op_epoch = r;
-    n->op_until = sim.time + duration(s) + (n->address == sim.slow_address ? 300u : 0u);
+    o = op_slot(n, s);
+    if (o == NULL) {
+        violation("more operations at once than a batch holds", r, s);
+        return;
+    }
+    o->active = 1;
+    o->failed = 0;
+    o->stmt = s;
+    o->epoch = r;
+    o->started_ms = sim.time;
+    o->until = sim.time + duration(s) + (n->address == sim.slow_address ? 300u : 0u);
     if (s == sim.reset_mid_stmt && r == sim.fault_epoch && !sim.fault_fired) {
         sim.fault_fired = 1;
         n->reset_at_set = 1;
@@ -195,41 +269,63 @@ static void sim_op_start(struct dr_module *m)
     }
 }
 
-static enum dr_op_status sim_op_status(struct dr_module *m)
+/* A completed operation: recorded as reported, and the fault plans that follow it armed. */
+static void op_reported(sim_node_t *n, const sim_op_t *o)
 {
-    sim_node_t *n = node_of(m);
-    if (!n->op_active) {
-        violation("polled with no operation", 0, 0);
-        return DR_OP_DONE;
+    if (o->epoch < SIM_MAX_EPOCHS) {
+        sim.reported[o->epoch][o->stmt] = 1;
+        sim.reported_ms[o->epoch][o->stmt] = sim.time;
     }
-    if (n->op_failed) {
-        return DR_OP_FAILED;
-    }
-    if (sim.time < n->op_until) {
-        return DR_OP_RUNNING;
-    }
-    if (n->op_stmt == sim.fail_stmt && sim.fail_times > 0u) {
-        sim.fail_times--;
-        n->op_failed = 1;
-        return DR_OP_FAILED;
-    }
-    n->op_active = 0;
-    if (n->op_epoch < SIM_MAX_EPOCHS) {
-        sim.reported[n->op_epoch][n->op_stmt] = 1;
-        sim.reported_ms[n->op_epoch][n->op_stmt] = sim.time;
-    }
-    if (n->op_epoch == sim.fault_epoch && !sim.fault_fired) {
-        if (n->op_stmt == sim.reset_after_done_stmt && sim.reset_after_done_ms != 0u) {
+    if (o->epoch == sim.fault_epoch && !sim.fault_fired) {
+        if (o->stmt == sim.reset_after_done_stmt && sim.reset_after_done_ms != 0u) {
             sim.fault_fired = 1;
             n->reset_at_set = 1;
             n->reset_at = sim.time + sim.reset_after_done_ms;
-        } else if (n->op_stmt == sim.reset_after_done_stmt) {
+        } else if (o->stmt == sim.reset_after_done_stmt) {
             sim.fault_fired = 1;
             n->reset_now = 1;
             n->mute = 1; /* the completion is not announced before the reset */
-        } else if (n->op_stmt == sim.tear_after_done_stmt) {
+        } else if (o->stmt == sim.tear_after_done_stmt) {
             sim.fault_fired = 1;
             n->tear_in = sim.tear_copy;
+        }
+    }
+}
+
+/* RUNNING while one operation of the batch runs; then FAILED when one failed (the planned
+ * failures are drawn as each ends), else DONE (all reported done, the batch over). */
+static enum dr_op_status sim_op_status(struct dr_module *m)
+{
+    sim_node_t *n = node_of(m);
+    uint8_t k;
+    uint8_t any = 0;
+    uint8_t failed = 0;
+    sim_op_t *o;
+    for (k = 0; k < SIM_OPS; k++) {
+        any = (uint8_t)(any | n->ops[k].active);
+    }
+    if (!any) {
+        violation("polled with no operation", 0, 0);
+        return DR_OP_DONE;
+    }
+    if (sim_op_running(n)) {
+        return DR_OP_RUNNING;
+    }
+    for (k = 0; k < SIM_OPS; k++) {
+        o = &n->ops[k];
+        if (o->active && !o->failed && o->stmt == sim.fail_stmt && sim.fail_times > 0u) {
+            sim.fail_times--;
+            o->failed = 1;
+        }
+        failed = (uint8_t)(failed | (o->active && o->failed));
+    }
+    if (failed) {
+        return DR_OP_FAILED;
+    }
+    for (k = 0; k < SIM_OPS; k++) {
+        if (n->ops[k].active) {
+            op_reported(n, &n->ops[k]);
+            n->ops[k].active = 0;
         }
     }
     return DR_OP_DONE;
@@ -318,8 +414,7 @@ void sim_full_mesh(void)
 void sim_reset(uint8_t i)
 {
     sim_node_t *n = &sim.nodes[i];
-    n->op_active = 0;
-    n->op_failed = 0;
+    memset(n->ops, 0, sizeof n->ops);
     n->mute = 0;
     n->reset_now = 0;
     n->reset_at_set = 0;
@@ -331,6 +426,7 @@ void sim_reset(uint8_t i)
     n->mod.address = 0xA5u;
     n->mod.running = 0xA5A5u;
     n->mod.running_epoch = 0xA5A5u;
+    n->mod.batch = 0xA5u;
     n->mod.next_broadcast_ms = 0xA5A5A5A5u;
     n->mod.unechoed = 0xA5A5u;
     n->mod.unheard = (dr_channels_t)0xA5A5A5A5u;
@@ -360,7 +456,7 @@ static void deliver(sim_node_t *n)
 static uint8_t skippable(const sim_node_t *n)
 {
     uint32_t now = sim.time + n->clock_offset;
-    uint8_t op_running = (uint8_t)(n->op_active && !n->op_failed && sim.time < n->op_until);
+    uint8_t op_running = sim_op_running(n);
     if (n->woken || ((n->wake & DR_WAKE_AT) && (int32_t)(now - n->wake_at) >= 0)) {
         return 0;
     }

@@ -35,6 +35,18 @@ typedef struct {
     uint8_t bytes[DR_CONF_MAX_PACKET];
 } sim_packet_t;
 
+/* One operation of a module's batch (the HAL's view: DONE once all have taken effect). */
+typedef struct {
+    uint8_t active;
+    uint8_t failed;
+    uint32_t started_ms;
+    uint32_t until;
+    uint16_t stmt;
+    uint16_t epoch;
+} sim_op_t;
+
+#define SIM_OPS DR_CONF_LATTICE_BATCH
+
 typedef struct {
     dr_fake_t fake;               /* the shared fake platform (ID, LEDs, NV store, effects) */
     dr_module_t mod;
@@ -42,12 +54,8 @@ typedef struct {
     uint8_t answer;               /* what address_of returns (its role predicates) */
     uint32_t clock_offset;
     uint32_t rng;
-    /* the operation in progress */
-    uint8_t op_active;
-    uint8_t op_failed;
-    uint32_t op_until;
-    uint16_t op_stmt;
-    uint16_t op_epoch;
+    /* the operations started since the HAL last reported that all had ended (a batch) */
+    sim_op_t ops[SIM_OPS];
     /* network */
     sim_packet_t inbox[SIM_INBOX];
     uint16_t n_inbox;
@@ -90,6 +98,7 @@ typedef struct {
     uint32_t violations;
     uint8_t quiet;                /* count violations without printing them (expected ones) */
     uint32_t total_starts;
+    uint16_t largest_batch;       /* most operations of one module running together */
     /* operation faults */
     uint8_t slow_address;         /* operations of this address take 300 ms longer */
     uint16_t fail_stmt;           /* this statement fails fail_times times first */
@@ -130,6 +139,9 @@ void sim_setup(const dr_program_t *program, uint8_t n, const uint8_t *addresses,
 void sim_full_mesh(void);
 /* Runs until every node has finished (returns 1) or max_ms of simulated time pass (0). */
 uint8_t sim_run(uint32_t max_ms);
+/* Whether an operation of node n's batch is still running; the latest end of its batch. */
+uint8_t sim_op_running(const sim_node_t *n);
+uint32_t sim_op_until(const sim_node_t *n);
 /* Resets node i (its NV store survives; its operation and receive buffer do not). */
 void sim_reset(uint8_t i);
 uint32_t sim_rand(void);

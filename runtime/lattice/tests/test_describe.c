@@ -65,6 +65,12 @@ void test_describe(void)
     check_text(&m, "e12 low3 done5 run4");
     check_bounded(&m, "e12 low3 done5 run4");
 
+    /* a batch: statements 4, 5 and 8 */
+    m.batch = 0x09u;
+    check_text(&m, "e12 low3 done5 run4+9");
+    check_bounded(&m, "e12 low3 done5 run4+9");
+    m.batch = 0;
+
     /* the largest values: every field at its maximum width */
     m.shared.epoch = 65535u;
     m.shared.low = 65534u;

@@ -388,7 +388,7 @@ static void test_old_epoch_completion(void)
     dr_module_receive(m, 0, frame, len);
     CHECK_EQ(m->shared.epoch, 1);
     CHECK_EQ(m->running, 0); /* still waiting for the operation it started */
-    until = sim.nodes[0].op_until;
+    until = sim_op_until(&sim.nodes[0]);
     while (sim.time < until) {
         sim.time += SIM_TICK_MS;
         dr_module_step(m);
@@ -984,6 +984,85 @@ static void test_no_nv_fuzz(unsigned runs)
     }
 }
 
+/* Batches: node 0 runs statements 0 and 2 (no dependencies) together, then 3 (after 0);
+ * node 1 runs 1, then 4 (after 2 and 3). */
+static dr_statement_t batch_st[5];
+static const dr_dep_t batch_deps[] = { 0, 2, 3 };
+static dr_program_t pb = { 0x6Bu, 5u, batch_st, batch_deps, sim_args, 1u, sim_address_of, 0u };
+static const uint8_t addr2[] = { 0, 1 };
+
+static void build_batch(void)
+{
+    sim_statement(&batch_st[0], 0, 0, 0, 0);
+    sim_statement(&batch_st[1], 1, 1, 0, 0);
+    sim_statement(&batch_st[2], 0, 2, 0, 0);
+    sim_statement(&batch_st[3], 0, 3, 1, 0);
+    sim_statement(&batch_st[4], 1, 4, 2, 1);
+}
+
+/* Node 0's batch {0, 2} ran at once (the same start time), and 3 only after it was done. */
+static void check_batch_ran(uint8_t times)
+{
+    CHECK_EQ(sim.violations, 0);
+    CHECK_EQ(sim.starts[0][0], times);
+    CHECK_EQ(sim.starts[0][2], times);
+    CHECK_EQ(sim.last_start_ms[0][0], sim.last_start_ms[0][2]);
+    CHECK(sim.last_start_ms[0][3] >= sim.reported_ms[0][2]);
+    CHECK(sim.starts[0][3] >= 1); /* twice when a reset interrupts it */
+    CHECK_EQ(sim.starts[0][1], 1);
+    CHECK_EQ(sim.largest_batch, 2);
+}
+
+static void test_batches(void)
+{
+    dr_program_t q = without_nv(&pb);
+    uint8_t k;
+    build_batch();
+    /* Two operations of one module run together; their completion is one update. */
+    sim_setup(&pb, 2, addr2, 61u);
+    run_for(SIM_TICK_MS);
+    CHECK_EQ(sim.nodes[0].mod.running, 0);
+    CHECK_EQ(sim.nodes[0].mod.batch, 0x02u); /* statement 0 + 2 */
+    CHECK_EQ(sim.starts[0][3], 0);
+    CHECK(sim_run(60000u));
+    check_batch_ran(1);
+    CHECK_EQ(sim.starts[0][3], 1);
+    CHECK_EQ(sim.starts[0][4], 1);
+    /* One of them fails twice: the whole batch is re-issued, nothing after it starts. */
+    sim_setup(&pb, 2, addr2, 62u);
+    sim.fail_stmt = 2;
+    sim.fail_times = 2;
+    CHECK(sim_run(60000u));
+    check_batch_ran(3);
+    CHECK(sim.min_restart_gap_ms >= SIM_RETRY_MS);
+    /* A reset half-way through the batch, with and without NV: both re-entered together. */
+    for (k = 0; k < 2u; k++) {
+        sim_setup(k ? &q : &pb, 2, addr2, 63u + k);
+        sim.reset_mid_stmt = 0;
+        CHECK(sim_run(60000u));
+        CHECK(sim.fault_fired);
+        CHECK_EQ(sim.nodes[0].mod.resets, 1);
+        check_batch_ran(2);
+    }
+    check_no_nv_access();
+    /* Without NV, a reset 10 ms after the batch's completion was broadcast: the neighbour's
+     * copy holds both (one echo stands for the batch), so neither is re-issued. */
+    sim_setup(&q, 2, addr2, 65u);
+    sim.reset_after_done_stmt = 2;
+    sim.reset_after_done_ms = 10;
+    CHECK(sim_run(60000u));
+    CHECK(sim.fault_fired);
+    check_batch_ran(1);
+    /* ... and right after it, before it was broadcast: both re-issued, together. */
+    sim_setup(&q, 2, addr2, 66u);
+    sim.reset_after_done_stmt = 2;
+    sim.strict = 0;
+    CHECK(sim_run(60000u));
+    CHECK(sim.fault_fired);
+    check_batch_ran(2);
+    check_no_nv_access();
+}
+
 void test_sim(void)
 {
     build_fixed();
@@ -1005,6 +1084,7 @@ void test_sim(void)
     test_no_nv_unlatched_neighbour();
     test_no_nv_limits();
     test_no_nv_fuzz(300u);
+    test_batches();
     /* Every step above was also a check of dr_module_next_wakeup (sim.c, guarded_step): the
      * ones it let skip changed nothing. Most steps of these runs are skippable (a module
      * broadcasts every 100 ms and is stepped every 5), so the check has bite. */

@@ -10,8 +10,8 @@
 //! receive at any time any dependency-closed state below T, which is the join of the states
 //! `↓s` (s and everything it depends on, transitively) for s in T: the model delivers those,
 //! one at a time, in any order, again and again. The other modules are reduced to their start
-//! rule (a statement not in T whose dependencies are all in T, one at a time), their actuators
-//! and their resets. The module under check must in turn guarantee what the others were
+//! rule (a statement not in T whose dependencies are all in T, several at once as a batch
+//! runs them, or one at a time), their actuators and their resets. The module under check must in turn guarantee what the others were
 //! assumed to do (its copy stays below T and dependency-closed, keeps its own completions, and
 //! marks done only what is physically done): G1-G4, checked as assertions. Checking every
 //! module this way proves S1-S3 for the whole robot, for any topology and any loss, delay,
@@ -242,7 +242,7 @@ fn fair_news(g: &Gen, out: &mut String, c: usize, graph: &LivenessGraph) {
 /// The other modules, reduced to their start rule, and their completions recorded in T.
 fn environment(g: &Gen, out: &mut String, c: usize, graph: &LivenessGraph) {
     let start = |k: usize, s: usize| -> String {
-        format!("e_run[{k}] == NONE && !t_end && !t_rec[{s}] && WAITS_RECORDED_{s} -> e_run[{k}] = {s}; issue({k}, {s}, 0)")
+        format!("!e_pend[{s}] && !t_end && !t_rec[{s}] && WAITS_RECORDED_{s} -> e_pend[{s}] = 1; issue({k}, {s}, 0)")
     };
     let defines: Vec<String> = (0..g.n())
         .map(|s| {
@@ -275,11 +275,15 @@ fn environment(g: &Gen, out: &mut String, c: usize, graph: &LivenessGraph) {
             radio.push(format!("    :: d_step {{ {} }}", start(k, s)));
         }
         let finishes: String = mine.iter().map(|&s| g.finish_branch(k, s)).collect();
+        let records: Vec<String> = (mine.iter())
+            .map(|&s| format!("    :: d_step {{ e_pend[{s}] && !p_run[{s}] -> record({k}, {s}); e_pend[{s}] = 0 }}"))
+            .collect();
         let holes = Holes::new()
             .text("k", k)
             .text("name", &g.topology.modules[k].name)
             .text("starts", starts.trim_end())
-            .text("finishes", finishes.trim_end());
+            .text("finishes", finishes.trim_end())
+            .text("records", records.join("\n"));
         out.push_str(&COMPOSITIONAL.part("env").fill(&holes));
     }
     if !radio.is_empty() {
@@ -305,8 +309,12 @@ fn resets(g: &Gen, out: &mut String, c: usize) {
                 "    :: left > 0 -> d_step {{ left--; {reset}; reset({k}); print_copy({k}); guarantee({k}) }}"
             ));
         } else if !g.statements_of(k).is_empty() {
+            let forget: Vec<String> = (g.statements_of(k).iter())
+                .map(|s| format!("e_pend[{s}] = 0"))
+                .collect();
             branches.push(format!(
-                "    :: left > 0 -> d_step {{ left--; {reset}; interrupt({k}); e_run[{k}] = NONE }}"
+                "    :: left > 0 -> d_step {{ left--; {reset}; interrupt({k}); {} }}",
+                forget.join("; ")
             ));
         }
     }

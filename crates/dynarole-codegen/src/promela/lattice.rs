@@ -16,6 +16,10 @@ use super::events::{expr, printf, EventKind};
 use super::template::{Holes, TemplateFile};
 use super::{Fault, Gen};
 
+/// Most statements a module runs at once: `DR_CONF_LATTICE_BATCH`, the default of
+/// `runtime/dr_conf.h` (the generated configuration keeps it; a test checks they agree).
+pub const LATTICE_BATCH: usize = 8;
+
 /// The transcription: `runtime/lattice/dr_lattice.pml`.
 pub(super) static LATTICE: TemplateFile = TemplateFile {
     path: "runtime/lattice/dr_lattice.pml",
@@ -44,6 +48,7 @@ pub(crate) fn write(g: &Gen, out: &mut String) {
         .collect();
     let holes = Holes::new()
         .text("w", w)
+        .text("batch", LATTICE_BATCH)
         .text("wmask", (1u64 << w) - 1)
         .flag("nv", nv)
         .flag("no_nv", no_nv)
@@ -81,7 +86,7 @@ fn events(holes: Holes<'_>) -> Holes<'_> {
     holes
         .text(
             "print_complete",
-            printf(EventKind::Complete, &[expr("m"), expr("running[m]")]),
+            printf(EventKind::Complete, &[expr("m"), expr("t_s")]),
         )
         .text("print_deliver", deliver("from", "to"))
         .text("print_deliver_late", deliver("l_from[slot]", "l_to[slot]"))
@@ -92,4 +97,17 @@ fn events(holes: Holes<'_>) -> Holes<'_> {
                 &[expr("m"), expr("epoch[m]"), expr("low[m]"), expr("done[m]")],
             ),
         )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::LATTICE_BATCH;
+
+    /// The model's batch is the C runtime's.
+    #[test]
+    fn the_batch_is_the_runtime_default() {
+        let conf = include_str!("../../../../runtime/dr_conf.h");
+        let define = format!("#define DR_CONF_LATTICE_BATCH {LATTICE_BATCH}\n");
+        assert!(conf.contains(&define), "runtime/dr_conf.h lacks `{define}`");
+    }
 }

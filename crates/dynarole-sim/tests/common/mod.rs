@@ -58,3 +58,16 @@ pub fn eight2car(protocol: Protocol, scenario: &Scenario, seed: u64) -> Report {
     let sim = simulator(EIGHT2CAR, &["eight2car"], protocol);
     run(&sim, EIGHT, Some(CAR), scenario, seed)
 }
+
+/// Whether `field`, what a lattice module's description shows after `run` (`N`, or `N+<hex>`
+/// for a batch: bit k = statement N + 1 + k), holds `statement`.
+pub fn runs_statement(field: &str, statement: usize) -> bool {
+    let (first, others) = field.split_once('+').unwrap_or((field, "0"));
+    let (Ok(first), Ok(others)) = (first.parse::<usize>(), u32::from_str_radix(others, 16)) else {
+        return false;
+    };
+    statement == first
+        || (statement > first
+            && statement - first <= 32
+            && (others >> (statement - first - 1)) & 1 == 1)
+}
