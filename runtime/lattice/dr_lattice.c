@@ -717,7 +717,7 @@ void dr_module_step(dr_module_t *m)
     }
 }
 
-/* What the next dr_module_step looks at, in its order: the running operation's status (it
+/* What the next dr_module_step looks at, in its order: the running batch's status (it
  * waits for it: DR_WAKE_OP, a failed one retried when the broadcast is due), the channels
  * still awaited once a neighbour was heard (re-read at every step: a step at once), a
  * statement it could start now (at once), and the broadcast deadline (always). Cost:

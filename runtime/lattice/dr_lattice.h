@@ -88,8 +88,8 @@ typedef uint32_t dr_channels_t;
 
 /* The shared state: epoch, low-water mark (every statement below it is complete in this
  * epoch) and, for the window of statements above it, the completed bits. Which statements
- * have started is not shared: nothing decides on it (a module's own running operation is
- * `running`). */
+ * have started is not shared: nothing decides on it (a module's own running batch is
+ * `running` and `batch`). */
 typedef struct {
     uint16_t epoch;
     uint16_t low;
