@@ -27,7 +27,9 @@ pub fn scale(a: Vec3, k: i32) -> Vec3 {
 
 /// True when every coordinate is within [`MAX_COORDINATE`].
 pub fn within_bounds(a: Vec3) -> bool {
-    a.iter().all(|c| c.abs() <= MAX_COORDINATE)
+    // `unsigned_abs`: i32::MIN, which a file can give, has no `abs()`.
+    a.iter()
+        .all(|c| c.unsigned_abs() <= MAX_COORDINATE.unsigned_abs())
 }
 
 /// A proper rotation that maps the integer lattice onto itself: a signed permutation matrix with
@@ -182,7 +184,8 @@ pub fn axis_name(v: Vec3) -> String {
 
 /// True for the six vectors (+-1, 0, 0), (0, +-1, 0), (0, 0, +-1).
 pub fn is_unit_axis(v: Vec3) -> bool {
-    v.iter().map(|c| c.abs()).sum::<i32>() == 1 && v.iter().all(|c| c.abs() <= 1)
+    // No `abs()` or sum: they overflow on the extreme values a file can give.
+    v.iter().all(|c| (-1..=1).contains(c)) && v.iter().filter(|c| **c != 0).count() == 1
 }
 
 /// Dot product.
@@ -322,6 +325,18 @@ pub fn to_f64(v: Vec3) -> [f64; 3] {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn extreme_coordinates_are_out_of_bounds_and_not_axes_without_overflow() {
+        assert!(within_bounds([MAX_COORDINATE, -MAX_COORDINATE, 0]));
+        assert!(!within_bounds([i32::MIN, 0, 0]));
+        assert!(!within_bounds([0, i32::MAX, 0]));
+        assert!(is_unit_axis([0, -1, 0]));
+        assert!(!is_unit_axis([i32::MIN, 1, 0]));
+        assert!(!is_unit_axis([i32::MAX, i32::MAX, i32::MAX]));
+        assert!(!is_unit_axis([1, -1, 0]));
+        assert!(!is_unit_axis([0, 0, 0]));
+    }
 
     #[test]
     fn there_are_24_distinct_rotations_closed_under_composition() {
