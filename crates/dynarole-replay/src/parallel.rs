@@ -66,7 +66,9 @@ pub struct Form {
 pub struct Parallelised {
     /// The statements in input order, as source text.
     pub statements: Vec<String>,
-    /// The dependency graph after transitive reduction (earlier, later), input indices.
+    /// The model's dependency graph after transitive reduction and the verification's
+    /// repairs (earlier, later), input indices; one module's statements are pairs like any
+    /// other unless the request keeps them in order.
     pub edges: Vec<(usize, usize)>,
     /// Verified forms, levels (or the sequential fallback) first.
     pub forms: Vec<Form>,
