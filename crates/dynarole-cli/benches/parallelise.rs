@@ -107,6 +107,7 @@ fn run(
         assignment: &assignment,
         name: "out",
         blocks: true,
+        one_module_overlap: true,
         window,
     };
     let found = parallelise(&request).unwrap_or_else(|e| panic!("{e:?}"));

@@ -55,6 +55,10 @@ pub struct Form {
     pub text: String,
     /// Top-level parallel groups.
     pub groups: usize,
+    /// Written from the graph with each module's statements kept in input order (a candidate
+    /// besides the model's own graph, which can lose where three statements depend on each
+    /// other only together: see `docs/parallelise.md`).
+    pub one_module_in_order: bool,
 }
 
 /// What `parallelise` found.
@@ -62,7 +66,9 @@ pub struct Form {
 pub struct Parallelised {
     /// The statements in input order, as source text.
     pub statements: Vec<String>,
-    /// The dependency graph after transitive reduction (earlier, later), input indices.
+    /// The model's dependency graph after transitive reduction and the verification's
+    /// repairs (earlier, later), input indices; one module's statements are pairs like any
+    /// other unless the request keeps them in order.
     pub edges: Vec<(usize, usize)>,
     /// Verified forms, levels (or the sequential fallback) first.
     pub forms: Vec<Form>,
@@ -83,6 +89,11 @@ pub struct Request<'a> {
     pub name: &'a str,
     /// Also try series-parallel blocks (not for the paper's protocol).
     pub blocks: bool,
+    /// Join one module's statements with `&` when the model finds them independent, as it
+    /// does any other pair (the lattice runtime starts them as one batch). `false` keeps each
+    /// module's statements in input order, for the paper's protocol, which runs them one
+    /// after the other in a group with other modules' statements (`docs/parallelise.md`).
+    pub one_module_overlap: bool,
     /// Check only pairs at most this many statements apart; farther pairs stay ordered
     /// (faster on long sequences, less parallel). `None`: every pair.
     pub window: Option<usize>,
@@ -106,10 +117,18 @@ pub fn parallelise(request: &Request) -> Result<Parallelised, ParalleliseError> 
             .reverse_sequence(request.sequence, "r")
             .is_some_and(|r| r.is_ok()),
     };
-    let mut notes = same_module_notes(&verifier.texts, &graph.same_module);
-    let (edges, levels) = verifier.levels(graph.edges.clone(), statements.len(), &mut notes)?;
+    let n = statements.len();
+    let mut notes = Vec::new();
+    if !request.one_module_overlap {
+        notes = same_module_notes(&verifier.texts, &graph.same_module);
+    }
+    let (edges, levels) = verifier.levels(graph.edges.clone(), n, &mut notes)?;
     let mut forms = vec![levels];
     other_forms(&verifier, &plan, &edges, &mut forms, &mut notes);
+    if request.one_module_overlap && !graph.same_module.is_empty() {
+        let ordered = transitive_reduction(n, &[graph.edges, graph.same_module].concat());
+        one_module_in_order(&verifier, &plan, ordered, &mut forms, &mut notes);
+    }
     Ok(Parallelised {
         statements: verifier.texts.clone(),
         edges,
@@ -158,8 +177,8 @@ fn input_statements(
     Ok((plan, input, statements))
 }
 
-/// Notes for the pairs kept in order only because one module does both: the first few, then
-/// how many more.
+/// Notes for the pairs kept in order only because one module does both (without
+/// `one_module_overlap`): the first few, then how many more.
 fn same_module_notes(texts: &[String], pairs: &[(usize, usize)]) -> Vec<String> {
     const SHOWN: usize = 4;
     let mut notes: Vec<String> = pairs
@@ -167,8 +186,9 @@ fn same_module_notes(texts: &[String], pairs: &[(usize, usize)]) -> Vec<String> 
         .take(SHOWN)
         .map(|&(i, j)| {
             format!(
-                "kept `{}` before `{}`: independent on the model, but one module does both and a \
-                 module runs its operations one at a time, in order (`&` would gain nothing)",
+                "kept `{}` before `{}`: independent on the model, but one module does both and \
+                 the paper's protocol runs them one after the other among other modules' \
+                 statements (`&` would gain nothing)",
                 texts[i], texts[j]
             )
         })
@@ -180,6 +200,38 @@ fn same_module_notes(texts: &[String], pairs: &[(usize, usize)]) -> Vec<String> 
         ));
     }
     notes
+}
+
+/// The forms of the graph with each module's statements also kept in input order, added
+/// where they differ from the forms found already (the sequential fallback is not: it is
+/// never shorter). What their verification changed goes to `notes`, marked.
+fn one_module_in_order(
+    verifier: &Verifier,
+    plan: &Plan,
+    edges: Vec<(usize, usize)>,
+    forms: &mut Vec<Form>,
+    notes: &mut Vec<String>,
+) {
+    let n = verifier.texts.len();
+    let mut more_notes = Vec::new();
+    let Ok((edges, levels)) = verifier.levels(edges, n, &mut more_notes) else {
+        return;
+    };
+    let mut more = vec![levels];
+    other_forms(verifier, plan, &edges, &mut more, &mut more_notes);
+    for mut form in more {
+        let new =
+            form.kind != FormKind::Sequential && forms.iter().all(|f| f.layout != form.layout);
+        if new {
+            form.one_module_in_order = true;
+            forms.push(form);
+        }
+    }
+    notes.extend(
+        more_notes
+            .into_iter()
+            .map(|note| format!("with each module's statements in order, {note}")),
+    );
 }
 
 /// The candidates besides parallel groups: series-parallel blocks (unless the protocol is the
@@ -231,7 +283,8 @@ pub enum ParalleliseError {
 /// ordered, transitively reduced.
 struct Graph {
     edges: Vec<(usize, usize)>,
-    /// Pairs ordered only because one module does both (input indices).
+    /// Pairs independent on the model but done by one module (input indices): edges too
+    /// without `one_module_overlap`.
     same_module: Vec<(usize, usize)>,
 }
 
@@ -284,7 +337,12 @@ impl Graph {
                 if matches!(order, Order::SameModule) {
                     same_module.push((i, j));
                 }
-                if !matches!(order, Order::Free) {
+                let ordered = match order {
+                    Order::Free => false,
+                    Order::SameModule => !request.one_module_overlap,
+                    Order::Model => true,
+                };
+                if ordered {
                     edges.push((i, j));
                     let above = ancestors[i].clone();
                     ancestors[j].union(&above);
@@ -323,8 +381,9 @@ fn pre_states(request: &Request, statements: &[ResolvedStatement]) -> Vec<RobotW
 enum Order {
     /// Independent on the model: they may run side by side.
     Free,
-    /// Independent on the model, but done by one module, which runs its operations one at a
-    /// time in source order: `&` between them would gain nothing (see `docs/parallelise.md`).
+    /// Independent on the model, but done by one module: an edge only without
+    /// `one_module_overlap` (the paper's protocol runs them one after the other, `&` would
+    /// gain nothing; see `docs/parallelise.md`).
     SameModule,
     /// The model needs the order.
     Model,
@@ -344,11 +403,11 @@ struct Pair<'a> {
 }
 
 impl Pair<'_> {
-    /// Whether the pair must stay ordered, and why: by the model, or only because both are
-    /// done by one module (which runs one operation at a time). Conservative: the same latch,
-    /// a step refused in either order, different results in the two orders, or two turns
-    /// that may sweep through each other. `before` and `after` are the states around `a` in
-    /// the input.
+    /// Whether the pair must stay ordered by the model, or is independent on it and done by
+    /// one module (`Graph::build` decides what that means for the protocol). Conservative: the
+    /// same latch, a step refused in either order, different results in the two orders, or
+    /// two turns that may sweep through each other (or move the same module). `before` and
+    /// `after` are the states around `a` in the input.
     fn order(&self, before: &RobotWorld, after: &RobotWorld) -> Order {
         let (Some(ma), Some(mb)) = self.modules else {
             return Order::Model;
@@ -549,6 +608,7 @@ impl Verifier<'_> {
             layout,
             text,
             groups,
+            one_module_in_order: false,
         })
     }
 

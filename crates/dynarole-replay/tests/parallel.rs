@@ -37,6 +37,18 @@ fn run(source: &str, sequence: &str, config: &str) -> Parallelised {
 
 /// Builds the request of `run` and hands it to `f`.
 fn with_request<T>(source: &str, sequence: &str, config: &str, f: impl Fn(&Request) -> T) -> T {
+    with_request_for(true, source, sequence, config, f)
+}
+
+/// `with_request`, with one module's independent statements joined (`overlap`, the lattice
+/// protocol) or kept in order (the paper's protocol).
+fn with_request_for<T>(
+    overlap: bool,
+    source: &str,
+    sequence: &str,
+    config: &str,
+    f: impl Fn(&Request) -> T,
+) -> T {
     let parsed = parse(source);
     let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
     let program = program.unwrap_or_else(|| panic!("{diagnostics:?}"));
@@ -51,6 +63,7 @@ fn with_request<T>(source: &str, sequence: &str, config: &str, f: impl Fn(&Reque
         assignment: &assignment,
         name: "out",
         blocks: true,
+        one_module_overlap: overlap,
         window: None,
     };
     f(&request)
@@ -414,6 +427,23 @@ proptest! {
     }
 
     #[test]
+    fn the_fast_graph_is_the_exhaustive_one_on_few_modules_of_atron(
+        structure in 0usize..8,
+        picks in proptest::collection::vec((0usize..2, 0u8..3, 0u8..8), 1..40),
+        base in 0usize..7,
+    ) {
+        // Moves of two neighbouring modules only: most pairs are one module's statements,
+        // decided by the model like any other pair.
+        let (config, n) = atron_structure(structure, 0);
+        let picks: Vec<(usize, u8, u8)> =
+            picks.iter().map(|&(m, op, arg)| ((base + m) % n, op, arg)).collect();
+        let moves = atron_moves(&config, n, &picks);
+        prop_assume!(!moves.is_empty());
+        same_graph("atron", &config, &moves)?;
+        random_case("atron", &config, &moves)?;
+    }
+
+    #[test]
     fn the_fast_graph_is_the_exhaustive_one_on_mtran(
         n in 2usize..6,
         picks in proptest::collection::vec((0usize..6, 0u8..3, 0u8..8), 1..40),
@@ -426,13 +456,57 @@ proptest! {
 }
 
 #[test]
-fn one_modules_statements_stay_in_order_and_the_notes_say_why() {
-    // eight2snake releases two of M3's latches; the shipped file joins them with `&`, which
-    // the lattice runtime runs one after the other anyway.
+fn one_modules_independent_statements_are_joined() {
+    // eight2snake releases two of M3's latches: both orders end the same and neither is
+    // refused, so the lattice forms join them with `&` (the runtime starts them as one
+    // batch), as the shipped file does.
     let source = sequential(EIGHT2CAR);
     let found = run(&source, "eight2snake", EIGHT);
-    assert!(found.statements[0].starts_with("M3.Connector"));
-    assert!(found.statements[1].starts_with("M3.Connector"));
+    assert!(found.statements[0].starts_with("M3.Connector[$CONNECTOR_0].retract"));
+    assert!(found.statements[1].starts_with("M3.Connector[$CONNECTOR_6].retract"));
+    assert!(!found.edges.contains(&(0, 1)), "{:?}", found.edges);
+    assert!(
+        !found
+            .notes
+            .iter()
+            .any(|n| n.contains("one module does both")),
+        "{:?}",
+        found.notes
+    );
+    // The model's own graph gives the first forms; those of the graph with each module's
+    // statements in order come after, marked.
+    assert!(!found.forms[0].one_module_in_order);
+    for form in found.forms.iter().filter(|f| !f.one_module_in_order) {
+        assert_eq!(
+            group_of(&form.layout, 0),
+            group_of(&form.layout, 1),
+            "{}",
+            form.text
+        );
+    }
+    for form in &found.forms {
+        check_written(&found, &form.text, EIGHT);
+    }
+}
+
+#[test]
+fn one_modules_dependent_statements_stay_in_order() {
+    // One module's turn, then a latch of the same module that the turn brings face to face
+    // (or releases): the model needs the order, whoever does the two statements.
+    let source = "robot atron;\nsequence s {\n    M0.Connector[0].retract();\n    \
+                  M0.Connector[0].extend();\n}\n";
+    let found = run(source, "s", EIGHT);
+    assert_eq!(found.edges, vec![(0, 1)]);
+}
+
+#[test]
+fn for_the_paper_protocol_one_modules_statements_stay_in_order_and_the_notes_say_why() {
+    // The paper's protocol runs one module's statements one after the other in a group with
+    // other modules' statements: `&` would gain nothing there.
+    let source = sequential(EIGHT2CAR);
+    let found = with_request_for(false, &source, "eight2snake", EIGHT, |request| {
+        parallelise(request).unwrap_or_else(|e| panic!("{e:?}"))
+    });
     assert!(found.edges.contains(&(0, 1)), "{:?}", found.edges);
     assert!(
         found
