@@ -39,6 +39,16 @@ static void run_ticks(uint32_t ms)
     }
 }
 
+/* Runs `program` on `n` modules from `seed` to its end, then 30 s with nothing new: where the
+ * tests of a restart and of a quiet neighbour begin. */
+static void run_to_a_quiet_end(const dr_program_t *program, uint8_t n, const uint8_t *addr,
+                               uint32_t seed)
+{
+    sim_setup(program, n, addr, seed);
+    CHECK(sim_run(10000u));
+    run_ticks(30000u);
+}
+
 /* After the end, a minute of nothing new: fixed sends every period; adaptive backs off to the
  * longest interval after a few broadcasts. */
 static void test_quiet_robot(void)
@@ -86,9 +96,7 @@ static void test_behind_is_answered(void)
 {
     static const uint8_t addr[] = { 0, DR_NO_ADDRESS, 1 };
     uint32_t t;
-    sim_setup(&two_no_nv, 3, addr, 73u);
-    CHECK(sim_run(10000u));
-    run_ticks(30000u);
+    run_to_a_quiet_end(&two_no_nv, 3, addr, 73u);
     sim_reset(1);
     CHECK(!dr_module_finished(&sim.nodes[1].mod));
     t = sim.time;
@@ -162,9 +170,7 @@ static void test_resend_is_answered(void)
     static const uint8_t addr[] = { 0, 1 };
     dr_module_t *m = &sim.nodes[1].mod;
     uint32_t before;
-    sim_setup(&two, 2, addr, 76u);
-    CHECK(sim_run(10000u));
-    run_ticks(30000u);
+    run_to_a_quiet_end(&two, 2, addr, 76u);
     sim_reset(1);
     run_ticks(4u * SIM_TICK_MS + DR_CONF_LATTICE_RELAY_JITTER_MS);
     CHECK_EQ(m->acked, 1u); /* channel 0: node 0 */
@@ -210,9 +216,7 @@ static void test_ask_is_answered(void)
     uint16_t inbox0;
     uint16_t inbox2;
     uint32_t due;
-    sim_setup(&two, 3, addr, 79u);
-    CHECK(sim_run(10000u));
-    run_ticks(30000u);
+    run_to_a_quiet_end(&two, 3, addr, 79u);
     len = dr_shared_encode(&m->shared, payload, sizeof payload);
     flen = dr_packet_frame(frame, sizeof frame, &m->identity, DR_PACKET_LATTICE_STATE, payload,
                            len);
@@ -256,9 +260,7 @@ static void test_lagging_neighbour(void)
     static const uint8_t addr[] = { 0, 1 };
     dr_module_t *m = &sim.nodes[0].mod;
     uint32_t before;
-    sim_setup(&two_no_nv, 2, addr, 77u);
-    CHECK(sim_run(10000u));
-    run_ticks(30000u);
+    run_to_a_quiet_end(&two_no_nv, 2, addr, 77u);
     sim.nodes[0].mute = 1; /* node 1 is heard, node 0's answers are lost */
     sim_reset(1);          /* without NV: behind, and it stays so */
     run_ticks(100u);
