@@ -189,14 +189,19 @@ fn compare_with_host_on(
     (late, report)
 }
 
+/// Writes `SHORT` to a scratch file named `name` and returns its path.
+fn short_sequence_file(name: &str) -> String {
+    let file = scratch(name);
+    std::fs::write(&file, SHORT).expect("write");
+    file.to_str().expect("utf-8 path").to_string()
+}
+
 #[test]
 fn a_short_sequence_runs_on_emulated_atmega128s_in_the_host_runs_order() {
     if !avr_tools() {
         return;
     }
-    let file = scratch("short.dr");
-    std::fs::write(&file, SHORT).expect("write");
-    let file = file.to_str().expect("utf-8 path").to_string();
+    let file = short_sequence_file("short.dr");
     let args = [
         file.as_str(),
         "--from",
@@ -271,9 +276,7 @@ fn the_nesc_component_runs_on_emulated_atmega128s() {
         return;
     }
     let Some(nescc) = nescc_dir() else { return };
-    let file = scratch("short-nesc.dr");
-    std::fs::write(&file, SHORT).expect("write");
-    let file = file.to_str().expect("utf-8 path").to_string();
+    let file = short_sequence_file("short-nesc.dr");
     let args = [
         file.as_str(),
         "--from",
@@ -321,9 +324,7 @@ fn the_paper_and_token_protocols_run_on_emulated_atmega128s() {
     if !avr_tools() {
         return;
     }
-    let file = scratch("short-protocols.dr");
-    std::fs::write(&file, SHORT).expect("write");
-    let file = file.to_str().expect("utf-8 path").to_string();
+    let file = short_sequence_file("short-protocols.dr");
     for protocol in ["paper", "token"] {
         let args = [
             file.as_str(),
