@@ -176,6 +176,18 @@
 #endif
 #endif
 
+/* Lattice protocol: whether the image holds one program only, the generated `dr_program`
+ * (dr_program.c). The runtime then reads the program's fields as constants the compiler folds
+ * into the code, not through the module's pointer. An MCU's firmware is one program; the
+ * simulator and the C tests link several. */
+#ifndef DR_CONF_ONE_PROGRAM
+#if defined(__AVR__)
+#define DR_CONF_ONE_PROGRAM 1
+#else
+#define DR_CONF_ONE_PROGRAM 0
+#endif
+#endif
+
 /* Lattice protocol: where the persisted state lives in non-volatile storage (two copies, one
  * after the other). */
 #ifndef DR_CONF_LATTICE_NV_ADDR

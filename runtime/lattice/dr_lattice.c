@@ -6,6 +6,15 @@
 
 #define ADAPTIVE (DR_CONF_LATTICE_DISSEMINATION == DR_DISSEMINATION_ADAPTIVE)
 
+/* The module's program: with DR_CONF_ONE_PROGRAM the image's only one, whose fields are then
+ * constants in the code (dr_module_init's precondition: it is passed that one). */
+#if DR_CONF_ONE_PROGRAM
+extern const dr_program_t dr_program;
+#define PROGRAM(m) ((void)(m), &dr_program)
+#else
+#define PROGRAM(m) ((m)->program)
+#endif
+
 
 /* DR_PROGRAM_NO_NV: after a (re)start a module acts only once it has heard a packet from every
  * neighbour connected at that moment, however long that takes. There is no time-out: a
@@ -50,24 +59,24 @@ static NOINLINE void count(dr_counter_t *counter)
     (*counter)++;
 }
 
-static uint8_t bit(const uint8_t *set, uint16_t i)
+static uint8_t bit(const uint8_t *set, dr_stmt_t i)
 {
     return (uint8_t)(((unsigned)set[i >> 3] >> (i & 7u)) & 1u);
 }
 
-static void set_bit(uint8_t *set, uint16_t i)
+static void set_bit(uint8_t *set, dr_stmt_t i)
 {
     set[i >> 3] = (uint8_t)(set[i >> 3] | (1u << (i & 7u)));
 }
 
 /* Re-bases both sets `k` statements higher (bits below the new base are dropped). O(W/8). */
-static void shift(dr_shared_t *s, uint16_t k)
+static void shift(dr_shared_t *s, dr_stmt_t k)
 {
     uint8_t i;
     uint8_t r = (uint8_t)(k & 7u);
-    uint16_t src;
+    dr_stmt_t src;
     for (i = 0; i < NBYTES; i++) {
-        src = (uint16_t)(i + (k >> 3));
+        src = (dr_stmt_t)(i + (k >> 3));
         if (src < NBYTES) {
             s->done[i] = (uint8_t)(s->done[src] >> r);
             if (r != 0u && src + 1u < NBYTES) {
@@ -105,19 +114,19 @@ static uint8_t trim(dr_shared_t *s, uint16_t n_statements)
  * the top, is never rolled over; with n_statements == 0 every state is the top). */
 void dr_shared_normalise(dr_shared_t *s, uint16_t n_statements)
 {
-    uint16_t i;
+    dr_stmt_t i;
     if (n_statements == 0u) {
         s->epoch = TOP_EPOCH;
     }
     if (s->low > n_statements) {
-        s->low = n_statements;
+        s->low = (dr_stmt_t)n_statements;
     }
     (void)trim(s, n_statements);
     /* The completed prefix (a done bit is of a statement below n_statements: trim). */
     for (i = 0; i < W && bit(s->done, i); i++) {
     }
     shift(s, i);
-    s->low = (uint16_t)(s->low + i);
+    s->low = (dr_stmt_t)(s->low + i); /* at most n_statements: trim */
     if (s->low == n_statements && s->epoch != TOP_EPOCH) {
         /* Everything complete in epoch e is the start of epoch e + 1. The done set is
          * already empty: its bits are of statements at or above low = n_statements, which
@@ -136,10 +145,10 @@ void dr_shared_join(dr_shared_t *into, const dr_shared_t *other, uint16_t n_stat
         *into = o;
     } else if (o.epoch == into->epoch) {
         if (o.low > into->low) {
-            shift(into, (uint16_t)(o.low - into->low));
+            shift(into, (dr_stmt_t)(o.low - into->low));
             into->low = o.low;
         } else {
-            shift(&o, (uint16_t)(into->low - o.low));
+            shift(&o, (dr_stmt_t)(into->low - o.low));
         }
         for (i = 0; i < NBYTES; i++) {
             into->done[i] = (uint8_t)(into->done[i] | o.done[i]);
@@ -149,12 +158,12 @@ void dr_shared_join(dr_shared_t *into, const dr_shared_t *other, uint16_t n_stat
 }
 
 /* Whether `statement` is complete in s's epoch. Cost: O(1). */
-uint8_t dr_shared_is_done(const dr_shared_t *s, uint16_t statement)
+uint8_t dr_shared_is_done(const dr_shared_t *s, dr_stmt_t statement)
 {
     if (statement < s->low) {
         return 1;
     }
-    statement = (uint16_t)(statement - s->low);
+    statement = (dr_stmt_t)(statement - s->low);
     return statement < W ? bit(s->done, statement) : 0u;
 }
 
@@ -180,14 +189,16 @@ uint8_t dr_shared_encode(const dr_shared_t *s, uint8_t *out, uint8_t cap)
 uint8_t dr_shared_decode(dr_shared_t *s, const uint8_t *in, uint8_t len, uint16_t n_statements)
 {
     uint8_t i;
+    uint16_t low;
     if (len != PAYLOAD) {
         return 0;
     }
     s->epoch = (uint16_t)((in[0] << 8) | in[1]);
-    s->low = (uint16_t)((in[2] << 8) | in[3]);
-    if (s->low > n_statements) {
+    low = (uint16_t)((in[2] << 8) | in[3]);
+    if (low > n_statements) {
         return 0;
     }
+    s->low = (dr_stmt_t)low;
     for (i = 0; i < NBYTES; i++) {
         s->done[i] = in[4u + i];
     }
@@ -245,7 +256,7 @@ static void broadcast(dr_module_t *m, uint32_t now)
  * before it (dr_crc16_put, the frames' own code). */
 static void record(const dr_module_t *m, uint8_t *rec)
 {
-    dr_put_be32(rec, m->program->fingerprint);
+    dr_put_be32(rec, PROGRAM(m)->fingerprint);
     rec[4] = m->address;
     (void)dr_shared_encode(&m->shared, rec + 5, PAYLOAD);
     dr_crc16_put(rec, (uint8_t)(RECORD - 2u));
@@ -274,13 +285,13 @@ static uint8_t restore(dr_module_t *m)
     dr_shared_t s;
     uint8_t copy;
     uint8_t found = 0;
-    dr_put_be32(fingerprint, m->program->fingerprint);
+    dr_put_be32(fingerprint, PROGRAM(m)->fingerprint);
     for (copy = 0; copy < 2u; copy++) {
         dr_hal_nv_read(m, (uint16_t)(DR_CONF_LATTICE_NV_ADDR + copy * RECORD), rec, RECORD);
         if (dr_crc16(rec, RECORD) == 0u && rec[0] == fingerprint[0] &&
             rec[1] == fingerprint[1] && rec[2] == fingerprint[2] && rec[3] == fingerprint[3] &&
-            dr_shared_decode(&s, rec + 5, PAYLOAD, m->program->n_statements)) {
-            dr_shared_join(&m->shared, &s, m->program->n_statements);
+            dr_shared_decode(&s, rec + 5, PAYLOAD, PROGRAM(m)->n_statements)) {
+            dr_shared_join(&m->shared, &s, PROGRAM(m)->n_statements);
             m->address = rec[4];
             found = 1;
         }
@@ -306,9 +317,17 @@ static dr_channels_t connected(dr_module_t *m)
 static uint8_t no_nv(const dr_module_t *m)
 {
     if (DR_CONF_NV == DR_CONF_NV_EITHER) {
-        return (uint8_t)(m->program->options & DR_PROGRAM_NO_NV);
+        return (uint8_t)(PROGRAM(m)->options & DR_PROGRAM_NO_NV);
     }
     return (uint8_t)(DR_CONF_NV == DR_CONF_NV_NONE);
+}
+
+/* Whether the two rules without NV hold the module back: a neighbour connected at the (re)start
+ * not heard yet (rule 1), or its own completion not echoed yet (rule 2). Never with the NV
+ * record (both fields stay 0 and DR_NONE), so an NV-only build has no code for them. */
+static uint8_t held_back(const dr_module_t *m)
+{
+    return (uint8_t)(no_nv(m) && (m->unheard != 0u || m->unechoed != DR_NONE));
 }
 
 #if ADAPTIVE
@@ -460,7 +479,7 @@ static void heard_copy(dr_module_t *m, uint8_t channel, const dr_shared_t *befor
     dr_channels_t bit_c = 0;
     uint8_t grew = (uint8_t)!same_facts(before, &m->shared);
     uint8_t behind;
-    dr_shared_normalise(in, m->program->n_statements);
+    dr_shared_normalise(in, PROGRAM(m)->n_statements);
     behind = (uint8_t)!same_facts(in, &m->shared);
     if (channel < DR_CONF_CHANNELS) {
         bit_c = (dr_channels_t)((dr_channels_t)1 << channel);
@@ -512,12 +531,12 @@ static void issue(dr_module_t *m)
 {
     dr_statement_t st;
     int16_t args[DR_CONF_MAX_ARGS];
-    uint16_t s = m->running;
+    dr_stmt_t s = m->running;
     uint16_t in;
     for (in = members(m); in != 0u; in >>= 1, s++) {
         if ((in & 1u) != 0u) {
-            dr_hal_table_read(&st, &m->program->statements[s], sizeof st);
-            dr_hal_table_read(args, &m->program->args[st.args * DR_CONF_MAX_ARGS], sizeof args);
+            dr_hal_table_read(&st, &PROGRAM(m)->statements[s], sizeof st);
+            dr_hal_table_read(args, &PROGRAM(m)->args[st.args * DR_CONF_MAX_ARGS], sizeof args);
             dr_hal_op_start(m, s, st.op, st.index, args);
         }
     }
@@ -530,23 +549,23 @@ static void issue(dr_module_t *m)
  * whose dependencies are all done, as its offset from the low-water mark; W when there is
  * none (or the module has no single address, or the last epoch is over). Reads *m only.
  * O(W * deps). */
-static uint16_t next_startable(const dr_module_t *m, uint16_t from)
+static dr_stmt_t next_startable(const dr_module_t *m, dr_stmt_t from)
 {
-    const dr_program_t *p = m->program;
+    const dr_program_t *p = PROGRAM(m);
     dr_statement_t st;
     const dr_shared_t *sh = &m->shared;
-    uint16_t i;
-    uint16_t s;
+    dr_stmt_t i;
+    dr_stmt_t s;
     dr_dep_t dep;
     uint8_t d;
     if (m->address >= DR_MANY_ADDRESSES || dr_module_finished(m)) {
         return W;
     }
     for (i = from; i < W; i++) {
-        s = (uint16_t)(sh->low + i);
-        if (s >= p->n_statements) {
+        if ((unsigned)sh->low + i >= p->n_statements) {
             break;
         }
+        s = (dr_stmt_t)(sh->low + i);
         /* The tables may be in program memory: read through the HAL (dr_hal.h). */
         dr_hal_table_read(&st, &p->statements[s], sizeof st);
         if (st.address != m->address || bit(sh->done, i)) {
@@ -571,15 +590,15 @@ static uint16_t next_startable(const dr_module_t *m, uint16_t from)
  * only when nothing runs here: a statement's completion never waits for a later one. */
 static uint8_t start_next(dr_module_t *m)
 {
-    uint16_t i = next_startable(m, 0);
-    uint16_t j;
+    dr_stmt_t i = next_startable(m, 0);
+    dr_stmt_t j;
     uint16_t in = 0;
     if (i == W) {
         return 0;
     }
-    m->running = (uint16_t)(m->shared.low + i);
+    m->running = (dr_stmt_t)(m->shared.low + i);
     m->running_epoch = m->shared.epoch;
-    for (j = i; j < W && j - i < DR_CONF_LATTICE_BATCH; j = next_startable(m, (uint16_t)(j + 1u))) {
+    for (j = i; j < W && j - i < DR_CONF_LATTICE_BATCH; j = next_startable(m, (dr_stmt_t)(j + 1u))) {
         in = (uint16_t)(in | (1u << (j - i)));
     }
     m->batch = (uint8_t)(in >> 1);
@@ -603,22 +622,22 @@ void dr_module_init(dr_module_t *m, const dr_program_t *program, void *platform)
     m->platform = platform;
     m->program = program;
     m->identity.robot = DR_ROBOT_ID;
-    m->identity.fingerprint = program->fingerprint;
+    m->identity.fingerprint = PROGRAM(m)->fingerprint;
     m->shared.epoch = 0;
     m->shared.low = 0;
     for (i = 0; i < NBYTES; i++) {
         m->shared.done[i] = 0;
     }
-    dr_shared_normalise(&m->shared, program->n_statements);
+    dr_shared_normalise(&m->shared, PROGRAM(m)->n_statements);
     m->unechoed = DR_NONE;
     m->unheard = 0;
     m->heard = 0;
     if (no_nv(m)) {
         /* Rule 1: act only once every neighbour connected now has been heard. */
-        m->address = program->address_of(m);
+        m->address = PROGRAM(m)->address_of(m);
         m->unheard = connected(m);
     } else if (!restore(m)) {
-        m->address = program->address_of(m);
+        m->address = PROGRAM(m)->address_of(m);
         persist(m);
     }
     dr_hal_leds(m, m->address);
@@ -648,8 +667,8 @@ void dr_module_step(dr_module_t *m)
 #if ADAPTIVE
     uint8_t retrying = 0;
 #endif
-    uint16_t i;
-    uint16_t s;
+    dr_stmt_t i;
+    dr_stmt_t s;
     uint16_t in;
     enum dr_op_status status;
     if (m->running != DR_NONE) {
@@ -661,12 +680,12 @@ void dr_module_step(dr_module_t *m)
                 /* The whole batch: one normalise, one persist, one news. */
                 s = m->running;
                 for (in = members(m); in != 0u; in >>= 1, s++) {
-                    i = (uint16_t)(s - m->shared.low);
+                    i = (dr_stmt_t)(s - m->shared.low);
                     if ((in & 1u) != 0u && s >= m->shared.low && i < W) {
                         set_bit(m->shared.done, i);
                     }
                 }
-                dr_shared_normalise(&m->shared, m->program->n_statements);
+                dr_shared_normalise(&m->shared, PROGRAM(m)->n_statements);
                 if (!no_nv(m)) {
                     persist(m);
                 } else if (connected(m)) {
@@ -698,7 +717,7 @@ void dr_module_step(dr_module_t *m)
     if (no_nv(m) && m->unheard != 0u && m->heard) {
         m->unheard = (dr_channels_t)(m->unheard & connected(m)); /* unlatched meanwhile */
     }
-    if (m->running == DR_NONE && m->unheard == 0u && m->unechoed == DR_NONE) {
+    if (m->running == DR_NONE && !held_back(m)) {
 #if ADAPTIVE
         (void)start_next(m); /* not news: a start changes no shared fact */
 #else
@@ -730,8 +749,8 @@ uint8_t dr_module_next_wakeup(dr_module_t *m, uint32_t *at_ms)
     if (m->running != DR_NONE) {
         wake = (uint8_t)(wake | DR_WAKE_OP);
     }
-    if ((m->unheard != 0u && m->heard) ||
-        (m->running == DR_NONE && m->unheard == 0u && m->unechoed == DR_NONE &&
+    if ((no_nv(m) && m->unheard != 0u && m->heard) ||
+        (m->running == DR_NONE && !held_back(m) &&
          next_startable(m, 0) != W)) {
         *at_ms = now;
     }
@@ -741,7 +760,7 @@ uint8_t dr_module_next_wakeup(dr_module_t *m, uint32_t *at_ms)
 /* Cost: O(len + W). */
 void dr_module_receive(dr_module_t *m, uint8_t channel, const uint8_t *bytes, uint8_t len)
 {
-    const dr_program_t *p = m->program;
+    const dr_program_t *p = PROGRAM(m);
     const uint8_t *payload;
     uint8_t payload_len;
     dr_shared_t in;
@@ -763,15 +782,17 @@ void dr_module_receive(dr_module_t *m, uint8_t channel, const uint8_t *bytes, ui
                (p->n_epochs != 0u && in.epoch > p->n_epochs)) {
         count(&m->packets_malformed);
     } else {
-        /* DR_PROGRAM_NO_NV (both fields stay 0 / DR_NONE otherwise): a neighbour heard; the
-         * own completion echoed (held by two modules now, so it may be acted on). */
-        if (channel < DR_CONF_CHANNELS) {
-            m->unheard = (dr_channels_t)(m->unheard & ~((dr_channels_t)1 << channel));
-        }
-        m->heard = 1;
-        if (in.epoch > m->running_epoch ||
-            (in.epoch == m->running_epoch && dr_shared_is_done(&in, m->unechoed))) {
-            m->unechoed = DR_NONE; /* (is_done of DR_NONE is 0) */
+        if (no_nv(m)) {
+            /* Rule 1: a neighbour heard; rule 2: the own completion echoed (held by two
+             * modules now, so it may be acted on). */
+            if (channel < DR_CONF_CHANNELS) {
+                m->unheard = (dr_channels_t)(m->unheard & ~((dr_channels_t)1 << channel));
+            }
+            m->heard = 1;
+            if (in.epoch > m->running_epoch ||
+                (in.epoch == m->running_epoch && dr_shared_is_done(&in, m->unechoed))) {
+                m->unechoed = DR_NONE; /* (is_done of DR_NONE is 0) */
+            }
         }
 #if ADAPTIVE
         before = m->shared;
@@ -786,5 +807,5 @@ void dr_module_receive(dr_module_t *m, uint8_t channel, const uint8_t *bytes, ui
 /* Cost: O(1). */
 uint8_t dr_module_finished(const dr_module_t *m)
 {
-    return (uint8_t)(m->program->n_epochs != 0u && m->shared.epoch >= m->program->n_epochs);
+    return (uint8_t)(PROGRAM(m)->n_epochs != 0u && m->shared.epoch >= PROGRAM(m)->n_epochs);
 }

@@ -37,6 +37,19 @@ typedef uint8_t dr_dep_t;
 typedef uint16_t dr_dep_t;
 #endif
 
+/* A statement number (low-water mark, running batch, awaited echo) and an offset in the
+ * window: one byte when every statement number, DR_NONE and every offset fit in it (fewer
+ * than 255 statements, a window of at most 248), so the runtime's arithmetic on them is one
+ * byte wide on an 8-bit core. Sums of a number and an offset are formed in `unsigned` (C's
+ * promotion) and compared before they are narrowed. */
+#if DR_CONF_MAX_STATEMENTS < 255 && DR_CONF_WINDOW <= 248
+typedef uint8_t dr_stmt_t;
+#else
+typedef uint16_t dr_stmt_t;
+#endif
+/* No statement (the value of `running` and `unechoed` when there is none). */
+#define DR_NONE ((dr_stmt_t)~(dr_stmt_t)0)
+
 /* A position in the dependency table, and a row of the argument table: one byte each when
  * the program's tables are that small (DR_CONF_DEP_ENTRIES and DR_CONF_ARG_ROWS, which the
  * compiler sets), so each statement takes 6 bytes of flash. */
@@ -92,7 +105,7 @@ typedef uint32_t dr_channels_t;
  * `running` and `batch`). */
 typedef struct {
     uint16_t epoch;
-    uint16_t low;
+    dr_stmt_t low;
     uint8_t done[DR_CONF_WINDOW / 8];
 } dr_shared_t;
 
@@ -110,12 +123,12 @@ typedef struct dr_module {
     dr_identity_t identity;            /* DR_ROBOT_ID and the program's fingerprint */
     uint8_t address;
     dr_shared_t shared;
-    uint16_t running;                  /* first statement of the batch being executed
+    dr_stmt_t running;                 /* first statement of the batch being executed
                                           here, or DR_NONE */
     uint16_t running_epoch;            /* the epoch it started in */
     uint8_t batch;                     /* the batch's others: bit k = statement running+1+k */
     /* DR_PROGRAM_NO_NV only (otherwise unheard = 0 and unechoed = DR_NONE, always): */
-    uint16_t unechoed;                 /* own completion (its epoch: running_epoch) that no
+    dr_stmt_t unechoed;                /* own completion (its epoch: running_epoch) that no
                                           neighbour has sent back yet, or DR_NONE */
     dr_channels_t unheard;             /* channels connected at the (re)start, not heard yet */
     uint8_t heard;                     /* a state packet arrived since the (re)start */
@@ -148,7 +161,6 @@ typedef struct dr_module {
     uint16_t resets;
 } dr_module_t;
 
-#define DR_NONE 0xFFFFu
 
 /* Starts (or restarts after a reset) a module: finds its address, restores the shared state
  * from non-volatile storage when it is valid (with DR_PROGRAM_NO_NV: evaluates the role
@@ -181,7 +193,7 @@ void dr_module_init(dr_module_t *m, const dr_program_t *program, void *platform)
  * completed prefix and roll over to the next epoch when everything is complete. */
 void dr_shared_join(dr_shared_t *into, const dr_shared_t *other, uint16_t n_statements);
 void dr_shared_normalise(dr_shared_t *s, uint16_t n_statements);
-uint8_t dr_shared_is_done(const dr_shared_t *s, uint16_t statement);
+uint8_t dr_shared_is_done(const dr_shared_t *s, dr_stmt_t statement);
 /* Encode/decode the payload of a DR_PACKET_LATTICE_STATE packet; decode returns 0 when the
  * payload has the wrong size or inconsistent fields. */
 uint8_t dr_shared_encode(const dr_shared_t *s, uint8_t *out, uint8_t cap);

@@ -424,11 +424,11 @@ void sim_reset(uint8_t i)
     /* RAM is lost: scribble over the protocol state (the counters are kept for reports). */
     memset(&n->mod.shared, 0xA5, sizeof n->mod.shared);
     n->mod.address = 0xA5u;
-    n->mod.running = 0xA5A5u;
+    n->mod.running = (dr_stmt_t)0xA5A5u;
     n->mod.running_epoch = 0xA5A5u;
     n->mod.batch = 0xA5u;
     n->mod.next_broadcast_ms = 0xA5A5A5A5u;
-    n->mod.unechoed = 0xA5A5u;
+    n->mod.unechoed = (dr_stmt_t)0xA5A5u;
     n->mod.unheard = (dr_channels_t)0xA5A5A5A5u;
     n->mod.heard = 0xA5u;
     dr_module_init(&n->mod, sim.program, n);

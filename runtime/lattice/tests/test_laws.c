@@ -43,7 +43,7 @@ static void random_state(dr_shared_t *s, uint16_t n)
     if (next() % 50u == 0u) {
         s->epoch = 0xFFFFu;
     }
-    s->low = (uint16_t)(next() % (n + 1u));
+    s->low = (dr_stmt_t)(next() % (n + 1u));
     for (i = 0; i < WIN && (uint16_t)(s->low + i) < n; i++) {
         if (next() % 4u < density) {
             set(s->done, i);
@@ -70,7 +70,7 @@ static int covers(const dr_shared_t *r, const dr_shared_t *a, uint16_t n)
         return 0;
     }
     for (s = 0; s < n; s++) {
-        if (dr_shared_is_done(a, s) && !dr_shared_is_done(r, s)) {
+        if (dr_shared_is_done(a, (dr_stmt_t)s) && !dr_shared_is_done(r, (dr_stmt_t)s)) {
             return 0;
         }
     }

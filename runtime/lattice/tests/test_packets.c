@@ -42,7 +42,7 @@ static void state_with(dr_shared_t *s, uint16_t epoch, uint16_t low, uint8_t don
 {
     memset(s, 0, sizeof *s);
     s->epoch = epoch;
-    s->low = low;
+    s->low = (dr_stmt_t)low;
     s->done[0] = done0;
 }
 
