@@ -555,17 +555,15 @@ static dr_stmt_t next_startable(const dr_module_t *m, dr_stmt_t from)
     dr_statement_t st;
     const dr_shared_t *sh = &m->shared;
     dr_stmt_t i;
-    dr_stmt_t s;
+    dr_stmt_t s = (dr_stmt_t)(sh->low + from);
+    /* The window's offsets that are statements: below W and below n_statements - low. */
+    dr_stmt_t end = (p->n_statements - sh->low < W) ? (dr_stmt_t)(p->n_statements - sh->low) : W;
     dr_dep_t dep;
     uint8_t d;
     if (m->address >= DR_MANY_ADDRESSES || dr_module_finished(m)) {
         return W;
     }
-    for (i = from; i < W; i++) {
-        if ((unsigned)sh->low + i >= p->n_statements) {
-            break;
-        }
-        s = (dr_stmt_t)(sh->low + i);
+    for (i = from; i < end; i++, s++) {
         /* The tables may be in program memory: read through the HAL (dr_hal.h). */
         dr_hal_table_read(&st, &p->statements[s], sizeof st);
         if (st.address != m->address || bit(sh->done, i)) {
