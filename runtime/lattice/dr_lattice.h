@@ -165,7 +165,8 @@ typedef struct dr_module {
 /* Starts (or restarts after a reset) a module: finds its address, restores the shared state
  * from non-volatile storage when it is valid (with DR_PROGRAM_NO_NV: evaluates the role
  * predicates, starts from the bottom and notes the connected channels to hear from first).
- * Cost: O(statements + DR_CONF_CHANNELS). */
+ * With DR_CONF_ONE_PROGRAM (an MCU's image), `program` is the generated dr_program: the
+ * runtime reads that one's fields as constants. Cost: O(statements + DR_CONF_CHANNELS). */
 void dr_module_init(dr_module_t *m, const dr_program_t *program, void *platform);
 /* The entry points of dr_module.h, for this protocol:
  * - dr_module_step: merging is done on receipt; a step starts or polls the module's own
