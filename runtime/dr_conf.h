@@ -112,7 +112,9 @@
 /* Adaptive: a broadcast toward an unacknowledged neighbour (a resend, or a try at the capped
  * or the smallest interval) goes out at a random time in the last this-many percent of its
  * interval, not at its end: modules that heard the same news at once would otherwise resend
- * in step and collide again (0: at the end). 50: the capped tries every 400 to 800 ms. */
+ * in step and collide again (0: at the end). 50: the capped tries every 400 to 800 ms. The
+ * smallest interval's spread is rounded down to whole milliseconds and doubles with the
+ * interval; the largest must stay below 65,535 ms (checked at compile time). */
 #ifndef DR_CONF_LATTICE_RESEND_SPREAD
 #define DR_CONF_LATTICE_RESEND_SPREAD 50
 #endif

@@ -338,11 +338,14 @@ typedef char dr_lattice_check_doublings[(DR_CONF_LATTICE_DOUBLINGS <= 16 &&
                                          DR_CONF_LATTICE_INTERVAL_MS <= 0xFFFF &&
                                          DR_CONF_LATTICE_RESEND_SPREAD <= 100) ? 1 : -1];
 
-/* The resend spread of the smallest interval, when every spread (that base doubled at most
- * DR_CONF_LATTICE_UNACKED_DOUBLINGS times) is exactly it doubled and fits 16 bits. */
-#define SPREAD_16_BASE (DR_CONF_LATTICE_INTERVAL_MS * DR_CONF_LATTICE_RESEND_SPREAD / 100u)
-#define SPREAD_16 ((DR_CONF_LATTICE_INTERVAL_MS * DR_CONF_LATTICE_RESEND_SPREAD) % 100u == 0u && \
-                   (SPREAD_16_BASE << DR_CONF_LATTICE_UNACKED_DOUBLINGS) < 0xFFFFu)
+/* The resend spread of the smallest interval, in whole milliseconds (rounded down); a try's
+ * spread is it doubled with the interval. The largest (after DR_CONF_LATTICE_UNACKED_DOUBLINGS
+ * doublings) fits 16 bits, so a spread is computed in 16 bits: no 32-bit multiplication and
+ * division (libgcc helpers on an 8-bit core). */
+#define SPREAD_BASE ((uint32_t)DR_CONF_LATTICE_INTERVAL_MS * DR_CONF_LATTICE_RESEND_SPREAD / 100u)
+typedef char dr_lattice_check_spread[(SPREAD_BASE << DR_CONF_LATTICE_UNACKED_DOUBLINGS) < 0xFFFFu
+                                         ? 1
+                                         : -1];
 
 /* Bits of m->answer: the next broadcast answers (it is never suppressed) ... */
 #define ANSWER_THEM 1u /* ... a neighbour heard behind or asking: on its channel (with the others
@@ -378,7 +381,7 @@ static void disseminate(dr_module_t *m, uint32_t now, uint8_t changed)
                                  ? DR_PACKET_LATTICE_ASK
                                  : DR_PACKET_LATTICE_STATE);
 #if DR_CONF_LATTICE_RESEND_SPREAD > 0
-    uint32_t spread;
+    uint16_t spread;
 #endif
     if (changed) {
         restart_interval(m);
@@ -423,18 +426,9 @@ static void disseminate(dr_module_t *m, uint32_t now, uint8_t changed)
         /* A try toward an unacknowledged neighbour at a random time in the last SPREAD % of
          * its interval: the modules that heard the same news at the same time would
          * otherwise resend in step and collide again. */
-#if SPREAD_16
-        /* The same value in 16 bits, without a 32-bit multiplication and division (libgcc
-         * helpers on an 8-bit core): here doublings <= DR_CONF_LATTICE_UNACKED_DOUBLINGS. */
-        spread = (unsigned)SPREAD_16_BASE << m->doublings;
+        spread = (uint16_t)((uint16_t)SPREAD_BASE << m->doublings); /* doublings <= UNACKED */
         m->next_broadcast_ms -= spread;
         m->next_broadcast_ms += (uint32_t)(dr_hal_random(m) % (uint16_t)(spread + 1u));
-#else
-        spread = (((uint32_t)DR_CONF_LATTICE_INTERVAL_MS << m->doublings) *
-                  DR_CONF_LATTICE_RESEND_SPREAD) / 100u;
-        m->next_broadcast_ms -= spread;
-        m->next_broadcast_ms += (uint32_t)(dr_hal_random(m) % (spread + 1u));
-#endif
     }
 #endif
 #if DR_CONF_BROADCAST_JITTER_MS > 0
