@@ -455,11 +455,9 @@ fn makefile(protocol: Protocol) -> String {
          CC = avr-gcc\n\
          AR = avr-ar\n\
          SIZE = avr-size\n\
-         # Flash (docs/benchmarks.md, each measured): -mcall-prologues (one shared register\n\
-         # save/restore), -mstrict-X (fewer pointer copies), -mrelax (short calls where they\n\
-         # reach); -flto -ffat-lto-objects: objects usable both ways, and an image linked with\n\
-         # -flto has the runtime and the program optimised as one.\n\
-         CFLAGS = -Os -mcall-prologues -mstrict-X -flto -ffat-lto-objects -mrelax -mmcu=$(MCU) $(WARN)\n\
+         # The MCU options, each measured for flash: dr_mcu.mk.\n\
+         include dr_mcu.mk\n\
+         CFLAGS = $(DR_MCU_FLAGS) -mmcu=$(MCU) $(WARN)\n\
          ifneq ($(filter-out clean,$(or $(MAKECMDGOALS),all)),)\n\
          ifeq ($(shell command -v $(CC)),)\n\
          $(error $(CC) not found, needed for MCU=$(MCU): install it (Debian or Ubuntu: sudo apt-get install gcc-avr avr-libc), or build for the host without MCU)\n\

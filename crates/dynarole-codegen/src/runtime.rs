@@ -1,7 +1,7 @@
 //! The runtime sources, embedded so that a compiled directory is self-contained.
 
 /// Files every protocol needs.
-pub const COMMON: [(&str, &str); 7] = [
+pub const COMMON: [(&str, &str); 8] = [
     ("dr_conf.h", include_str!("../../../runtime/dr_conf.h")),
     ("dr_hal.h", include_str!("../../../runtime/dr_hal.h")),
     ("dr_module.h", include_str!("../../../runtime/dr_module.h")),
@@ -9,6 +9,7 @@ pub const COMMON: [(&str, &str); 7] = [
     ("dr_packet.c", include_str!("../../../runtime/dr_packet.c")),
     ("dr_text.h", include_str!("../../../runtime/dr_text.h")),
     ("dr_text.c", include_str!("../../../runtime/dr_text.c")),
+    ("dr_mcu.mk", include_str!("../../../runtime/dr_mcu.mk")),
 ];
 
 /// The lattice protocol. The describe file is for traces (host, simulator); the MCU build in

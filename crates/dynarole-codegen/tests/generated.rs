@@ -431,7 +431,7 @@ fn host_and_mcu_builds_do_not_share_objects() {
     for source in ["dr_packet", "dr_lattice", "dr_program"] {
         assert!(
             stdout.contains(&format!(
-                "avr-gcc -Os -mcall-prologues -mstrict-X -flto -ffat-lto-objects -mrelax -mmcu=atmega128 -std=c99 -Wall -Wextra -Werror -pedantic -Wshadow -Wconversion -Wstrict-prototypes -Wmissing-prototypes -c {source}.c -o build/atmega128/{source}.o"
+                "avr-gcc -Os -mcall-prologues -mstrict-X -flto -ffat-lto-objects -mrelax -fno-tree-loop-optimize -fno-gcse -fno-move-loop-invariants -mmcu=atmega128 -std=c99 -Wall -Wextra -Werror -pedantic -Wshadow -Wconversion -Wstrict-prototypes -Wmissing-prototypes -c {source}.c -o build/atmega128/{source}.o"
             )),
             "{stdout}"
         );
