@@ -61,6 +61,18 @@ pub fn cache_root() -> PathBuf {
         .unwrap_or_else(|| std::env::temp_dir().join("dynarole-sim"))
 }
 
+/// The names in the cache root `root`, sorted: a directory per build (named by its key) and,
+/// while builds are under way or after one was killed, their `tmp-` directories. What a test
+/// or a tool looks at to see what the cache holds.
+pub fn cache_entries(root: &Path) -> std::io::Result<Vec<String>> {
+    let mut names = Vec::new();
+    for entry in std::fs::read_dir(root)? {
+        names.push(entry?.file_name().to_string_lossy().into_owned());
+    }
+    names.sort();
+    Ok(names)
+}
+
 /// Builds (or finds in the cache) and loads `files` (name, text) with `defines` (-D flags).
 pub fn build_and_load(files: &[(String, String)], defines: &[String]) -> Result<Loaded, String> {
     let key = cache_key(files, defines);
@@ -277,15 +289,7 @@ mod tests {
         for mut child in children {
             assert!(child.wait().expect("the child ends").success());
         }
-        let left: Vec<String> = std::fs::read_dir(&root)
-            .expect("the cache root")
-            .map(|e| {
-                e.expect("an entry")
-                    .file_name()
-                    .to_string_lossy()
-                    .into_owned()
-            })
-            .collect();
+        let left = cache_entries(&root).expect("the cache root");
         assert_eq!(
             left,
             ["0123456789abcdef"],
