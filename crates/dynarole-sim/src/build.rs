@@ -114,14 +114,22 @@ fn cache_key(files: &[(String, String)], defines: &[String]) -> u64 {
 
 /// Writes the files into a fresh temporary directory, compiles, then renames it into place.
 fn build(files: &[(String, String)], defines: &[String], directory: &Path) -> Result<(), String> {
-    publish(directory, |temp| write_and_compile(files, defines, temp))
+    publish(directory, LIBRARY, |temp| {
+        write_and_compile(files, defines, temp)
+    })
 }
 
 /// Makes `directory` with `make` so that no process ever sees it half made, however many
 /// build it at once (shards starting together on one node, or on nodes sharing the cache over
 /// a network file system): each makes its own temporary directory, then renames it into
-/// place; a loser of the race drops its copy and uses the winner's.
-fn publish(directory: &Path, make: impl FnOnce(&Path) -> Result<(), String>) -> Result<(), String> {
+/// place; a loser of the race drops its copy and uses the winner's, once it holds `product`
+/// (a path inside it). Every build the cache holds (the simulator's libraries, the firmware
+/// images) is published this way.
+pub(crate) fn publish(
+    directory: &Path,
+    product: &str,
+    make: impl FnOnce(&Path) -> Result<(), String>,
+) -> Result<(), String> {
     let root = directory.parent().unwrap_or(directory);
     std::fs::create_dir_all(root).map_err(|e| format!("cannot create {}: {e}", root.display()))?;
     let temp = fresh_directory(root)?;
@@ -131,7 +139,7 @@ fn publish(directory: &Path, make: impl FnOnce(&Path) -> Result<(), String>) -> 
     }
     let _ = std::fs::remove_dir_all(&temp);
     result?;
-    if directory.join(LIBRARY).is_file() {
+    if directory.join(product).is_file() {
         Ok(())
     } else {
         Err(format!(
@@ -254,7 +262,7 @@ mod tests {
             return;
         };
         let me = std::process::id().to_string();
-        let made = publish(&directory, |temp| {
+        let made = publish(&directory, LIBRARY, |temp| {
             for name in ["a.c", "b.c", LIBRARY] {
                 std::thread::sleep(std::time::Duration::from_millis(30));
                 std::fs::write(temp.join(name), &me).map_err(|e| e.to_string())?;
