@@ -33,12 +33,13 @@
 #define DR_CONF_ARG_ROWS 65535
 #endif
 
-/* Lattice protocol: most statements a module runs at once (a batch, started when none runs):
- * its first startable statement and its startable ones among the next BATCH - 1, 1 to 9 (1:
- * one at a time). The meaning's dependencies keep the others in order. */
-#ifndef DR_CONF_LATTICE_BATCH
-#define DR_CONF_LATTICE_BATCH 8
-#endif
+/* Lattice protocol: DR_CONF_LATTICE_BATCH, most statements a module runs at once (a batch,
+ * started when none runs): its first startable statement and its startable ones among the
+ * next BATCH - 1, 1 to 9 (1: one at a time). The meaning's dependencies keep the others in
+ * order. No default here: the compiler decides it once (LATTICE_BATCH in the code generator's
+ * c.rs) and writes it into the generated dr_program_conf.h and into the Promela model, so an
+ * image and its model run the same batches; runtime/lattice/Makefile passes the same value to
+ * the runtime's own tests. */
 
 /* Most arguments of one operation. */
 #ifndef DR_CONF_MAX_ARGS

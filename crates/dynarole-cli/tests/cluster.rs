@@ -50,15 +50,7 @@ fn shards_started_at_once_share_an_empty_cache_then_merge() {
     for mut child in children {
         assert!(child.wait().expect("a shard ends").success());
     }
-    let entries: Vec<String> = std::fs::read_dir(&cache)
-        .expect("the cache")
-        .map(|e| {
-            e.expect("an entry")
-                .file_name()
-                .to_string_lossy()
-                .into_owned()
-        })
-        .collect();
+    let entries = dynarole_sim::cache_entries(&cache).expect("the cache");
     assert_eq!(entries.len(), 3, "one build per protocol: {entries:?}");
     assert!(
         entries.iter().all(|e| !e.starts_with("tmp-")),

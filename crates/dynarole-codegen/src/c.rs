@@ -30,6 +30,11 @@ const PACKET_OVERHEAD: usize = 11;
 pub const PACKET_TAG_BYTES: usize = 4;
 /// The runtime's default receive buffer (`DR_CONF_MAX_PACKET`), raised when a frame needs more.
 const DEFAULT_MAX_PACKET: usize = 48;
+/// Most statements a lattice module runs at once, a batch (`DR_CONF_LATTICE_BATCH`, 1 to 9; 1:
+/// one at a time). Decided here only: written into every lattice program's
+/// `dr_program_conf.h` and into its Promela model, so the image and the model run the same
+/// batches; the runtime's own C tests read it from this line (runtime/lattice/Makefile).
+pub(crate) const LATTICE_BATCH: usize = 8;
 
 pub fn generate_c(
     ir: &Ir,
@@ -187,6 +192,7 @@ fn program_conf(
             dependency_entries(ir)
         );
         let _ = writeln!(out, "#define DR_CONF_ARG_ROWS {}", rows.len());
+        let _ = writeln!(out, "#define DR_CONF_LATTICE_BATCH {LATTICE_BATCH}");
     }
     if packet_bytes > DEFAULT_MAX_PACKET {
         let _ = writeln!(out, "#define DR_CONF_MAX_PACKET {packet_bytes}");

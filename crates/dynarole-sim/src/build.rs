@@ -61,6 +61,18 @@ pub fn cache_root() -> PathBuf {
         .unwrap_or_else(|| std::env::temp_dir().join("dynarole-sim"))
 }
 
+/// The names in the cache root `root`, sorted: a directory per build (named by its key) and,
+/// while builds are under way or after one was killed, their `tmp-` directories. What a test
+/// or a tool looks at to see what the cache holds.
+pub fn cache_entries(root: &Path) -> std::io::Result<Vec<String>> {
+    let mut names = Vec::new();
+    for entry in std::fs::read_dir(root)? {
+        names.push(entry?.file_name().to_string_lossy().into_owned());
+    }
+    names.sort();
+    Ok(names)
+}
+
 /// Builds (or finds in the cache) and loads `files` (name, text) with `defines` (-D flags).
 pub fn build_and_load(files: &[(String, String)], defines: &[String]) -> Result<Loaded, String> {
     let key = cache_key(files, defines);
@@ -102,14 +114,22 @@ fn cache_key(files: &[(String, String)], defines: &[String]) -> u64 {
 
 /// Writes the files into a fresh temporary directory, compiles, then renames it into place.
 fn build(files: &[(String, String)], defines: &[String], directory: &Path) -> Result<(), String> {
-    publish(directory, |temp| write_and_compile(files, defines, temp))
+    publish(directory, LIBRARY, |temp| {
+        write_and_compile(files, defines, temp)
+    })
 }
 
 /// Makes `directory` with `make` so that no process ever sees it half made, however many
 /// build it at once (shards starting together on one node, or on nodes sharing the cache over
 /// a network file system): each makes its own temporary directory, then renames it into
-/// place; a loser of the race drops its copy and uses the winner's.
-fn publish(directory: &Path, make: impl FnOnce(&Path) -> Result<(), String>) -> Result<(), String> {
+/// place; a loser of the race drops its copy and uses the winner's, once it holds `product`
+/// (a path inside it). Every build the cache holds (the simulator's libraries, the firmware
+/// images) is published this way.
+pub(crate) fn publish(
+    directory: &Path,
+    product: &str,
+    make: impl FnOnce(&Path) -> Result<(), String>,
+) -> Result<(), String> {
     let root = directory.parent().unwrap_or(directory);
     std::fs::create_dir_all(root).map_err(|e| format!("cannot create {}: {e}", root.display()))?;
     let temp = fresh_directory(root)?;
@@ -119,7 +139,7 @@ fn publish(directory: &Path, make: impl FnOnce(&Path) -> Result<(), String>) -> 
     }
     let _ = std::fs::remove_dir_all(&temp);
     result?;
-    if directory.join(LIBRARY).is_file() {
+    if directory.join(product).is_file() {
         Ok(())
     } else {
         Err(format!(
@@ -242,7 +262,7 @@ mod tests {
             return;
         };
         let me = std::process::id().to_string();
-        let made = publish(&directory, |temp| {
+        let made = publish(&directory, LIBRARY, |temp| {
             for name in ["a.c", "b.c", LIBRARY] {
                 std::thread::sleep(std::time::Duration::from_millis(30));
                 std::fs::write(temp.join(name), &me).map_err(|e| e.to_string())?;
@@ -277,15 +297,7 @@ mod tests {
         for mut child in children {
             assert!(child.wait().expect("the child ends").success());
         }
-        let left: Vec<String> = std::fs::read_dir(&root)
-            .expect("the cache root")
-            .map(|e| {
-                e.expect("an entry")
-                    .file_name()
-                    .to_string_lossy()
-                    .into_owned()
-            })
-            .collect();
+        let left = cache_entries(&root).expect("the cache root");
         assert_eq!(
             left,
             ["0123456789abcdef"],

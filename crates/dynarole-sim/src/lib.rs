@@ -31,7 +31,7 @@ mod sequence;
 mod state;
 mod wake;
 
-pub use build::cache_root;
+pub use build::{cache_entries, cache_root};
 pub use critical::CriticalPath;
 pub use estimate::{form_makespan, makespan, shortest};
 pub use firmware::{FirmwareReport, FirmwareSource, ModuleFirmware};

@@ -1,5 +1,6 @@
 /* dr_program_conf.h - sizes for the lattice runtime's tests (the real one is generated per
- * program). The Makefile builds the tests once per window with -DDR_CONF_WINDOW=W. */
+ * program). The Makefile builds the tests once per window with -DDR_CONF_WINDOW=W, and with
+ * the compiler's batch size, -DDR_CONF_LATTICE_BATCH (read where the compiler decides it). */
 #ifndef DR_PROGRAM_CONF_H
 #define DR_PROGRAM_CONF_H
 

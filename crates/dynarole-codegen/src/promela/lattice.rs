@@ -15,10 +15,7 @@
 use super::events::{expr, printf, EventKind};
 use super::template::{Holes, TemplateFile};
 use super::{Fault, Gen};
-
-/// Most statements a module runs at once: `DR_CONF_LATTICE_BATCH`, the default of
-/// `runtime/dr_conf.h` (the generated configuration keeps it; a test checks they agree).
-pub const LATTICE_BATCH: usize = 8;
+use crate::c::LATTICE_BATCH;
 
 /// The transcription: `runtime/lattice/dr_lattice.pml`.
 pub(super) static LATTICE: TemplateFile = TemplateFile {
@@ -101,13 +98,50 @@ fn events(holes: Holes<'_>) -> Holes<'_> {
 
 #[cfg(test)]
 mod tests {
+    use super::super::test_support::{line, lowered, options};
     use super::LATTICE_BATCH;
+    use crate::{generate_c, generate_promela, Protocol};
+    use dynarole_core::RobotRegistry;
 
-    /// The model's batch is the C runtime's.
+    /// The value of `#define name value` in `text`, if it has that line.
+    fn defined<'t>(text: &'t str, name: &str) -> Option<&'t str> {
+        text.lines().find_map(|line| {
+            let mut words = line.strip_prefix("#define ")?.split_whitespace();
+            (words.next() == Some(name)).then(|| words.next()).flatten()
+        })
+    }
+
+    /// The model runs the batches the image is built with: the generated configuration and
+    /// the model carry the one value (the paper protocol's image has no batch).
     #[test]
-    fn the_batch_is_the_runtime_default() {
-        let conf = include_str!("../../../../runtime/dr_conf.h");
-        let define = format!("#define DR_CONF_LATTICE_BATCH {LATTICE_BATCH}\n");
-        assert!(conf.contains(&define), "runtime/dr_conf.h lacks `{define}`");
+    fn the_model_and_the_image_share_the_batch() {
+        let ir = lowered(include_str!("../../../../examples/verify/ab_c.dr"), "ab_c");
+        let registry = RobotRegistry::builtin();
+        let robot = registry.get(&ir.robot).expect("a built-in robot");
+        let conf = |protocol| {
+            let generated = generate_c(&ir, robot, &options("ab_c", protocol, 0).compile);
+            let files = generated.expect("generates").files;
+            let conf = files
+                .into_iter()
+                .find(|(name, _)| name == "dr_program_conf.h");
+            conf.expect("a configuration header").1
+        };
+        let batch = LATTICE_BATCH.to_string();
+        let lattice = conf(Protocol::Lattice);
+        assert_eq!(
+            defined(&lattice, "DR_CONF_LATTICE_BATCH"),
+            Some(batch.as_str())
+        );
+        assert_eq!(
+            defined(&conf(Protocol::Paper), "DR_CONF_LATTICE_BATCH"),
+            None
+        );
+        let model = generate_promela(
+            &ir,
+            &line(&[0, 1, 2, 3]),
+            &options("ab_c", Protocol::Lattice, 0),
+        );
+        let model = model.expect("models").text;
+        assert_eq!(defined(&model, "BATCH"), Some(batch.as_str()));
     }
 }

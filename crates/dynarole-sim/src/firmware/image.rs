@@ -4,10 +4,9 @@
 //! defined once. Both are cached under the simulator's cache root, keyed by a hash of every
 //! input, built in a temporary directory and renamed into place.
 
-use crate::build::cache_root;
+use crate::build::{cache_root, publish};
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use std::sync::atomic::{AtomicU64, Ordering};
 
 /// `runtime/avr` and the MCU options it includes, embedded so that a build needs only the AVR toolchain and simavr.
 const SOURCES: [(&str, &str); 7] = [
@@ -96,8 +95,6 @@ const NESC_SOURCES: [(&str, &str); 13] = [
 
 /// The nesC compiler's version the nesC build needs (Debian's 1.3.5 crashes).
 const NESC_VERSION: &str = "1.4.0";
-
-static TEMP_COUNTER: AtomicU64 = AtomicU64::new(0);
 
 /// A built firmware image and its footprint.
 #[derive(Clone, Debug)]
@@ -301,40 +298,24 @@ fn key(inputs: &[(&str, &str)]) -> u64 {
 }
 
 /// The cache directory holding `product` for `inputs`, built by `build` (which gets a
-/// directory holding `avr/`, runtime/avr) when missing.
+/// directory holding `avr/`, runtime/avr) when missing; published as the simulator's builds
+/// are, so that processes building it at once never see it half made.
 fn cached(
     prefix: &str,
     inputs: &[(&str, &str)],
     product: &str,
     build: impl FnOnce(&Path) -> Result<(), String>,
 ) -> Result<PathBuf, String> {
-    let root = cache_root();
-    let directory = root.join(format!("{prefix}-{:016x}", key(inputs)));
-    if directory.join(product).is_file() {
-        return Ok(directory);
+    let directory = cache_root().join(format!("{prefix}-{:016x}", key(inputs)));
+    if !directory.join(product).is_file() {
+        publish(&directory, product, |temp| {
+            SOURCES
+                .iter()
+                .try_for_each(|(name, text)| write(&temp.join(name), text))?;
+            build(temp)
+        })?;
     }
-    let temp = root.join(format!(
-        "tmp-{prefix}-{}-{}",
-        std::process::id(),
-        TEMP_COUNTER.fetch_add(1, Ordering::Relaxed)
-    ));
-    let result = SOURCES
-        .iter()
-        .try_for_each(|(name, text)| write(&temp.join(name), text))
-        .and_then(|()| build(&temp));
-    if result.is_ok() && std::fs::rename(&temp, &directory).is_ok() {
-        return Ok(directory);
-    }
-    let _ = std::fs::remove_dir_all(&temp);
-    result?;
-    if directory.join(product).is_file() {
-        Ok(directory) // another process built it first
-    } else {
-        Err(format!(
-            "cannot move the build into {}",
-            directory.display()
-        ))
-    }
+    Ok(directory)
 }
 
 /// The image a cached build folder holds, with its sizes.
