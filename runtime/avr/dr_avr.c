@@ -77,13 +77,10 @@ extern dr_module_t DynaRoleP__self;
 #else
 static dr_module_t module;
 #endif
-/* The periods main has counted (main only), and those the interrupt has seen since (main
- * reads the clock at least once a period: the period's interrupt wakes it). */
+/* The periods main has counted (main only); dr_avr_periods below: those the interrupt has
+ * seen since (main reads the clock at least once a period: the period's interrupt wakes it). */
 static uint32_t clock_periods;
-static volatile uint8_t periods;
 static uint16_t random_state;
-/* Set by INT0: an operation ended since main last looked. */
-static volatile uint8_t op_ended;
 
 static struct tx_frame tx[TX_FRAMES];
 static struct tx_frame *volatile tx_head = &tx[0];
@@ -96,41 +93,70 @@ static struct rx_slot rx[RX_SLOTS + 1u];
 static uint8_t rx_fill;
 static struct rx_slot *rx_cur;
 
+/* Set by the period's interrupt and by INT0 (an operation ended since main last looked),
+ * whose handlers are assembly in the vector table below: global names that the table
+ * refers to, kept under -flto. */
+volatile uint8_t dr_avr_periods __attribute__((used, externally_visible));
+volatile uint8_t dr_avr_op_ended __attribute__((used, externally_visible));
+
 /* --- start-up (the image is linked with -nostartfiles) ---
  * avr-libc's start-up has all 35 vectors of the ATmega128; the firmware enables only
- * interrupts up to USART0_TX (vector 20), so its table stops there: a vector that is never
- * enabled needs no entry. Then, as avr-libc's: r1 = 0 (the compiler's zero register),
- * SREG cleared, the stack at the top of RAM; libgcc's __do_copy_data and __do_clear_bss
- * (.init4, linked because the program has .data and .bss) initialise the RAM; main never
- * returns. Unused vectors restart the firmware, as avr-libc's __bad_interrupt does. */
+ * interrupts up to USART0_TX (vector 20), so its table stops there. The short handlers and
+ * the start-up sit in the slots of vectors that are never enabled: no interrupt can reach
+ * those slots, as the firmware sets no enable bit but OCIE1A and OCIE1B (TIMSK), INT0
+ * (EIMSK), RXCIE0 and TXCIE0 (UCSR0B), and the others keep their reset value 0 (so there is
+ * no restart on an unused vector, as avr-libc's __bad_interrupt does: none can be taken).
+ * Each `.org` is a vector's address (4 bytes a vector): the assembler refuses the table if
+ * a handler runs into the next vector used. The handlers:
+ * - INT0 (an operation ended) sets dr_avr_op_ended: ldi and sts leave SREG alone;
+ * - TIMER1_COMPA (the clock's period) counts the period, saving r24 and SREG (inc changes
+ *   it); main adds the count to the clock (read_clock), so that the 32-bit clock arithmetic
+ *   is in one place;
+ * - TIMER1_COMPB (the next step) only wakes the MCU: main looks at the clock.
+ * The start-up, as avr-libc's: r1 = 0 (the compiler's zero register), the stack at the top
+ * of RAM (SREG is 0 after a reset, the only way here); libgcc's __do_copy_data and
+ * __do_clear_bss (.init4, linked because the program has .data and .bss) initialise the RAM;
+ * main never returns. */
 #define DR_AVR_STR(x) #x
 #define DR_AVR_XSTR(x) DR_AVR_STR(x)
 __asm__(".pushsection .vectors,\"ax\",@progbits\n"
         ".global __vectors\n"
         "__vectors:\n"
-        "jmp __init\n"
-        "jmp __vector_1\n"   /* INT0: an operation ended */
-        ".rept 10\n"
-        "jmp __vectors\n"    /* INT1..INT7, TIMER2_COMP, TIMER2_OVF, TIMER1_CAPT */
-        ".endr\n"
-        "jmp __vector_12\n"  /* TIMER1_COMPA: the clock's period */
-        "jmp __vector_13\n"  /* TIMER1_COMPB: the next step */
-        "jmp __vectors\n"    /* TIMER1_OVF */
-        ".rept 3\n"
-        "jmp __vectors\n"    /* TIMER0_COMP, TIMER0_OVF, SPI_STC */
-        ".endr\n"
-        "jmp __vector_18\n"  /* USART0_RX */
-        "jmp __vectors\n"    /* USART0_UDRE */
-        "jmp __vector_20\n"  /* USART0_TX */
-        ".section .init0,\"ax\",@progbits\n"
-        ".global __init\n"
-        "__init:\n"
+        "rjmp __init\n"
+        ".org 4\n" /* INT0, over the slots of INT1 and INT2 */
+        "push r24\n"
+        "ldi r24, 1\n"
+        "sts dr_avr_op_ended, r24\n"
+        "pop r24\n"
+        "reti\n"
+        "dr_avr_period:\n" /* TIMER1_COMPA's handler, over the slots of INT3..INT7, TIMER2_COMP */
+        "push r24\n"
+        "in r24, __SREG__\n"
+        "push r24\n"
+        "lds r24, dr_avr_periods\n"
+        "inc r24\n"
+        "sts dr_avr_periods, r24\n"
+        "pop r24\n"
+        "out __SREG__, r24\n"
+        "pop r24\n"
+        "reti\n"
+        ".org 48\n" /* TIMER1_COMPA */
+        "rjmp dr_avr_period\n"
+        ".org 52\n" /* TIMER1_COMPB */
+        "reti\n"
+        "__init:\n" /* over the slots of TIMER1_OVF, TIMER0_COMP, TIMER0_OVF */
         "clr r1\n"
-        "out __SREG__, r1\n"
         "ldi r28, lo8(" DR_AVR_XSTR(RAMEND) ")\n"
         "ldi r29, hi8(" DR_AVR_XSTR(RAMEND) ")\n"
         "out __SP_H__, r29\n"
         "out __SP_L__, r28\n"
+        "jmp dr_avr_init_ram\n"
+        ".org 72\n" /* USART0_RX */
+        "jmp __vector_18\n"
+        ".org 80\n" /* USART0_TX (USART0_UDRE's slot, 76, holds nothing) */
+        "jmp __vector_20\n"
+        ".section .init0,\"ax\",@progbits\n"
+        "dr_avr_init_ram:\n"
         ".section .init9,\"ax\",@progbits\n"
         "jmp main\n"
         ".popsection\n");
@@ -222,35 +248,6 @@ static void write_u8(uint8_t reg, uint8_t v)
 
 /* --- interrupts --- */
 
-/* Counts the period: main adds it to the clock (read_clock), so that the 32-bit clock
- * arithmetic is in one place. Naked: it saves only r24 and SREG (inc changes it). */
-ISR(TIMER1_COMPA_vect, ISR_NAKED)
-{
-    __asm__ __volatile__("push r24\n\t"
-                         "in r24, __SREG__\n\t"
-                         "push r24\n\t"
-                         "lds r24, %0\n\t"
-                         "inc r24\n\t"
-                         "sts %0, r24\n\t"
-                         "pop r24\n\t"
-                         "out __SREG__, r24\n\t"
-                         "pop r24\n\t"
-                         "reti" : : "i"(&periods) : "memory");
-}
-
-/* Only wakes the MCU: main looks at the clock. */
-EMPTY_INTERRUPT(TIMER1_COMPB_vect)
-
-/* Sets op_ended and nothing else: naked, as neither ldi nor sts changes SREG. */
-ISR(INT0_vect, ISR_NAKED)
-{
-    __asm__ __volatile__("push r24\n\t"
-                         "ldi r24, 1\n\t"
-                         "sts %0, r24\n\t"
-                         "pop r24\n\t"
-                         "reti" : : "i"(&op_ended) : "memory");
-}
-
 /* Milliseconds since power-on, and in *count_read the counter read. Called with interrupts
  * off (main only). First adds the periods counted since the last call, and the one whose
  * interrupt is still pending when the counter had restarted before it was read (its flag
@@ -258,12 +255,12 @@ ISR(INT0_vect, ISR_NAKED)
 static uint32_t read_clock(uint16_t *count_read)
 {
     uint16_t count = TCNT1;
-    uint8_t n = periods;
+    uint8_t n = dr_avr_periods;
     if ((TIFR & (1u << OCF1A)) && count < PERIOD_TICKS / 2u) {
         TIFR = (uint8_t)(1u << OCF1A);
         n++;
     }
-    periods = 0;
+    dr_avr_periods = 0;
     clock_periods += n;
     *count_read = count;
     return (clock_periods << 8) | (uint8_t)(count / TICKS_PER_MS); /* PERIOD_MS = 1 << 8 */
@@ -654,7 +651,7 @@ static uint8_t arm_wake(uint32_t at)
 static void sleep_until_work(void)
 {
     cli();
-    if (!any_received() && !(op_wait && op_ended) && arm_wake(due)) {
+    if (!any_received() && !(op_wait && dr_avr_op_ended) && arm_wake(due)) {
         sei();
         sleep_cpu();
     }
@@ -770,7 +767,7 @@ static void plan(void)
         want_step_from(at);
     }
     if (answer & DR_WAKE_OP) {
-        op_ended = 0; /* cleared first: an end after the read below still sets it */
+        dr_avr_op_ended = 0; /* cleared first: an end after the read below still sets it */
         if (dr_hal_op_status(&module) != DR_OP_RUNNING) {
             want_step_from(dr_hal_now_ms(&module));
         } else {
@@ -793,7 +790,7 @@ int main(void)
             plan();
         }
         now = dr_hal_now_ms(&module);
-        if (op_wait && op_ended) {
+        if (op_wait && dr_avr_op_ended) {
             op_wait = 0;
             want_step_from(now);
         }
