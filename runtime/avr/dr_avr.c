@@ -26,6 +26,7 @@
 #include <avr/interrupt.h>
 #include <avr/io.h>
 #include <avr/sleep.h>
+#include <stddef.h>
 #include <stdint.h>
 #include "dr_avr_board.h"
 #include "dr_program.h"
@@ -68,6 +69,14 @@ struct rx_slot {
     uint8_t channel;
     uint8_t bytes[DR_CONF_MAX_PACKET];
 };
+
+/* The USART interrupts (assembly) take these fields at these offsets. */
+typedef char dr_avr_frame_layout[(offsetof(struct tx_frame, len) == 1u &&
+                                  offsetof(struct tx_frame, bytes) == 2u &&
+                                  offsetof(struct rx_slot, channel) == 1u &&
+                                  offsetof(struct rx_slot, bytes) == 2u)
+                                     ? 1
+                                     : -1];
 
 #ifdef DR_AVR_NESC
 /* The nesC component (`dynarole compile --target nesc`, compiled by runtime/nesc) owns the
@@ -281,65 +290,176 @@ static inline __attribute__((always_inline)) void tx_start(const struct tx_frame
     tx_pos = 1;
 }
 
-/* A byte has left and the USART holds no other: the frame's next byte, or, after its last,
- * the transmitters off and the next frame. Only this interrupt feeds the USART, one byte
- * at a time, so the enables change only once a frame's last bit has left. */
-ISR(USART0_TX_vect)
-{
-    struct tx_frame *f = tx_head;
-    uint8_t p = tx_pos;
-    uint8_t n;
-    if (p < f->len) {
-        UDR0 = f->bytes[p];
-        tx_pos = (uint8_t)(p + 1u);
-        return;
-    }
-    PORTC = 0;
-    f = tx_after(f);
-    tx_head = f;
-    n = (uint8_t)(tx_count - 1u);
-    tx_count = n;
-    if (n != 0u) {
-        tx_start(f);
-    }
-}
+/* The two USART interrupts are naked, in assembly: they save only the registers they use
+ * (r24, r25, Z and SREG), where the compiler's prologue also saved r0, r1 and RAMPZ. They
+ * cannot take r1 as zero (an interrupt may come between a `mul` and the `clr r1` after
+ * it), so they use none. */
 
-/* The frame's end: the arbiter may pass the next one. Inlined: a call would make the
- * receive interrupt save every call-clobbered register. */
-static inline __attribute__((always_inline)) void rx_end(void)
+/* A byte has left and the USART holds no other: the frame's next byte, or, after its last,
+ * the transmitters off and the next frame (the other of the two, tx_after). Only this
+ * interrupt feeds the USART, one byte at a time, so the enables change only once a frame's
+ * last bit has left. As C:
+ *     f = tx_head; p = tx_pos;
+ *     if (p < f->len) { UDR0 = f->bytes[p]; tx_pos = p + 1; return; }
+ *     PORTC = 0; f = tx_after(f); tx_head = f;
+ *     if (--tx_count != 0) tx_start(f); */
+ISR(USART0_TX_vect, ISR_NAKED)
 {
-    rx_fill = 0;
-    strobe(DR_AVR_STROBE_RELEASE);
+    __asm__ __volatile__(
+        "push r24\n\t"
+        "in r24, __SREG__\n\t"
+        "push r24\n\t"
+        "push r25\n\t"
+        "push r30\n\t"
+        "push r31\n\t"
+        "lds r30, %[head]\n\t"
+        "lds r31, %[head]+1\n\t"
+        "lds r24, %[pos]\n\t"
+        "ldd r25, Z+1\n\t" /* f->len */
+        "cp r24, r25\n\t"
+        "brsh 1f\n\t"
+        "add r30, r24\n\t"
+        "clr r25\n\t"
+        "adc r31, r25\n\t"
+        "ldd r25, Z+2\n\t" /* f->bytes[p] */
+        "out %[udr], r25\n\t"
+        "inc r24\n\t"
+        "rjmp 3f\n"
+        "1:\n\t"
+        "clr r25\n\t"
+        "out %[portc], r25\n\t"
+        "ldi r24, lo8(%[tx0])\n\t"
+        "ldi r25, hi8(%[tx0])\n\t"
+        "cp r30, r24\n\t"
+        "cpc r31, r25\n\t"
+        "movw r30, r24\n\t" /* movw leaves the flags alone */
+        "brne 2f\n\t"
+        "ldi r30, lo8(%[tx1])\n\t"
+        "ldi r31, hi8(%[tx1])\n"
+        "2:\n\t"
+        "sts %[head], r30\n\t"
+        "sts %[head]+1, r31\n\t"
+        "lds r24, %[count]\n\t"
+        "dec r24\n\t"
+        "sts %[count], r24\n\t"
+        "breq 4f\n\t"
+        "ld r24, Z\n\t" /* tx_start: the enables, the first byte */
+        "out %[portc], r24\n\t"
+        "ldd r24, Z+2\n\t"
+        "out %[udr], r24\n\t"
+        "ldi r24, 1\n"
+        "3:\n\t"
+        "sts %[pos], r24\n"
+        "4:\n\t"
+        "pop r31\n\t"
+        "pop r30\n\t"
+        "pop r25\n\t"
+        "pop r24\n\t"
+        "out __SREG__, r24\n\t"
+        "pop r24\n\t"
+        "reti"
+        :
+        : [head] "i"(&tx_head), [pos] "i"(&tx_pos), [count] "i"(&tx_count), [tx0] "i"(&tx[0]),
+          [tx1] "i"(&tx[1]), [udr] "I"(_SFR_IO_ADDR(UDR0)), [portc] "I"(_SFR_IO_ADDR(PORTC))
+        : "memory");
 }
 
 /* Receives one byte. The first byte of a frame picks a free slot (none: the spare slot,
  * whose frames are dropped) and reads its channel from the arbiter; the second is its
- * length. */
-ISR(USART0_RX_vect)
+ * length (a frame with an impossible one is dropped: README.md, framing). At a frame's end
+ * the arbiter is released, so that it may pass the next one. As C:
+ *     b = UDR0; n = rx_fill; s = rx_cur;
+ *     if (n == 0) { s = first of rx[0], rx[1] not full, else rx[RX_SLOTS]; rx_cur = s;
+ *                   s->channel = the RX_CHANNEL register; }
+ *     s->bytes[n] = b; rx_fill = ++n;
+ *     if (n < 2) return;
+ *     if (n == 2 && (b < 2 || b > DR_CONF_MAX_PACKET)) goto end;
+ *     if (n < s->bytes[1]) return;
+ *     s->full = 1;  (the spare slot's flag is never read)
+ *     end: rx_fill = 0; strobe(DR_AVR_STROBE_RELEASE); */
+ISR(USART0_RX_vect, ISR_NAKED)
 {
-    uint8_t b = UDR0;
-    uint8_t n = rx_fill;
-    struct rx_slot *s = rx_cur;
-    if (n == 0u) {
-        s = !rx[0].full ? &rx[0] : !rx[1].full ? &rx[1] : &rx[RX_SLOTS];
-        rx_cur = s;
-        bus_address(DR_AVR_REG_RX_CHANNEL);
-        s->channel = bus_get();
-    }
-    s->bytes[n] = b;
-    n++;
-    rx_fill = n;
-    if (n < 2u) {
-        return;
-    }
-    if (n == 2u && (b < 2u || b > DR_CONF_MAX_PACKET)) {
-        rx_end(); /* no frame of ours: dropped (README.md: framing) */
-        return;
-    }
-    if (n >= s->bytes[1]) {
-        s->full = 1; /* the spare slot's flag is never read */
-        rx_end();
-    }
+    __asm__ __volatile__(
+        "push r24\n\t"
+        "in r24, __SREG__\n\t"
+        "push r24\n\t"
+        "push r25\n\t"
+        "push r30\n\t"
+        "push r31\n\t"
+        "in r25, %[udr]\n\t"
+        "lds r24, %[fill]\n\t"
+        "lds r30, %[cur]\n\t"
+        "lds r31, %[cur]+1\n\t"
+        "tst r24\n\t"
+        "brne 2f\n\t"
+        "ldi r30, lo8(%[rx])\n\t"
+        "ldi r31, hi8(%[rx])\n\t"
+        "ld r24, Z\n\t" /* rx[0].full */
+        "tst r24\n\t"
+        "breq 1f\n\t"
+        "subi r30, lo8(-(%[size]))\n\t"
+        "sbci r31, hi8(-(%[size]))\n\t"
+        "ld r24, Z\n\t" /* rx[1].full */
+        "tst r24\n\t"
+        "breq 1f\n\t"
+        "subi r30, lo8(-(%[size]))\n\t"
+        "sbci r31, hi8(-(%[size]))\n" /* the spare slot */
+        "1:\n\t"
+        "sts %[cur], r30\n\t"
+        "sts %[cur]+1, r31\n\t"
+        "ldi r24, %[reg]\n\t" /* bus_address(RX_CHANNEL), bus_get() */
+        "out %[portb], r24\n\t"
+        "sbi %[portd], %[addr]\n\t"
+        "cbi %[portd], %[addr]\n\t"
+        "sbi %[portd], %[read]\n\t"
+        "cbi %[portd], %[read]\n\t"
+        "nop\n\t" /* the input synchroniser's latency */
+        "in r24, %[pina]\n\t"
+        "std Z+1, r24\n\t" /* s->channel */
+        "clr r24\n"
+        "2:\n\t"
+        "add r30, r24\n\t"
+        "brcc 3f\n\t"
+        "inc r31\n"
+        "3:\n\t"
+        "std Z+2, r25\n\t" /* s->bytes[n] = b */
+        "sub r30, r24\n\t"
+        "sbci r31, 0\n\t"
+        "inc r24\n\t"
+        "sts %[fill], r24\n\t"
+        "cpi r24, 2\n\t"
+        "brlo 5f\n\t"
+        "brne 4f\n\t"
+        "subi r25, 2\n\t" /* n == 2: b - 2 >= DR_CONF_MAX_PACKET - 1, unsigned: dropped */
+        "cpi r25, %[max1]\n\t"
+        "brsh 6f\n"
+        "4:\n\t"
+        "ldd r25, Z+3\n\t" /* s->bytes[1], the length */
+        "cp r24, r25\n\t"
+        "brlo 5f\n\t"
+        "ldi r24, 1\n\t"
+        "st Z, r24\n" /* s->full */
+        "6:\n\t"
+        "clr r24\n\t"
+        "sts %[fill], r24\n\t"
+        "sbi %[portd], %[release]\n\t"
+        "cbi %[portd], %[release]\n"
+        "5:\n\t"
+        "pop r31\n\t"
+        "pop r30\n\t"
+        "pop r25\n\t"
+        "pop r24\n\t"
+        "out __SREG__, r24\n\t"
+        "pop r24\n\t"
+        "reti"
+        :
+        : [fill] "i"(&rx_fill), [cur] "i"(&rx_cur), [rx] "i"(&rx[0]),
+          [size] "n"(sizeof(struct rx_slot)), [max1] "M"(DR_CONF_MAX_PACKET - 1),
+          [reg] "M"(DR_AVR_REG_RX_CHANNEL), [udr] "I"(_SFR_IO_ADDR(UDR0)),
+          [portb] "I"(_SFR_IO_ADDR(PORTB)), [portd] "I"(_SFR_IO_ADDR(PORTD)),
+          [pina] "I"(_SFR_IO_ADDR(PINA)), [addr] "I"(DR_AVR_STROBE_ADDR),
+          [read] "I"(DR_AVR_STROBE_READ), [release] "I"(DR_AVR_STROBE_RELEASE)
+        : "memory");
 }
 
 /* --- dr_hal.h --- */
