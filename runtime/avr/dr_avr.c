@@ -257,12 +257,21 @@ static void write_u8(uint8_t reg, uint8_t v)
 
 /* --- interrupts --- */
 
-/* Milliseconds since power-on, and in *count_read the counter read. Called with interrupts
- * off (main only). First adds the periods counted since the last call, and the one whose
- * interrupt is still pending when the counter had restarted before it was read (its flag
- * is cleared: the interrupt would count it again). */
-static uint32_t read_clock(uint16_t *count_read)
+/* The counter as read_clock read it last (main only). */
+static uint16_t clock_count;
+
+/* Milliseconds since power-on (and the counter read, in clock_count). Called with
+ * interrupts off (main only). First adds the periods counted since the last call, and the
+ * one whose interrupt is still pending when the counter had restarted before it was read
+ * (its flag is cleared: the interrupt would count it again). The milliseconds into the
+ * period are the low byte (PERIOD_MS = 1 << 8; the AVR is little-endian), set as a byte:
+ * no 32-bit arithmetic for it. */
+static uint32_t read_clock(void)
 {
+    union {
+        uint32_t ms;
+        uint8_t b[4];
+    } now;
     uint16_t count = TCNT1;
     uint8_t n = dr_avr_periods;
     if ((TIFR & (1u << OCF1A)) && count < PERIOD_TICKS / 2u) {
@@ -271,8 +280,10 @@ static uint32_t read_clock(uint16_t *count_read)
     }
     dr_avr_periods = 0;
     clock_periods += n;
-    *count_read = count;
-    return (clock_periods << 8) | (uint8_t)(count / TICKS_PER_MS); /* PERIOD_MS = 1 << 8 */
+    clock_count = count;
+    now.ms = clock_periods << 8;
+    now.b[0] = (uint8_t)(count / TICKS_PER_MS);
+    return now.ms;
 }
 
 /* The frame after `f` in the queue. */
@@ -467,11 +478,10 @@ ISR(USART0_RX_vect, ISR_NAKED)
 uint32_t dr_hal_now_ms(struct dr_module *m)
 {
     uint32_t v;
-    uint16_t count;
     uint8_t sreg = SREG;
     (void)m;
     cli();
-    v = read_clock(&count);
+    v = read_clock();
     SREG = sreg;
     return v;
 }
@@ -742,9 +752,8 @@ static uint8_t op_wait;     /* a step is wanted once the operation has ended */
  * sleep. Interrupts are off. */
 static uint8_t arm_wake(uint32_t at)
 {
-    uint16_t count;
     /* `at` from the current period's start: negative when before it (passed) */
-    uint32_t offset = at - (read_clock(&count) & ~(uint32_t)(PERIOD_MS - 1u));
+    uint32_t offset = at - (read_clock() & ~(uint32_t)(PERIOD_MS - 1u));
     uint16_t target;
     TIMSK = (uint8_t)(TIMSK & ~(1u << OCIE1B));
     if (!has_due) {
@@ -757,7 +766,7 @@ static uint8_t arm_wake(uint32_t at)
         return 1;
     }
     target = (uint16_t)((uint16_t)offset * TICKS_PER_MS);
-    if (target < (uint16_t)(count + MIN_SLEEP_TICKS)) {
+    if (target < (uint16_t)(clock_count + MIN_SLEEP_TICKS)) {
         return 0; /* passed, or too close */
     }
     OCR1B = target;
