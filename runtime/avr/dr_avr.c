@@ -51,7 +51,7 @@
  * (64,000 ticks, 256 ms), so that the clock is a whole number of periods plus the counter's
  * milliseconds, without carries between the two. */
 #define TICKS_PER_MS ((uint16_t)(DR_AVR_F_CPU / 64u / 1000u))
-#define PERIOD_MS 256u /* read_clock shifts by 8 */
+#define PERIOD_MS 256u /* the clock's low byte: union clock */
 #define PERIOD_TICKS ((uint16_t)(PERIOD_MS * TICKS_PER_MS))
 /* A wake-up closer than this many ticks is waited for awake: the compare might be missed. */
 #define MIN_SLEEP_TICKS 8u
@@ -86,9 +86,18 @@ extern dr_module_t DynaRoleP__self;
 #else
 static dr_module_t module;
 #endif
-/* The periods main has counted (main only); dr_avr_periods below: those the interrupt has
- * seen since (main reads the clock at least once a period: the period's interrupt wakes it). */
-static uint32_t clock_periods;
+/* The clock (main only): the periods main has counted in its upper 24 bits (256 ms each,
+ * PERIOD_MS), so that it is the millisecond at which the current period began; the clock
+ * wraps after 2^32 ms either way. dr_avr_periods below: the periods the interrupt has seen
+ * since (main reads the clock at least once a period: the period's interrupt wakes it). */
+union clock {
+    uint32_t ms;
+    struct {
+        uint8_t ms_in_period; /* the low byte (the AVR is little-endian) */
+        __uint24 periods;
+    } parts;
+};
+static union clock clock_start;
 static uint16_t random_state;
 
 static struct tx_frame tx[TX_FRAMES];
@@ -264,14 +273,10 @@ static uint16_t clock_count;
  * interrupts off (main only). First adds the periods counted since the last call, and the
  * one whose interrupt is still pending when the counter had restarted before it was read
  * (its flag is cleared: the interrupt would count it again). The milliseconds into the
- * period are the low byte (PERIOD_MS = 1 << 8; the AVR is little-endian), set as a byte:
- * no 32-bit arithmetic for it. */
+ * period are the low byte, set as a byte: no 32-bit arithmetic. */
 static uint32_t read_clock(void)
 {
-    union {
-        uint32_t ms;
-        uint8_t b[4];
-    } now;
+    union clock now;
     uint16_t count = TCNT1;
     uint8_t n = dr_avr_periods;
     if ((TIFR & (1u << OCF1A)) && count < PERIOD_TICKS / 2u) {
@@ -279,10 +284,10 @@ static uint32_t read_clock(void)
         n++;
     }
     dr_avr_periods = 0;
-    clock_periods += n;
+    clock_start.parts.periods += n;
     clock_count = count;
-    now.ms = clock_periods << 8;
-    now.b[0] = (uint8_t)(count / TICKS_PER_MS);
+    now = clock_start;
+    now.parts.ms_in_period = (uint8_t)(count / TICKS_PER_MS);
     return now.ms;
 }
 
