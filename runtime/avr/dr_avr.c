@@ -53,6 +53,9 @@
 #define TICKS_PER_MS ((uint16_t)(DR_AVR_F_CPU / 64u / 1000u))
 #define PERIOD_MS 256u /* the clock's low byte: union clock */
 #define PERIOD_TICKS ((uint16_t)(PERIOD_MS * TICKS_PER_MS))
+/* Compare B's value when no step is to wake the MCU: beyond the counter's top (PERIOD_TICKS
+ * - 1), so no match. Compare B's interrupt stays enabled: one store disarms it. */
+#define NO_WAKE 0xFFFFu
 /* A wake-up closer than this many ticks is waited for awake: the compare might be missed. */
 #define MIN_SLEEP_TICKS 8u
 #define UBRR_VALUE (DR_AVR_F_CPU / 16u / DR_AVR_BAUD - 1u)
@@ -102,6 +105,10 @@ static uint16_t random_state;
 
 static struct tx_frame tx[TX_FRAMES];
 static struct tx_frame *volatile tx_head = &tx[0];
+/* The frame the next send fills (main only): the two are filled in turn as the transmit
+ * interrupt sends them in turn, so this is the head when none waits, the other when one
+ * does. */
+static struct tx_frame *tx_free = &tx[0];
 static volatile uint8_t tx_count;
 static uint8_t tx_pos; /* the next byte of the frame at the head */
 
@@ -530,7 +537,8 @@ static void enqueue(uint8_t mask, const uint8_t *bytes, uint8_t len)
     while (tx_count >= TX_FRAMES) {
         /* the transmit interrupt frees a frame within its air time */
     }
-    f = tx_count != 0u ? tx_after(tx_head) : tx_head;
+    f = tx_free;
+    tx_free = tx_after(f);
     f->mask = mask;
     f->len = len;
     for (to = f->bytes, n = len; n != 0u; n--) {
@@ -703,7 +711,7 @@ static void board_init(void)
      * MCU for its next step. */
     OCR1A = (uint16_t)(PERIOD_TICKS - 1u);
     TCCR1B = (uint8_t)((1u << WGM12) | (1u << CS11) | (1u << CS10));
-    TIMSK = (uint8_t)(1u << OCIE1A);
+    TIMSK = (uint8_t)((1u << OCIE1A) | (1u << OCIE1B));
     /* INT0 on its rising edge: an operation ended. */
     EICRA = (uint8_t)((1u << ISC01) | (1u << ISC00));
     EIFR = (uint8_t)(1u << INTF0);
@@ -778,7 +786,7 @@ static uint8_t arm_wake(uint32_t at)
     /* `at` from the current period's start: negative when before it (passed) */
     uint32_t offset = at - (read_clock() & ~(uint32_t)(PERIOD_MS - 1u));
     uint16_t target;
-    TIMSK = (uint8_t)(TIMSK & ~(1u << OCIE1B));
+    OCR1B = NO_WAKE;
     if (!has_due) {
         return 1;
     }
@@ -794,7 +802,6 @@ static uint8_t arm_wake(uint32_t at)
     }
     OCR1B = target;
     TIFR = (uint8_t)(1u << OCF1B);
-    TIMSK = (uint8_t)(TIMSK | (1u << OCIE1B));
     return 1;
 }
 
