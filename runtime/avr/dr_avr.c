@@ -189,7 +189,8 @@ __asm__(".pushsection .vectors,\"ax\",@progbits\n"
  * no registers (OS_main). */
 int main(void) __attribute__((OS_main, used, externally_visible));
 
-/* --- the controller's bus (callers keep interrupts off) --- */
+/* --- the controller's bus (a transaction runs with interrupts off; read_u16 and write_u8
+ * are called with them on, as the functions of dr_hal.h below) --- */
 
 /* A rising edge on strobe `bit` of PORTD. Always inlined with a constant bit: one sbi and
  * one cbi. */
@@ -226,12 +227,11 @@ static uint16_t read_u16(uint8_t reg)
 {
     uint8_t lo;
     uint8_t hi;
-    uint8_t sreg = SREG;
     cli();
     bus_address(reg);
     lo = bus_get();
     hi = bus_get();
-    SREG = sreg;
+    sei();
     return (uint16_t)(lo | (uint16_t)((uint16_t)hi << 8));
 }
 
@@ -264,11 +264,10 @@ static void describe(void)
 
 static void write_u8(uint8_t reg, uint8_t v)
 {
-    uint8_t sreg = SREG;
     cli();
     bus_address(reg);
     bus_put(v);
-    SREG = sreg;
+    sei();
 }
 
 /* --- interrupts --- */
@@ -485,16 +484,19 @@ ISR(USART0_RX_vect, ISR_NAKED)
         : "memory");
 }
 
-/* --- dr_hal.h --- */
+/* --- dr_hal.h ---
+ * Interrupts are on whenever a function of dr_hal.h runs (main turns them on before the
+ * runtime's init, and no interrupt calls the runtime), so a bus transaction, a clock reading
+ * or an EEPROM write turns them off and back on (cli, sei) rather than saving SREG. */
 
-uint32_t dr_hal_now_ms(struct dr_module *m)
+/* Not inlined: -flto would, at a cost in flash (measured). */
+__attribute__((noinline)) uint32_t dr_hal_now_ms(struct dr_module *m)
 {
     uint32_t v;
-    uint8_t sreg = SREG;
     (void)m;
     cli();
     v = read_clock();
-    SREG = sreg;
+    sei();
     return v;
 }
 
@@ -548,7 +550,7 @@ static void enqueue(uint8_t mask, const uint8_t *bytes, uint8_t len)
     n = (uint8_t)(tx_count + 1u);
     tx_count = n;
     if (n == 1u) {
-        tx_start(f);
+        tx_start(tx_head); /* f: none was waiting */
     }
     sei();
 }
@@ -577,9 +579,7 @@ void dr_hal_op_start(struct dr_module *m, uint16_t statement, uint8_t op, uint8_
 {
     const uint8_t *a = (const uint8_t *)args;
     uint8_t i;
-    uint8_t sreg;
     describe();
-    sreg = SREG;
     cli();
     bus_address(DR_AVR_REG_ARGS);
     for (i = 0; i < 2u * DR_CONF_MAX_ARGS; i++) {
@@ -592,7 +592,7 @@ void dr_hal_op_start(struct dr_module *m, uint16_t statement, uint8_t op, uint8_
     bus_put(index);
     bus_put(m->address);
     bus_put((uint8_t)statement); /* GO: any value */
-    SREG = sreg;
+    sei();
 }
 
 enum dr_op_status dr_hal_op_status(struct dr_module *m)
@@ -676,7 +676,6 @@ void dr_hal_nv_read(struct dr_module *m, uint16_t addr, uint8_t *buf, uint8_t le
 void dr_hal_nv_write(struct dr_module *m, uint16_t addr, const uint8_t *buf, uint8_t len)
 {
     uint8_t i;
-    uint8_t sreg;
     (void)m;
     if (!in_eeprom(addr, len)) {
         return;
@@ -685,11 +684,10 @@ void dr_hal_nv_write(struct dr_module *m, uint16_t addr, const uint8_t *buf, uin
         if (eeprom_get((uint16_t)(addr + i)) != buf[i]) {
             EEDR = buf[i];
             /* EEWE within four cycles of EEMWE: two sbi with interrupts off. */
-            sreg = SREG;
             cli();
             EECR = (uint8_t)(EECR | (1u << EEMWE));
             EECR = (uint8_t)(EECR | (1u << EEWE));
-            SREG = sreg;
+            sei();
         }
     }
 }
