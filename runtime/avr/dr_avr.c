@@ -313,9 +313,10 @@ static inline __attribute__((always_inline)) void tx_start(const struct tx_frame
 }
 
 /* The two USART interrupts are naked, in assembly: they save only the registers they use
- * (r24, r25, Z and SREG), where the compiler's prologue also saved r0, r1 and RAMPZ. They
- * cannot take r1 as zero (an interrupt may come between a `mul` and the `clr r1` after
- * it), so they use none. */
+ * (r24, r25, Z and SREG), where the compiler's prologue also saved r0, r1 and RAMPZ, and
+ * they save them alike, so that they share the code that restores them. They cannot take
+ * r1 as zero (an interrupt may come between a `mul` and the `clr r1` after it), so they
+ * use none. */
 
 /* A byte has left and the USART holds no other: the frame's next byte, or, after its last,
  * the transmitters off and the next frame (the other of the two, tx_after). Only this
@@ -373,13 +374,7 @@ ISR(USART0_TX_vect, ISR_NAKED)
         "3:\n\t"
         "sts %[pos], r24\n"
         "4:\n\t"
-        "pop r31\n\t"
-        "pop r30\n\t"
-        "pop r25\n\t"
-        "pop r24\n\t"
-        "out __SREG__, r24\n\t"
-        "pop r24\n\t"
-        "reti"
+        "jmp dr_avr_usart_return" /* the receive interrupt's end: the same registers */
         :
         : [head] "i"(&tx_head), [pos] "i"(&tx_pos), [count] "i"(&tx_count), [tx0] "i"(&tx[0]),
           [tx1] "i"(&tx[1]), [udr] "I"(_SFR_IO_ADDR(UDR0)), [portc] "I"(_SFR_IO_ADDR(PORTC))
@@ -466,7 +461,9 @@ ISR(USART0_RX_vect, ISR_NAKED)
         "sts %[fill], r24\n\t"
         "sbi %[portd], %[release]\n\t"
         "cbi %[portd], %[release]\n"
-        "5:\n\t"
+        "5:\n"
+        ".global dr_avr_usart_return\n" /* also the transmit interrupt's end */
+        "dr_avr_usart_return:\n\t"
         "pop r31\n\t"
         "pop r30\n\t"
         "pop r25\n\t"
