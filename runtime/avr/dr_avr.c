@@ -182,12 +182,11 @@ __asm__(".pushsection .vectors,\"ax\",@progbits\n"
         "jmp __vector_20\n"
         ".section .init0,\"ax\",@progbits\n"
         "dr_avr_init_ram:\n"
-        ".section .init9,\"ax\",@progbits\n"
-        "jmp main\n"
         ".popsection\n");
-/* Reached from .init9 above: kept and named main under -flto; it never returns, so it saves
- * no registers (OS_main). */
-int main(void) __attribute__((OS_main, used, externally_visible));
+/* The start-up's last part (.init9, after libgcc's RAM set-up in .init4): the start-up runs
+ * into it, no jump. Kept and named main under -flto; it never returns, so it saves no
+ * registers (OS_main). */
+int main(void) __attribute__((OS_main, used, externally_visible, section(".init9")));
 
 /* --- the controller's bus (a transaction runs with interrupts off; read_u16 and write_u8
  * are called with them on, as the functions of dr_hal.h below) --- */
