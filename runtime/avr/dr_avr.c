@@ -296,10 +296,11 @@ static uint32_t read_clock(void)
     return now.ms;
 }
 
-/* The frame after `f` in the queue. */
+/* The frame after `f` in the queue: the other of the two, the sum of both addresses less
+ * f's (no comparison and branches: 6 bytes fewer). */
 static inline __attribute__((always_inline)) struct tx_frame *tx_after(struct tx_frame *f)
 {
-    return f == &tx[0] ? &tx[1] : &tx[0];
+    return (struct tx_frame *)((uintptr_t)&tx[0] + (uintptr_t)&tx[1] - (uintptr_t)f);
 }
 
 /* Enables the transmitters of frame `f`, the head of the queue, and puts its first byte on
@@ -784,13 +785,12 @@ static uint8_t arm_wake(uint32_t at)
     if (!has_due) {
         return 1;
     }
-    if ((int32_t)offset < 0) {
-        return 0;
+    /* Not in the current period (its upper 24 bits not 0: tested by bytes, where a 32-bit
+     * comparison with PERIOD_MS took 8 more bytes): in a later one, or passed (negative). */
+    if ((uint16_t)(offset >> 16) != 0u || (uint8_t)(offset >> 8) != 0u) {
+        return (uint8_t)((int32_t)offset >= 0);
     }
-    if (offset >= PERIOD_MS) {
-        return 1;
-    }
-    target = (uint16_t)((uint16_t)offset * TICKS_PER_MS);
+    target = (uint16_t)((uint8_t)offset * (uint16_t)TICKS_PER_MS);
     if (target < (uint16_t)(clock_count + MIN_SLEEP_TICKS)) {
         return 0; /* passed, or too close */
     }
