@@ -63,6 +63,7 @@
 struct tx_frame {
     uint8_t mask;
     uint8_t len;
+    uint8_t pos; /* the next byte to send, once the frame is at the head */
     uint8_t bytes[DR_CONF_MAX_PACKET];
 };
 
@@ -75,7 +76,8 @@ struct rx_slot {
 
 /* The USART interrupts (assembly) take these fields at these offsets. */
 typedef char dr_avr_frame_layout[(offsetof(struct tx_frame, len) == 1u &&
-                                  offsetof(struct tx_frame, bytes) == 2u &&
+                                  offsetof(struct tx_frame, pos) == 2u &&
+                                  offsetof(struct tx_frame, bytes) == 3u &&
                                   offsetof(struct rx_slot, channel) == 1u &&
                                   offsetof(struct rx_slot, bytes) == 2u)
                                      ? 1
@@ -110,7 +112,6 @@ static struct tx_frame *volatile tx_head = &tx[0];
  * does. */
 static struct tx_frame *tx_free = &tx[0];
 static volatile uint8_t tx_count;
-static uint8_t tx_pos; /* the next byte of the frame at the head */
 
 /* The slots, and a spare one where a frame goes when both are full (dropped). */
 static struct rx_slot rx[RX_SLOTS + 1u];
@@ -305,11 +306,11 @@ static inline __attribute__((always_inline)) struct tx_frame *tx_after(struct tx
 
 /* Enables the transmitters of frame `f`, the head of the queue, and puts its first byte on
  * the line. Interrupts are off. */
-static inline __attribute__((always_inline)) void tx_start(const struct tx_frame *f)
+static inline __attribute__((always_inline)) void tx_start(struct tx_frame *f)
 {
     PORTC = f->mask;
     UDR0 = f->bytes[0];
-    tx_pos = 1;
+    f->pos = 1;
 }
 
 /* The two USART interrupts are naked, in assembly: they save only the registers they use
@@ -322,8 +323,8 @@ static inline __attribute__((always_inline)) void tx_start(const struct tx_frame
  * the transmitters off and the next frame (the other of the two, tx_after). Only this
  * interrupt feeds the USART, one byte at a time, so the enables change only once a frame's
  * last bit has left. As C:
- *     f = tx_head; p = tx_pos;
- *     if (p < f->len) { UDR0 = f->bytes[p]; tx_pos = p + 1; return; }
+ *     f = tx_head; p = f->pos;
+ *     if (p < f->len) { f->pos = p + 1; UDR0 = f->bytes[p]; return; }
  *     PORTC = 0; f = tx_after(f); tx_head = f;
  *     if (--tx_count != 0) tx_start(f); */
 ISR(USART0_TX_vect, ISR_NAKED)
@@ -337,29 +338,28 @@ ISR(USART0_TX_vect, ISR_NAKED)
         "push r31\n\t"
         "lds r30, %[head]\n\t"
         "lds r31, %[head]+1\n\t"
-        "lds r24, %[pos]\n\t"
+        "ldd r24, Z+2\n\t" /* f->pos */
         "ldd r25, Z+1\n\t" /* f->len */
         "cp r24, r25\n\t"
         "brsh 1f\n\t"
-        "add r30, r24\n\t"
+        "inc r24\n\t"
+        "std Z+2, r24\n\t"
+        "add r30, r24\n\t" /* f + p + 1 */
         "clr r25\n\t"
         "adc r31, r25\n\t"
-        "ldd r25, Z+2\n\t" /* f->bytes[p] */
+        "ldd r25, Z+2\n\t" /* f->bytes[p], at f + 3 + p */
         "out %[udr], r25\n\t"
-        "inc r24\n\t"
-        "rjmp 3f\n"
+        "rjmp 4f\n"
         "1:\n\t"
         "clr r25\n\t"
         "out %[portc], r25\n\t"
-        "ldi r24, lo8(%[tx0])\n\t"
+        "ldi r24, lo8(%[tx0])\n\t" /* tx_after(f): &tx[0] - f + &tx[1] */
         "ldi r25, hi8(%[tx0])\n\t"
-        "cp r30, r24\n\t"
-        "cpc r31, r25\n\t"
-        "movw r30, r24\n\t" /* movw leaves the flags alone */
-        "brne 2f\n\t"
-        "ldi r30, lo8(%[tx1])\n\t"
-        "ldi r31, hi8(%[tx1])\n"
-        "2:\n\t"
+        "sub r24, r30\n\t"
+        "sbc r25, r31\n\t"
+        "subi r24, lo8(-(%[tx1]))\n\t"
+        "sbci r25, hi8(-(%[tx1]))\n\t"
+        "movw r30, r24\n\t"
         "sts %[head], r30\n\t"
         "sts %[head]+1, r31\n\t"
         "lds r24, %[count]\n\t"
@@ -368,15 +368,14 @@ ISR(USART0_TX_vect, ISR_NAKED)
         "breq 4f\n\t"
         "ld r24, Z\n\t" /* tx_start: the enables, the first byte */
         "out %[portc], r24\n\t"
-        "ldd r24, Z+2\n\t"
+        "ldd r24, Z+3\n\t"
         "out %[udr], r24\n\t"
-        "ldi r24, 1\n"
-        "3:\n\t"
-        "sts %[pos], r24\n"
+        "ldi r24, 1\n\t"
+        "std Z+2, r24\n"
         "4:\n\t"
         "jmp dr_avr_usart_return" /* the receive interrupt's end: the same registers */
         :
-        : [head] "i"(&tx_head), [pos] "i"(&tx_pos), [count] "i"(&tx_count), [tx0] "i"(&tx[0]),
+        : [head] "i"(&tx_head), [count] "i"(&tx_count), [tx0] "i"(&tx[0]),
           [tx1] "i"(&tx[1]), [udr] "I"(_SFR_IO_ADDR(UDR0)), [portc] "I"(_SFR_IO_ADDR(PORTC))
         : "memory");
 }
