@@ -20,6 +20,10 @@
  *   in between it sleeps (idle mode) until that instant's timer, a frame or an operation's
  *   end (dr_module.h: skipping the other instants gives the run that stepping at every
  *   instant gives).
+ * - Flash: the short interrupt handlers and the start-up sit in unused vector slots, and a
+ *   few parts are assembly where the compiler's code was larger (the USART interrupts, the
+ *   step instants' arithmetic, the xorshift), each with the C it stands for in a comment
+ *   (README.md, "Footprint": each choice with its bytes).
  *
  * Built with the generated program: avr-gcc -mmcu=atmega128 -Os -I OUT -I runtime/avr
  * OUT/dr_packet.c OUT/dr_<protocol>.c OUT/dr_program.c dr_avr.c (runtime/avr/Makefile). */
