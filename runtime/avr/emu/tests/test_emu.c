@@ -192,6 +192,18 @@ int main(int argc, char **argv)
     memset(&s, 0, sizeof s);
     run(c, 100, &s);
     check(s.releases == 2u, "both frames were received and released");
+    /* Frames whose length byte no frame can have (below 2, above DR_CONF_MAX_PACKET) are
+     * dropped at that byte: the arbiter is released and passes the next frame. */
+    {
+        static const uint8_t too_short[2] = {0x5A, 1};
+        static const uint8_t too_long[2] = {0x5A, 200};
+        check(drav_rx(c, 1, too_short, 2) == 0 && drav_rx(c, 1, too_long, 2) == 0 &&
+                  drav_rx(c, 2, s.first_frame, len) == 0,
+              "frames with impossible lengths are queued");
+        memset(&s, 0, sizeof s);
+        run(c, 100, &s);
+        check(s.releases == 3u, "impossible lengths released at once, then the frame after them");
+    }
     check(drav_rx(c, 0, back, DRAV_MAX_FRAME + 1u) == -1, "an over-long frame is refused");
     /* EEPROM survives a reset; the steps start again from scratch. */
     check(drav_eeprom_write(c, 4000, nv, 4) == 0, "EEPROM write");
