@@ -21,11 +21,13 @@ use std::collections::BTreeMap;
 use std::fmt::Write;
 
 pub(crate) mod footprint;
+mod groups;
 mod layout;
 
 use crate::bitset::BitSet;
 use crate::motion::MovingSide;
 use footprint::Later;
+use groups::{GroupCheck, Split};
 use layout::{ancestors, has_blocks, levels_layout, series_parallel, written_layout};
 pub use layout::{transitive_reduction, Layout};
 
@@ -106,12 +108,14 @@ pub fn parallelise(request: &Request) -> Result<Parallelised, ParalleliseError> 
     let program = request.program;
     let (plan, input, statements) = input_statements(request)?;
     let graph = Graph::build(request, &statements, false);
+    let suspicious = suspicious_spans(&input.diagnostics);
+    let check = GroupCheck::new(request, &statements, &suspicious);
     let verifier = Verifier {
         request,
         header: header(program),
         texts: statement_texts(program, &statements),
         expected: input.final_world,
-        suspicious: suspicious_spans(&input.diagnostics),
+        suspicious,
         spans: statements.iter().map(|s| s.span).collect(),
         reversible: program
             .reverse_sequence(request.sequence, "r")
@@ -122,11 +126,14 @@ pub fn parallelise(request: &Request) -> Result<Parallelised, ParalleliseError> 
     if !request.one_module_overlap {
         notes = same_module_notes(&verifier.texts, &graph.same_module);
     }
-    let (edges, levels) = verifier.levels(graph.edges.clone(), n, &mut notes)?;
+    let (grouped, splits) = check.grouped(&graph.edges);
+    notes.extend(split_notes(&verifier.texts, &splits));
+    let (edges, levels) = verifier.levels(grouped, n, &mut notes)?;
     let mut forms = vec![levels];
     other_forms(&verifier, &plan, &edges, &mut forms, &mut notes);
     if request.one_module_overlap && !graph.same_module.is_empty() {
         let ordered = transitive_reduction(n, &[graph.edges, graph.same_module].concat());
+        let (ordered, _) = check.grouped(&ordered);
         one_module_in_order(&verifier, &plan, ordered, &mut forms, &mut notes);
     }
     Ok(Parallelised {
@@ -148,6 +155,16 @@ pub fn dependency_graph(
 ) -> Result<Vec<(usize, usize)>, ParalleliseError> {
     let (_, _, statements) = input_statements(request)?;
     Ok(Graph::build(request, &statements, exhaustive).edges)
+}
+
+/// The dependency graph with the edges the group check adds (`groups.rs`): what the
+/// builder's own parallel groups are, before any verification.
+pub fn group_checked_graph(request: &Request) -> Result<Vec<(usize, usize)>, ParalleliseError> {
+    let (_, input, statements) = input_statements(request)?;
+    let suspicious = suspicious_spans(&input.diagnostics);
+    let check = GroupCheck::new(request, &statements, &suspicious);
+    let graph = Graph::build(request, &statements, false);
+    Ok(check.grouped(&graph.edges).0)
 }
 
 /// The input expanded, replayed (it must replay without a refused step) and its statements.
@@ -197,6 +214,29 @@ fn same_module_notes(texts: &[String], pairs: &[(usize, usize)]) -> Vec<String> 
         notes.push(format!(
             "{} more pairs of one module's statements kept in order for the same reason",
             pairs.len() - SHOWN
+        ));
+    }
+    notes
+}
+
+/// Notes for the edges the group check added: the first few, then how many more.
+fn split_notes(texts: &[String], splits: &[Split]) -> Vec<String> {
+    const SHOWN: usize = 4;
+    let mut notes: Vec<String> = splits
+        .iter()
+        .take(SHOWN)
+        .map(|split| {
+            let (i, j) = split.edge;
+            format!(
+                "kept `{}` out of the group of `{}`: together with the group, {}",
+                texts[j], texts[i], split.reason
+            )
+        })
+        .collect();
+    if splits.len() > SHOWN {
+        notes.push(format!(
+            "{} more statements kept out of a group that was not safe with them",
+            splits.len() - SHOWN
         ));
     }
     notes
