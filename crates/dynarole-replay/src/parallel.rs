@@ -1,8 +1,9 @@
 //! `parallelise`: the most parallelism that is provably safe on the model, found from a
 //! sequence written in order. The dependency graph of the statements (what must stay ordered,
 //! decided by the independence check on the state before the earlier statement), its
-//! transitive reduction, and its expression in the language as parallel groups (levels) or as
-//! series-parallel blocks. Every form returned has been written out, parsed, replayed to the
+//! transitive reduction, the edges that keep each parallel group safe as a whole
+//! (`parallel/groups.rs`), and its expression in the language as parallel groups (levels) or
+//! as series-parallel blocks. Every form returned has been written out, parsed, replayed to the
 //! input's final configuration and checked for independence forward and in reverse.
 
 use crate::independence::{check_independence, simultaneous_turns};
@@ -57,10 +58,6 @@ pub struct Form {
     pub text: String,
     /// Top-level parallel groups.
     pub groups: usize,
-    /// Written from the graph with each module's statements kept in input order (a candidate
-    /// besides the model's own graph, which can lose where three statements depend on each
-    /// other only together: see `docs/parallelise.md`).
-    pub one_module_in_order: bool,
 }
 
 /// What `parallelise` found.
@@ -68,9 +65,9 @@ pub struct Form {
 pub struct Parallelised {
     /// The statements in input order, as source text.
     pub statements: Vec<String>,
-    /// The model's dependency graph after transitive reduction and the verification's
-    /// repairs (earlier, later), input indices; one module's statements are pairs like any
-    /// other unless the request keeps them in order.
+    /// The model's dependency graph after transitive reduction, with the edges the group
+    /// check and the verification's repairs added (earlier, later), input indices; one
+    /// module's statements are pairs like any other unless the request keeps them in order.
     pub edges: Vec<(usize, usize)>,
     /// Verified forms, levels (or the sequential fallback) first.
     pub forms: Vec<Form>,
@@ -131,11 +128,6 @@ pub fn parallelise(request: &Request) -> Result<Parallelised, ParalleliseError> 
     let (edges, levels) = verifier.levels(grouped, n, &mut notes)?;
     let mut forms = vec![levels];
     other_forms(&verifier, &plan, &edges, &mut forms, &mut notes);
-    if request.one_module_overlap && !graph.same_module.is_empty() {
-        let ordered = transitive_reduction(n, &[graph.edges, graph.same_module].concat());
-        let (ordered, _) = check.grouped(&ordered);
-        one_module_in_order(&verifier, &plan, ordered, &mut forms, &mut notes);
-    }
     Ok(Parallelised {
         statements: verifier.texts.clone(),
         edges,
@@ -240,38 +232,6 @@ fn split_notes(texts: &[String], splits: &[Split]) -> Vec<String> {
         ));
     }
     notes
-}
-
-/// The forms of the graph with each module's statements also kept in input order, added
-/// where they differ from the forms found already (the sequential fallback is not: it is
-/// never shorter). What their verification changed goes to `notes`, marked.
-fn one_module_in_order(
-    verifier: &Verifier,
-    plan: &Plan,
-    edges: Vec<(usize, usize)>,
-    forms: &mut Vec<Form>,
-    notes: &mut Vec<String>,
-) {
-    let n = verifier.texts.len();
-    let mut more_notes = Vec::new();
-    let Ok((edges, levels)) = verifier.levels(edges, n, &mut more_notes) else {
-        return;
-    };
-    let mut more = vec![levels];
-    other_forms(verifier, plan, &edges, &mut more, &mut more_notes);
-    for mut form in more {
-        let new =
-            form.kind != FormKind::Sequential && forms.iter().all(|f| f.layout != form.layout);
-        if new {
-            form.one_module_in_order = true;
-            forms.push(form);
-        }
-    }
-    notes.extend(
-        more_notes
-            .into_iter()
-            .map(|note| format!("with each module's statements in order, {note}")),
-    );
 }
 
 /// The candidates besides parallel groups: series-parallel blocks (unless the protocol is the
@@ -648,7 +608,6 @@ impl Verifier<'_> {
             layout,
             text,
             groups,
-            one_module_in_order: false,
         })
     }
 

@@ -473,10 +473,8 @@ fn one_modules_independent_statements_are_joined() {
         "{:?}",
         found.notes
     );
-    // The model's own graph gives the first forms; those of the graph with each module's
-    // statements in order come after, marked.
-    assert!(!found.forms[0].one_module_in_order);
-    for form in found.forms.iter().filter(|f| !f.one_module_in_order) {
+    // Every form is written from that graph (there is no other candidate graph).
+    for form in &found.forms {
         assert_eq!(
             group_of(&form.layout, 0),
             group_of(&form.layout, 1),
