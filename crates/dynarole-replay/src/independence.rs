@@ -75,11 +75,14 @@ pub(crate) fn simultaneous_turns(
 }
 
 /// Why statements `a` and `b`, joined by `&` in a group that starts from `world`, are not
-/// independent: the check `check_independence` makes of that pair of the group.
+/// independent: the check `check_independence` makes of that pair of the group. `sides`:
+/// their moving sides on `world` (`MovingSide::of`, computed once per statement by the
+/// caller).
 pub(crate) fn group_pair(
     program: &Program,
     assignment: &Assignment,
     (a, b): (&ResolvedStatement, &ResolvedStatement),
+    sides: (Option<&MovingSide>, Option<&MovingSide>),
     world: &RobotWorld,
 ) -> Option<String> {
     let checker = Checker {
@@ -92,10 +95,7 @@ pub(crate) fn group_pair(
         separator: SeparatorKind::Parallel,
         span: s.span,
     };
-    let elements = [element(a), element(b)];
-    let sides = checker.sides(&elements, world);
-    let [ea, eb] = &elements;
-    checker.decided_pair(ea, eb, (sides[0].as_ref(), sides[1].as_ref()), world)
+    checker.decided_pair(&element(a), &element(b), sides, world)
 }
 
 struct Checker<'a> {

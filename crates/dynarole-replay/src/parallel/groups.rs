@@ -12,6 +12,7 @@
 
 use super::{transitive_reduction, Request};
 use crate::independence::group_pair;
+use crate::motion::MovingSide;
 use crate::robot_world::RobotWorld;
 use dynarole_core::check::ResolvedStatement;
 use dynarole_core::Span;
@@ -36,6 +37,8 @@ pub(super) struct GroupCheck<'a> {
 struct Group {
     start: RobotWorld,
     members: Vec<usize>,
+    /// Each member's moving side on `start`, when it is a turn (for the pair check).
+    sides: Vec<Option<MovingSide>>,
     after: RobotWorld,
 }
 
@@ -84,6 +87,7 @@ impl<'a> GroupCheck<'a> {
             let mut group = Group {
                 start: world.clone(),
                 members: Vec::new(),
+                sides: Vec::new(),
                 after: world,
             };
             let mut left = Vec::new();
@@ -92,13 +96,14 @@ impl<'a> GroupCheck<'a> {
                     left.push(j);
                     continue;
                 }
-                match self.conflict(&group, j) {
+                let side = self.side(&group.start, j);
+                match self.conflict(&group, j, side.as_ref()) {
                     Some(split) => {
                         parents[j].push(split.edge.0);
                         splits.push(split);
                         left.push(j);
                     }
-                    None => self.join(&mut group, j),
+                    None => self.join(&mut group, j, side),
                 }
             }
             for &m in &group.members {
@@ -110,9 +115,16 @@ impl<'a> GroupCheck<'a> {
         splits
     }
 
-    fn join(&self, group: &mut Group, j: usize) {
+    fn join(&self, group: &mut Group, j: usize, side: Option<MovingSide>) {
         self.apply(&mut group.after, j);
         group.members.push(j);
+        group.sides.push(side);
+    }
+
+    /// Statement `j`'s moving side on `world`, when it is a turn.
+    fn side(&self, world: &RobotWorld, j: usize) -> Option<MovingSide> {
+        let robot = &self.request.program.robot;
+        MovingSide::of(robot, &self.statements[j], self.module(j), world)
     }
 
     /// Runs statement `j` on `world`. A refusal is the verification's to report (a group of
@@ -127,12 +139,18 @@ impl<'a> GroupCheck<'a> {
     /// Why `j` cannot join `group` (which is safe as it is), as the edge that keeps it out:
     /// from the member named by a pair check, the latest first, or for a step refused (or
     /// newly suspicious) after the members, the latest member without which it is not.
-    fn conflict(&self, group: &Group, j: usize) -> Option<Split> {
+    fn conflict(&self, group: &Group, j: usize, side: Option<&MovingSide>) -> Option<Split> {
         let (program, assignment) = (self.request.program, self.request.assignment);
-        let pair = group.members.iter().rev().find_map(|&i| {
-            let pair = (&self.statements[i], &self.statements[j]);
-            group_pair(program, assignment, pair, &group.start).map(|reason| (i, reason))
-        });
+        let pair = group
+            .members
+            .iter()
+            .zip(&group.sides)
+            .rev()
+            .find_map(|(&i, side_i)| {
+                let pair = (&self.statements[i], &self.statements[j]);
+                let sides = (side_i.as_ref(), side);
+                group_pair(program, assignment, pair, sides, &group.start).map(|r| (i, r))
+            });
         if let Some((i, reason)) = pair {
             return Some(Split {
                 edge: (i, j),
