@@ -2,13 +2,15 @@
 //! a whole from the configuration it starts from, and split where the whole is not safe.
 //!
 //! A pair check cannot see statements that depend on each other only together (on eight2car,
-//! two retracts of M3 and an extend of M1, each pair fine, leave M3 alone when done in one
-//! group). So the groups are built here the way the output runs them: group after group from
-//! the input's start, each statement (in input order) joining the first group after its
-//! parents' where the group with it still passes what the verification asks of a group: it is
-//! accepted after the group's earlier statements with no warning the input did not have, and
-//! it is independent of each of them on the group's start state (`check_independence`'s pair
-//! check). Where it does not, the edge that keeps it out of that group is added to the graph.
+//! two retracts of M3 and an extend of M1 are fine two by two, but both retracts before the
+//! extend leave M3 alone), nor a pair that is independent on the input's states but not on the
+//! state its group starts from. So the groups are built here the way the output runs them:
+//! group after group from the input's start, each statement (in input order) joining the
+//! first group after its parents' where the group with it still passes what the verification
+//! asks of a group: it is accepted after the group's earlier statements with no warning the
+//! input did not have, and it is independent of each of them on the group's start state
+//! (`check_independence`'s pair check). Where it does not, the edge that keeps it out of that
+//! group is added to the graph. The groups' reverse is left to the verification.
 
 use super::{transitive_reduction, Request};
 use crate::independence::group_pair;
