@@ -167,16 +167,7 @@ impl Summary<'_> {
             seconds(self.before),
             seconds(self.after)
         );
-        let _ = writeln!(
-            out,
-            "// {}{}",
-            describe_form(self.form.kind),
-            if self.form.one_module_in_order {
-                " Each module's statements are kept in input order: with them free where the model allows, the form came out longer (three statements can depend on each other only together, which a pair check cannot see)."
-            } else {
-                ""
-            }
-        );
+        let _ = writeln!(out, "// {}", describe_form(self.form.kind));
         if let Some(window) = self.args.window {
             let _ = writeln!(
                 out,
@@ -186,9 +177,8 @@ impl Summary<'_> {
         for (form, estimate) in &self.others {
             let _ = writeln!(
                 out,
-                "// Not chosen: {}{} ({}).",
+                "// Not chosen: {} ({}).",
                 short_name(form.kind),
-                in_order(form),
                 seconds(estimate)
             );
         }
@@ -206,16 +196,6 @@ fn describe_form(kind: FormKind) -> &'static str {
         FormKind::Blocks => "Written with blocks: chains that depend on each other only at their ends run side by side; where the graph is not series-parallel, more is ordered than needed.",
         FormKind::Sequential => "Written in the input order: no parallel form could be verified.",
         FormKind::AsWritten => "Written as the input groups it: its own `&` verify, and no form found here is shorter.",
-    }
-}
-
-/// How the name of a form written from the graph with each module's statements in order
-/// says so.
-fn in_order(form: &Form) -> &'static str {
-    if form.one_module_in_order {
-        " (each module's statements in input order)"
-    } else {
-        ""
     }
 }
 

@@ -5,6 +5,7 @@
 use crate::motion::{closest_approach, MovingSide};
 use crate::robot_world::RobotWorld;
 use crate::roles::Assignment;
+use dynarole_core::ast::SeparatorKind;
 use dynarole_core::check::ResolvedStatement;
 use dynarole_core::diagnostic::{Diagnostic, DiagnosticKind};
 use dynarole_core::expand::{Plan, PlanElement, PlanKind};
@@ -73,6 +74,30 @@ pub(crate) fn simultaneous_turns(
     checker.turns_apart(motion(a)?, motion(b)?, world)
 }
 
+/// Why statements `a` and `b`, joined by `&` in a group that starts from `world`, are not
+/// independent: the check `check_independence` makes of that pair of the group. `sides`:
+/// their moving sides on `world` (`MovingSide::of`, computed once per statement by the
+/// caller).
+pub(crate) fn group_pair(
+    program: &Program,
+    assignment: &Assignment,
+    (a, b): (&ResolvedStatement, &ResolvedStatement),
+    sides: (Option<&MovingSide>, Option<&MovingSide>),
+    world: &RobotWorld,
+) -> Option<String> {
+    let checker = Checker {
+        program,
+        assignment,
+        exhaustive: false,
+    };
+    let element = |s: &ResolvedStatement| PlanElement {
+        kind: PlanKind::Op(s.clone()),
+        separator: SeparatorKind::Parallel,
+        span: s.span,
+    };
+    checker.decided_pair(&element(a), &element(b), sides, world)
+}
+
 struct Checker<'a> {
     program: &'a Program<'a>,
     assignment: &'a Assignment,
@@ -86,12 +111,8 @@ impl Checker<'_> {
             let sides = self.sides(group, world);
             for (i, a) in group.iter().enumerate() {
                 for (k, b) in group.iter().enumerate().skip(i + 1) {
-                    if let (Some(sa), Some(sb)) = (&sides[i], &sides[k]) {
-                        if sa.proven_independent(sb, world) {
-                            continue;
-                        }
-                    }
-                    if let Some(reason) = self.pair(a, b, world) {
+                    let sides = (sides[i].as_ref(), sides[k].as_ref());
+                    if let Some(reason) = self.decided_pair(a, b, sides, world) {
                         let kind = DiagnosticKind::NotIndependent {
                             step: self.describe(a),
                             other_step: self.describe(b),
@@ -126,6 +147,23 @@ impl Checker<'_> {
                 _ => None,
             })
             .collect()
+    }
+
+    /// Why `a` and `b` of one group are not independent, if they are not: turns that their
+    /// moving sides (on the group's start state) prove independent are not run.
+    fn decided_pair(
+        &self,
+        a: &PlanElement,
+        b: &PlanElement,
+        sides: (Option<&MovingSide>, Option<&MovingSide>),
+        world: &RobotWorld,
+    ) -> Option<String> {
+        if let (Some(sa), Some(sb)) = sides {
+            if sa.proven_independent(sb, world) {
+                return None;
+            }
+        }
+        self.pair(a, b, world)
     }
 
     /// Why `a` and `b` are not independent, if they are not.
@@ -226,6 +264,6 @@ impl Checker<'_> {
 /// The parallel groups of a plan (each ends with its `;` element).
 fn groups(plan: &Plan) -> Vec<&[PlanElement]> {
     plan.elements
-        .split_inclusive(|e| e.separator == dynarole_core::ast::SeparatorKind::Sequential)
+        .split_inclusive(|e| e.separator == SeparatorKind::Sequential)
         .collect()
 }

@@ -17,8 +17,8 @@ mod topology;
 
 pub use independence::{check_independence, check_independence_exhaustive};
 pub use parallel::{
-    dependency_graph, parallelise, transitive_reduction, Form, FormKind, Layout, ParalleliseError,
-    Parallelised, Request,
+    dependency_graph, group_checked_graph, parallelise, transitive_reduction, Form, FormKind,
+    Layout, ParalleliseError, Parallelised, Request,
 };
 pub use prepare::{prepare, PrepareError, Prepared};
 pub use robot_world::{action, RobotWorld, StepOutcome};

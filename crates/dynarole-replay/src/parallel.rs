@@ -1,8 +1,9 @@
 //! `parallelise`: the most parallelism that is provably safe on the model, found from a
 //! sequence written in order. The dependency graph of the statements (what must stay ordered,
 //! decided by the independence check on the state before the earlier statement), its
-//! transitive reduction, and its expression in the language as parallel groups (levels) or as
-//! series-parallel blocks. Every form returned has been written out, parsed, replayed to the
+//! transitive reduction, the edges that keep each parallel group safe as a whole
+//! (`parallel/groups.rs`), and its expression in the language as parallel groups (levels) or
+//! as series-parallel blocks. Every form returned has been written out, parsed, replayed to the
 //! input's final configuration and checked for independence forward and in reverse.
 
 use crate::independence::{check_independence, simultaneous_turns};
@@ -21,11 +22,13 @@ use std::collections::BTreeMap;
 use std::fmt::Write;
 
 pub(crate) mod footprint;
+mod groups;
 mod layout;
 
 use crate::bitset::BitSet;
 use crate::motion::MovingSide;
 use footprint::Later;
+use groups::{GroupCheck, Split};
 use layout::{ancestors, has_blocks, levels_layout, series_parallel, written_layout};
 pub use layout::{transitive_reduction, Layout};
 
@@ -55,10 +58,6 @@ pub struct Form {
     pub text: String,
     /// Top-level parallel groups.
     pub groups: usize,
-    /// Written from the graph with each module's statements kept in input order (a candidate
-    /// besides the model's own graph, which can lose where three statements depend on each
-    /// other only together: see `docs/parallelise.md`).
-    pub one_module_in_order: bool,
 }
 
 /// What `parallelise` found.
@@ -66,9 +65,9 @@ pub struct Form {
 pub struct Parallelised {
     /// The statements in input order, as source text.
     pub statements: Vec<String>,
-    /// The model's dependency graph after transitive reduction and the verification's
-    /// repairs (earlier, later), input indices; one module's statements are pairs like any
-    /// other unless the request keeps them in order.
+    /// The model's dependency graph after transitive reduction, with the edges the group
+    /// check and the verification's repairs added (earlier, later), input indices; one
+    /// module's statements are pairs like any other unless the request keeps them in order.
     pub edges: Vec<(usize, usize)>,
     /// Verified forms, levels (or the sequential fallback) first.
     pub forms: Vec<Form>,
@@ -106,12 +105,14 @@ pub fn parallelise(request: &Request) -> Result<Parallelised, ParalleliseError> 
     let program = request.program;
     let (plan, input, statements) = input_statements(request)?;
     let graph = Graph::build(request, &statements, false);
+    let suspicious = suspicious_spans(&input.diagnostics);
+    let check = GroupCheck::new(request, &statements, &suspicious);
     let verifier = Verifier {
         request,
         header: header(program),
         texts: statement_texts(program, &statements),
         expected: input.final_world,
-        suspicious: suspicious_spans(&input.diagnostics),
+        suspicious,
         spans: statements.iter().map(|s| s.span).collect(),
         reversible: program
             .reverse_sequence(request.sequence, "r")
@@ -122,13 +123,11 @@ pub fn parallelise(request: &Request) -> Result<Parallelised, ParalleliseError> 
     if !request.one_module_overlap {
         notes = same_module_notes(&verifier.texts, &graph.same_module);
     }
-    let (edges, levels) = verifier.levels(graph.edges.clone(), n, &mut notes)?;
+    let (grouped, splits) = check.grouped(&graph.edges);
+    notes.extend(split_notes(&verifier.texts, &splits));
+    let (edges, levels) = verifier.levels(grouped, n, &mut notes)?;
     let mut forms = vec![levels];
     other_forms(&verifier, &plan, &edges, &mut forms, &mut notes);
-    if request.one_module_overlap && !graph.same_module.is_empty() {
-        let ordered = transitive_reduction(n, &[graph.edges, graph.same_module].concat());
-        one_module_in_order(&verifier, &plan, ordered, &mut forms, &mut notes);
-    }
     Ok(Parallelised {
         statements: verifier.texts.clone(),
         edges,
@@ -148,6 +147,16 @@ pub fn dependency_graph(
 ) -> Result<Vec<(usize, usize)>, ParalleliseError> {
     let (_, _, statements) = input_statements(request)?;
     Ok(Graph::build(request, &statements, exhaustive).edges)
+}
+
+/// The dependency graph with the edges the group check adds (`groups.rs`): what the
+/// builder's own parallel groups are, before any verification.
+pub fn group_checked_graph(request: &Request) -> Result<Vec<(usize, usize)>, ParalleliseError> {
+    let (_, input, statements) = input_statements(request)?;
+    let suspicious = suspicious_spans(&input.diagnostics);
+    let check = GroupCheck::new(request, &statements, &suspicious);
+    let graph = Graph::build(request, &statements, false);
+    Ok(check.grouped(&graph.edges).0)
 }
 
 /// The input expanded, replayed (it must replay without a refused step) and its statements.
@@ -202,36 +211,27 @@ fn same_module_notes(texts: &[String], pairs: &[(usize, usize)]) -> Vec<String> 
     notes
 }
 
-/// The forms of the graph with each module's statements also kept in input order, added
-/// where they differ from the forms found already (the sequential fallback is not: it is
-/// never shorter). What their verification changed goes to `notes`, marked.
-fn one_module_in_order(
-    verifier: &Verifier,
-    plan: &Plan,
-    edges: Vec<(usize, usize)>,
-    forms: &mut Vec<Form>,
-    notes: &mut Vec<String>,
-) {
-    let n = verifier.texts.len();
-    let mut more_notes = Vec::new();
-    let Ok((edges, levels)) = verifier.levels(edges, n, &mut more_notes) else {
-        return;
-    };
-    let mut more = vec![levels];
-    other_forms(verifier, plan, &edges, &mut more, &mut more_notes);
-    for mut form in more {
-        let new =
-            form.kind != FormKind::Sequential && forms.iter().all(|f| f.layout != form.layout);
-        if new {
-            form.one_module_in_order = true;
-            forms.push(form);
-        }
+/// Notes for the edges the group check added: the first few, then how many more.
+fn split_notes(texts: &[String], splits: &[Split]) -> Vec<String> {
+    const SHOWN: usize = 4;
+    let mut notes: Vec<String> = splits
+        .iter()
+        .take(SHOWN)
+        .map(|split| {
+            let (i, j) = split.edge;
+            format!(
+                "kept `{}` out of the group of `{}`: together with the group, {}",
+                texts[j], texts[i], split.reason
+            )
+        })
+        .collect();
+    if splits.len() > SHOWN {
+        notes.push(format!(
+            "{} more statements kept out of a group that was not safe with them",
+            splits.len() - SHOWN
+        ));
     }
-    notes.extend(
-        more_notes
-            .into_iter()
-            .map(|note| format!("with each module's statements in order, {note}")),
-    );
+    notes
 }
 
 /// The candidates besides parallel groups: series-parallel blocks (unless the protocol is the
@@ -608,7 +608,6 @@ impl Verifier<'_> {
             layout,
             text,
             groups,
-            one_module_in_order: false,
         })
     }
 

@@ -5,7 +5,7 @@
 use dynarole_core::{analyze, parse, RobotRegistry};
 use dynarole_replay::{
     assign_modules, check_independence, check_independence_exhaustive, dependency_graph,
-    parallelise, replay, FormKind, Layout, Parallelised, Request, RobotWorld,
+    group_checked_graph, parallelise, replay, FormKind, Layout, Parallelised, Request, RobotWorld,
 };
 use dynarole_world::generated::atron_chain_json;
 use dynarole_world::{compare, Configuration, MtranJoint, MtranWorld, World};
@@ -300,6 +300,13 @@ fn random_case(robot: &str, config: &str, moves: &[String]) -> Result<(), TestCa
     let source = source_of(robot, moves);
     let found = run(&source, "s", config);
     let expected = replayed(&source, "s", config);
+    // The builder's groups are checked as wholes: the verification has nothing to repair.
+    let repairs: Vec<&String> = found
+        .notes
+        .iter()
+        .filter(|n| n.contains("` before `"))
+        .collect();
+    prop_assert!(repairs.is_empty(), "{}\n{:?}", source, repairs);
     for form in &found.forms {
         let end = check_written(&found, &form.text, config);
         prop_assert_eq!(
@@ -473,10 +480,8 @@ fn one_modules_independent_statements_are_joined() {
         "{:?}",
         found.notes
     );
-    // The model's own graph gives the first forms; those of the graph with each module's
-    // statements in order come after, marked.
-    assert!(!found.forms[0].one_module_in_order);
-    for form in found.forms.iter().filter(|f| !f.one_module_in_order) {
+    // Every form is written from that graph (there is no other candidate graph).
+    for form in &found.forms {
         assert_eq!(
             group_of(&form.layout, 0),
             group_of(&form.layout, 1),
@@ -487,6 +492,64 @@ fn one_modules_independent_statements_are_joined() {
     for form in &found.forms {
         check_written(&found, &form.text, EIGHT);
     }
+}
+
+/// Where each statement runs in the levels form of `edges`: its group (one after its latest
+/// parent's), then its place in the group (input order, as written and replayed).
+fn positions(n: usize, edges: &[(usize, usize)]) -> Vec<(usize, usize)> {
+    let mut level = vec![0; n];
+    let mut sorted = edges.to_vec();
+    sorted.sort_unstable_by_key(|&(_, j)| j);
+    for (i, j) in sorted {
+        level[j] = level[j].max(level[i] + 1);
+    }
+    level.into_iter().zip(0..n).collect()
+}
+
+#[test]
+fn three_statements_that_split_the_robot_only_together_are_kept_apart_by_the_builder() {
+    // eight2car: M3's two retracts and M1's extend are independent two by two, but with both
+    // retracts done before the extend M3 is alone. The pair graph's groups do that; the graph
+    // the builder writes (each group checked as a whole from the state it starts from) keeps
+    // one of the retracts after the extend and never the three in one group, before any
+    // verification or other candidate.
+    let source = sequential(EIGHT2CAR);
+    let found = run(&source, "eight2car", EIGHT);
+    let at = |text: &str| {
+        let index = found.statements.iter().position(|s| s == text);
+        index.unwrap_or_else(|| panic!("{text} in {:?}", found.statements))
+    };
+    let extend = at("M1.Connector[$CONNECTOR_6].extend()");
+    let retracts = [
+        at("M3.Connector[$CONNECTOR_0].retract()"),
+        at("M3.Connector[$CONNECTOR_2].retract()"),
+    ];
+    let n = found.statements.len();
+    let (pairs, grouped) = with_request(&source, "eight2car", EIGHT, |request| {
+        (
+            dependency_graph(request, false).unwrap_or_else(|e| panic!("{e:?}")),
+            group_checked_graph(request).unwrap_or_else(|e| panic!("{e:?}")),
+        )
+    });
+    let m3_alone = |edges: &[(usize, usize)]| {
+        let at = positions(n, edges);
+        retracts.iter().all(|&r| at[r] < at[extend])
+    };
+    let one_group = |edges: &[(usize, usize)]| {
+        let at = positions(n, edges);
+        retracts.iter().all(|&r| at[r].0 == at[extend].0)
+    };
+    assert!(m3_alone(&pairs), "the pair graph: {pairs:?}");
+    assert!(!m3_alone(&grouped), "the builder's groups: {grouped:?}");
+    assert!(!one_group(&grouped), "the builder's groups: {grouped:?}");
+    // What is printed is the builder's own levels: the verification repaired nothing.
+    assert!(
+        !found.notes.iter().any(|n| n.contains("` before `")),
+        "{:?}",
+        found.notes
+    );
+    assert_eq!(found.forms[0].kind, FormKind::Levels);
+    assert_eq!(found.edges, grouped);
 }
 
 #[test]
