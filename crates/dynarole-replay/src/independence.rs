@@ -10,7 +10,7 @@ use dynarole_core::check::ResolvedStatement;
 use dynarole_core::diagnostic::{Diagnostic, DiagnosticKind};
 use dynarole_core::expand::{Plan, PlanElement, PlanKind};
 use dynarole_core::{Program, RobotApi};
-use dynarole_world::TurnMotion;
+use dynarole_world::{TurnMotion, Warning};
 
 /// Warnings for every pair of elements of a parallel group that are not independent, walking
 /// the plans from the world's configuration. Pairs of ATRON turns that their motions prove
@@ -99,8 +99,8 @@ pub(crate) fn group_pair(
 }
 
 /// A warning of the model on the way through one order of a pair: the step it came from and
-/// the warning's text (the orders are compared by the text only, as the model reports it).
-pub(crate) type Warned = (String, String);
+/// the warning (the orders are compared by the warning only, `same_warning`).
+pub(crate) type Warned = (String, Warning);
 
 /// One order of a pair, run on a copy of the world: where it ends and what the model warned
 /// about on the way.
@@ -170,18 +170,36 @@ pub(crate) fn compare_orders(
     }
 }
 
-/// The first warning of `these` whose text `others` does not have (counting repeats).
+/// The first warning of `these` that `others` does not have (counting repeats).
 fn unmatched<'w>(these: &'w [Warned], others: &[Warned]) -> Option<&'w Warned> {
-    let mut left: Vec<&str> = others.iter().map(|(_, text)| text.as_str()).collect();
-    these.iter().find(
-        |(_, text)| match left.iter().position(|other| *other == text) {
+    let mut left: Vec<&Warning> = others.iter().map(|(_, warning)| warning).collect();
+    these.iter().find(|(_, warning)| {
+        match left.iter().position(|other| same_warning(other, warning)) {
             Some(k) => {
                 left.swap_remove(k);
                 false
             }
             None => true,
-        },
-    )
+        }
+    })
+}
+
+/// The same warning as the model reports it, but a split into the same two parts is the same
+/// whichever side commanded it (the model lists the commanding module's side first).
+fn same_warning(a: &Warning, b: &Warning) -> bool {
+    match (a, b) {
+        (
+            Warning::Split { first, second },
+            Warning::Split {
+                first: other_first,
+                second: other_second,
+            },
+        ) => {
+            (first == other_first && second == other_second)
+                || (first == other_second && second == other_first)
+        }
+        _ => a == b,
+    }
 }
 
 /// Does `statement` on `module`, adding the model's warnings to `warnings`; the error names
@@ -197,10 +215,7 @@ pub(crate) fn step(
         Ok(outcome) => {
             if !outcome.warnings.is_empty() {
                 let text = statement.describe(robot);
-                let each = outcome
-                    .warnings
-                    .iter()
-                    .map(|w| (text.clone(), w.to_string()));
+                let each = outcome.warnings.into_iter().map(|w| (text.clone(), w));
                 warnings.extend(each);
             }
             Ok(())
@@ -375,4 +390,39 @@ fn groups(plan: &Plan) -> Vec<&[PlanElement]> {
     plan.elements
         .split_inclusive(|e| e.separator == SeparatorKind::Sequential)
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn split(first: &[&str], second: &[&str]) -> Warned {
+        let names = |v: &[&str]| v.iter().map(|s| s.to_string()).collect();
+        let warning = Warning::Split {
+            first: names(first),
+            second: names(second),
+        };
+        ("step".to_string(), warning)
+    }
+
+    #[test]
+    fn one_split_is_the_same_whichever_side_commands_it() {
+        // Two retracts that each leave M4 alone when done second: either order ends with the
+        // same split, reported from the other side.
+        let ab = [split(&["M4"], &["M0", "M1"])];
+        let ba = [split(&["M0", "M1"], &["M4"])];
+        assert!(unmatched(&ab, &ba).is_none());
+        assert!(unmatched(&ba, &ab).is_none());
+    }
+
+    #[test]
+    fn a_warning_in_one_order_only_is_unmatched_counting_repeats() {
+        let once = [split(&["M3"], &["M0"])];
+        let twice = [split(&["M3"], &["M0"]), split(&["M0"], &["M3"])];
+        let other = [split(&["M4"], &["M0", "M3"])];
+        assert!(unmatched(&once, &[]).is_some());
+        assert!(unmatched(&[], &once).is_none());
+        assert!(unmatched(&twice, &once).is_some());
+        assert!(unmatched(&once, &other).is_some());
+    }
 }
