@@ -286,6 +286,8 @@ impl Checker<'_> {
         world: &RobotWorld,
     ) -> Option<String> {
         if let (Some(sa), Some(sb)) = sides {
+            // Such turns also warn alike in either order: the only warning a turn gets (its
+            // joint already at the angle) does not depend on another module's turn.
             if sa.proven_independent(sb, world) {
                 return None;
             }
