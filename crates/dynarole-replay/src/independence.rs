@@ -9,8 +9,8 @@ use dynarole_core::ast::SeparatorKind;
 use dynarole_core::check::ResolvedStatement;
 use dynarole_core::diagnostic::{Diagnostic, DiagnosticKind};
 use dynarole_core::expand::{Plan, PlanElement, PlanKind};
-use dynarole_core::Program;
-use dynarole_world::TurnMotion;
+use dynarole_core::{Program, RobotApi};
+use dynarole_world::{TurnMotion, Warning};
 
 /// Warnings for every pair of elements of a parallel group that are not independent, walking
 /// the plans from the world's configuration. Pairs of ATRON turns that their motions prove
@@ -98,6 +98,132 @@ pub(crate) fn group_pair(
     checker.decided_pair(&element(a), &element(b), sides, world)
 }
 
+/// A warning of the model on the way through one order of a pair: the step it came from and
+/// the warning (the orders are compared by the warning only, `same_warning`).
+pub(crate) type Warned = (String, Warning);
+
+/// One order of a pair, run on a copy of the world: where it ends and what the model warned
+/// about on the way.
+pub(crate) struct OrderRun {
+    pub world: RobotWorld,
+    pub warnings: Vec<Warned>,
+}
+
+impl From<RobotWorld> for OrderRun {
+    fn from(world: RobotWorld) -> OrderRun {
+        OrderRun {
+            world,
+            warnings: Vec::new(),
+        }
+    }
+}
+
+/// What the two orders of a pair say about it.
+pub(crate) enum Orders {
+    /// Both accepted, ending alike, with the same warnings.
+    Agree,
+    /// Not independent, and why.
+    Differ(String),
+    /// A step is refused in either order.
+    RefusedBoth,
+}
+
+/// The one decision on a pair run both ways (`ab`: `a` then `b`; `ba`: `b` then `a`; the
+/// error is why a step was refused): a refusal in one order only, different end
+/// configurations, or a warning one order gives and the other does not (the robot in two
+/// parts for a moment if the retract ends first, say) make it not independent. `firsts`
+/// describes `a` and `b`, asked only for a reason.
+pub(crate) fn compare_orders(
+    ab: Result<OrderRun, String>,
+    ba: Result<OrderRun, String>,
+    firsts: impl Fn() -> (String, String),
+) -> Orders {
+    let (ab, ba) = match (ab, ba) {
+        (Ok(ab), Ok(ba)) => (ab, ba),
+        (Ok(_), Err(reason)) | (Err(reason), Ok(_)) => {
+            return Orders::Differ(format!(
+                "in one of the two orders a step is refused ({reason})"
+            ));
+        }
+        (Err(_), Err(_)) => return Orders::RefusedBoth,
+    };
+    if let Some(difference) = ab.world.difference(&ba.world) {
+        let first_line = difference.lines().next().unwrap_or_default().to_string();
+        return Orders::Differ(format!(
+            "the two orders end in different configurations ({first_line})"
+        ));
+    }
+    let (a, b) = (ab.warnings.as_slice(), ba.warnings.as_slice());
+    let warned = match (unmatched(a, b), unmatched(b, a)) {
+        (Some(warned), _) => Some((firsts().0, warned)),
+        (None, Some(warned)) => Some((firsts().1, warned)),
+        (None, None) => None,
+    };
+    match warned {
+        Some((first, (step, warning))) if *step == first => {
+            Orders::Differ(format!("if `{first}` ends first: {warning}"))
+        }
+        Some((first, (step, warning))) => {
+            Orders::Differ(format!("if `{first}` ends first: `{step}`: {warning}"))
+        }
+        None => Orders::Agree,
+    }
+}
+
+/// The first warning of `these` that `others` does not have (counting repeats).
+fn unmatched<'w>(these: &'w [Warned], others: &[Warned]) -> Option<&'w Warned> {
+    let mut left: Vec<&Warning> = others.iter().map(|(_, warning)| warning).collect();
+    these.iter().find(|(_, warning)| {
+        match left.iter().position(|other| same_warning(other, warning)) {
+            Some(k) => {
+                left.swap_remove(k);
+                false
+            }
+            None => true,
+        }
+    })
+}
+
+/// The same warning as the model reports it, but a split into the same two parts is the same
+/// whichever side commanded it (the model lists the commanding module's side first).
+fn same_warning(a: &Warning, b: &Warning) -> bool {
+    match (a, b) {
+        (
+            Warning::Split { first, second },
+            Warning::Split {
+                first: other_first,
+                second: other_second,
+            },
+        ) => {
+            (first == other_first && second == other_second)
+                || (first == other_second && second == other_first)
+        }
+        _ => a == b,
+    }
+}
+
+/// Does `statement` on `module`, adding the model's warnings to `warnings`; the error names
+/// the step and says why the model refused it.
+pub(crate) fn step(
+    robot: &RobotApi,
+    statement: &ResolvedStatement,
+    module: &str,
+    world: &mut RobotWorld,
+    warnings: &mut Vec<Warned>,
+) -> Result<(), String> {
+    match world.apply(robot, statement, module) {
+        Ok(outcome) => {
+            if !outcome.warnings.is_empty() {
+                let text = statement.describe(robot);
+                let each = outcome.warnings.into_iter().map(|w| (text.clone(), w));
+                warnings.extend(each);
+            }
+            Ok(())
+        }
+        Err(reason) => Err(format!("`{}`: {reason}", statement.describe(robot))),
+    }
+}
+
 struct Checker<'a> {
     program: &'a Program<'a>,
     assignment: &'a Assignment,
@@ -128,8 +254,9 @@ impl Checker<'_> {
                     // Groups inside a block are checked from the state the block starts in.
                     self.plan(inner, &mut world.clone(), out);
                 }
-                // A refused step is the replay's to report; here it just changes nothing.
-                let _ = self.apply(element, world);
+                // A refused step or a warning is the replay's to report; here a refused
+                // step just changes nothing.
+                let _ = self.apply(element, world, &mut Vec::new());
             }
         }
     }
@@ -159,6 +286,8 @@ impl Checker<'_> {
         world: &RobotWorld,
     ) -> Option<String> {
         if let (Some(sa), Some(sb)) = sides {
+            // Such turns also warn alike in either order: the only warning a turn gets (its
+            // joint already at the angle) does not depend on another module's turn.
             if sa.proven_independent(sb, world) {
                 return None;
             }
@@ -168,27 +297,19 @@ impl Checker<'_> {
 
     /// Why `a` and `b` are not independent, if they are not.
     fn pair(&self, a: &PlanElement, b: &PlanElement, world: &RobotWorld) -> Option<String> {
-        let mut ab = world.clone();
-        let mut ba = world.clone();
-        let first = self.apply(a, &mut ab).and_then(|()| self.apply(b, &mut ab));
-        let second = self.apply(b, &mut ba).and_then(|()| self.apply(a, &mut ba));
-        match (first, second) {
-            (Ok(()), Ok(())) => {}
-            (Ok(()), Err(reason)) | (Err(reason), Ok(())) => {
-                return Some(format!(
-                    "in one of the two orders a step is refused ({reason})"
-                ));
-            }
+        let run = |first: &PlanElement, second: &PlanElement| {
+            let mut run = OrderRun::from(world.clone());
+            self.apply(first, &mut run.world, &mut run.warnings)?;
+            self.apply(second, &mut run.world, &mut run.warnings)?;
+            Ok(run)
+        };
+        let firsts = || (self.describe(a), self.describe(b));
+        match compare_orders(run(a, b), run(b, a), firsts) {
+            Orders::Agree => self.simultaneous_turns(a, b, world),
+            Orders::Differ(reason) => Some(reason),
             // Refused in both orders: the replay reports the step itself.
-            (Err(_), Err(_)) => return None,
+            Orders::RefusedBoth => None,
         }
-        if let Some(difference) = ab.difference(&ba) {
-            let first_line = difference.lines().next().unwrap_or_default().to_string();
-            return Some(format!(
-                "the two orders end in different configurations ({first_line})"
-            ));
-        }
-        self.simultaneous_turns(a, b, world)
     }
 
     /// Two ATRON turns at once: they must move disjoint sets of modules, which must stay apart
@@ -232,21 +353,26 @@ impl Checker<'_> {
         world.turn_motion(&self.program.robot, statement, module)
     }
 
-    /// Applies an element (a block: all of it, in order) and says why it was refused.
-    fn apply(&self, element: &PlanElement, world: &mut RobotWorld) -> Result<(), String> {
+    /// Applies an element (a block: all of it, in order), adding the model's warnings to
+    /// `warnings`, and says why it was refused.
+    fn apply(
+        &self,
+        element: &PlanElement,
+        world: &mut RobotWorld,
+        warnings: &mut Vec<Warned>,
+    ) -> Result<(), String> {
         match &element.kind {
             PlanKind::Op(statement) => {
                 let module = self
                     .assignment
                     .get(&statement.label)
                     .ok_or("no module for its label")?;
-                let step = statement.describe(&self.program.robot);
-                world
-                    .apply(&self.program.robot, statement, module)
-                    .map(|_| ())
-                    .map_err(|reason| format!("`{step}`: {reason}"))
+                step(&self.program.robot, statement, module, world, warnings)
             }
-            PlanKind::Block(inner) => inner.elements.iter().try_for_each(|e| self.apply(e, world)),
+            PlanKind::Block(inner) => inner
+                .elements
+                .iter()
+                .try_for_each(|e| self.apply(e, world, warnings)),
         }
     }
 
@@ -266,4 +392,39 @@ fn groups(plan: &Plan) -> Vec<&[PlanElement]> {
     plan.elements
         .split_inclusive(|e| e.separator == SeparatorKind::Sequential)
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn split(first: &[&str], second: &[&str]) -> Warned {
+        let names = |v: &[&str]| v.iter().map(|s| s.to_string()).collect();
+        let warning = Warning::Split {
+            first: names(first),
+            second: names(second),
+        };
+        ("step".to_string(), warning)
+    }
+
+    #[test]
+    fn one_split_is_the_same_whichever_side_commands_it() {
+        // Two retracts that each leave M4 alone when done second: either order ends with the
+        // same split, reported from the other side.
+        let ab = [split(&["M4"], &["M0", "M1"])];
+        let ba = [split(&["M0", "M1"], &["M4"])];
+        assert!(unmatched(&ab, &ba).is_none());
+        assert!(unmatched(&ba, &ab).is_none());
+    }
+
+    #[test]
+    fn a_warning_in_one_order_only_is_unmatched_counting_repeats() {
+        let once = [split(&["M3"], &["M0"])];
+        let twice = [split(&["M3"], &["M0"]), split(&["M0"], &["M3"])];
+        let other = [split(&["M4"], &["M0", "M3"])];
+        assert!(unmatched(&once, &[]).is_some());
+        assert!(unmatched(&[], &once).is_none());
+        assert!(unmatched(&twice, &once).is_some());
+        assert!(unmatched(&once, &other).is_some());
+    }
 }

@@ -6,8 +6,10 @@
 //! as series-parallel blocks. Every form returned has been written out, parsed, replayed to the
 //! input's final configuration and checked for independence forward and in reverse.
 
-use crate::independence::{check_independence, simultaneous_turns};
-use crate::robot_world::{same_configuration, RobotWorld};
+use crate::independence::{
+    check_independence, compare_orders, simultaneous_turns, step, OrderRun, Orders, Warned,
+};
+use crate::robot_world::RobotWorld;
 use crate::roles::Assignment;
 use crate::run::replay;
 use dynarole_core::ast::{ElementKind, Item};
@@ -297,7 +299,7 @@ impl Graph {
     /// `footprint.rs` can, without a copy of the world.
     fn build(request: &Request, statements: &[ResolvedStatement], exhaustive: bool) -> Graph {
         let n = statements.len();
-        let pre = pre_states(request, statements);
+        let (pre, warned) = pre_states(request, statements);
         let modules: Vec<Option<&str>> = statements
             .iter()
             .map(|s| request.assignment.get(&s.label).map(String::as_str))
@@ -325,6 +327,7 @@ impl Graph {
                     } else {
                         motions[i].as_ref()
                     },
+                    warned_a: &warned[i],
                     index_a: i,
                     later: &later,
                 };
@@ -362,19 +365,27 @@ impl Graph {
     }
 }
 
-/// The world before each statement, in input order, and at the end.
-fn pre_states(request: &Request, statements: &[ResolvedStatement]) -> Vec<RobotWorld> {
+/// The world before each statement, in input order, and at the end; and the model's warnings
+/// on each statement there.
+fn pre_states(
+    request: &Request,
+    statements: &[ResolvedStatement],
+) -> (Vec<RobotWorld>, Vec<Vec<Warned>>) {
     let mut world = request.world.clone();
     let mut out = Vec::with_capacity(statements.len() + 1);
+    let mut warned = Vec::with_capacity(statements.len());
     for statement in statements {
         out.push(world.clone());
+        let mut warnings = Vec::new();
         if let Some(module) = request.assignment.get(&statement.label) {
             // The input replayed without a refusal, so this cannot fail.
-            let _ = world.apply(&request.program.robot, statement, module);
+            let robot = &request.program.robot;
+            let _ = step(robot, statement, module, &mut world, &mut warnings);
         }
+        warned.push(warnings);
     }
     out.push(world);
-    out
+    (out, warned)
 }
 
 /// Why a pair of statements stays ordered, if it does.
@@ -397,6 +408,8 @@ struct Pair<'a> {
     modules: (Option<&'a str>, Option<&'a str>),
     /// The moving side of `a` on the state before it, when `a` is a turn (the fast path).
     motion_a: Option<&'a MovingSide>,
+    /// The model's warnings on `a` in the input (on the state before it).
+    warned_a: &'a [Warned],
     /// `a`'s input index, and what is known of `b` from the pairs visited before.
     index_a: usize,
     later: &'a Later,
@@ -405,7 +418,8 @@ struct Pair<'a> {
 impl Pair<'_> {
     /// Whether the pair must stay ordered by the model, or is independent on it and done by
     /// one module (`Graph::build` decides what that means for the protocol). Conservative: the
-    /// same latch, a step refused in either order, different results in the two orders, or
+    /// same latch, a step refused in either order, different results in the two orders, a
+    /// warning in one order only (`compare_orders`, the decision `check --from` makes), or
     /// two turns that may sweep through each other (or move the same module). `before` and
     /// `after` are the states around `a` in the input.
     fn order(&self, before: &RobotWorld, after: &RobotWorld) -> Order {
@@ -429,12 +443,18 @@ impl Pair<'_> {
         }
         let robot = &self.request.program.robot;
         // `a` then `b` is `b` on the state after `a`; `b` then `a` from the state before.
-        let mut ab = after.clone();
-        let mut ba = before.clone();
-        let accepted = ab.apply(robot, self.b, mb).is_ok()
-            && ba.apply(robot, self.b, mb).is_ok()
-            && ba.apply(robot, self.a, ma).is_ok();
-        if !accepted || !same_configuration(&ab, &ba) {
+        let mut ab = OrderRun {
+            world: after.clone(),
+            warnings: self.warned_a.to_vec(),
+        };
+        let ab = step(robot, self.b, mb, &mut ab.world, &mut ab.warnings).map(|()| ab);
+        let mut ba = OrderRun::from(before.clone());
+        let ba = step(robot, self.b, mb, &mut ba.world, &mut ba.warnings)
+            .and_then(|()| step(robot, self.a, ma, &mut ba.world, &mut ba.warnings))
+            .map(|()| ba);
+        let firsts = || (self.a.describe(robot), self.b.describe(robot));
+        if !matches!(compare_orders(ab, ba, firsts), Orders::Agree) {
+            // Refused in both orders too: conservative, the order of the input is kept.
             return true;
         }
         if !(kind(robot, self.a).is_turn() && kind(robot, self.b).is_turn()) {

@@ -106,11 +106,6 @@ impl RobotWorld {
     }
 }
 
-/// The same configuration, exactly or up to rigid motion (what `check --from` compares).
-pub(crate) fn same_configuration(a: &RobotWorld, b: &RobotWorld) -> bool {
-    a.difference(b).is_none()
-}
-
 /// What `statement` does to the robot: the one place where a plugin operation becomes a model
 /// action, by the kind its plugin declares. `None` for an operation of kind `none`, or
 /// arguments that do not fit the kind (the loader and the checker make that impossible).

@@ -598,3 +598,75 @@ fn a_turn_moved_by_an_earlier_one_is_looked_at_again() {
     .to_vec();
     same_graph("atron", SNAKE, &moves).expect("the same graph");
 }
+
+/// eight2car written in order, but with M3's connector 0 released before M1's connector 6
+/// latches to M3, and then `first` and `second` (that extend and the retract of M3's connector
+/// 2, the one latch left holding M3) joined by `&`, or by `;` when `joined` is false.
+fn extend_and_retract(first: &str, second: &str, joined: bool) -> String {
+    let three = "    M1.Connector[$CONNECTOR_6].extend();\n    \
+                 M3.Connector[$CONNECTOR_0].retract();\n    \
+                 M3.Connector[$CONNECTOR_2].retract();\n";
+    let source = sequential(EIGHT2CAR);
+    assert!(source.contains(three), "{source}");
+    let separator = if joined { " &" } else { ";" };
+    let now = format!(
+        "    M3.Connector[$CONNECTOR_0].retract();\n    {first}{separator}\n    {second};\n"
+    );
+    source.replace(three, &now)
+}
+
+const EXTEND: &str = "M1.Connector[$CONNECTOR_6].extend()";
+const RETRACT: &str = "M3.Connector[$CONNECTOR_2].retract()";
+
+#[test]
+fn an_extend_and_a_retract_it_makes_safe_are_not_independent() {
+    // Once M3's connector 0 is released, only M3.Connector[2] holds M3 to the rest until M1's
+    // connector 6 latches to it: both orders are accepted and end alike, but if the retract
+    // ends first the robot is in two parts for a moment. Either way round.
+    for (first, second) in [(EXTEND, RETRACT), (RETRACT, EXTEND)] {
+        let source = extend_and_retract(first, second, true);
+        let parsed = parse(&source);
+        let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
+        let program = program.unwrap_or_else(|| panic!("{diagnostics:?}"));
+        let config = Configuration::from_json_str(EIGHT).expect("configuration");
+        let plans = vec![program.expand("eight2car").expect("sequence")];
+        let assignment = assign_modules(&program, &plans, &config).expect("labels");
+        let world = RobotWorld::new(config, &program.robot).expect("world");
+        let done = replay(&program, &plans, world.clone(), &assignment);
+        assert_eq!(done.n_rejected, 0, "{:?}", done.diagnostics);
+        for warnings in [
+            check_independence(&program, &plans, world.clone(), &assignment),
+            check_independence_exhaustive(&program, &plans, world.clone(), &assignment),
+        ] {
+            let reasons: Vec<String> = warnings.iter().map(|w| format!("{:?}", w.kind)).collect();
+            assert_eq!(reasons.len(), 1, "{reasons:?}");
+            assert!(
+                reasons[0].contains(
+                    "if `M3.Connector[2].retract()` ends first: the robot is now in two parts: \
+                     [M3] and [M0, M1, M2, M4, M5, M6]"
+                ),
+                "{reasons:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn parallelise_keeps_a_retract_after_the_extend_that_makes_it_safe() {
+    // The pair graph itself (not only the group check) orders the two statements the test
+    // above joins: a warning in one order only is an edge, as for `check --from`.
+    let source = extend_and_retract(EXTEND, RETRACT, false);
+    let found = run(&source, "eight2car", EIGHT);
+    let at = |text: &str| {
+        let index = found.statements.iter().position(|s| s == text);
+        index.unwrap_or_else(|| panic!("{text} in {:?}", found.statements))
+    };
+    let (extend, retract) = (at(EXTEND), at(RETRACT));
+    let pairs = with_request(&source, "eight2car", EIGHT, |request| {
+        dependency_graph(request, false).unwrap_or_else(|e| panic!("{e:?}"))
+    });
+    let n = found.statements.len();
+    assert!(pairs.contains(&(extend, retract)), "{pairs:?}");
+    assert!(positions(n, &found.edges)[retract].0 > positions(n, &found.edges)[extend].0);
+    check_written(&found, &found.forms[0].text, EIGHT);
+}
