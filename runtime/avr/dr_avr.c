@@ -322,6 +322,13 @@ static inline __attribute__((always_inline)) void tx_start(struct tx_frame *f)
  * they save them alike, so that they share the code that restores them. They cannot take
  * r1 as zero (an interrupt may come between a `mul` and the `clr r1` after it), so they
  * use none. */
+#define USART_ISR_SAVE \
+    "push r24\n\t" \
+    "in r24, __SREG__\n\t" \
+    "push r24\n\t" \
+    "push r25\n\t" \
+    "push r30\n\t" \
+    "push r31\n\t" /* popped in reverse at dr_avr_usart_return */
 
 /* A byte has left and the USART holds no other: the frame's next byte, or, after its last,
  * the transmitters off and the next frame (the other of the two, tx_after). Only this
@@ -334,12 +341,7 @@ static inline __attribute__((always_inline)) void tx_start(struct tx_frame *f)
 ISR(USART0_TX_vect, ISR_NAKED)
 {
     __asm__ __volatile__(
-        "push r24\n\t"
-        "in r24, __SREG__\n\t"
-        "push r24\n\t"
-        "push r25\n\t"
-        "push r30\n\t"
-        "push r31\n\t"
+        USART_ISR_SAVE
         "lds r30, %[head]\n\t"
         "lds r31, %[head]+1\n\t"
         "ldd r24, Z+2\n\t" /* f->pos */
@@ -400,12 +402,7 @@ ISR(USART0_TX_vect, ISR_NAKED)
 ISR(USART0_RX_vect, ISR_NAKED)
 {
     __asm__ __volatile__(
-        "push r24\n\t"
-        "in r24, __SREG__\n\t"
-        "push r24\n\t"
-        "push r25\n\t"
-        "push r30\n\t"
-        "push r31\n\t"
+        USART_ISR_SAVE
         "in r25, %[udr]\n\t"
         "lds r24, %[fill]\n\t"
         "lds r30, %[cur]\n\t"
