@@ -119,6 +119,136 @@ impl ProtocolOptions {
     }
 }
 
+impl ProtocolOptions {
+    /// The command-line flags that give these options again: every one that differs from its
+    /// default, so a printed command (`simulate`'s `replay with:`) runs the same build. The
+    /// destructuring names every field, so a new option cannot be left out without a compile
+    /// error.
+    pub fn flags(&self) -> Vec<String> {
+        let ProtocolOptions {
+            protocol,
+            merge,
+            single_step_handover,
+            restart_pending,
+            no_nv,
+            dissemination,
+            token_retries,
+            robot_id,
+            key,
+        } = self;
+        let defaults = Self::defaults();
+        let mut flags = vec![format!("--protocol {protocol}")];
+        if *merge != defaults.merge {
+            flags.push(format!("--merge {merge}"));
+        }
+        let switches = [
+            (*single_step_handover, "--single-step-handover"),
+            (*restart_pending, "--restart-pending"),
+            (*no_nv, "--no-nv"),
+        ];
+        flags.extend(
+            switches
+                .iter()
+                .filter(|(on, _)| *on)
+                .map(|(_, f)| f.to_string()),
+        );
+        if let Some(d) = dissemination {
+            flags.push(format!("--dissemination {}", d.name()));
+        }
+        if *token_retries != defaults.token_retries {
+            flags.push(format!("--token-retries {}", token_retries.name()));
+        }
+        if *robot_id != defaults.robot_id {
+            flags.push(format!("--robot-id {robot_id}"));
+        }
+        if let Some(key) = key {
+            let hex: String = key.iter().map(|b| format!("{b:02x}")).collect();
+            flags.push(format!("--key {hex}"));
+        }
+        flags
+    }
+
+    /// The options of a command line that gives none: the defaults of the clap attributes
+    /// above, read from there rather than restated.
+    pub fn defaults() -> Self {
+        #[derive(clap::Parser)]
+        struct Bare {
+            #[command(flatten)]
+            options: ProtocolOptions,
+        }
+        match <Bare as clap::Parser>::try_parse_from(["dynarole"]) {
+            Ok(bare) => bare.options,
+            // Every option has a default: an empty command line always parses.
+            Err(e) => unreachable!("the protocol options have defaults: {e}"),
+        }
+    }
+}
+
+#[cfg(test)]
+mod flag_tests {
+    use super::*;
+    use clap::Parser;
+
+    #[derive(Parser)]
+    struct Line {
+        #[command(flatten)]
+        options: ProtocolOptions,
+    }
+
+    fn round_trip(args: &[&str]) {
+        let given = Line::try_parse_from(std::iter::once("dynarole").chain(args.iter().copied()))
+            .unwrap()
+            .options;
+        let flags = given.flags().join(" ");
+        let again = Line::try_parse_from(
+            std::iter::once("dynarole").chain(flags.split(' ').filter(|w| !w.is_empty())),
+        )
+        .unwrap()
+        .options;
+        assert_eq!(format!("{given:?}"), format!("{again:?}"), "flags: {flags}");
+    }
+
+    #[test]
+    fn the_printed_flags_give_the_same_options() {
+        round_trip(&[]);
+        round_trip(&[
+            "--robot-id",
+            "7",
+            "--key",
+            "000102030405060708090a0b0c0d0eff",
+        ]);
+        round_trip(&[
+            "--protocol",
+            "paper",
+            "--merge",
+            "java",
+            "--restart-pending",
+        ]);
+        round_trip(&["--protocol", "paper", "--single-step-handover"]);
+        round_trip(&["--no-nv", "--dissemination", "fixed"]);
+        round_trip(&["--protocol", "token", "--token-retries", "unlimited"]);
+        round_trip(&["--protocol", "token", "--token-retries", "plain"]);
+    }
+
+    #[test]
+    fn a_keyed_build_prints_its_key_and_identity() {
+        let line = Line::try_parse_from([
+            "dynarole",
+            "--robot-id",
+            "9",
+            "--key",
+            "ffeeddccbbaa99887766554433221100",
+        ])
+        .unwrap();
+        let flags = line.options.flags().join(" ");
+        assert!(flags.contains("--robot-id 9"), "{flags}");
+        assert!(
+            flags.contains("--key ffeeddccbbaa99887766554433221100"),
+            "{flags}"
+        );
+    }
+}
+
 /// What `compile` was asked to do.
 pub struct CompileArgs<'a> {
     pub file: &'a Path,

@@ -6,7 +6,7 @@ use crate::load::{self, Failure, PluginArgs};
 use crate::render;
 use crate::world::read_configuration;
 use clap::ValueEnum;
-use dynarole_codegen::{Choice, Protocol};
+use dynarole_codegen::Choice;
 use dynarole_recording::Source;
 use dynarole_sim::{
     FirmwareReport, FirmwareSource, Report, Run, Scenario, SimError, Simulator, Stepping,
@@ -268,7 +268,7 @@ fn replay_command(args: &SimulateArgs, seed: u64) -> String {
     if let Some(e) = args.expect {
         parts.push(format!("--expect {}", quote(&e.display().to_string())));
     }
-    parts.extend(protocol_flags(args.options));
+    parts.extend(args.options.flags());
     if let Some(s) = args.scenario {
         parts.push(format!("--scenario {}", quote(&s.display().to_string())));
     }
@@ -281,39 +281,11 @@ fn replay_command(args: &SimulateArgs, seed: u64) -> String {
     for p in &args.plugins.plugins {
         parts.push(format!("--plugin {}", quote(&p.display().to_string())));
     }
-    if args.firmware == Some(FirmwareArg::Avr) {
-        parts.push("--firmware avr".into());
+    if let Some(name) = args.firmware.and_then(|f| f.to_possible_value()) {
+        parts.push(format!("--firmware {}", name.get_name()));
     }
     parts.push(format!("--seed {seed}"));
     parts.join(" ")
-}
-
-/// The flags that select `options`' protocol and its variant.
-fn protocol_flags(options: &ProtocolOptions) -> Vec<String> {
-    let mut flags = vec![format!("--protocol {}", options.protocol)];
-    match options.protocol {
-        Protocol::Lattice => {
-            if options.no_nv {
-                flags.push("--no-nv".into());
-            }
-            if let Some(d) = options.dissemination {
-                flags.push(format!("--dissemination {}", d.name()));
-            }
-        }
-        Protocol::Paper => {
-            flags.push(format!("--merge {}", options.merge));
-            if options.single_step_handover {
-                flags.push("--single-step-handover".into());
-            }
-            if options.restart_pending {
-                flags.push("--restart-pending".into());
-            }
-        }
-        Protocol::Token => {
-            flags.push(format!("--token-retries {}", options.token_retries.name()));
-        }
-    }
-    flags
 }
 
 fn quote(s: &str) -> String {

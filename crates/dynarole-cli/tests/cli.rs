@@ -694,6 +694,46 @@ fn the_paper_protocol_as_it_is() {
 }
 
 #[test]
+fn the_printed_replay_command_gives_the_same_run_for_a_keyed_robot() {
+    // The printed command once dropped --key and --robot-id: the keyed run it printed then
+    // replayed as another program, and a success.
+    let reset = &SCENARIOS[2];
+    let keyed = [
+        "--protocol",
+        "paper",
+        "--robot-id",
+        "5",
+        "--key",
+        "00112233445566778899aabbccddeeff",
+    ];
+    let failed = simulate(reset, &keyed);
+    assert_eq!(failed.status.code(), Some(3), "{}", text(&failed.stdout));
+    let stderr = text(&failed.stderr);
+    let line = stderr
+        .lines()
+        .find_map(|l| l.strip_prefix("replay with: dynarole simulate "))
+        .unwrap_or_else(|| panic!("no replay command in: {stderr}"));
+    assert!(line.contains("--robot-id 5"), "{line}");
+    assert!(
+        line.contains("--key 00112233445566778899aabbccddeeff"),
+        "{line}"
+    );
+    // The repository's paths need no quoting, so the words are the arguments.
+    let words: Vec<&str> = line.split(' ').collect();
+    let again = dynarole(&std::iter::once("simulate").chain(words).collect::<Vec<_>>());
+    assert_eq!(again.status.code(), Some(3), "{}", text(&again.stdout));
+    // The same run: every line but the wall time.
+    let run = |out: &std::process::Output| {
+        text(&out.stdout)
+            .lines()
+            .filter(|l| !l.contains("of wall time"))
+            .map(str::to_string)
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(run(&again), run(&failed), "the same run");
+}
+
+#[test]
 fn campaign_writes_runs_summary_and_plots_and_resumes() {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli-campaign");
     let _ = std::fs::remove_dir_all(&dir);
