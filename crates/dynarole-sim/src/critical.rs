@@ -8,6 +8,7 @@ use crate::scenario::Timing;
 use crate::sequence::{OpKind, Sequence};
 use dynarole_core::lower::Ir;
 use serde::Serialize;
+use std::collections::BTreeMap;
 
 /// The heaviest dependency chain of a sequence.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize)]
@@ -99,27 +100,28 @@ pub fn one_at_a_time(seq: &Sequence, timing: &Timing) -> CriticalPath {
     chain(&seq.ir, Order::OneAtATime, durations(seq, timing))
 }
 
-/// Each statement's duration with `timing` (see `critical_path`).
+/// Each statement's duration with `timing` (see `critical_path`), computed in one pass: the
+/// angle a `rotateToBy` starts from is the last target of the same module's joint so far
+/// (a backward search per turn was quadratic on long sequences).
 fn durations<'a>(seq: &'a Sequence, timing: &'a Timing) -> impl Fn(usize) -> u64 + 'a {
-    move |s: usize| match seq.kinds[s] {
-        OpKind::Extend => timing.extend_ms,
-        OpKind::Retract => timing.retract_ms,
-        OpKind::Turn => {
-            let st = &seq.ir.statements[s];
-            let current = (0..s)
-                .rev()
-                .filter(|t| {
-                    let other = &seq.ir.statements[*t];
-                    seq.kinds[*t] == OpKind::Turn
-                        && other.address == st.address
-                        && other.index == st.index
-                })
-                .find_map(|t| seq.turn_target(t))
-                .unwrap_or(0);
-            timing.turn_ms(seq.quarters(s, current))
-        }
-        OpKind::Other => 0,
+    let mut last_target: BTreeMap<(u8, u8), i64> = BTreeMap::new();
+    let mut out = Vec::with_capacity(seq.len());
+    for (s, st) in seq.ir.statements.iter().enumerate() {
+        out.push(match seq.kinds[s] {
+            OpKind::Extend => timing.extend_ms,
+            OpKind::Retract => timing.retract_ms,
+            OpKind::Turn => {
+                let joint = (st.address, st.index);
+                let current = last_target.get(&joint).copied().unwrap_or(0);
+                if let Some(to) = seq.turn_target(s) {
+                    last_target.insert(joint, to);
+                }
+                timing.turn_ms(seq.quarters(s, current))
+            }
+            OpKind::Other => 0,
+        });
     }
+    move |s: usize| out.get(s).copied().unwrap_or(0)
 }
 
 #[cfg(test)]

@@ -155,9 +155,7 @@ impl State {
 
     /// S2: `s` is issued again only while nothing that depends on it has started.
     fn check_not_overtaken(&mut self, m: usize, s: usize) {
-        let started: Vec<usize> = self.seq.dependents[s]
-            .iter()
-            .copied()
+        let started: Vec<usize> = (self.seq.transitive_dependents(s).into_iter())
             .filter(|t| self.phys[*t].started.is_some())
             .collect();
         if !started.is_empty() {

@@ -1,7 +1,9 @@
 //! What the simulator knows of the compiled sequence, from the IR (never from the C): each
-//! statement's module address, operation, dependencies and transitive dependents, the
-//! resolved statement the world applies (the configuration queries the HAL answers are
-//! `dynarole_world::View`).
+//! statement's module address, operation, dependencies and direct dependents (transitive ones
+//! are walked when asked), the resolved statement the world applies (the configuration
+//! queries the HAL answers are `dynarole_world::View`). Everything here is linear in the
+//! statements and their dependency edges: a table of every statement's transitive dependents
+//! was quadratic (1 GB at 10,000 statements; `tests/sequence_memory.rs` keeps it linear).
 
 use dynarole_core::check::ResolvedStatement;
 use dynarole_core::lower::Ir;
@@ -40,8 +42,11 @@ pub struct Sequence {
     /// What each statement does to the robot (`dynarole_replay::action`).
     pub actions: Vec<Option<Action>>,
     pub kinds: Vec<OpKind>,
-    /// For each statement, every statement that depends on it directly or transitively.
-    pub dependents: Vec<Vec<usize>>,
+    /// Direct dependents, all statements' in one list: statement `s`'s are
+    /// `dependents[first_dependent[s]..first_dependent[s + 1]]`, ascending (the reverse of
+    /// the IR's `deps`, one entry per edge).
+    dependents: Vec<u16>,
+    first_dependent: Vec<u32>,
 }
 
 impl Sequence {
@@ -51,7 +56,7 @@ impl Sequence {
             .map(|s| dynarole_replay::action(&robot, s))
             .collect();
         let kinds = actions.iter().map(|a| OpKind::of(*a)).collect();
-        let dependents = ir.dependents();
+        let (first_dependent, dependents) = reverse_edges(&ir);
         Sequence {
             robot,
             ir,
@@ -59,7 +64,32 @@ impl Sequence {
             actions,
             kinds,
             dependents,
+            first_dependent,
         }
+    }
+
+    /// The statements that depend on `s` directly.
+    fn direct_dependents(&self, s: usize) -> &[u16] {
+        let at = |k: usize| self.first_dependent.get(k).map_or(0, |&i| i as usize);
+        self.dependents.get(at(s)..at(s + 1)).unwrap_or_default()
+    }
+
+    /// Every statement that depends on `s` directly or transitively, ascending (what
+    /// `Ir::dependents` gives for `s`), walked from the direct dependents: asked only when a
+    /// statement is re-issued (S2), so the run keeps no table of them.
+    pub fn transitive_dependents(&self, s: usize) -> Vec<usize> {
+        let mut seen = vec![false; self.len()];
+        let mut stack: Vec<usize> = vec![s];
+        while let Some(t) = stack.pop() {
+            for &d in self.direct_dependents(t) {
+                let d = usize::from(d);
+                if let Some(slot) = seen.get_mut(d).filter(|v| !**v) {
+                    *slot = true;
+                    stack.push(d);
+                }
+            }
+        }
+        (0..self.len()).filter(|&t| t != s && seen[t]).collect()
     }
 
     pub fn len(&self) -> usize {
@@ -108,5 +138,62 @@ impl Sequence {
         let from = from.unwrap_or(current);
         builtin_quarter_turns(&self.robot.name, from, to, increasing)
             .unwrap_or_else(|| (to - from).unsigned_abs().div_ceil(DEGREES_PER_QUARTER))
+    }
+}
+
+/// The IR's dependency edges reversed, in one list indexed by statement (counting sort: two
+/// passes over the edges), so that each statement's dependents are a slice.
+fn reverse_edges(ir: &Ir) -> (Vec<u32>, Vec<u16>) {
+    let n = ir.statements.len();
+    let mut first = vec![0u32; n + 1];
+    for st in &ir.statements {
+        for &d in &st.deps {
+            if let Some(count) = first.get_mut(usize::from(d) + 1) {
+                *count += 1;
+            }
+        }
+    }
+    for k in 1..first.len() {
+        first[k] += first[k - 1];
+    }
+    let mut next = first.clone();
+    let mut dependents = vec![0u16; first[n] as usize];
+    for (s, st) in ir.statements.iter().enumerate() {
+        for &d in &st.deps {
+            if let Some(at) = next.get_mut(usize::from(d)) {
+                // Fits: statement numbers are 16 bits (`lower::MAX_STATEMENTS`).
+                dependents[*at as usize] = s as u16;
+                *at += 1;
+            }
+        }
+    }
+    (first, dependents)
+}
+
+#[cfg(test)]
+mod tests {
+    use dynarole_codegen::{CompileOptions, Protocol};
+    use dynarole_core::{analyze, parse, RobotRegistry};
+
+    /// The walk gives what the IR's table of transitive dependents gives, for every
+    /// statement of eight2car (groups, a chain, several modules) and its reverse.
+    #[test]
+    fn transitive_dependents_are_the_irs() {
+        let source = include_str!("../../../examples/atron/eight2car.dr");
+        let parsed = parse(source);
+        let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
+        let program = program.unwrap_or_else(|| panic!("{diagnostics:?}"));
+        let plans = ["eight2car", "car2eight"].map(|s| program.expand(s).expect("sequence"));
+        let options = CompileOptions {
+            protocol: Protocol::Lattice,
+            name: "dependents".into(),
+            ..CompileOptions::default()
+        };
+        let sim = crate::Simulator::new(&program, &plans, &options).expect("compiles");
+        let table = sim.sequence.ir.dependents();
+        for (s, expected) in table.iter().enumerate() {
+            assert_eq!(&sim.sequence.transitive_dependents(s), expected, "#{s}");
+        }
+        assert!(table.iter().any(|d| d.len() > 1));
     }
 }
