@@ -658,6 +658,29 @@ static uint8_t eeprom_get(uint16_t addr)
     return EEDR;
 }
 
+/* Writes `byte` to the EEPROM at EEAR (set by the eeprom_get just before: no write is under
+ * way). The datasheet's timed sequence: EEMWE set, then EEWE within four cycles, or the chip
+ * ignores EEWE and writes nothing. In assembly, as avr-libc's eeprom_write_byte does it, so
+ * that no compiler option can spread it: two read-modify-writes of EECR in C come out as
+ * `sbi` only when the optimiser finds it (-fno-gcse alone, one of DR_MCU_FLAGS, makes each an
+ * ld/ori/st through X, EEWE 5 cycles after EEMWE, and no record was ever written). The two
+ * `sbi` are consecutive (EEWE 2 cycles after EEMWE) with interrupts off (an interrupt
+ * between them would take longer than four cycles); interrupts are on when any function of
+ * dr_hal.h runs, so `sei` restores them. `make -C runtime/avr test` checks every image's
+ * disassembly for the two consecutive `sbi`. */
+static void eeprom_put(uint8_t byte)
+{
+    __asm__ __volatile__("out %[eedr], %[byte]\n\t"
+                         "cli\n\t"
+                         "sbi %[eecr], %[eemwe]\n\t"
+                         "sbi %[eecr], %[eewe]\n\t"
+                         "sei"
+                         :
+                         : [byte] "r"(byte), [eedr] "I"(_SFR_IO_ADDR(EEDR)),
+                           [eecr] "I"(_SFR_IO_ADDR(EECR)), [eemwe] "I"(EEMWE), [eewe] "I"(EEWE)
+                         : "memory");
+}
+
 void dr_hal_nv_read(struct dr_module *m, uint16_t addr, uint8_t *buf, uint8_t len)
 {
     uint8_t ok = in_eeprom(addr, len);
@@ -678,12 +701,7 @@ void dr_hal_nv_write(struct dr_module *m, uint16_t addr, const uint8_t *buf, uin
     }
     for (i = 0; i < len; i++) {
         if (eeprom_get((uint16_t)(addr + i)) != buf[i]) {
-            EEDR = buf[i];
-            /* EEWE within four cycles of EEMWE: two sbi with interrupts off. */
-            cli();
-            EECR = (uint8_t)(EECR | (1u << EEMWE));
-            EECR = (uint8_t)(EECR | (1u << EEWE));
-            sei();
+            eeprom_put(buf[i]);
         }
     }
 }
