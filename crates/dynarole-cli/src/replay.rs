@@ -4,7 +4,7 @@
 use crate::load::{self, Failure, PluginArgs};
 use crate::render;
 use crate::world::{prepare, read_configuration};
-use dynarole_world::{compare, Configuration};
+use dynarole_world::{compare_with_expected, Configuration};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -97,7 +97,7 @@ fn record(
 
 fn expect(actual: &Configuration, path: &Path) -> Result<bool, Failure> {
     let expected = read_configuration(path)?;
-    match compare(actual, &expected) {
+    match compare_with_expected(actual, &expected) {
         Ok(()) => {
             println!("matches {} (up to rigid motion)", path.display());
             Ok(true)

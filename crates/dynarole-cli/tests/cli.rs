@@ -24,6 +24,27 @@ fn scratch(name: &str, contents: &str) -> PathBuf {
 }
 
 #[test]
+fn a_mismatch_names_the_expected_and_the_reached_side() {
+    // Once swapped: M0 is at [0, 0, 0] in eight.json, and was printed as "found" there.
+    let out = replay(
+        "examples/atron/eight2car.dr",
+        &["eight2car"],
+        "examples/atron/eight.json",
+        "examples/atron/eight.json",
+    );
+    let stdout = text(&out.stdout);
+    assert_eq!(out.status.code(), Some(1), "{stdout}");
+    assert!(
+        stdout.contains("module M0 misplaced: expected [0, 0, 0] NS_BROKEN, reached [2, 2, 0]"),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains("connection M0.C0-M6.C3 in the reached configuration only"),
+        "{stdout}"
+    );
+}
+
+#[test]
 fn check_accepts_the_examples() {
     let out = dynarole(&["check", "examples/atron/eight2car.dr"]);
     assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));

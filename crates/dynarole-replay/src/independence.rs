@@ -128,6 +128,25 @@ pub(crate) enum Orders {
     RefusedBoth,
 }
 
+/// The world's account of a difference is a header and one line per difference: the note
+/// names the orders ("first" is the order in which `a` ends first) and the first difference,
+/// so that it is a whole sentence however long the account.
+fn differing_ends(difference: &str, (a, b): (String, String)) -> String {
+    let lines: Vec<&str> = difference.lines().map(str::trim).collect();
+    // An account of one line (another robot, say) is its own first difference.
+    let mut details = lines.iter().skip(usize::from(lines.len() > 1));
+    let first = details.next().copied().unwrap_or("they differ");
+    let more = match details.count() {
+        0 => String::new(),
+        1 => ", and 1 more difference".to_string(),
+        n => format!(", and {n} more differences"),
+    };
+    format!(
+        "the two orders end in different configurations (first: `{a}` ends first, second: \
+         `{b}` ends first; {first}{more})"
+    )
+}
+
 /// The one decision on a pair run both ways (`ab`: `a` then `b`; `ba`: `b` then `a`; the
 /// error is why a step was refused): a refusal in one order only, different end
 /// configurations, or a warning one order gives and the other does not (the robot in two
@@ -148,10 +167,7 @@ pub(crate) fn compare_orders(
         (Err(_), Err(_)) => return Orders::RefusedBoth,
     };
     if let Some(difference) = ab.world.difference(&ba.world) {
-        let first_line = difference.lines().next().unwrap_or_default().to_string();
-        return Orders::Differ(format!(
-            "the two orders end in different configurations ({first_line})"
-        ));
+        return Orders::Differ(differing_ends(&difference, firsts()));
     }
     let (a, b) = (ab.warnings.as_slice(), ba.warnings.as_slice());
     let warned = match (unmatched(a, b), unmatched(b, a)) {

@@ -386,7 +386,7 @@ impl Simulator {
         let difference = match (expect, model_difference) {
             (Some(Expected::Configuration(expected)), _) => {
                 Some(match &report.final_configuration {
-                    Some(end) => dynarole_world::compare(end, expected)
+                    Some(end) => dynarole_world::compare_with_expected(end, expected)
                         .err()
                         .map(|d| d.to_string()),
                     None => Some("the robot model has no configuration format".into()),

@@ -18,9 +18,30 @@ pub struct Misplaced {
     /// The module.
     pub module: String,
     /// Where the first configuration puts it, mapped by the rigid motion (`[x, y, z] ORIENT`).
-    pub expected: String,
+    pub first: String,
     /// Where the second configuration has it.
-    pub found: String,
+    pub second: String,
+}
+
+/// What the two compared configurations are, as the account of a difference names them: a
+/// comparison against an expected result must not call the reached one "expected".
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Sides {
+    /// Two configurations of equal standing: "the first" and "the second".
+    #[default]
+    FirstSecond,
+    /// The expected configuration first, the one a run reached second.
+    ExpectedReached,
+}
+
+impl Sides {
+    /// The adjectives that name the first and the second configuration.
+    fn names(self) -> (&'static str, &'static str) {
+        match self {
+            Sides::FirstSecond => ("first", "second"),
+            Sides::ExpectedReached => ("expected", "reached"),
+        }
+    }
 }
 
 /// A joint that differs (joint angles do not depend on the rigid motion).
@@ -60,6 +81,8 @@ pub struct Difference {
     pub missing_connections: Vec<String>,
     /// Connections of the second configuration that the first lacks.
     pub extra_connections: Vec<String>,
+    /// What the two configurations are, for the account.
+    pub sides: Sides,
 }
 
 impl Difference {
@@ -89,46 +112,47 @@ impl Difference {
 
 impl fmt::Display for Difference {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let (first, second) = self.sides.names();
         if let Some((a, b)) = &self.robots {
-            return write!(f, "different robots: {a} and {b}");
+            return write!(f, "different robots: {a} ({first}) and {b} ({second})");
         }
         match &self.rotation {
             Some(r) => writeln!(
                 f,
-                "configurations differ; best rigid motion ({r}, then shift {:?}) puts {} \
-                 module(s) in place:",
+                "configurations differ; moved by the rigid motion that fits best ({r}, then \
+                 shift {:?}), the {first} configuration has {} module(s) in place:",
                 self.translation, self.matched
             )?,
             None => writeln!(f, "configurations differ:")?,
         }
         for m in &self.only_in_first {
-            writeln!(f, "  module {m} only in the first")?;
+            writeln!(f, "  module {m} in the {first} configuration only")?;
         }
         for m in &self.only_in_second {
-            writeln!(f, "  module {m} only in the second")?;
+            writeln!(f, "  module {m} in the {second} configuration only")?;
         }
         for (m, a, b) in &self.ids {
-            writeln!(f, "  module {m}: id {a:?} vs {b:?}")?;
+            writeln!(f, "  module {m}: id {a:?} ({first}) vs {b:?} ({second})")?;
         }
         for m in &self.misplaced {
             writeln!(
                 f,
-                "  module {} misplaced: expected {}, found {}",
-                m.module, m.expected, m.found
+                "  module {} misplaced: {first} {}, {second} {}",
+                m.module, m.first, m.second
             )?;
         }
         for j in &self.joints {
             writeln!(
                 f,
-                "  joint of {}: {:?} vs {:?}",
+                "  joint of {}: {first} {:?}, {second} {:?}",
                 j.module, j.first, j.second
             )?;
         }
         for c in &self.missing_connections {
-            writeln!(f, "  connection {c} missing from the second")?;
+            writeln!(f, "  connection {c} in the {first} configuration only")?;
         }
         for c in &self.extra_connections {
-            writeln!(f, "  connection {c} only in the second")?;
+            writeln!(f, "  connection {c} in the {second} configuration only")?;
         }
         Ok(())
     }
@@ -206,6 +230,19 @@ fn shape_of<M: RobotModule>(
     }
 }
 
+/// [`compare`] of the configuration a run reached against the one it was expected to reach,
+/// with the account naming each side as such (the rigid motion is the expected one's).
+#[allow(clippy::result_large_err)]
+pub fn compare_with_expected(
+    reached: &Configuration,
+    expected: &Configuration,
+) -> Result<(), Difference> {
+    compare(expected, reached).map_err(|difference| Difference {
+        sides: Sides::ExpectedReached,
+        ..difference
+    })
+}
+
 /// `Ok(())` when `b` is `a` moved by one of the 24 lattice rotations and a translation: same
 /// module names and ids, every module's position and orientation mapped by that one motion,
 /// same joint angles and same connections. Otherwise the differences under the rigid motion
@@ -243,8 +280,8 @@ pub fn compare(a: &Configuration, b: &Configuration) -> Result<(), Difference> {
         if mapped != y.position || mapped_frame != y.frame {
             diff.misplaced.push(Misplaced {
                 module: (*name).clone(),
-                expected: describe(&sa, mapped, mapped_frame),
-                found: describe(&sb, y.position, y.frame),
+                first: describe(&sa, mapped, mapped_frame),
+                second: describe(&sb, y.position, y.frame),
             });
         }
         if x.joints != y.joints {

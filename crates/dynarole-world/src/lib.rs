@@ -37,7 +37,7 @@ pub use atron::{
 };
 pub use builtin::{builtin_quarter_turns, BUILTIN_ROBOTS};
 pub use common::{ConfigError, Latch, Metadata, NamedConnection, Port};
-pub use compare::{compare, Difference, JointDifference, Misplaced};
+pub use compare::{compare, compare_with_expected, Difference, JointDifference, Misplaced, Sides};
 pub use configuration::{Configuration, Robot};
 pub use geometry::{Rotation, Vec3};
 pub use model::{Action, RobotModel, RobotShape};

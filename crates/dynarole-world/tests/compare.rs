@@ -4,7 +4,9 @@
 mod common;
 
 use common::{load, load_atron};
-use dynarole_world::{compare, AtronConfiguration, Configuration, Rotation, Vec3};
+use dynarole_world::{
+    compare, compare_with_expected, AtronConfiguration, Configuration, Rotation, Vec3,
+};
 use proptest::prelude::*;
 
 const SHAPES: [&str; 3] = ["eight", "car", "snake"];
@@ -132,7 +134,7 @@ fn different_module_names_are_listed() -> Result<(), String> {
     assert_eq!(diff.only_in_first.len(), 7);
     assert_eq!(diff.only_in_second.len(), 7);
     let text = diff.to_string();
-    assert!(text.contains("module M0 only in the first"), "{text}");
+    assert!(text.contains("module M0 in the first configuration only"), "{text}");
     Ok(())
 }
 
@@ -146,10 +148,42 @@ fn eight_and_car_differ_readably() -> Result<(), String> {
     assert_eq!(diff.matched, 2);
     let misplaced: Vec<&str> = diff.misplaced.iter().map(|m| m.module.as_str()).collect();
     assert_eq!(misplaced, ["M0", "M1", "M3", "M4", "M6"]);
-    assert!(text.contains("module M6 misplaced: expected [4, 0, 0] NS_BROKEN, found [2, 1, -1] UD"));
-    assert!(text.contains("joint of M1: [0] vs [216]"), "{text}");
+    assert!(text.contains("module M6 misplaced: first [4, 0, 0] NS_BROKEN, second [2, 1, -1] UD"));
     assert!(
-        text.contains("connection M0.C0-M2.C1 missing from the second"),
+        text.contains("joint of M1: first [0], second [216]"),
+        "{text}"
+    );
+    assert!(
+        text.contains("connection M0.C0-M2.C1 in the first configuration only"),
+        "{text}"
+    );
+    Ok(())
+}
+
+#[test]
+fn a_reached_configuration_is_named_as_reached_and_the_expected_one_as_expected(
+) -> Result<(), String> {
+    // `replay --expect` once printed the reached pose as "expected" and the expected as
+    // "found".
+    let (expected, reached) = (load("eight")?, load("car")?);
+    let text = compare_with_expected(&reached, &expected)
+        .err()
+        .ok_or("equal?")?
+        .to_string();
+    assert!(
+        text.contains("module M6 misplaced: expected [4, 0, 0] NS_BROKEN, reached [2, 1, -1] UD"),
+        "{text}"
+    );
+    assert!(
+        text.contains("joint of M1: expected [0], reached [216]"),
+        "{text}"
+    );
+    assert!(
+        text.contains("connection M0.C0-M2.C1 in the expected configuration only"),
+        "{text}"
+    );
+    assert!(
+        text.contains("the expected configuration has 2 module(s) in place"),
         "{text}"
     );
     Ok(())
@@ -160,7 +194,7 @@ fn different_robots_differ() -> Result<(), String> {
     let diff = compare(&load("eight")?, &load("mtran-snake4")?)
         .err()
         .ok_or("equal?")?;
-    assert_eq!(diff.to_string(), "different robots: ATRON and MTRAN");
+    assert_eq!(diff.to_string(), "different robots: ATRON (first) and MTRAN (second)");
     Ok(())
 }
 
