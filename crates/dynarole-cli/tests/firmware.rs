@@ -1,6 +1,8 @@
 //! `dynarole simulate --firmware avr`: every module an emulated ATmega128 running the image of
 //! runtime/avr, against a host-compiled run of the same seed: a short sequence with each
-//! protocol, and the issue's full runs (a sleeping core costs the emulator next to nothing).
+//! protocol, and the issue's full runs (a sleeping core costs the emulator next to nothing);
+//! and runs with one reset, seeded at random, where a reset module must come back with its
+//! EEPROM record and end as the host run does (`--firmware avr` and `avr-nesc`).
 
 mod common;
 
@@ -92,6 +94,20 @@ enum Firmware {
     Nesc(PathBuf),
 }
 
+/// Runs `dynarole` with `args` (which say `--firmware` when `firmware` is given); the nesC
+/// image needs its compiler named.
+fn simulate_on(args: &[&str], firmware: Option<&Firmware>) -> std::process::Output {
+    match firmware {
+        Some(Firmware::Nesc(dir)) => Command::new(env!("CARGO_BIN_EXE_dynarole"))
+            .args(args)
+            .current_dir(repo_root())
+            .env("NESCC", dir.join("nescc"))
+            .output()
+            .expect("the dynarole binary runs"),
+        _ => dynarole(args),
+    }
+}
+
 /// [`compare_with_host`] with the firmware image made from `firmware`.
 fn compare_with_host_on(
     args: &[&str],
@@ -117,15 +133,7 @@ fn compare_with_host_on(
         if firmware && json {
             all.push("--json");
         }
-        let out = match firmware_image {
-            Firmware::Nesc(dir) => Command::new(env!("CARGO_BIN_EXE_dynarole"))
-                .args(&all)
-                .current_dir(repo_root())
-                .env("NESCC", dir.join("nescc"))
-                .output()
-                .expect("the dynarole binary runs"),
-            Firmware::C => dynarole(&all),
-        };
+        let out = simulate_on(&all, Some(firmware_image));
         let stdout = text(&out.stdout);
         assert_eq!(out.status.code(), Some(0), "{stdout}{}", text(&out.stderr));
         if firmware && json {
@@ -401,4 +409,234 @@ fn every_module_receives(report: &serde_json::Value) {
     for m in modules {
         assert!(m["receives"].as_u64().expect("receives") > 0, "{m}");
     }
+}
+
+/// The paper's Fig. 8 (left: a reset while connecting) and Fig. 7 (a power-off) on the nesC
+/// component: the reset module comes back with its EEPROM record, as on the host.
+#[test]
+fn the_papers_reset_and_power_off_runs_on_the_nesc_component() {
+    if !avr_tools() {
+        return;
+    }
+    let Some(nescc) = nescc_dir() else { return };
+    let e = "examples/atron";
+    for scenario in ["fig8-reset-connecting", "fig7-power-off"] {
+        let late = compare_with_host_on(
+            &[
+                &format!("{e}/eight2car.dr"),
+                "--sequence",
+                "eight2car",
+                "--from",
+                &format!("{e}/eight.json"),
+                "--expect",
+                &format!("{e}/car.json"),
+                "--scenario",
+                &format!("examples/scenarios/{scenario}.toml"),
+                "--seed",
+                "1",
+            ],
+            &format!("nesc-{scenario}"),
+            false,
+            &Firmware::Nesc(nescc.clone()),
+        )
+        .0;
+        eprintln!("nesC, {scenario}: largest difference {late:.1} ms");
+    }
+}
+
+/// One run of eight2car then car2eight from the eight back to the eight, with one reset of
+/// module `module` (M0..M6) at `at_ms`, on the simulator's seed `seed`.
+#[derive(Clone, Copy, Debug)]
+struct SingleReset {
+    module: u8,
+    at_ms: u32,
+    seed: u32,
+}
+
+/// `count` single resets drawn from `seed` (xorshift32, so the list is the same on every
+/// machine): any of the 7 modules, at any millisecond from 100 ms to 55 s (the run declares
+/// its end near 58 s), each run on a seed of its own.
+fn random_resets(count: usize, seed: u32) -> Vec<SingleReset> {
+    let mut x = seed.max(1);
+    let mut next = move || {
+        x ^= x << 13;
+        x ^= x >> 17;
+        x ^= x << 5;
+        x
+    };
+    (0..count)
+        .map(|_| SingleReset {
+            module: (next() % 7) as u8,
+            at_ms: 100 + next() % 54_900,
+            seed: 1 + next() % 1000,
+        })
+        .collect()
+}
+
+/// How many random resets a test runs: `default`, or DYNAROLE_RESET_RUNS (a longer soak).
+fn reset_runs(default: usize) -> usize {
+    std::env::var("DYNAROLE_RESET_RUNS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(default)
+}
+
+/// Runs `reset` on the host (`firmware` None) or on emulated boards; Ok when the run reached
+/// the goal (the eight again) with no violation and the module was reset once, else what
+/// went wrong.
+fn reset_run(reset: &SingleReset, firmware: Option<&Firmware>) -> Result<(), String> {
+    let scenario = scratch(&format!("reset-m{}-{}.toml", reset.module, reset.at_ms));
+    std::fs::write(
+        &scenario,
+        format!(
+            "[[reset]]\nmodule = \"M{}\"\nat_ms = {}\n",
+            reset.module, reset.at_ms
+        ),
+    )
+    .expect("write");
+    let e = "examples/atron";
+    let seed = reset.seed.to_string();
+    let mut args = vec![
+        "simulate".to_string(),
+        format!("{e}/eight2car.dr"),
+        "--sequence".into(),
+        "eight2car".into(),
+        "--sequence".into(),
+        "car2eight".into(),
+        "--from".into(),
+        format!("{e}/eight.json"),
+        "--expect".into(),
+        format!("{e}/eight.json"),
+        "--scenario".into(),
+        scenario.to_str().expect("utf-8 path").into(),
+        "--seed".into(),
+        seed,
+        "--json".into(),
+    ];
+    match firmware {
+        Some(Firmware::C) => args.extend(["--firmware".into(), "avr".into()]),
+        Some(Firmware::Nesc(_)) => args.extend(["--firmware".into(), "avr-nesc".into()]),
+        None => {}
+    }
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let out = simulate_on(&args, firmware);
+    let stdout = text(&out.stdout);
+    let report: serde_json::Value = serde_json::from_str(&stdout)
+        .map_err(|e| format!("no report ({e}): {stdout}{}", text(&out.stderr)))?;
+    let violations: Vec<String> = report["violations"]
+        .as_array()
+        .map(|v| {
+            v.iter()
+                .map(|x| format!("{} at {} ms on {}", x["check"], x["time_ms"], x["module"]))
+                .collect()
+        })
+        .unwrap_or_default();
+    let resets = report["modules"][usize::from(reset.module)]["resets"].as_u64();
+    if out.status.code() == Some(0)
+        && report["success"] == true
+        && report["configuration_matches"] == true
+        && violations.is_empty()
+        && resets == Some(1)
+    {
+        Ok(())
+    } else {
+        Err(format!(
+            "exit {:?}, success {}, configuration matches {}, {} resets of M{}, violations {violations:?}",
+            out.status.code(),
+            report["success"],
+            report["configuration_matches"],
+            resets.map_or("no count of".into(), |r| r.to_string()),
+            reset.module,
+        ))
+    }
+}
+
+/// Runs every reset of `resets` on the host and on `firmware`, printing each outcome as it
+/// comes (`-- --nocapture`), and fails with the list of runs that did not both succeed.
+fn resets_agree_with_the_host(resets: &[SingleReset], firmware: &Firmware, name: &str) {
+    let started = std::time::Instant::now();
+    let mut failed = Vec::new();
+    for (i, reset) in resets.iter().enumerate() {
+        let host = reset_run(reset, None);
+        let board = reset_run(reset, Some(firmware));
+        eprintln!(
+            "{name} {}/{}: M{} reset at {} ms, seed {}: host {}, {name} {} ({:.0} s so far)",
+            i + 1,
+            resets.len(),
+            reset.module,
+            reset.at_ms,
+            reset.seed,
+            host.as_ref().map_or_else(|e| e.as_str(), |()| "ok"),
+            board.as_ref().map_or_else(|e| e.as_str(), |()| "ok"),
+            started.elapsed().as_secs_f64()
+        );
+        if host.is_err() || board.is_err() {
+            failed.push(format!("{reset:?}: host {host:?}, {name} {board:?}"));
+        }
+    }
+    assert!(
+        failed.is_empty(),
+        "{} of {} single resets did not reach the goal without a violation on both:\n{}",
+        failed.len(),
+        resets.len(),
+        failed.join("\n")
+    );
+    eprintln!(
+        "{name}: {} of {} single resets reach the goal with no violation on the host and on the board",
+        resets.len(),
+        resets.len()
+    );
+}
+
+/// The regression of issue 26: M0 reset at 4,515 ms (seed 3) came back with no record, since
+/// the firmware set EEWE five cycles after EEMWE (the datasheet allows four) and so never
+/// wrote its EEPROM, and re-issued finished work (S2 at 4.516 s) where the host run succeeds.
+#[test]
+fn a_module_reset_at_4515_ms_keeps_its_record_on_emulated_atmega128s() {
+    if !avr_tools() {
+        return;
+    }
+    let reset = SingleReset {
+        module: 0,
+        at_ms: 4515,
+        seed: 3,
+    };
+    assert_eq!(reset_run(&reset, None), Ok(()), "host");
+    assert_eq!(
+        reset_run(&reset, Some(&Firmware::C)),
+        Ok(()),
+        "--firmware avr"
+    );
+    if let Some(nescc) = nescc_dir() {
+        assert_eq!(
+            reset_run(&reset, Some(&Firmware::Nesc(nescc))),
+            Ok(()),
+            "--firmware avr-nesc"
+        );
+    }
+}
+
+/// 24 random single resets (about 90 s): the emulated boards reach the goal with no violation
+/// wherever the host run does (before the EEPROM fix: host 24 of 24, boards 20 of 24).
+#[test]
+fn random_single_resets_agree_with_the_host_on_emulated_atmega128s() {
+    if !avr_tools() {
+        return;
+    }
+    resets_agree_with_the_host(&random_resets(reset_runs(24), 26), &Firmware::C, "avr");
+}
+
+/// The same on the nesC component, which wakes every 5 ms and so emulates slower: 8 runs
+/// (about 60 s), drawn from another seed.
+#[test]
+fn random_single_resets_agree_with_the_host_on_the_nesc_component() {
+    if !avr_tools() {
+        return;
+    }
+    let Some(nescc) = nescc_dir() else { return };
+    resets_agree_with_the_host(
+        &random_resets(reset_runs(8), 126),
+        &Firmware::Nesc(nescc),
+        "avr-nesc",
+    );
 }
