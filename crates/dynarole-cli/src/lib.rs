@@ -168,8 +168,8 @@ enum Command {
         /// the same run, byte for byte.
         #[arg(long, default_value_t = 0)]
         seed: u64,
-        /// Runs with seeds SEED, SEED+1, ...
-        #[arg(long, default_value_t = 1)]
+        /// Runs with seeds SEED, SEED+1, ... (at least 1).
+        #[arg(long, default_value_t = 1, value_parser = at_least_one)]
         repeat: u64,
         /// Write the event trace (fixed columns) here.
         #[arg(long, value_name = "FILE")]
@@ -526,5 +526,14 @@ mod tests {
                 );
             }
         }
+    }
+}
+
+/// `--repeat`: a count of runs, at least one (zero runs would report nothing and succeed).
+fn at_least_one(text: &str) -> Result<u64, String> {
+    match text.parse::<u64>() {
+        Ok(0) => Err("expected at least 1 run, found 0".into()),
+        Ok(n) => Ok(n),
+        Err(e) => Err(format!("expected a count of runs (1 or more): {e}")),
     }
 }

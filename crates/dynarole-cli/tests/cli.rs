@@ -45,6 +45,35 @@ fn a_mismatch_names_the_expected_and_the_reached_side() {
 }
 
 #[test]
+fn a_success_says_which_modules_never_declared_the_end_and_why() {
+    // M2 lets go of M1 first: cut off, it cannot hear that M0's turn ends the sequence. The
+    // run succeeds (every statement done), and once said nothing of M2.
+    let program = scratch(
+        "cut.dr",
+        "robot atron;\nsequence cut {\n    M2.Connector[2].retract();\n    \
+         M0.Joint.rotateFromToBy(0, 108, true, 150);\n}\n",
+    );
+    let scenario = scratch("cut.toml", "timeout_ms = 20000\n");
+    let out = dynarole(&[
+        "simulate",
+        program.to_str().expect("path"),
+        "--from",
+        "examples/verify/line3.json",
+        "--scenario",
+        scenario.to_str().expect("path"),
+    ]);
+    let stdout = text(&out.stdout);
+    assert_eq!(out.status.code(), Some(0), "{stdout}");
+    assert!(
+        stdout.contains(
+            "note: M2 never declared the end: no latched connection joins it to a module that did"
+        ),
+        "{stdout}"
+    );
+    assert!(!stdout.contains("note: M0"), "{stdout}");
+}
+
+#[test]
 fn check_accepts_the_examples() {
     let out = dynarole(&["check", "examples/atron/eight2car.dr"]);
     assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));

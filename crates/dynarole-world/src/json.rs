@@ -100,6 +100,7 @@ impl Configuration {
 
 /// Parses either robot's file.
 fn parse_configuration(text: &str) -> Result<Configuration, ConfigError> {
+    not_an_object(text)?;
     let probe: Probe = deserialize(text)?;
     match probe.robot.as_deref() {
         Some("ATRON") => parse_atron(deserialize(text)?).map(Configuration::Atron),
@@ -113,6 +114,37 @@ fn parse_configuration(text: &str) -> Result<Configuration, ConfigError> {
             "missing field; expected \"ATRON\" or \"MTRAN\"",
         )),
     }
+}
+
+/// A file that does not start as a JSON object is not a configuration at all (a program given
+/// as `--from`, say): said as such, where JSON's own message would be "expected value".
+fn not_an_object(text: &str) -> Result<(), ConfigError> {
+    let Some((offset, found)) = text.char_indices().find(|(_, c)| !c.is_whitespace()) else {
+        return Err(ConfigError::new(
+            "document",
+            "the file is empty; expected a configuration (a JSON object)",
+        ));
+    };
+    if found == '{' {
+        return Ok(());
+    }
+    let before = &text[..offset];
+    let line = before.matches('\n').count() + 1;
+    let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    let program = text[offset..].starts_with("robot") || text.contains("sequence ");
+    let hint = if program {
+        "; this looks like a DynaRole program (.dr), not a configuration (.json)"
+    } else {
+        ""
+    };
+    Err(ConfigError::new(
+        "document",
+        format!(
+            "expected a configuration (a JSON object, starting with `{{`), found `{}` at line \
+             {line}, column {column}{hint}",
+            found.escape_debug()
+        ),
+    ))
 }
 
 /// Deserializes the whole text, tracking the field path of any error and rejecting trailing
