@@ -27,18 +27,36 @@ impl RecordArgs {
         self.record.is_some() || self.html.is_some() || !self.poses_at.is_empty()
     }
 
-    /// Writes what was asked for.
+    /// Writes what was asked for; the poses are worked out first, so that a time the
+    /// recording cannot answer writes nothing.
     pub fn write(&self, recording: &Recording) -> Result<(), Failure> {
+        let poses = pose_lines(recording, &self.poses_at)?;
         if let Some(path) = &self.record {
             let text = serde_json::to_string(recording)
                 .map_err(|e| Failure::Internal(format!("cannot serialise the recording: {e}")))?;
+            within_the_recording_limit(text.len())?;
             write(path, &text)?;
         }
         if let Some(path) = &self.html {
             write_html(recording, path)?;
         }
-        print_poses(recording, &self.poses_at)
+        poses.iter().for_each(|line| println!("{line}"));
+        Ok(())
     }
+}
+
+/// A recording larger than `view` reads is refused before it is written.
+fn within_the_recording_limit(bytes: usize) -> Result<(), Failure> {
+    let limit = dynarole_input::MAX_RECORDING_BYTES;
+    if bytes as u64 > limit {
+        return Err(Failure::Input(format!(
+            "the recording would be {} MiB, over the {} MiB that `dynarole view` reads: record a \
+             shorter run",
+            bytes >> 20,
+            limit >> 20
+        )));
+    }
+    Ok(())
 }
 
 fn write(path: &Path, text: &str) -> Result<(), Failure> {
@@ -54,27 +72,30 @@ fn write_html(recording: &Recording, path: &Path) -> Result<(), Failure> {
 }
 
 /// One JSON line per time: `{"time_ms": T, "modules": [{"name": N, "centre": [x, y, z]}]}`.
-fn print_poses(recording: &Recording, times: &[f64]) -> Result<(), Failure> {
-    for t in times {
-        if !t.is_finite() || *t < 0.0 {
-            return Err(Failure::Usage(format!(
-                "--poses-at {t}: expected a time in milliseconds, 0 or more"
-            )));
-        }
-        let poses = poses_at(recording, *t)
-            .ok_or_else(|| Failure::Input("the recording has no keyframe".into()))?;
-        let modules: Vec<serde_json::Value> = recording
-            .modules
-            .iter()
-            .zip(&poses)
-            .map(|(m, p)| serde_json::json!({ "name": m.name, "centre": p.centre }))
-            .collect();
-        println!(
-            "{}",
-            serde_json::json!({ "time_ms": t, "modules": modules })
-        );
+fn pose_lines(recording: &Recording, times: &[f64]) -> Result<Vec<String>, Failure> {
+    times.iter().map(|&t| pose_line(recording, t)).collect()
+}
+
+fn pose_line(recording: &Recording, t: f64) -> Result<String, Failure> {
+    if !t.is_finite() || t < 0.0 {
+        return Err(Failure::Usage(format!(
+            "--poses-at {t}: expected a time in milliseconds, 0 or more"
+        )));
     }
-    Ok(())
+    let first = recording.keyframes.first().map_or(0.0, |k| k.time_ms);
+    let poses = poses_at(recording, t).ok_or_else(|| {
+        Failure::Input(format!(
+            "--poses-at {t}: the recording's first keyframe is at {first} ms; expected a time \
+             from {first} ms"
+        ))
+    })?;
+    let modules: Vec<serde_json::Value> = recording
+        .modules
+        .iter()
+        .zip(&poses)
+        .map(|(m, p)| serde_json::json!({ "name": m.name, "centre": p.centre }))
+        .collect();
+    Ok(serde_json::json!({ "time_ms": t, "modules": modules }).to_string())
 }
 
 /// What `view` was asked to do.
@@ -98,13 +119,15 @@ pub fn run(args: &ViewArgs) -> Result<ExitCode, Failure> {
             "--fps and --speed must be more than 0".into(),
         ));
     }
-    let text = load::read_source(args.recording)?;
+    let text = dynarole_input::read_recording(args.recording)
+        .map_err(|e| Failure::Input(e.to_string()))?;
     let recording = Recording::from_json(&text)
         .map_err(|e| Failure::Input(format!("{}: {e}", args.recording.display())))?;
+    let poses = pose_lines(&recording, args.poses_at)?;
     if let Some(path) = args.output {
         write_html(&recording, path)?;
     }
-    print_poses(&recording, args.poses_at)?;
+    poses.iter().for_each(|line| println!("{line}"));
     if let Some(out) = args.video {
         video(&recording, out, args)?;
         eprintln!("wrote {}", out.display());

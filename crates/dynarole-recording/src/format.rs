@@ -226,7 +226,70 @@ impl Recording {
         {
             return Err("field `events` or `markers`: a module out of range".into());
         }
-        Ok(())
+        self.check_statements()?;
+        self.check_times()
+    }
+
+    /// Every statement index points at a statement, and every statement at its source text
+    /// (the page highlights it there: an index out of range once stopped the page).
+    fn check_statements(&self) -> Result<(), String> {
+        let n = self.statements.len();
+        if let Some(k) = self.motions.iter().position(|m| m.statement >= n) {
+            return Err(format!(
+                "field `motions[{k}].statement`: {} is not one of the {n} statements",
+                self.motions[k].statement
+            ));
+        }
+        let bad_event = |e: &Event| e.statement.is_some_and(|s| s >= n);
+        if let Some(k) = self.events.iter().position(bad_event) {
+            return Err(format!(
+                "field `events[{k}].statement`: not one of the {n} statements"
+            ));
+        }
+        let Some(source) = &self.source else {
+            return Ok(());
+        };
+        let text = &source.text;
+        let outside = |s: &StatementInfo| {
+            s.start > s.end
+                || s.end > text.len()
+                || !text.is_char_boundary(s.start)
+                || !text.is_char_boundary(s.end)
+                || s.line == 0
+        };
+        match self.statements.iter().position(outside) {
+            Some(k) => Err(format!(
+                "field `statements[{k}]`: its byte range or line is not within `source.text`"
+            )),
+            None => Ok(()),
+        }
+    }
+
+    /// Times are finite, keyframes in order, and every motion ends no earlier than it starts.
+    fn check_times(&self) -> Result<(), String> {
+        if !(self.end_ms.is_finite() && self.end_ms >= 0.0) {
+            return Err("field `end_ms`: expected a time of 0 or more".into());
+        }
+        let times = self.keyframes.iter().map(|k| k.time_ms);
+        let mut previous = f64::NEG_INFINITY;
+        for (k, t) in times.enumerate() {
+            if !t.is_finite() || t < previous {
+                return Err(format!(
+                    "field `keyframes[{k}].time_ms`: expected a finite time, not before the \
+                     keyframe before it"
+                ));
+            }
+            previous = t;
+        }
+        let bad = |m: &Motion| {
+            !(m.start_ms.is_finite() && m.end_ms.is_finite() && m.start_ms <= m.end_ms)
+        };
+        match self.motions.iter().position(bad) {
+            Some(k) => Err(format!(
+                "field `motions[{k}]`: expected finite times with `start_ms` <= `end_ms`"
+            )),
+            None => Ok(()),
+        }
     }
 }
 
