@@ -76,36 +76,96 @@ fn too_long_to_show(file: &SimpleFile<&str, &str>, diagnostic: &Diagnostic) -> O
     ))
 }
 
+/// Longest line of a message printed whole. Messages quote what users wrote (a name, a
+/// plugin's expression), and a hostile file can make that millions of bytes: the middle of a
+/// longer line is left out, and said to be.
+const MAX_MESSAGE_LINE: usize = 400;
+
+/// `text` with the middle of each line longer than [`MAX_MESSAGE_LINE`] replaced by a note of
+/// how much was left out. Every message the commands print goes through here.
+pub fn elide(text: &str) -> String {
+    text.split('\n')
+        .map(elide_line)
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+fn elide_line(line: &str) -> String {
+    if line.len() <= MAX_MESSAGE_LINE {
+        return line.to_string();
+    }
+    let head = floor_boundary(line, MAX_MESSAGE_LINE * 2 / 3);
+    let tail = ceil_boundary(line, line.len() - MAX_MESSAGE_LINE / 4);
+    format!(
+        "{} [... {} bytes not shown ...] {}",
+        &line[..head],
+        tail - head,
+        &line[tail..]
+    )
+}
+
+fn floor_boundary(s: &str, mut at: usize) -> usize {
+    while !s.is_char_boundary(at) {
+        at -= 1;
+    }
+    at
+}
+
+fn ceil_boundary(s: &str, mut at: usize) -> usize {
+    while !s.is_char_boundary(at) {
+        at += 1;
+    }
+    at
+}
+
 fn to_report(diagnostic: &Diagnostic) -> Report<()> {
     let d = diagnostic.describe();
     let severity = match d.severity {
         Severity::Error => ReportSeverity::Error,
         Severity::Warning => ReportSeverity::Warning,
     };
-    let mut labels = vec![Label::primary((), diagnostic.span.range()).with_message(d.label)];
+    let mut labels =
+        vec![Label::primary((), diagnostic.span.range()).with_message(elide(&d.label))];
     for (span, text) in d.secondary {
-        labels.push(Label::secondary((), span.range()).with_message(text));
+        labels.push(Label::secondary((), span.range()).with_message(elide(&text)));
     }
     let notes = d
         .hint
-        .map(|h| vec![format!("hint: {h}")])
+        .map(|h| vec![elide(&format!("hint: {h}"))])
         .unwrap_or_default();
     Report::new(severity)
         .with_code(d.code)
-        .with_message(d.title)
+        .with_message(elide(&d.title))
         .with_labels(labels)
         .with_notes(notes)
 }
 
 pub fn failure(failure: &Failure) {
     match failure {
-        Failure::Input(message) | Failure::Usage(message) => eprintln!("error: {message}"),
-        Failure::Internal(message) => eprintln!("internal error: {message}"),
+        Failure::Input(message) | Failure::Usage(message) => {
+            eprintln!("error: {}", elide(message));
+        }
+        Failure::Internal(message) => eprintln!("internal error: {}", elide(message)),
         Failure::Toml { path, text, error } => {
             let writer = StandardStream::stderr(color_choice());
             write_toml_error(&mut writer.lock(), path, text, error);
         }
     }
+}
+
+/// For an error on a TOML line too long to print: where it is, in words.
+fn toml_place_too_long(file: &SimpleFile<&str, &str>, at: usize) -> Option<String> {
+    let line = file.line_index((), at).ok()?;
+    let range = file.line_range((), line).ok()?;
+    if range.len() <= MAX_SHOWN_LINE {
+        return None;
+    }
+    let column = file.column_number((), line, at).ok()?;
+    Some(format!(
+        "at {}:{}:{column} (the line is longer than {MAX_SHOWN_LINE} bytes and is not shown)",
+        file.name(),
+        line + 1
+    ))
 }
 
 /// Writes an error of the TOML file `path` like a `.dr` diagnostic: file, line and column, the
@@ -121,17 +181,21 @@ pub fn write_toml_error(out: &mut dyn WriteColor, path: &str, text: &str, error:
             let trimmed = text[s.clone()].trim_end();
             s.start..s.start + trimmed.len()
         });
+    let message = elide(&error.to_string());
+    let mut notes = Vec::new();
     let report = match span {
-        Some(span) => Report::error()
-            .with_message(error.to_string())
-            .with_labels(vec![Label::primary((), span)]),
-        None => Report::error().with_message(format!("{path}: {error}")),
+        Some(span) => match toml_place_too_long(&file, span.start) {
+            Some(place) => {
+                notes.push(place);
+                Report::error().with_message(message)
+            }
+            None => Report::error()
+                .with_message(message)
+                .with_labels(vec![Label::primary((), span)]),
+        },
+        None => Report::error().with_message(elide(&format!("{path}: {error}"))),
     };
-    let notes = error
-        .hint
-        .as_ref()
-        .map(|h| vec![format!("hint: {h}")])
-        .unwrap_or_default();
+    notes.extend(error.hint.as_ref().map(|h| elide(&format!("hint: {h}"))));
     if term::emit(
         out,
         &term::Config::default(),
@@ -141,6 +205,24 @@ pub fn write_toml_error(out: &mut dyn WriteColor, path: &str, text: &str, error:
     .is_err()
     {
         // Nothing better to report to than the plain message.
-        let _ = writeln!(out, "error: {path}: {error}");
+        let _ = writeln!(out, "error: {}", elide(&format!("{path}: {error}")));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::elide;
+
+    #[test]
+    fn long_lines_lose_their_middle_and_short_ones_nothing() {
+        assert_eq!(elide("short\nlines"), "short\nlines");
+        // Two-byte characters: the cuts fall on character boundaries.
+        let long = "é".repeat(1_000);
+        let shown = elide(&format!("first\n{long}\nlast"));
+        let lines: Vec<&str> = shown.lines().collect();
+        assert_eq!(lines[0], "first");
+        assert_eq!(lines[2], "last");
+        assert!(lines[1].len() < 500, "{}", lines[1].len());
+        assert!(lines[1].contains("bytes not shown"), "{}", lines[1]);
     }
 }

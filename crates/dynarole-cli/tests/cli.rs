@@ -74,6 +74,38 @@ fn a_success_says_which_modules_never_declared_the_end_and_why() {
 }
 
 #[test]
+fn messages_quoting_huge_user_text_stay_small() {
+    // A 100,000-character name, quoted by the message that lists the file's sequences, and a
+    // 100,000-character module name in a scenario: once printed whole.
+    let long = "s".repeat(100_000);
+    let program = scratch(
+        "long-name.dr",
+        &format!("robot atron;\nsequence {long} {{\n    M0.Joint.rotateFromToBy(0, 108, true, 150);\n}}\n"),
+    );
+    let out = dynarole(&["reverse", program.to_str().expect("path"), "nosuch"]);
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.len() < 2_000, "{} bytes", stderr.len());
+    assert!(stderr.contains("bytes not shown"), "{stderr}");
+    let scenario = scratch(
+        "long-module.toml",
+        &format!("[[reset]]\nmodule = \"{long}\"\nat_ms = 10\n"),
+    );
+    let out = dynarole(&[
+        "simulate",
+        "examples/atron/eight2car.dr",
+        "--from",
+        "examples/atron/eight.json",
+        "--scenario",
+        scenario.to_str().expect("path"),
+    ]);
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(stderr.len() < 2_000, "{} bytes", stderr.len());
+    assert!(stderr.contains("is not shown"), "{stderr}");
+}
+
+#[test]
 fn check_accepts_the_examples() {
     let out = dynarole(&["check", "examples/atron/eight2car.dr"]);
     assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
