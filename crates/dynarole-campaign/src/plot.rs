@@ -13,17 +13,51 @@ use std::path::{Path, PathBuf};
 /// The whole picture; the legend takes the right-hand strip, outside the data.
 const SIZE: (u32, u32) = (1000, 540);
 const LEGEND_WIDTH: u32 = 190;
-const COLOURS: [RGBColor; 6] = [
+const COLOURS: [RGBColor; LOOKS] = [
     RGBColor(31, 119, 180),
     RGBColor(230, 120, 20),
     RGBColor(44, 160, 44),
     RGBColor(200, 40, 40),
     RGBColor(148, 103, 189),
     RGBColor(120, 120, 120),
+    RGBColor(140, 86, 75),
+    RGBColor(210, 80, 170),
 ];
 /// Dash and gap lengths in pixels per line (0: solid), so that lines lying on each other
 /// (at 0 % or 100 %, say) still show both.
-const DASHES: [(u32, u32); 6] = [(0, 0), (12, 6), (3, 4), (18, 4), (8, 3), (2, 7)];
+const DASHES: [(u32, u32); LOOKS] = [
+    (0, 0),
+    (12, 6),
+    (3, 4),
+    (18, 4),
+    (8, 3),
+    (2, 7),
+    (14, 3),
+    (5, 5),
+];
+/// Colours, dashes and marker shapes there are of each: eight lines differ in all three (the
+/// reproduction campaign draws seven protocols), and up to 64 in colour and marker together.
+const LOOKS: usize = 8;
+
+/// How line `k` is drawn: its colour, its marker shape and its dashes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Look {
+    colour: RGBColor,
+    shape: usize,
+    dash: (u32, u32),
+}
+
+/// Line `k`'s look: decided here once, for the line, its markers and its legend row. Past
+/// eight lines the shape and the dashes move on by one per round of colours, so that no two
+/// of the first 64 lines share both colour and marker.
+fn look(k: usize) -> Look {
+    let round = k / LOOKS;
+    Look {
+        colour: COLOURS[k % LOOKS],
+        shape: (k + round) % LOOKS,
+        dash: DASHES[(k + 2 * round) % LOOKS],
+    }
+}
 /// Each line's points are shifted sideways by this fraction of the x range (times its rank
 /// from the middle line), so coinciding points stay apart.
 const DODGE: f64 = 0.02;
@@ -255,10 +289,10 @@ fn draw_line<'b>(
     k: usize,
     shift: f64,
 ) -> DrawResult<'b> {
-    let colour = COLOURS[k % COLOURS.len()];
+    let colour = look(k).colour;
     let style = colour.stroke_width(2);
     let points: Vec<(f64, f64)> = line.points.iter().map(|p| (p.0 + shift, p.1 .0)).collect();
-    match DASHES[k % DASHES.len()] {
+    match look(k).dash {
         (0, _) => chart.draw_series(LineSeries::new(points.clone(), style))?,
         (dash, gap) => {
             chart.draw_series(DashedLineSeries::new(points.clone(), dash, gap, style))?
@@ -278,8 +312,8 @@ fn draw_line<'b>(
 
 /// Line `k`'s marker at `c`, filled, or hollow (white inside) for a value from a single run.
 fn draw_marker<'b>(area: &Area<'b>, k: usize, c: (i32, i32), hollow: bool) -> DrawResult<'b> {
-    let colour = COLOURS[k % COLOURS.len()];
-    let outline = marker(k, c);
+    let Look { colour, shape, .. } = look(k);
+    let outline = marker(shape, c);
     if hollow {
         area.draw(&Polygon::new(outline.clone(), WHITE.filled()))?;
         let mut closed = outline;
@@ -290,11 +324,11 @@ fn draw_marker<'b>(area: &Area<'b>, k: usize, c: (i32, i32), hollow: bool) -> Dr
     }
 }
 
-/// The marker of line `k` around `c`: circle, square, triangle, diamond, inverted triangle,
-/// plus; each line its own shape.
-fn marker(k: usize, c: (i32, i32)) -> Vec<(i32, i32)> {
+/// Marker `shape` around `c`: circle, square, triangle, diamond, inverted triangle, plus,
+/// hexagon, cross.
+fn marker(shape: usize, c: (i32, i32)) -> Vec<(i32, i32)> {
     let at = |dx: i32, dy: i32| (c.0 + dx, c.1 + dy);
-    match k % 6 {
+    match shape % LOOKS {
         0 => (0..16)
             .map(|i| {
                 let a = std::f64::consts::PI * f64::from(i) / 8.0;
@@ -308,6 +342,28 @@ fn marker(k: usize, c: (i32, i32)) -> Vec<(i32, i32)> {
         2 => vec![at(0, -6), at(6, 5), at(-6, 5)],
         3 => vec![at(0, -6), at(6, 0), at(0, 6), at(-6, 0)],
         4 => vec![at(0, 6), at(6, -5), at(-6, -5)],
+        6 => vec![
+            at(-3, -5),
+            at(3, -5),
+            at(6, 0),
+            at(3, 5),
+            at(-3, 5),
+            at(-6, 0),
+        ],
+        7 => vec![
+            at(-4, -6),
+            at(0, -2),
+            at(4, -6),
+            at(6, -4),
+            at(2, 0),
+            at(6, 4),
+            at(4, 6),
+            at(0, 2),
+            at(-4, 6),
+            at(-6, 4),
+            at(-2, 0),
+            at(-6, -4),
+        ],
         _ => vec![
             at(-2, -6),
             at(2, -6),
@@ -330,11 +386,11 @@ fn marker(k: usize, c: (i32, i32)) -> Vec<(i32, i32)> {
 fn draw_legend<'b>(area: &Area<'b>, figure: &Figure) -> DrawResult<'b> {
     let top = 70;
     for (k, line) in figure.lines.iter().enumerate() {
-        let colour = COLOURS[k % COLOURS.len()];
+        let colour = look(k).colour;
         let y = top + 26 * i32::try_from(k).unwrap_or(0);
         let style = colour.stroke_width(2);
         let ends = vec![(8, y), (48, y)];
-        match DASHES[k % DASHES.len()] {
+        match look(k).dash {
             (0, _) => area.draw(&PathElement::new(ends, style))?,
             (dash, gap) => area.draw(&plotters::element::DashedPathElement::new(
                 ends, dash, gap, style,
@@ -498,8 +554,9 @@ mod tests {
         };
         let data_right = i64::from(SIZE.0 - LEGEND_WIDTH);
         assert!(legend_x("lattice") > data_right && legend_x("paper") > data_right);
-        let shapes: Vec<usize> = (0..6).map(|k| marker(k, (0, 0)).len()).collect();
-        assert_eq!(shapes, [16, 4, 3, 4, 3, 12]);
+        let shapes: Vec<usize> = (0..LOOKS).map(|k| marker(k, (0, 0)).len()).collect();
+        assert_eq!(shapes, [16, 4, 3, 4, 3, 12, 6, 12]);
+        assert_ne!(marker(5, (0, 0)), marker(7, (0, 0)), "plus and cross");
         assert_ne!(marker(1, (0, 0)), marker(3, (0, 0)), "square and diamond");
         assert_ne!(
             marker(2, (0, 0)),
@@ -512,6 +569,25 @@ mod tests {
                 "line {k} has its own dashes"
             );
         }
+    }
+
+    #[test]
+    fn no_two_lines_look_alike() {
+        // The reproduction campaign's seventh protocol once took the first one's look.
+        let looks: Vec<Look> = (0..LOOKS).map(look).collect();
+        for (k, a) in looks.iter().enumerate() {
+            for b in &looks[k + 1..] {
+                assert!(a.colour != b.colour && a.shape != b.shape && a.dash != b.dash);
+            }
+        }
+        let pairs: std::collections::HashSet<((u8, u8, u8), usize)> = (0..LOOKS * LOOKS)
+            .map(|k| (look(k).colour.rgb(), look(k).shape))
+            .collect();
+        assert_eq!(
+            pairs.len(),
+            LOOKS * LOOKS,
+            "64 lines differ in colour or marker"
+        );
     }
 
     #[test]
