@@ -654,7 +654,13 @@ static uint8_t eeprom_get(uint16_t addr)
     while (EECR & (1u << EEWE)) {
     }
     EEAR = addr;
-    EECR = (uint8_t)(EECR | (1u << EERE));
+    /* EECR |= 1 << EERE as an `sbi` whatever the options (the compiler's read-modify-write
+     * through X, here and inlined in dr_hal_nv_write, took 16 B more under DR_MCU_FLAGS); no
+     * timing matters here. */
+    __asm__ __volatile__("sbi %[eecr], %[eere]"
+                         :
+                         : [eecr] "I"(_SFR_IO_ADDR(EECR)), [eere] "I"(EERE)
+                         : "memory");
     return EEDR;
 }
 
