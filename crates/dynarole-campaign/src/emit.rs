@@ -44,16 +44,9 @@ pub fn job_files(scheduler: Scheduler, jobs: &Jobs) -> Vec<JobFile> {
 }
 
 /// Writes the job files into `jobs.dir` (and creates `logs/` there); returns their paths.
+/// Paths that a job file could not carry safely are refused first (see [`check`]).
 pub fn write(scheduler: Scheduler, jobs: &Jobs) -> Result<Vec<PathBuf>, Error> {
-    let spaced = |p: &Path| p.to_string_lossy().contains(char::is_whitespace);
-    if scheduler == Scheduler::Htcondor && (spaced(&jobs.dir) || spaced(&jobs.campaign)) {
-        return Err(Error::Input(format!(
-            "{}, {}: HTCondor's submit and DAG files cannot name paths with spaces; \
-             choose others",
-            jobs.campaign.display(),
-            jobs.dir.display()
-        )));
-    }
+    check(scheduler, jobs)?;
     let logs = jobs.dir.join("logs");
     std::fs::create_dir_all(&logs).map_err(|e| Error::io(&logs, e))?;
     let mut written = Vec::new();
@@ -66,6 +59,95 @@ pub fn write(scheduler: Scheduler, jobs: &Jobs) -> Result<Vec<PathBuf>, Error> {
         written.push(path);
     }
     Ok(written)
+}
+
+/// Refuses what the job files could not carry as written. Every path is written as a quoted
+/// shell word in the scripts, but it also appears in comments and in `commands.txt`, which
+/// end at a line break, so no control character may appear in it; Slurm reads a backslash
+/// in `--output` as "no `%a`" (every shard would write one log); HTCondor's submit and DAG
+/// files cannot quote at all, so its directory keeps to the characters that need no quoting.
+pub fn check(scheduler: Scheduler, jobs: &Jobs) -> Result<(), Error> {
+    if jobs.threads == 0 {
+        return Err(Error::Input(
+            "-j 0: each shard needs at least one worker thread (the job files ask the \
+             scheduler for -j cores per shard)"
+                .into(),
+        ));
+    }
+    let campaign = utf8("the campaign file", &jobs.campaign)?;
+    let dir = utf8("the output directory (-o DIR)", &jobs.dir)?;
+    refuse_char(
+        "the campaign file",
+        campaign,
+        char::is_control,
+        "no job file",
+    )?;
+    refuse_char(
+        "the output directory (-o DIR)",
+        dir,
+        char::is_control,
+        "no job file",
+    )?;
+    match scheduler {
+        Scheduler::Slurm => refuse_char(
+            "the output directory (-o DIR)",
+            dir,
+            |c| c == '\\',
+            "Slurm's --output (a backslash turns off its %a)",
+        ),
+        Scheduler::Htcondor => refuse_char(
+            "the output directory (-o DIR)",
+            dir,
+            |c| !is_plain(c),
+            "HTCondor's submit and DAG files (they cannot quote)",
+        ),
+        Scheduler::Parallel => Ok(()),
+    }
+}
+
+/// The path as text: a job file holds text, and a lossy copy would name another path.
+fn utf8<'a>(field: &str, path: &'a Path) -> Result<&'a str, Error> {
+    path.to_str().ok_or_else(|| {
+        Error::Input(format!(
+            "{field} {}: the path is not UTF-8 text, which job files cannot name; choose another",
+            path.display()
+        ))
+    })
+}
+
+/// An error naming `field` and the first character of `text` that `bad` refuses.
+fn refuse_char(
+    field: &str,
+    text: &str,
+    bad: impl Fn(char) -> bool,
+    what: &str,
+) -> Result<(), Error> {
+    match text.chars().find(|&c| bad(c)) {
+        None => Ok(()),
+        Some(c) => Err(Error::Input(format!(
+            "{field} \"{}\" holds {}, which {what} can carry; choose another path",
+            text.escape_debug(),
+            describe(c)
+        ))),
+    }
+}
+
+/// `a newline (U+000A)`, `the character '$' (U+0024)`.
+fn describe(c: char) -> String {
+    let name = match c {
+        '\n' => "a newline".to_string(),
+        '\r' => "a carriage return".to_string(),
+        '\t' => "a tab".to_string(),
+        c if c.is_control() => "a control character".to_string(),
+        ' ' => "a space".to_string(),
+        c => format!("the character '{c}'"),
+    };
+    format!("{name} (U+{:04X})", u32::from(c))
+}
+
+/// Characters that need no quoting in a shell word or any scheduler's file.
+fn is_plain(c: char) -> bool {
+    c.is_ascii_alphanumeric() || "_./-+=:,@%".contains(c)
 }
 
 #[cfg(unix)]
@@ -84,7 +166,7 @@ fn make_executable(_: &Path) -> Result<(), Error> {
 struct Words {
     campaign: String,
     dir: String,
-    /// `DIR` unquoted, to join file names to.
+    /// `DIR` unquoted (as a path: see [`as_argument`]), to join file names to.
     dir_raw: String,
     name: String,
 }
@@ -95,10 +177,11 @@ impl Words {
             .campaign
             .file_stem()
             .map_or("campaign".into(), |s| s.to_string_lossy().into_owned());
+        let dir_raw = as_argument(&jobs.dir);
         Words {
-            campaign: quote(&jobs.campaign.display().to_string()),
-            dir: quote(&jobs.dir.display().to_string()),
-            dir_raw: jobs.dir.display().to_string(),
+            campaign: quote(&as_argument(&jobs.campaign)),
+            dir: quote(&dir_raw),
+            dir_raw,
             name: name
                 .chars()
                 .map(|c| {
@@ -117,6 +200,15 @@ impl Words {
         quote(&format!("{}/{file}", self.dir_raw))
     }
 
+    /// Slurm's `--output` for a log in `DIR/logs/` (`%` is Slurm's own pattern character,
+    /// `%%` a percent sign of the path), as a shell word.
+    fn slurm_log(&self, file: &str) -> String {
+        quote(&format!(
+            "--output={}/logs/{file}",
+            self.dir_raw.replace('%', "%%")
+        ))
+    }
+
     /// The command of shard `index` (a shell word or variable) of `jobs.shards`.
     fn shard(&self, jobs: &Jobs, index: &str, threads: &str) -> String {
         format!(
@@ -129,46 +221,70 @@ impl Words {
         format!("\"${{DYNAROLE:-dynarole}}\" campaign merge {}", self.dir)
     }
 
-    /// Stops a job started from the wrong directory with a message saying which one.
+    /// Stops a job started from the wrong directory with a message saying which one. The
+    /// paths are `printf`'s arguments, never part of its format or of a double-quoted text,
+    /// so that nothing in them is expanded.
     fn check_directory(&self) -> String {
         format!(
-            "if [ ! -f {c} ]; then\n  echo \"{c} not found in $(pwd): submit from the directory \
-             where the job files were written\" >&2\n  exit 2\nfi\n",
+            "if [ ! -f {c} ]; then\n  printf '%s not found in %s: submit from the directory \
+             where the job files were written\\n' {c} \"$(pwd)\" >&2\n  exit 2\nfi\n",
             c = self.campaign
         )
     }
 }
 
-/// `word` for a POSIX shell: as is when it has only safe characters, else single-quoted.
+/// A path as a command's argument: a relative one starting with `-` or `+` gets `./` (it
+/// would read as an option, or as GNU parallel's "append to the joblog").
+fn as_argument(path: &Path) -> String {
+    let text = path.display().to_string();
+    if text.starts_with(['-', '+']) {
+        format!("./{text}")
+    } else {
+        text
+    }
+}
+
+/// `word` for a POSIX shell: as is when it has only safe characters, else single-quoted
+/// (inside single quotes only `'` itself is special).
 fn quote(word: &str) -> String {
-    let safe = |c: char| c.is_ascii_alphanumeric() || "_./-+=:,@%".contains(c);
-    if !word.is_empty() && word.chars().all(safe) {
+    if !word.is_empty() && word.chars().all(is_plain) {
         word.to_string()
     } else {
         format!("'{}'", word.replace('\'', "'\\''"))
     }
 }
 
+/// `text` in a `#` comment line: control characters (refused in paths by [`check`]) could
+/// end the comment, so none is written as is.
+fn comment(text: &str) -> String {
+    text.chars()
+        .map(|c| if c.is_control() { '?' } else { c })
+        .collect()
+}
+
 fn header(what: &str, jobs: &Jobs, words: &Words) -> String {
     format!(
-        "# {what}: the campaign {} in {} shards.\n\
+        "# {}: the campaign {} in {} shards.\n\
          # Written by `dynarole campaign --emit`; paths are relative to the directory it ran in:\n\
          # submit from there. DYNAROLE names the dynarole program if it is not on the PATH.\n",
-        words.campaign, jobs.shards
+        comment(what),
+        comment(&words.campaign),
+        jobs.shards
     )
 }
 
 fn slurm(jobs: &Jobs) -> Vec<JobFile> {
     let w = Words::of(jobs);
+    // No path on an `#SBATCH` line: sbatch splits those lines by its own rules, not the
+    // shell's. The logs are named on sbatch's command line in `submit.sh` instead.
     let shards = format!(
         "#!/bin/bash\n{}#SBATCH --job-name=dynarole-{}\n#SBATCH --array=0-{}%{}\n\
-         #SBATCH --cpus-per-task={}\n#SBATCH --output={}\nset -euo pipefail\n{}exec {}\n",
+         #SBATCH --cpus-per-task={}\nset -euo pipefail\n{}exec {}\n",
         header("One Slurm array task per shard", jobs, &w),
         w.name,
         jobs.shards - 1,
         jobs.throttle,
         jobs.threads,
-        w.at("logs/shard-%a.out"),
         w.check_directory(),
         w.shard(
             jobs,
@@ -177,28 +293,28 @@ fn slurm(jobs: &Jobs) -> Vec<JobFile> {
         ),
     );
     let merge = format!(
-        "#!/bin/bash\n{}#SBATCH --job-name=dynarole-{}-merge\n#SBATCH --output={}\n\
-         set -euo pipefail\nexec {}\n",
+        "#!/bin/bash\n{}#SBATCH --job-name=dynarole-{}-merge\nset -euo pipefail\nexec {}\n",
         header(
             "The merge of the shards, once all of them succeeded",
             jobs,
             &w
         ),
         w.name,
-        w.at("logs/merge.out"),
         w.merge()
     );
     let submit = format!(
-        "#!/bin/sh\n{}set -eu\nshards=$(sbatch --parsable {})\nshards=${{shards%%;*}}\n\
-         merge=$(sbatch --parsable --dependency=afterok:\"$shards\" {})\nmerge=${{merge%%;*}}\n\
-         echo \"shards: job $shards; merge: job $merge\"\n\
-         echo \"progress: dynarole campaign status {}\"\n",
+        "#!/bin/sh\n{}set -eu\nshards=$(sbatch --parsable {} {})\nshards=${{shards%%;*}}\n\
+         merge=$(sbatch --parsable --dependency=afterok:\"$shards\" {} {})\n\
+         merge=${{merge%%;*}}\necho \"shards: job $shards; merge: job $merge\"\n\
+         printf 'progress: dynarole campaign status %s\\n' {}\n",
         header(
-            "Submits the shards, then the merge once they all succeeded,",
+            "Submits the shards, then the merge once they all succeeded",
             jobs,
             &w
         ),
+        w.slurm_log("shard-%a.out"),
         w.at("shards.sbatch"),
+        w.slurm_log("merge.out"),
         w.at("merge.sbatch"),
         w.dir
     );

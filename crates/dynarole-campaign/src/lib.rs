@@ -18,7 +18,9 @@ mod stats;
 mod tables;
 
 pub use dynarole_input::{read_limited, MAX_INPUT_BYTES};
-pub use emit::{job_files, write as write_job_files, JobFile, Jobs, Scheduler};
+pub use emit::{
+    check as check_jobs, job_files, write as write_job_files, JobFile, Jobs, Scheduler,
+};
 pub use plan::{plan, Axis, Faults, Plan, PlannedRun, MAX_RUNS};
 pub use plot::{bounds, rasterise_svg};
 pub use progress::{Progress, ProgressMode, INTERVAL_VARIABLE};
