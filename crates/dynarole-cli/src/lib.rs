@@ -29,15 +29,40 @@ use std::process::ExitCode;
 
 /// dynarole: robust and reversible self-reconfiguration of modular robots.
 #[derive(Parser)]
-#[command(name = "dynarole", version, about)]
+#[command(name = "dynarole", version, about, long_about = LONG_ABOUT, after_help = AFTER_HELP)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
 }
 
+/// What the tool is, for `dynarole --help`.
+const LONG_ABOUT: &str = "dynarole: robust and reversible self-reconfiguration of modular robots.
+
+A reconfiguration is written once, as a `.dr` script (one statement per module operation, `;`
+for what depends on what came before, `&` for what may run together). dynarole checks it
+against the robot's API, derives its reverse, replays it on a kinematic model of the robot,
+compiles it to a distributed state machine in portable C (or nesC) that runs on every
+module, simulates that C under lost packets, dead links and resets, sweeps fault rates in
+campaigns, model-checks the protocol with spin, and shows runs in 3D.";
+
+/// Where to go next, for `dynarole --help`.
+const AFTER_HELP: &str = "Start with:
+  dynarole check examples/atron/eight2car.dr
+  dynarole simulate examples/atron/eight2car.dr --sequence eight2car \\
+      --from examples/atron/eight.json --expect examples/atron/car.json
+
+`dynarole help COMMAND` shows a command's options and an example. Documentation: the
+repository's README.md, and docs/ (language.md: the language; simulator.md, cluster.md,
+verification.md, viewer.md, runtime.md, limits.md).
+Exit codes: 0 success, 1 bad input or a failed check, 2 bad usage, 3 a simulation that did
+not reach its goal or a search that could not finish, 4 internal error.";
+
 #[derive(Subcommand)]
 enum Command {
     /// Check `.dr` files: syntax, names, types, reversibility. Exit 1 on any error.
+    #[command(
+        after_help = "Example:\n  dynarole check examples/atron/eight2car.dr --from examples/atron/eight.json"
+    )]
     Check {
         /// The `.dr` files to check.
         #[arg(value_name = "FILE")]
@@ -56,6 +81,9 @@ enum Command {
         sequences: Vec<String>,
     },
     /// Compile sequences to a self-contained directory of C: runtime, state machine, Makefile.
+    #[command(
+        after_help = "Example:\n  dynarole compile examples/atron/eight2car.dr --sequence eight2car -o out/eight2car && make -C out/eight2car"
+    )]
     Compile {
         /// The `.dr` file holding the sequences.
         file: PathBuf,
@@ -85,6 +113,9 @@ enum Command {
     },
     /// Model-check a compiled sequence on a configuration with spin: S1, S2, S3 and L under
     /// the stated bounds (exit 0 verified, 1 violated, 3 inconclusive, 4 internal error).
+    #[command(
+        after_help = "Example:\n  dynarole verify examples/verify/ab_c.dr --from examples/verify/line3.json --resets 1"
+    )]
     Verify {
         /// The `.dr` file holding the sequences.
         file: PathBuf,
@@ -125,6 +156,7 @@ enum Command {
         plugins: load::PluginArgs,
     },
     /// Draw a configuration (JSON) as an SVG or PNG picture.
+    #[command(after_help = "Example:\n  dynarole show examples/atron/car.json -o out/car.svg")]
     Show {
         /// The configuration to draw (JSON).
         config: PathBuf,
@@ -133,6 +165,9 @@ enum Command {
         output: PathBuf,
     },
     /// Run sequences on the kinematic model of the robot (no network) and report the result.
+    #[command(
+        after_help = "Example:\n  dynarole replay examples/atron/eight2car.dr --sequence eight2car --from examples/atron/eight.json --expect examples/atron/car.json"
+    )]
     Replay {
         /// The `.dr` file holding the sequences.
         file: PathBuf,
@@ -148,6 +183,9 @@ enum Command {
     },
     /// Run the generated C on every module over lossy infrared links, with faults (exit 3
     /// when the goal is not reached).
+    #[command(
+        after_help = "Example:\n  dynarole simulate examples/atron/eight2car.dr --sequence eight2car --from examples/atron/eight.json --expect examples/atron/car.json --scenario examples/scenarios/lossy.toml --seed 1"
+    )]
     Simulate {
         /// The `.dr` file holding the sequences.
         file: PathBuf,
@@ -188,6 +226,9 @@ enum Command {
     },
     /// Replay a recording in the browser: write one self-contained HTML page (or print
     /// poses at given times).
+    #[command(
+        after_help = "Example:\n  dynarole view out/run.json -o out/run.html   (a recording written by simulate --record out/run.json)"
+    )]
     View {
         /// The recording (JSON, written by `--record`).
         recording: PathBuf,
@@ -211,6 +252,9 @@ enum Command {
     /// row per run; an interrupted campaign resumes where it stopped), summary.csv, plots.
     /// On a cluster: --shard K/N per job, or --emit the job files; then `campaign merge`.
     #[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
+    #[command(
+        after_help = "Example:\n  dynarole campaign examples/campaigns/smoke.toml   (then: dynarole campaign status out/smoke)"
+    )]
     Campaign {
         #[command(subcommand)]
         action: Option<campaign::Action>,
@@ -245,6 +289,7 @@ enum Command {
         throttle: Option<u64>,
     },
     /// Rewrite `.dr` files in the canonical layout (comments kept).
+    #[command(after_help = "Example:\n  dynarole fmt --check examples/atron/eight2car.dr")]
     Fmt {
         /// The `.dr` files to format in place.
         #[arg(value_name = "FILE")]
@@ -256,6 +301,7 @@ enum Command {
         plugins: load::PluginArgs,
     },
     /// Print the reverse of SEQUENCE as a complete `.dr` file that `check` accepts.
+    #[command(after_help = "Example:\n  dynarole reverse examples/atron/eight2car.dr eight2car")]
     Reverse {
         /// The `.dr` file holding the sequence.
         file: PathBuf,
@@ -270,6 +316,9 @@ enum Command {
     },
     /// Rewrite a sequence written in order with the most parallelism that is provably safe
     /// on the model; prints a complete `.dr` file and the makespan before and after.
+    #[command(
+        after_help = "Example:\n  dynarole parallelise examples/atron/eight2car.dr --sequence eight2car --from examples/atron/eight.json -o out/parallel.dr"
+    )]
     Parallelise {
         /// The source file (.dr) holding the sequence.
         file: PathBuf,

@@ -39,14 +39,24 @@ pub fn run(args: &ReplayArgs) -> Result<ExitCode, Failure> {
         if args.record.wanted() {
             record(args, program, &prepared, &display, source)?;
         }
-        render::diagnostics(&display, source, &result.diagnostics);
+        // The same warnings as `check --from`: the replay's, then the `&`s that are not
+        // independent (once left out, so that replay said "0 warnings" where check warned).
+        let mut diagnostics = result.diagnostics.clone();
+        diagnostics.extend(dynarole_replay::check_independence(
+            program,
+            &prepared.plans,
+            prepared.world.clone(),
+            &prepared.assignment,
+        ));
+        diagnostics.sort_by_key(|d| d.span);
+        render::diagnostics(&display, source, &diagnostics);
         println!(
             "replayed {} from {}: {} statements, {} rejected, {} warnings",
             prepared.names.join(", "),
             args.from.display(),
             result.n_statements,
             result.n_rejected,
-            result.diagnostics.len() - result.n_rejected
+            diagnostics.len() - result.n_rejected
         );
         // A configuration file's robot always has the file format.
         let final_configuration = result.final_world.configuration().ok_or_else(|| {

@@ -106,6 +106,58 @@ fn messages_quoting_huge_user_text_stay_small() {
 }
 
 #[test]
+fn the_help_says_what_the_tool_is_and_every_command_shows_an_example() {
+    let top = dynarole(&["--help"]);
+    let help = text(&top.stdout);
+    assert_eq!(top.status.code(), Some(0), "{help}");
+    assert!(help.contains("A reconfiguration is written once"), "{help}");
+    assert!(
+        help.contains("Documentation:") && help.contains("Exit codes:"),
+        "{help}"
+    );
+    for command in [
+        "check",
+        "compile",
+        "verify",
+        "show",
+        "replay",
+        "simulate",
+        "view",
+        "campaign",
+        "fmt",
+        "reverse",
+        "parallelise",
+    ] {
+        let out = dynarole(&["help", command]);
+        let help = text(&out.stdout);
+        assert!(
+            help.contains(&format!("Example:\n  dynarole {command} ")),
+            "{command}: {help}"
+        );
+    }
+}
+
+#[test]
+fn replay_reports_the_warnings_check_from_reports() {
+    // eight2car's extend and retract joined by `&` split the robot if the retract ends first:
+    // `check --from` warns, and `replay` once said "0 warnings" of the same sequence.
+    let out = replay(
+        "examples/atron/eight2car.dr",
+        &["eight2car"],
+        "examples/atron/eight.json",
+        "examples/atron/car.json",
+    );
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stdout));
+    let stderr = text(&out.stderr);
+    assert!(stderr.contains("warning[not-independent]"), "{stderr}");
+    assert!(
+        !text(&out.stdout).contains(" 0 warnings"),
+        "{}",
+        text(&out.stdout)
+    );
+}
+
+#[test]
 fn check_accepts_the_examples() {
     let out = dynarole(&["check", "examples/atron/eight2car.dr"]);
     assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
