@@ -127,7 +127,7 @@ pub fn run(entry: Entry, state: State) -> Result<Finished, String> {
     let timeout = state.scenario.timeout_ms * 1000;
     let mut contexts = Contexts::new(entry, n);
     let mut state = state;
-    if state.trace.is_some() {
+    if state.tracing() {
         state.describer = Some(contexts.describer());
     }
     let state = Rc::new(RefCell::new(state));

@@ -36,14 +36,15 @@ pub use critical::CriticalPath;
 pub use estimate::{form_makespan, makespan, shortest};
 pub use firmware::{FirmwareReport, FirmwareSource, ModuleFirmware};
 pub use model_recording::{replay_steps, ModelRecording, ModelRecordingError};
-pub use recorded::Recorded;
+pub use recorded::{Recorded, MAX_RECORDED, RECORDED_PACKETS};
 pub use report::{Counters, ModuleReport, Refusal, Report, Violation};
 pub use scenario::{
     Block, Foreign, JointModel, Network, Power, Preset, RandomResets, Reset, Scenario,
-    ScenarioError, Stepping, Timing,
+    ScenarioError, Stepping, Timing, MAX_TIMEOUT_MS,
 };
 
 use build::Loaded;
+pub use trace::Outputs;
 use dynarole_codegen::{generate_c, nesc_files, CompileOptions, Protocol};
 use dynarole_core::diagnostic::Diagnostic;
 use dynarole_core::expand::Plan;
@@ -68,6 +69,8 @@ pub enum SimError {
     Input(String),
 }
 
+    /// The trace file could not be written (`Outputs::trace`).
+    Trace(std::io::Error),
 impl fmt::Display for SimError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
@@ -75,6 +78,7 @@ impl fmt::Display for SimError {
             SimError::Build(m) | SimError::Input(m) => f.write_str(m),
         }
     }
+            SimError::Trace(e) => write!(f, "cannot write the trace: {e}"),
 }
 
 impl std::error::Error for SimError {}
@@ -104,6 +108,13 @@ pub struct ModelRun<'a> {
 
 /// What a run's end is compared with.
 #[derive(Clone, Copy)]
+/// What a run keeps and writes of its trace: the lines in memory (`Run::trace`, which also
+/// records them) and the outputs.
+struct Traced {
+    keep: bool,
+    outputs: Outputs,
+}
+
 enum Expected<'a> {
     Configuration(&'a Configuration),
     Model(&'a dyn RobotModel),
@@ -136,7 +147,7 @@ impl Simulator {
             .flat_map(|p| p.statements().into_iter().cloned())
             .collect();
         Ok(Simulator {
-            sequence: Arc::new(Sequence::new(program.robot.clone(), ir, resolved)),
+            sequence: Arc::new(sequence),
             files: generated.files,
             nesc: nesc_files(options),
             protocol: options.protocol,
@@ -216,8 +227,18 @@ impl Simulator {
     pub fn run(&self, run: &Run) -> Result<Report, SimError> {
         let world = self.world_for(run)?;
         let expect = run.expect.map(Expected::Configuration);
-        self.run_world(world, expect, run.scenario, run.seed, run.trace)
+        let traced = Traced {
+            keep: run.trace,
+            outputs: Outputs::default(),
+        };
+        self.run_world(world, expect, run.scenario, run.seed, traced)
     }
+        self.run_with(run, Outputs::default())
+    }
+
+    /// One run that also writes `outputs` as it goes (the trace file, the recording, the
+    /// clock): the same run and report as [`Simulator::run`].
+    pub fn run_with(&self, run: &Run, outputs: Outputs) -> Result<Report, SimError> {
 
     /// One run from a robot model: deterministic in the inputs and the seed.
     pub fn run_model(&self, run: &ModelRun) -> Result<Report, SimError> {
@@ -225,7 +246,11 @@ impl Simulator {
             .map_err(SimError::Input)?;
         let world = Self::checked(world, run.scenario)?;
         let expect = run.expect.map(Expected::Model);
-        self.run_world(world, expect, run.scenario, run.seed, run.trace)
+        let traced = Traced {
+            keep: run.trace,
+            outputs,
+        };
+        self.run_world(world, expect, run.scenario, run.seed, traced)
     }
 
     /// A run from `world` (checked against the scenario), its end compared with `expect`.
@@ -235,7 +260,7 @@ impl Simulator {
         expect: Option<Expected>,
         scenario: &Scenario,
         seed: u64,
-        trace: bool,
+        traced: Traced,
     ) -> Result<Report, SimError> {
         let preset = scenario.network.preset;
         let library = self.library(preset)?;
@@ -249,12 +274,14 @@ impl Simulator {
             world,
             scenario.clone(),
             seed,
-            trace,
+            traced.keep,
         );
         state.foreign_frames = foreign_frames;
-        let finished = engine::run(library.entry, state).map_err(SimError::Build)?;
+        let mut finished = engine::run(library.entry, state).map_err(SimError::Build)?;
+        finished.state.flush_trace().map_err(SimError::Trace)?;
         Ok(self.report_against(expect, scenario, seed, finished))
     }
+        state.set_outputs(traced.outputs);
 
     /// The start configuration's world, once the scenario is checked against it.
     fn world_for(&self, run: &Run) -> Result<RobotWorld, SimError> {
@@ -329,7 +356,7 @@ impl Simulator {
             addresses,
         } = finished;
         let ms = |t: u64| t as f64 / 1000.0;
-        let traced = state.trace.is_some();
+        let recorded = state.record;
         // A model is compared before the world is moved out; a configuration after, on
         // the moved value (no copy of a large robot's configuration).
         let model_difference = match expect {
@@ -378,8 +405,8 @@ impl Simulator {
             modules,
             configuration_matches: None,
             difference: None,
-            trace: state.trace.take(),
-            recorded: traced.then(|| std::mem::take(&mut state.recorded)),
+            trace: state.trace.take().and_then(trace::Trace::into_lines),
+            recorded: recorded.then(|| std::mem::take(&mut state.recorded)),
             // Moved out of the world last: the rest of the state is freed with it.
             final_configuration: state.into_configuration(),
         };

@@ -291,7 +291,7 @@ const CHECKS_EXPLAINED: &str = concat!(
 
 /// The trace's header: the column titles, aligned with the lines `State::log` writes (time in
 /// simulated milliseconds, module, event, the module's protocol state, detail), and the events.
-fn trace_header() -> String {
+pub(crate) fn trace_header() -> String {
     format!(
         "{:<12} {:<6} {:<10} {:<width$} {}\n{}",
         "#    time ms",

@@ -145,6 +145,12 @@ fn foreign_interval_ms() -> u64 {
     100
 }
 
+/// The longest run a scenario may ask for (`timeout_ms`): 10^9 ms, about 11.6 days of
+/// simulated time. A run costs wall time in proportion to its simulated time (eight2car's
+/// seven modules run about 10,000 times faster than real time when nothing finishes, so this
+/// bound is minutes; 10^12 ms would be days with no end in sight).
+pub const MAX_TIMEOUT_MS: u64 = 1_000_000_000;
+
 /// Most packets one `[[foreign]]` entry may inject (bounds the work of any scenario).
 pub const MAX_FOREIGN_PACKETS: u64 = 1_000_000;
 
@@ -265,6 +271,13 @@ impl Scenario {
         }
         if self.timeout_ms == 0 {
             return Err(error("timeout_ms", "must be above 0"));
+        }
+        if self.timeout_ms > MAX_TIMEOUT_MS {
+            let message = format!(
+                "{} ms is more than {MAX_TIMEOUT_MS} ms (about 11.6 days of simulated time), the longest run the simulator runs",
+                self.timeout_ms
+            );
+            return Err(error("timeout_ms", message));
         }
         let end = self.faults_end_ms();
         if end > self.timeout_ms {
@@ -393,6 +406,23 @@ mod tests {
             let written = serde_json::to_value(&scenario).expect("serialises");
             assert_eq!(written["stepping"], stepping.name());
         }
+    }
+
+    /// A timeout above the limit is refused at its field, naming the limit; the limit itself
+    /// is accepted.
+    #[test]
+    fn the_timeout_has_an_upper_limit() {
+        let at_limit = format!("timeout_ms = {MAX_TIMEOUT_MS}\n");
+        assert!(Scenario::from_toml_str(&at_limit).is_ok());
+        let text = "timeout_ms = 1000000000000\n";
+        let error = Scenario::from_toml_str(text).expect_err("too long");
+        assert_eq!(error.field, "timeout_ms");
+        assert!(
+            error.message.contains("more than 1000000000 ms"),
+            "{}",
+            error.message
+        );
+        assert_eq!(error.span, Some(13..26));
     }
 
     #[test]

@@ -3,7 +3,7 @@
 //! Operations live in `ops.rs`, the infrared network in `network.rs`.
 //!
 //! Layering (no import circle): what the state holds is below it (`event.rs`, `packet.rs`,
-//! `links.rs`, `queue.rs`, `describe.rs`, `report.rs`, `recorded.rs`); what acts on it is above
+//! `links.rs`, `queue.rs`, `describe.rs`, `report.rs`, `recorded.rs`, `trace.rs`); what acts on it is above
 //! (`ops.rs`, `network.rs`, `ffi.rs`, `record.rs`, `wake.rs`, the engine).
 
 use crate::describe::{Describer, DESCRIPTION_BYTES};
@@ -14,12 +14,14 @@ use crate::queue::{Key, Queue};
 use crate::report::{Counters, Refusal, Violation, STATE_COLUMN};
 use crate::scenario::{Preset, Scenario, Stepping};
 use crate::sequence::Sequence;
+use crate::trace::{Outputs, Trace};
 use dynarole_replay::RobotWorld;
 use dynarole_world::{Configuration, Port, View};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write;
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
 
 /// Controller period of every module (atron.md c).
@@ -133,7 +135,12 @@ pub struct State {
     pub counters: Counters,
     pub violations: Vec<Violation>,
     pub refusals: Vec<Refusal>,
-    pub trace: Option<String>,
+    /// The trace lines, kept and/or written as they come (`trace.rs`).
+    pub trace: Option<Trace>,
+    /// Whether the trace is also kept as data for a recording (`recorded`).
+    pub record: bool,
+    /// Where the time of each event goes for a progress line (`Outputs::clock`).
+    clock: Option<Arc<AtomicU64>>,
     /// Reads the modules' protocol state for the trace (set by the engine while it runs, and
     /// only when there is a trace).
     pub describer: Option<Describer>,
@@ -143,7 +150,7 @@ pub struct State {
     pub last_frames: Option<Vec<Option<Vec<u8>>>>,
     /// What the second robot's modules broadcast last (from that run), by module.
     pub foreign_frames: Vec<Option<Vec<u8>>>,
-    /// The trace as data for the viewer's recording (kept with the trace, `record.rs`).
+    /// The trace as data for the viewer's recording (when `record`, `record.rs`).
     pub recorded: crate::recorded::Recorded,
     /// Modules that have declared the end (`finished_at` set), so that `all_finished`, asked
     /// after every event, does not walk every module.
@@ -228,7 +235,9 @@ impl State {
             counters: Counters::default(),
             violations: Vec::new(),
             refusals: Vec::new(),
-            trace: trace.then(String::new),
+            trace: Trace::new(trace, None),
+            record: trace,
+            clock: None,
             describer: None,
             first_finished: None,
             last_frames: None,
@@ -238,6 +247,23 @@ impl State {
         };
         state.schedule_start(&mut setup);
         state
+    }
+
+    /// What the run writes besides its report: the trace file (added to the trace kept in
+    /// memory, if any), the recording and its limit, the clock for progress.
+    pub fn set_outputs(&mut self, outputs: Outputs) {
+        if outputs.trace.is_some() {
+            let keep = self.trace.as_ref().is_some_and(Trace::keeps);
+            self.trace = Trace::new(keep, outputs.trace);
+        }
+        if outputs.record && !self.record {
+            self.record = true;
+            self.recorded = crate::recorded::Recorded::with_limits(
+                outputs.record_limit,
+                outputs.record_packets,
+            );
+        }
+        self.clock = outputs.clock;
     }
 
     /// Power-on of every module, then the scenario's faults, as events.
@@ -348,6 +374,9 @@ impl State {
         let (key, event) = self.queue.pop(until)?;
         self.now = key.time();
         self.current = key;
+        if let Some(clock) = &self.clock {
+            clock.store(self.now, Ordering::Relaxed);
+        }
         self.counters.events += 1;
         Some(event)
     }
@@ -372,17 +401,22 @@ impl State {
         self.now < self.scenario.faults_end_ms() * 1000
     }
 
-    /// Whether a trace is kept (callers skip formatting details when not).
+    /// Whether a trace is kept or recorded (callers skip formatting details when not).
     pub fn tracing(&self) -> bool {
-        self.trace.is_some()
+        self.trace.is_some() || self.record
+    }
+
+    /// Writes the rest of the trace file and closes it: the first error writing it, if any.
+    pub fn flush_trace(&mut self) -> std::io::Result<()> {
+        self.trace.as_mut().map_or(Ok(()), Trace::flush)
     }
 
     /// One trace line: time, module, event, the module's protocol state (`-` when there is
     /// none), detail.
     pub fn log(&mut self, module: Option<usize>, event: &str, detail: impl AsRef<str>) {
-        let Some(trace) = &mut self.trace else {
+        if !self.tracing() {
             return;
-        };
+        }
         let name = match module {
             Some(m) if m < self.modules.len() => self.world.view().name(m),
             _ => "-".to_string(),
@@ -396,21 +430,24 @@ impl State {
             }
         };
         let state = std::str::from_utf8(buffer.get(..len).unwrap_or_default()).unwrap_or("?");
-        let _ = write!(
-            trace,
-            "{:>8}.{:03} {:<6} {:<10} {:<width$} {}",
-            self.now / 1000,
-            self.now % 1000,
-            name,
-            event,
-            state,
-            detail.as_ref(),
-            width = STATE_COLUMN
-        );
-        trace.truncate(trace.trim_end_matches(' ').len());
-        trace.push('\n');
-        self.recorded
-            .row(self.now, module, event, state, detail.as_ref());
+        if let Some(trace) = &mut self.trace {
+            let _ = write!(
+                trace.line,
+                "{:>8}.{:03} {:<6} {:<10} {:<width$} {}",
+                self.now / 1000,
+                self.now % 1000,
+                name,
+                event,
+                state,
+                detail.as_ref(),
+                width = STATE_COLUMN
+            );
+            trace.end_line();
+        }
+        if self.record {
+            self.recorded
+                .row(self.now, module, event, state, detail.as_ref());
+        }
     }
 
     pub fn statement_label(&self, s: usize) -> String {

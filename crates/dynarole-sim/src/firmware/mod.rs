@@ -9,7 +9,7 @@ mod runner;
 pub use runner::{FirmwareReport, ModuleFirmware};
 
 use crate::state::State;
-use crate::{Report, Run, SimError, Simulator};
+use crate::{Outputs, Report, Run, SimError, Simulator};
 use std::sync::Arc;
 
 /// `DR_CONF_MAX_ARGS` of the generated program (dr_program_conf.h), else dr_conf.h's default.
@@ -45,6 +45,16 @@ impl Simulator {
         run: &Run,
         source: FirmwareSource,
     ) -> Result<(Report, FirmwareReport), SimError> {
+        self.run_firmware_with(run, source, Outputs::default())
+    }
+
+    /// [`Simulator::run_firmware`] writing `outputs` as it goes ([`Simulator::run_with`]).
+    pub fn run_firmware_with(
+        &self,
+        run: &Run,
+        source: FirmwareSource,
+        outputs: Outputs,
+    ) -> Result<(Report, FirmwareReport), SimError> {
         if !run.scenario.foreign.is_empty() {
             return Err(SimError::Input(
                 "scenario: packets of another robot (`foreign`) are not supported with --firmware avr".into(),
@@ -56,7 +66,7 @@ impl Simulator {
             "-DDR_CONF_BROADCAST_JITTER_MS={}",
             run.scenario.network.preset.jitter_ms()
         )];
-        if run.trace {
+        if run.trace || outputs.trace.is_some() || outputs.record {
             // The trace's state column: the firmware describes its state in RAM.
             defines.push("-DDR_AVR_DESCRIBE".into());
         }
@@ -67,15 +77,17 @@ impl Simulator {
         .map_err(SimError::Build)?;
         let lib = emu::Library::load(&image::emulator().map_err(SimError::Build)?)
             .map_err(SimError::Build)?;
-        let state = State::new(
+        let mut state = State::new(
             Arc::clone(&self.sequence),
             world,
             run.scenario.clone(),
             run.seed,
             run.trace,
         );
-        let (finished, firmware) =
+        state.set_outputs(outputs);
+        let (mut finished, firmware) =
             runner::run(&lib, &image, max_args(&self.files), state).map_err(SimError::Build)?;
+        finished.state.flush_trace().map_err(SimError::Trace)?;
         Ok((self.report(run, finished), firmware))
     }
 }
