@@ -29,6 +29,7 @@ mod report;
 mod scenario;
 mod sequence;
 mod state;
+mod trace;
 mod wake;
 
 pub use build::{cache_entries, cache_root};
@@ -42,9 +43,9 @@ pub use scenario::{
     Block, Foreign, JointModel, Network, Power, Preset, RandomResets, Reset, Scenario,
     ScenarioError, Stepping, Timing, MAX_TIMEOUT_MS,
 };
+pub use trace::Outputs;
 
 use build::Loaded;
-pub use trace::Outputs;
 use dynarole_codegen::{generate_c, nesc_files, CompileOptions, Protocol};
 use dynarole_core::diagnostic::Diagnostic;
 use dynarole_core::expand::Plan;
@@ -67,18 +68,18 @@ pub enum SimError {
     Build(String),
     /// A configuration or scenario that does not fit the sequence.
     Input(String),
-}
-
     /// The trace file could not be written (`Outputs::trace`).
     Trace(std::io::Error),
+}
+
 impl fmt::Display for SimError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             SimError::Diagnostic(d) => write!(f, "{:?}", d.kind),
             SimError::Build(m) | SimError::Input(m) => f.write_str(m),
+            SimError::Trace(e) => write!(f, "cannot write the trace: {e}"),
         }
     }
-            SimError::Trace(e) => write!(f, "cannot write the trace: {e}"),
 }
 
 impl std::error::Error for SimError {}
@@ -106,8 +107,6 @@ pub struct ModelRun<'a> {
     pub trace: bool,
 }
 
-/// What a run's end is compared with.
-#[derive(Clone, Copy)]
 /// What a run keeps and writes of its trace: the lines in memory (`Run::trace`, which also
 /// records them) and the outputs.
 struct Traced {
@@ -115,6 +114,8 @@ struct Traced {
     outputs: Outputs,
 }
 
+/// What a run's end is compared with.
+#[derive(Clone, Copy)]
 enum Expected<'a> {
     Configuration(&'a Configuration),
     Model(&'a dyn RobotModel),
@@ -147,7 +148,7 @@ impl Simulator {
             .flat_map(|p| p.statements().into_iter().cloned())
             .collect();
         Ok(Simulator {
-            sequence: Arc::new(sequence),
+            sequence: Arc::new(Sequence::new(program.robot.clone(), ir, resolved)),
             files: generated.files,
             nesc: nesc_files(options),
             protocol: options.protocol,
@@ -225,20 +226,20 @@ impl Simulator {
 
     /// One run: deterministic in the inputs and the seed.
     pub fn run(&self, run: &Run) -> Result<Report, SimError> {
-        let world = self.world_for(run)?;
-        let expect = run.expect.map(Expected::Configuration);
-        let traced = Traced {
-            keep: run.trace,
-            outputs: Outputs::default(),
-        };
-        self.run_world(world, expect, run.scenario, run.seed, traced)
-    }
         self.run_with(run, Outputs::default())
     }
 
     /// One run that also writes `outputs` as it goes (the trace file, the recording, the
     /// clock): the same run and report as [`Simulator::run`].
     pub fn run_with(&self, run: &Run, outputs: Outputs) -> Result<Report, SimError> {
+        let world = self.world_for(run)?;
+        let expect = run.expect.map(Expected::Configuration);
+        let traced = Traced {
+            keep: run.trace,
+            outputs,
+        };
+        self.run_world(world, expect, run.scenario, run.seed, traced)
+    }
 
     /// One run from a robot model: deterministic in the inputs and the seed.
     pub fn run_model(&self, run: &ModelRun) -> Result<Report, SimError> {
@@ -248,7 +249,7 @@ impl Simulator {
         let expect = run.expect.map(Expected::Model);
         let traced = Traced {
             keep: run.trace,
-            outputs,
+            outputs: Outputs::default(),
         };
         self.run_world(world, expect, run.scenario, run.seed, traced)
     }
@@ -276,12 +277,12 @@ impl Simulator {
             seed,
             traced.keep,
         );
+        state.set_outputs(traced.outputs);
         state.foreign_frames = foreign_frames;
         let mut finished = engine::run(library.entry, state).map_err(SimError::Build)?;
         finished.state.flush_trace().map_err(SimError::Trace)?;
         Ok(self.report_against(expect, scenario, seed, finished))
     }
-        state.set_outputs(traced.outputs);
 
     /// The start configuration's world, once the scenario is checked against it.
     fn world_for(&self, run: &Run) -> Result<RobotWorld, SimError> {
