@@ -1,6 +1,8 @@
 //! `dynarole simulate`: the generated C on every module, over lossy infrared links, with the
 //! faults of a scenario; exit 0 on success, 3 when the goal was not reached.
 
+mod progress;
+
 use crate::compile::{add_token_routes, ProtocolOptions};
 use crate::load::{self, Failure, PluginArgs};
 use crate::render;
@@ -9,7 +11,7 @@ use clap::ValueEnum;
 use dynarole_codegen::Choice;
 use dynarole_recording::Source;
 use dynarole_sim::{
-    FirmwareReport, FirmwareSource, Report, Run, Scenario, SimError, Simulator, Stepping,
+    FirmwareReport, FirmwareSource, Outputs, Report, Run, Scenario, SimError, Simulator, Stepping,
 };
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -78,8 +80,7 @@ pub fn run(args: &SimulateArgs) -> Result<ExitCode, Failure> {
             ));
         }
         let mode = dynarole_campaign::ProgressMode::for_stderr().map_err(Failure::Usage)?;
-        let progress =
-            dynarole_campaign::Progress::start(mode, "simulate", args.repeat.max(1), "runs");
+        let progress = progress::RunProgress::start(mode, args.repeat.max(1), scenario.timeout_ms);
         let mut failed = 0u64;
         for k in 0..args.repeat.max(1) {
             let seed = args.seed.wrapping_add(k);
@@ -89,22 +90,11 @@ pub fn run(args: &SimulateArgs) -> Result<ExitCode, Failure> {
                 expect: expect.as_ref(),
                 scenario: &scenario,
                 seed,
-                trace: args.trace.is_some() || args.record.wanted(),
+                trace: false,
             };
-            let firmware_source = args.firmware.map(|f| match f {
-                FirmwareArg::Avr => FirmwareSource::C,
-                FirmwareArg::AvrNesc => FirmwareSource::Nesc,
-            });
-            let (report, firmware) = match firmware_source {
-                None => (simulator.run(&run), None),
-                Some(source) => match simulator.run_firmware(&run, source) {
-                    Ok((report, firmware)) => (Ok(report), Some(firmware)),
-                    Err(e) => (Err(e), None),
-                },
-            };
-            let report = report.map_err(|e| Failure::Input(e.to_string()))?;
+            let (report, firmware) = run_once(&simulator, &run, args, k, progress.clock())?;
             let wall = started.elapsed().as_secs_f64();
-            progress.inc();
+            progress.run_done();
             progress.suspend(|| output(args, &report, firmware.as_ref(), wall, k))?;
             if args.record.wanted() {
                 let title = format!("{} ({}, seed {seed})", names.join(" + "), display);
@@ -118,7 +108,11 @@ pub fn run(args: &SimulateArgs) -> Result<ExitCode, Failure> {
                             text: source,
                         }),
                     )
-                    .map_err(|e| Failure::Internal(e.to_string()))?;
+                    .map_err(|e| match e {
+                        // A run too long to record, or a start the recording cannot take.
+                        SimError::Input(m) => Failure::Input(m),
+                        e => Failure::Internal(e.to_string()),
+                    })?;
                 args.record.write(&recording)?;
             }
             if !report.success {
@@ -136,6 +130,55 @@ pub fn run(args: &SimulateArgs) -> Result<ExitCode, Failure> {
         }
         Ok(ExitCode::from(if failed == 0 { 0 } else { 3 }))
     })
+}
+
+/// Run `k` (seed `run.seed`) on the host or the emulated firmware, its trace streamed to
+/// its file as it goes (`--trace`), recorded when `--record`/`--html` want it, its clock
+/// shown by the progress line.
+fn run_once(
+    simulator: &Simulator,
+    run: &Run,
+    args: &SimulateArgs,
+    k: u64,
+    clock: std::sync::Arc<std::sync::atomic::AtomicU64>,
+) -> Result<(Report, Option<FirmwareReport>), Failure> {
+    let path = args.trace.map(|p| trace_path(p, args.repeat, k));
+    let cannot = |path: &Path, e: std::io::Error| {
+        Failure::Input(format!("cannot write {}: {e}", path.display()))
+    };
+    let trace = match &path {
+        Some(p) => Some(std::fs::File::create(p).map_err(|e| cannot(p, e))?),
+        None => None,
+    };
+    let outputs = Outputs {
+        trace: trace.map(|f| Box::new(f) as Box<dyn std::io::Write>),
+        record: args.record.wanted(),
+        clock: Some(clock),
+        ..Outputs::default()
+    };
+    let result = match args.firmware {
+        None => simulator.run_with(run, outputs).map(|r| (r, None)),
+        Some(f) => {
+            let source = match f {
+                FirmwareArg::Avr => FirmwareSource::C,
+                FirmwareArg::AvrNesc => FirmwareSource::Nesc,
+            };
+            (simulator.run_firmware_with(run, source, outputs)).map(|(r, fw)| (r, Some(fw)))
+        }
+    };
+    result.map_err(|e| match (e, &path) {
+        (SimError::Trace(e), Some(p)) => cannot(p, e),
+        (e, _) => Failure::Input(e.to_string()),
+    })
+}
+
+/// The trace file of run `k`: `PATH`, or `PATH.k` with `--repeat`.
+fn trace_path(path: &Path, repeat: u64, k: u64) -> PathBuf {
+    if repeat > 1 {
+        PathBuf::from(format!("{}.{k}", path.display()))
+    } else {
+        path.to_path_buf()
+    }
 }
 
 /// The scenario, and its text when it comes from a file (to show later errors in it).
@@ -170,15 +213,6 @@ fn output(
     wall: f64,
     k: u64,
 ) -> Result<(), Failure> {
-    if let (Some(path), Some(trace)) = (args.trace, report.trace_file()) {
-        let path = if args.repeat > 1 {
-            PathBuf::from(format!("{}.{k}", path.display()))
-        } else {
-            path.clone()
-        };
-        std::fs::write(&path, trace)
-            .map_err(|e| Failure::Input(format!("cannot write {}: {e}", path.display())))?;
-    }
     if args.json {
         let cannot =
             |e: serde_json::Error| Failure::Input(format!("cannot serialise the report: {e}"));
