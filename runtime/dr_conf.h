@@ -150,6 +150,16 @@
 #define DR_ROBOT_ID 0u
 #endif
 
+/* The execution: a 32-bit value chosen anew for every launch of the robot, so that a packet
+ * recorded in another launch of the same program (replayed under this robot's identity) and
+ * the NV record another launch left are refused (dr_packet.h, DR_PACKET_PROGRAM_WORD). One
+ * execution covers every sequence and epoch of one launch and every reset within it. Set at
+ * compile time (`dynarole compile --execution`, in dr_program_conf.h) or at flash time
+ * (-DDR_EXECUTION=N); every module of a robot must have the same one. */
+#ifndef DR_EXECUTION
+#define DR_EXECUTION 0UL
+#endif
+
 /* Connectors (infrared channels) per module. */
 #ifndef DR_CONF_CHANNELS
 #define DR_CONF_CHANNELS 8

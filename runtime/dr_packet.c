@@ -1,9 +1,11 @@
-/* dr_packet.c - frame and check packets (magic, length, robot, program fingerprint, kind,
- * optional keyed tag, CRC-16). */
+/* dr_packet.c - frame and check packets (magic, length, robot, program word: fingerprint
+ * and execution, kind, optional keyed tag, CRC-16). */
 #include "dr_packet.h"
 
 typedef char dr_packet_tag_is_0_4_or_8[(DR_CONF_PACKET_TAG == 0 || DR_CONF_PACKET_TAG == 4 ||
                                         DR_CONF_PACKET_TAG == 8) ? 1 : -1];
+/* An execution wider than 32 bits would be cut silently by the program word's cast. */
+typedef char dr_packet_execution_fits_32_bits[(DR_EXECUTION) <= 0xFFFFFFFFULL ? 1 : -1];
 
 uint16_t dr_crc16(const uint8_t *bytes, uint8_t len)
 {
@@ -127,7 +129,7 @@ void dr_crc16_put(uint8_t *bytes, uint8_t len)
     bytes[len + 1u] = (uint8_t)crc;
 }
 
-/* The identity's bytes of a frame (robot, fingerprint: big endian) at out[0..5]. */
+/* The identity's bytes of a frame (robot, program word: big endian) at out[0..5]. */
 static void put_identity(uint8_t *out, const dr_identity_t *id)
 {
     out[0] = (uint8_t)(id->robot >> 8);

@@ -37,17 +37,15 @@ uint8_t fuzz_seal(uint8_t *bytes, uint8_t len, uint8_t cap)
         return len;
     }
     /* The header as a module of this robot and program writes it (the corpus was captured
-     * from an older build: its fingerprint may differ), then the CRC. */
+     * from an older build: its fingerprint may differ; the program word of this build's
+     * execution), then the CRC. */
     if (len >= 2u) {
         bytes[1] = (uint8_t)(len + 2u);
     }
     if (len >= DR_PACKET_HEADER) {
         bytes[2] = (uint8_t)(DR_ROBOT_ID >> 8);
         bytes[3] = (uint8_t)(DR_ROBOT_ID & 0xFFu);
-        bytes[4] = (uint8_t)(dr_program.fingerprint >> 24);
-        bytes[5] = (uint8_t)(dr_program.fingerprint >> 16);
-        bytes[6] = (uint8_t)(dr_program.fingerprint >> 8);
-        bytes[7] = (uint8_t)(dr_program.fingerprint & 0xFFu);
+        dr_put_be32(bytes + 4, DR_PACKET_PROGRAM_WORD(dr_program.fingerprint, DR_EXECUTION));
     }
     crc = dr_crc16(bytes, len);
     bytes[len] = (uint8_t)(crc >> 8);

@@ -16,7 +16,7 @@ static void check_unframe(const uint8_t *in, uint8_t len)
     dr_identity_t self;
     unsigned k;
     self.robot = DR_ROBOT_ID;
-    self.fingerprint = dr_program.fingerprint;
+    self.fingerprint = DR_PACKET_PROGRAM_WORD(dr_program.fingerprint, DR_EXECUTION);
     for (k = 0; k < sizeof kinds; k++) {
         const uint8_t *payload = NULL;
         uint8_t payload_len = 0;

@@ -31,7 +31,7 @@ extern const dr_program_t dr_program;
 /* Payload: epoch (2, big-endian), low (2, big-endian), done (W/8). */
 #define PAYLOAD ((uint8_t)(4u + NBYTES))
 #define FRAME ((uint8_t)(PAYLOAD + DR_PACKET_OVERHEAD))
-/* NV record: program id, address, payload, CRC-16 (big-endian) over the bytes before it. */
+/* NV record: program word, address, payload, CRC-16 (big-endian) over the bytes before it. */
 #define RECORD ((uint8_t)(5u + PAYLOAD + 2u))
 #define TOP_EPOCH 0xFFFFu
 
@@ -251,12 +251,15 @@ static void broadcast(dr_module_t *m, uint32_t now)
 #endif
 }
 
-/* The NV record: the program's fingerprint (big endian: a module flashed with another program
- * ignores the record the old one left), the address, the payload, and the CRC-16 of the bytes
- * before it (dr_crc16_put, the frames' own code). */
+/* The program word of this program and launch (dr_packet.h): a constant in an MCU image. */
+#define WORD(m) DR_PACKET_PROGRAM_WORD(PROGRAM(m)->fingerprint, DR_EXECUTION)
+
+/* The NV record: the program word (big endian: a module flashed with another program, or
+ * with the same one for another launch, ignores the record the old one left), the address,
+ * the payload, and the CRC-16 of the bytes before it (dr_crc16_put, the frames' own code). */
 static void record(const dr_module_t *m, uint8_t *rec)
 {
-    dr_put_be32(rec, PROGRAM(m)->fingerprint);
+    dr_put_be32(rec, WORD(m));
     rec[4] = m->address;
     (void)dr_shared_encode(&m->shared, rec + 5, PAYLOAD);
     dr_crc16_put(rec, (uint8_t)(RECORD - 2u));
@@ -277,19 +280,19 @@ static void persist(dr_module_t *m)
 
 /* Joins every valid copy of the persisted state into m->shared and takes the address it
  * records; returns whether there was one. A copy is valid when its CRC matches (the CRC of
- * the whole record is then 0) and it names this program. */
+ * the whole record is then 0) and it names this program and this execution. */
 static uint8_t restore(dr_module_t *m)
 {
     uint8_t rec[RECORD];
-    uint8_t fingerprint[4];
+    uint8_t word[4];
     dr_shared_t s;
     uint8_t copy;
     uint8_t found = 0;
-    dr_put_be32(fingerprint, PROGRAM(m)->fingerprint);
+    dr_put_be32(word, WORD(m));
     for (copy = 0; copy < 2u; copy++) {
         dr_hal_nv_read(m, (uint16_t)(DR_CONF_LATTICE_NV_ADDR + copy * RECORD), rec, RECORD);
-        if (dr_crc16(rec, RECORD) == 0u && rec[0] == fingerprint[0] &&
-            rec[1] == fingerprint[1] && rec[2] == fingerprint[2] && rec[3] == fingerprint[3] &&
+        if (dr_crc16(rec, RECORD) == 0u && rec[0] == word[0] && rec[1] == word[1] &&
+            rec[2] == word[2] && rec[3] == word[3] &&
             dr_shared_decode(&s, rec + 5, PAYLOAD, PROGRAM(m)->n_statements)) {
             dr_shared_join(&m->shared, &s, PROGRAM(m)->n_statements);
             m->address = rec[4];
@@ -614,7 +617,7 @@ void dr_module_init(dr_module_t *m, const dr_program_t *program, void *platform)
     m->platform = platform;
     m->program = program;
     m->identity.robot = DR_ROBOT_ID;
-    m->identity.fingerprint = PROGRAM(m)->fingerprint;
+    m->identity.fingerprint = WORD(m);
     m->shared.epoch = 0;
     m->shared.low = 0;
     for (i = 0; i < NBYTES; i++) {

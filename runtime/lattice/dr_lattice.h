@@ -120,7 +120,7 @@ typedef uint32_t dr_counter_t;
 typedef struct dr_module {
     void *platform;                    /* the platform's own data; the runtime never reads it */
     const dr_program_t *program;
-    dr_identity_t identity;            /* DR_ROBOT_ID and the program's fingerprint */
+    dr_identity_t identity;            /* DR_ROBOT_ID; program fingerprint ^ execution */
     uint8_t address;
     dr_shared_t shared;
     dr_stmt_t running;                 /* first statement of the batch being executed

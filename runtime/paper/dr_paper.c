@@ -336,7 +336,7 @@ void dr_module_init(dr_module_t *m, const dr_paper_program_t *program, void *pla
     }
     m->platform = platform;
     m->identity.robot = DR_ROBOT_ID;
-    m->identity.fingerprint = program->fingerprint;
+    m->identity.fingerprint = DR_PACKET_PROGRAM_WORD(program->fingerprint, DR_EXECUTION);
     start(m);
 }
 

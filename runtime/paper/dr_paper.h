@@ -44,7 +44,7 @@ typedef struct {
 typedef struct dr_module {
     void *platform;
     const dr_paper_program_t *program;
-    dr_identity_t identity;         /* DR_ROBOT_ID and the program's fingerprint */
+    dr_identity_t identity;         /* DR_ROBOT_ID; program fingerprint ^ execution */
     uint8_t address;
     enum dr_paper_merge merge;
     uint8_t single_step_handover;   /* option: add pending and transfer as one step */

@@ -41,6 +41,8 @@ uint8_t dr_sim_finished(void *m);
 uint8_t dr_sim_address(void *m);
 uint8_t dr_sim_describe(void *m, char *out, uint8_t cap);
 uint8_t dr_sim_next_wakeup(void *m, uint32_t *at_ms);
+uint8_t dr_sim_restamp(const uint8_t *in, uint8_t len, uint16_t robot, uint32_t execution,
+                       uint8_t *out, uint8_t cap);
 
 static const struct dr_sim_callbacks *host;
 
@@ -89,19 +91,26 @@ uint8_t dr_sim_address(void *m)
     return ((const dr_module_t *)m)->address;
 }
 
-/* `in`, a frame a module of this program broadcast, as a second robot `robot` running the
- * same program sends it (the scenario's `foreign` packets): same program, same payload, the
- * other robot's identity (and, in a keyed build, the shared key's tag). Returns the frame's
- * length in `out`, 0 when `in` is not a whole frame or does not fit. */
-uint8_t dr_sim_restamp(const uint8_t *in, uint8_t len, uint16_t robot, uint8_t *out, uint8_t cap)
+/* `in`, a frame a module of this program broadcast in this build's execution, as robot
+ * `robot` running the same program in execution `execution` sends it (the scenario's
+ * `foreign` packets: another robot, or a recording of another launch of this one): same
+ * program, same payload, that identity (and, in a keyed build, the shared key's tag, as the
+ * key's holder made it). Returns the frame's length in `out`, 0 when `in` is not a whole
+ * frame or does not fit. */
+uint8_t dr_sim_restamp(const uint8_t *in, uint8_t len, uint16_t robot, uint32_t execution,
+                       uint8_t *out, uint8_t cap)
 {
     dr_identity_t other;
+    uint32_t word;
     if (len < DR_PACKET_OVERHEAD || in[1] != len) {
         return 0;
     }
+    word = ((uint32_t)in[4] << 24) | ((uint32_t)in[5] << 16) | ((uint32_t)in[6] << 8) |
+           (uint32_t)in[7];
     other.robot = robot;
-    other.fingerprint = ((uint32_t)in[4] << 24) | ((uint32_t)in[5] << 16) |
-                        ((uint32_t)in[6] << 8) | (uint32_t)in[7];
+    /* The program's fingerprint (this build's execution taken out), with the other one in. */
+    other.fingerprint =
+        DR_PACKET_PROGRAM_WORD(DR_PACKET_PROGRAM_WORD(word, DR_EXECUTION), execution);
     return dr_packet_frame(out, cap, &other, in[8], in + DR_PACKET_HEADER,
                            (uint8_t)(len - DR_PACKET_OVERHEAD));
 }

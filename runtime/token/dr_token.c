@@ -142,7 +142,7 @@ void dr_module_init(dr_module_t *m, const dr_token_program_t *program, void *pla
     m->platform = platform;
     m->program = program;
     m->identity.robot = DR_ROBOT_ID;
-    m->identity.fingerprint = program->fingerprint;
+    m->identity.fingerprint = DR_PACKET_PROGRAM_WORD(program->fingerprint, DR_EXECUTION);
     m->resets = resets;
     m->address = program->address_of(m);
     m->id = dr_hal_id(m);

@@ -88,7 +88,7 @@ typedef struct {
 typedef struct dr_module {
     void *platform;                    /* the platform's own data; the runtime never reads it */
     const dr_token_program_t *program;
-    dr_identity_t identity;            /* DR_ROBOT_ID and the program's fingerprint */
+    dr_identity_t identity;            /* DR_ROBOT_ID; program fingerprint ^ execution */
     uint8_t address;
     uint16_t id;
     uint16_t holding;                  /* statement whose token this module holds, or DR_NONE */

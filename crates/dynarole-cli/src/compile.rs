@@ -68,6 +68,23 @@ pub struct ProtocolOptions {
     /// authentication tag (SipHash-2-4) and modules drop packets without a valid one.
     #[arg(long, value_name = "HEX", value_parser = parse_key)]
     pub key: Option<[u8; 16]>,
+    /// This launch's execution, a 32-bit value (decimal, or hexadecimal after 0x) chosen anew
+    /// for every launch of the robot: packets and non-volatile records of another launch are
+    /// refused, so a recorded packet cannot be replayed into this one (a build can override
+    /// it at flash time with -DDR_EXECUTION=N; every module of a robot needs the same value).
+    #[arg(long, value_name = "N", value_parser = parse_execution, default_value_t = 0)]
+    pub execution: u32,
+}
+
+/// `--execution`: a 32-bit value, decimal or `0x` hexadecimal.
+pub fn parse_execution(text: &str) -> Result<u32, String> {
+    let parsed = match text.strip_prefix("0x").or_else(|| text.strip_prefix("0X")) {
+        Some(hex) => u32::from_str_radix(hex, 16),
+        None => text.parse::<u32>(),
+    };
+    parsed.map_err(|_| {
+        format!("expected a 32-bit value (0 to 4294967295, or 0x0 to 0xffffffff), found `{text}`")
+    })
 }
 
 /// `--key`: exactly 32 hexadecimal digits (16 bytes).
@@ -115,6 +132,7 @@ impl ProtocolOptions {
             name,
             robot_id: self.robot_id,
             key: self.key,
+            execution: self.execution,
         })
     }
 }
@@ -135,6 +153,7 @@ impl ProtocolOptions {
             token_retries,
             robot_id,
             key,
+            execution,
         } = self;
         let defaults = Self::defaults();
         let mut flags = vec![format!("--protocol {protocol}")];
@@ -164,6 +183,9 @@ impl ProtocolOptions {
         if let Some(key) = key {
             let hex: String = key.iter().map(|b| format!("{b:02x}")).collect();
             flags.push(format!("--key {hex}"));
+        }
+        if *execution != defaults.execution {
+            flags.push(format!("--execution {execution}"));
         }
         flags
     }
@@ -216,6 +238,8 @@ mod flag_tests {
             "7",
             "--key",
             "000102030405060708090a0b0c0d0eff",
+            "--execution",
+            "0xfffffffe",
         ]);
         round_trip(&[
             "--protocol",
@@ -246,6 +270,16 @@ mod flag_tests {
             flags.contains("--key ffeeddccbbaa99887766554433221100"),
             "{flags}"
         );
+    }
+    #[test]
+    fn an_execution_is_32_bits_in_decimal_or_hexadecimal() {
+        assert_eq!(parse_execution("41"), Ok(41));
+        assert_eq!(parse_execution("0xDEAD0002"), Ok(0xDEAD_0002));
+        assert_eq!(parse_execution("4294967295"), Ok(u32::MAX));
+        for bad in ["4294967296", "0x100000000", "-1", "", "0x", "seven"] {
+            let error = parse_execution(bad).expect_err(bad);
+            assert!(error.contains("32-bit"), "{error}");
+        }
     }
 }
 
@@ -299,8 +333,14 @@ pub fn run(args: &CompileArgs) -> Result<ExitCode, Failure> {
             std::fs::write(&path, text)
                 .map_err(|e| Failure::Input(format!("cannot write {}: {e}", path.display())))?;
         }
+        // The execution is shown once it was chosen (0 is the default, and every build's
+        // before executions existed).
+        let execution = match options.execution {
+            0 => String::new(),
+            n => format!(", execution {n}"),
+        };
         println!(
-            "compiled {} ({} protocol): {} statements, {} modules/roles, window {}, packet {} bytes, fingerprint {:08x}, robot {} -> {}",
+            "compiled {} ({} protocol): {} statements, {} modules/roles, window {}, packet {} bytes, fingerprint {:08x}, robot {}{execution} -> {}",
             options.name,
             options.protocol.name(),
             ir.statements.len(),
@@ -311,6 +351,11 @@ pub fn run(args: &CompileArgs) -> Result<ExitCode, Failure> {
             options.robot_id,
             args.out_dir.display()
         );
+        if options.key.is_some() && options.execution == 0 {
+            // The key stops forgers; only a new execution per launch stops a recording of
+            // an earlier launch from being replayed (docs/runtime.md).
+            eprintln!("note: a keyed build for execution 0: packets recorded in another launch of execution 0 would be accepted; give each launch its own --execution N (or -DDR_EXECUTION=N at flash time)");
+        }
         Ok(ExitCode::SUCCESS)
     })
 }

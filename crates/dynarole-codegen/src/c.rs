@@ -23,8 +23,23 @@ pub struct Generated {
     pub fingerprint: u32,
 }
 
-/// Framing of every packet (runtime/dr_packet.h): 9 header bytes and a CRC-16.
-const PACKET_OVERHEAD: usize = 11;
+/// Bytes of every frame besides its payload and tag: `DR_PACKET_HEADER` of
+/// runtime/dr_packet.h (read from the header, the one place the frame is laid out) and the
+/// CRC-16.
+fn packet_overhead() -> usize {
+    const NAME: &str = "#define DR_PACKET_HEADER ";
+    let header = runtime::COMMON
+        .iter()
+        .find(|(name, _)| *name == "dr_packet.h")
+        .map(|(_, text)| *text)
+        .unwrap_or_default();
+    let bytes = header
+        .lines()
+        .find_map(|line| line.strip_prefix(NAME))
+        .and_then(|value| value.trim().trim_end_matches('u').parse::<usize>().ok());
+    // The header is embedded at build time, and a test reads it: this cannot fail at run time.
+    bytes.expect("runtime/dr_packet.h defines DR_PACKET_HEADER as a number") + 2
+}
 /// Bytes of the authentication tag of keyed builds: forging one takes about 2^31 tries, years
 /// on an infrared channel of tens of packets a second, for 4 bytes more per packet.
 pub const PACKET_TAG_BYTES: usize = 4;
@@ -56,7 +71,7 @@ pub fn generate_c(
     } else {
         0
     };
-    let packet_bytes = packet_payload + PACKET_OVERHEAD + tag;
+    let packet_bytes = packet_payload + packet_overhead() + tag;
     if packet_bytes > usize::from(u8::MAX) {
         return Err(LimitError {
             message: "a packet longer than 255 bytes (the window is too wide)".into(),
@@ -109,7 +124,8 @@ pub fn generate_nesc(
 /// FNV-1a (32 bits) of every generated file, the runtime's included: two programs that differ
 /// in anything the modules run (a statement, an argument, a dependency, an option, the runtime)
 /// get different fingerprints, so their modules ignore each other's packets. The identity and
-/// the key are stamped in afterwards and are not part of it (the key must not leak through it).
+/// the key are stamped in afterwards and are not part of it (the key must not leak through it;
+/// the execution changes from launch to launch, the program does not).
 fn fingerprint(files: &[(String, String)]) -> u32 {
     let mut hash: u32 = 0x811c_9dc5;
     for (name, text) in files {
@@ -121,14 +137,14 @@ fn fingerprint(files: &[(String, String)]) -> u32 {
     hash
 }
 
-/// Writes the fingerprint, the robot identity and the key (when keyed) into the program's
-/// configuration header and source.
+/// Writes the fingerprint, the robot identity, the execution and the key (when keyed) into the
+/// program's configuration header and source.
 fn stamp_identity(files: &mut [(String, String)], fingerprint: u32, options: &CompileOptions) {
     for (name, text) in files.iter_mut() {
         if name == "dr_program_conf.h" {
             let mut identity = format!(
-                "/* Packet identity (runtime/dr_packet.h): the program's fingerprint; the robot's\n * identity (override at flash time with -DDR_ROBOT_ID=N). */\n#define DR_PROGRAM_FINGERPRINT 0x{fingerprint:08X}UL\n#ifndef DR_ROBOT_ID\n#define DR_ROBOT_ID {}u\n#endif\n",
-                options.robot_id
+                "/* Packet identity (runtime/dr_packet.h): the program's fingerprint; the robot's\n * identity and this launch's execution (override at flash time with -DDR_ROBOT_ID=N,\n * -DDR_EXECUTION=N). */\n#define DR_PROGRAM_FINGERPRINT 0x{fingerprint:08X}UL\n#ifndef DR_ROBOT_ID\n#define DR_ROBOT_ID {}u\n#endif\n#ifndef DR_EXECUTION\n#define DR_EXECUTION 0x{:08X}UL\n#endif\n",
+                options.robot_id, options.execution
             );
             if options.key.is_some() {
                 let _ = writeln!(

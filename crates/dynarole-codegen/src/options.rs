@@ -30,6 +30,9 @@ pub struct CompileOptions {
     pub robot_id: u16,
     /// The shared key of keyed builds: every packet then carries an authentication tag.
     pub key: Option<[u8; 16]>,
+    /// The execution, chosen anew for every launch (`DR_EXECUTION`, which a build can still
+    /// override at flash time): packets and NV records of another launch are refused.
+    pub execution: u32,
 }
 
 impl Default for CompileOptions {
@@ -49,6 +52,7 @@ impl Default for CompileOptions {
             name: String::new(),
             robot_id: 0,
             key: None,
+            execution: 0,
         }
     }
 }

@@ -365,6 +365,36 @@ fn robot_identity_and_key_are_stamped_in_and_the_key_adds_its_tag() {
     assert!(!file(&plain, "dr_program.c").contains("dr_packet_key"));
 }
 
+#[test]
+fn the_execution_is_stamped_in_and_costs_no_byte_on_the_air() {
+    let first = CompileOptions {
+        key: Some([0x3C; 16]),
+        ..options(Protocol::Lattice)
+    };
+    let second = CompileOptions {
+        execution: 0xDEAD_0002,
+        ..first.clone()
+    };
+    let a = compile(FIG5, "eight2car", &first);
+    let b = compile(FIG5, "eight2car", &second);
+    // One program in two launches: the same fingerprint, the same frame (the execution is
+    // folded into the program word, runtime/dr_packet.h), another DR_EXECUTION.
+    assert_eq!(a.fingerprint, b.fingerprint);
+    assert_eq!(a.packet_bytes, b.packet_bytes);
+    let unkeyed = compile(FIG5, "eight2car", &options(Protocol::Lattice));
+    assert_eq!(
+        b.packet_bytes,
+        unkeyed.packet_bytes + 4,
+        "the tag's 4 bytes only"
+    );
+    let conf = file(&b, "dr_program_conf.h");
+    assert!(
+        conf.contains("#ifndef DR_EXECUTION\n#define DR_EXECUTION 0xDEAD0002UL\n#endif"),
+        "{conf}"
+    );
+    assert!(file(&a, "dr_program_conf.h").contains("#define DR_EXECUTION 0x00000000UL"));
+}
+
 /// `make` found on the caller's PATH (the tests below change the PATH make runs with).
 fn make_program() -> PathBuf {
     let path = std::env::var_os("PATH").unwrap_or_default();

@@ -23,8 +23,9 @@ pub type InitFn = unsafe extern "C" fn(*mut c_void, *mut c_void);
 pub type StepFn = unsafe extern "C" fn(*mut c_void);
 pub type ReceiveFn = unsafe extern "C" fn(*mut c_void, u8, *const u8, u8);
 pub type QueryFn = unsafe extern "C" fn(*mut c_void) -> u8;
-/// `dr_sim_restamp(in, len, robot, out, cap)`: a frame under another robot's identity.
-pub type RestampFn = unsafe extern "C" fn(*const u8, u8, u16, *mut u8, u8) -> u8;
+/// `dr_sim_restamp(in, len, robot, execution, out, cap)`: a frame under another robot's
+/// identity or of another execution.
+pub type RestampFn = unsafe extern "C" fn(*const u8, u8, u16, u32, *mut u8, u8) -> u8;
 /// `dr_sim_next_wakeup(m, &at_ms)`: `dr_module_next_wakeup`'s answer bits.
 pub type WakeFn = unsafe extern "C" fn(*mut c_void, *mut u32) -> u8;
 type SizeFn = unsafe extern "C" fn() -> u32;

@@ -94,13 +94,22 @@ impl Contexts {
         unsafe { (self.entry.receive)(ctx, packet.to().connector, packet.bytes.as_ptr(), len) }
     }
 
-    /// `frame` as the scenario's second robot `robot` sends it; `None` when it is not a frame.
-    fn restamp(&self, frame: &[u8], robot: u16) -> Option<Vec<u8>> {
+    /// `frame` as robot `robot` sends it in execution `execution` (the scenario's second
+    /// robot, or another launch of this one); `None` when it is not a frame.
+    fn restamp(&self, frame: &[u8], robot: u16, execution: u32) -> Option<Vec<u8>> {
         let len = u8::try_from(frame.len()).ok()?;
         let mut out = vec![0u8; usize::from(u8::MAX)];
         // SAFETY: `len` readable bytes in, `out` has room for the 255 bytes it may write.
-        let written =
-            unsafe { (self.entry.restamp)(frame.as_ptr(), len, robot, out.as_mut_ptr(), u8::MAX) };
+        let written = unsafe {
+            (self.entry.restamp)(
+                frame.as_ptr(),
+                len,
+                robot,
+                execution,
+                out.as_mut_ptr(),
+                u8::MAX,
+            )
+        };
         out.truncate(usize::from(written));
         (written > 0).then_some(out)
     }
@@ -242,8 +251,8 @@ fn dispatch(state: &Rc<RefCell<State>>, contexts: &mut Contexts, event: Event) {
         }
         Event::Foreign { entry } => {
             let packet = state.borrow_mut().foreign_packet(entry);
-            if let Some((to, frame, robot)) = packet {
-                if let Some(bytes) = contexts.restamp(&frame, robot) {
+            if let Some((to, frame, robot, execution)) = packet {
+                if let Some(bytes) = contexts.restamp(&frame, robot, execution) {
                     let packet = Packet::new(0, to, to, (0, 0), bytes.into());
                     if state.borrow().modules[to.module].powered {
                         contexts.receive(&packet);

@@ -147,8 +147,10 @@ impl Simulator {
             .iter()
             .flat_map(|p| p.statements().into_iter().cloned())
             .collect();
+        let mut sequence = Sequence::new(program.robot.clone(), ir, resolved);
+        sequence.execution = options.execution;
         Ok(Simulator {
-            sequence: Arc::new(Sequence::new(program.robot.clone(), ir, resolved)),
+            sequence: Arc::new(sequence),
             files: generated.files,
             nesc: nesc_files(options),
             protocol: options.protocol,

@@ -128,7 +128,8 @@ pub struct Block {
 /// A second robot running the same program in infrared range of one module: from `from_ms`
 /// to `to_ms`, every `interval_ms`, `module` hears on `connector` what the other robot's
 /// module of the same name broadcast last in a fault-free run of its own (the end, once it
-/// has finished), sent under the other robot's identity `robot`.
+/// has finished), sent under the other robot's identity `robot` in execution `execution`
+/// (with `robot` this robot's own: a recording of another launch of it, replayed).
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Foreign {
@@ -139,6 +140,19 @@ pub struct Foreign {
     pub to_ms: u64,
     #[serde(default = "foreign_interval_ms")]
     pub interval_ms: u64,
+    /// The other launch's execution (`DR_EXECUTION`, runtime/dr_conf.h); `None`: the one
+    /// before this robot's (`execution_beside`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub execution: Option<u32>,
+}
+
+impl Foreign {
+    /// The execution its packets are sent in when this robot's is `own`: the entry's, else
+    /// the launch before (`own - 1`, wrapping), never this one. A recording of this very
+    /// execution is asked for by giving it: what a launch that reused its value would hear.
+    pub fn execution_beside(&self, own: u32) -> u32 {
+        self.execution.unwrap_or(own.wrapping_sub(1))
+    }
 }
 
 fn foreign_interval_ms() -> u64 {

@@ -47,6 +47,9 @@ pub struct Sequence {
     /// the IR's `deps`, one entry per edge).
     dependents: Vec<u16>,
     first_dependent: Vec<u32>,
+    /// The execution the build is stamped with (`DR_EXECUTION`; 0 unless the simulator's
+    /// caller sets it): `[[foreign]]` packets are of another one unless the scenario says.
+    pub execution: u32,
 }
 
 impl Sequence {
@@ -65,6 +68,7 @@ impl Sequence {
             kinds,
             dependents,
             first_dependent,
+            execution: 0,
         }
     }
 

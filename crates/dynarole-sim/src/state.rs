@@ -308,8 +308,9 @@ impl State {
     }
 
     /// `foreign[entry]`'s packet now: the receiving port, the other robot's frame and its
-    /// identity; the next one is scheduled. `None` when the other robot's module sent nothing.
-    pub fn foreign_packet(&mut self, entry: usize) -> Option<(Port, Vec<u8>, u16)> {
+    /// identity (robot, execution); the next one is scheduled. `None` when the other robot's
+    /// module sent nothing.
+    pub fn foreign_packet(&mut self, entry: usize) -> Option<(Port, Vec<u8>, u16, u32)> {
         let f = self.scenario.foreign.get(entry)?.clone();
         let next = self.now + f.interval_ms * 1000;
         if next < f.to_ms * 1000 {
@@ -332,7 +333,7 @@ impl State {
             );
             self.log(Some(module), "foreign", detail);
         }
-        Some((port, frame, f.robot))
+        Some((port, frame, f.robot, f.execution_beside(self.seq.execution)))
     }
 
     pub fn n_modules(&self) -> usize {

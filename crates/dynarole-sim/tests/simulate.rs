@@ -378,8 +378,9 @@ fn operation_durations_vary_when_asked_and_stay_reproducible() {
 }
 
 /// A scenario in which M0 hears, from power-on, what a second robot's M0 running the same
-/// program broadcasts once that robot has finished (the end), under robot identity `robot`.
-fn finished_twin_in_range(robot: u16) -> Scenario {
+/// program broadcasts once that robot has finished (the end), under robot identity `robot`
+/// in execution `execution` (`None`: another launch's).
+fn finished_twin_in_range(robot: u16, execution: Option<u32>) -> Scenario {
     let mut scenario = ussr();
     scenario.foreign.push(dynarole_sim::Foreign {
         module: "M0".into(),
@@ -388,13 +389,29 @@ fn finished_twin_in_range(robot: u16) -> Scenario {
         from_ms: 0,
         to_ms: 20_000,
         interval_ms: 100,
+        execution,
     });
     scenario
 }
 
+/// eight2car built with a key (`compile --key`) for the launch `execution`.
+fn keyed_eight2car(protocol: Protocol, execution: u32) -> dynarole_sim::Simulator {
+    let parsed = dynarole_core::parse(EIGHT2CAR);
+    let program = dynarole_core::driver::check(&parsed, &dynarole_core::RobotRegistry::builtin())
+        .unwrap_or_else(|diagnostics| panic!("{diagnostics:?}"));
+    let plans = dynarole_core::driver::plans(&program, &["eight2car".to_string()])
+        .expect("eight2car exists");
+    let options = dynarole_codegen::CompileOptions {
+        key: Some(*b"\x00\x11\x22\x33\x44\x55\x66\x77\x88\x99\xaa\xbb\xcc\xdd\xee\xff"),
+        execution,
+        ..options(protocol)
+    };
+    dynarole_sim::Simulator::new(&program, &plans, &options).expect("compiles")
+}
+
 #[test]
 fn packets_of_another_robot_running_the_same_program_are_ignored() {
-    let report = eight2car(Protocol::Lattice, &finished_twin_in_range(1), 1);
+    let report = eight2car(Protocol::Lattice, &finished_twin_in_range(1, None), 1);
     assert_success(&report);
     assert!(report.counters.foreign >= 100, "{}", report.summary());
     let trace = report.trace.as_deref().unwrap_or_default();
@@ -406,10 +423,49 @@ fn packets_of_another_robot_running_the_same_program_are_ignored() {
 
 #[test]
 fn the_same_packets_under_this_robots_identity_would_end_the_run_early() {
-    // What the robot identity protects against: the other robot's "end", taken as ours, makes
-    // the modules stop before the reconfiguration is done (robot 0 is this robot's identity).
+    // What the robot identity and the execution protect against: the other robot's "end",
+    // taken as ours, makes the modules stop before the reconfiguration is done (robot 0 and
+    // execution 0 are this robot's: a launch that reused the last launch's execution).
     for protocol in [Protocol::Lattice, Protocol::Paper] {
-        let report = eight2car(protocol, &finished_twin_in_range(0), 1);
+        let report = eight2car(protocol, &finished_twin_in_range(0, Some(0)), 1);
+        assert!(!report.success, "{}", report.summary());
+        assert!(
+            report.statements_done < report.statements,
+            "{}",
+            report.summary()
+        );
+    }
+}
+
+#[test]
+fn a_recorded_end_of_another_launch_is_refused_in_a_keyed_build() {
+    // The replay: the end packets of an earlier launch of the same program, sent under this
+    // robot's identity with the key (as a recorder in range replays them). The execution the
+    // tag covers is another one: every module drops them as foreign and the run is whole.
+    for protocol in [Protocol::Lattice, Protocol::Paper] {
+        let sim = keyed_eight2car(protocol, 41);
+        for execution in [None, Some(40), Some(0)] {
+            let scenario = finished_twin_in_range(0, execution);
+            let report = run(&sim, EIGHT, Some(CAR), &scenario, 1);
+            assert_success(&report);
+            assert_eq!(report.statements_done, 25, "{}", report.summary());
+            assert!(report.violations.is_empty(), "{}", report.summary());
+            assert!(report.counters.foreign >= 100, "{}", report.summary());
+            let trace = report.trace.as_deref().unwrap_or_default();
+            assert!(
+                trace.contains("robot 0 -> M0.C0"),
+                "the trace shows the stale packets"
+            );
+        }
+        // The same recording of this very launch (an execution used twice) is taken for
+        // ours: the modules declare the end with the reconfiguration not done.
+        let report = run(
+            &sim,
+            EIGHT,
+            Some(CAR),
+            &finished_twin_in_range(0, Some(41)),
+            1,
+        );
         assert!(!report.success, "{}", report.summary());
         assert!(
             report.statements_done < report.statements,

@@ -219,6 +219,7 @@ fn a_second_robot_in_range_gives_the_same_run() {
         from_ms: 500,
         to_ms: 20_000,
         interval_ms: 37,
+        execution: None,
     });
     for seed in 0..3 {
         assert_same(&sim, (EIGHT, CAR), &scenario, seed, "foreign");

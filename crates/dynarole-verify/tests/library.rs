@@ -33,6 +33,7 @@ fn options(protocol: Protocol, merge: PaperMerge) -> BuildOptions {
             name: "ab_c".into(),
             robot_id: 0,
             key: None,
+            execution: 0,
         },
         method: Method::Auto,
         resets: 0,

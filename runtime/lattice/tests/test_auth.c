@@ -1,6 +1,8 @@
 /* test_auth.c - the keyed authentication tag (built with DR_CONF_PACKET_TAG 4 and 8): the
  * SipHash-2-4 reference vector, frames made with the key accepted, any change to a tagged
- * byte rejected even with the CRC made valid again, and another robot's frame foreign. */
+ * byte rejected even with the CRC made valid again, another robot's frame foreign, and a
+ * frame of another execution (a recording of another launch) foreign and not made ours by
+ * rewriting its program word. */
 #include <stdio.h>
 #include <string.h>
 
@@ -67,10 +69,39 @@ static void test_frames(void)
     CHECK(dr_packet_unframe(frame, len, &ours, 1u, &got, &got_len) == DR_PACKET_FOREIGN);
 }
 
+/* This robot and program in execution 7, and a frame recorded in execution 6 (the launch
+ * before): authentic, but foreign; its program word rewritten to ours (CRC repaired), the tag
+ * no longer matches. */
+static void test_executions(void)
+{
+    const uint32_t fingerprint = 0xCAFEF00DUL;
+    dr_identity_t ours;
+    dr_identity_t before;
+    const uint8_t payload[6] = { 6, 5, 4, 3, 2, 1 };
+    uint8_t frame[DR_CONF_MAX_PACKET];
+    const uint8_t *got;
+    uint8_t got_len = 0;
+    uint8_t len;
+    ours.robot = 3u;
+    ours.fingerprint = DR_PACKET_PROGRAM_WORD(fingerprint, 7u);
+    before.robot = 3u;
+    before.fingerprint = DR_PACKET_PROGRAM_WORD(fingerprint, 6u);
+    len = dr_packet_frame(frame, sizeof frame, &before, 1u, payload, sizeof payload);
+    CHECK(len == sizeof payload + DR_PACKET_OVERHEAD); /* no byte more on the air */
+    CHECK(dr_packet_unframe(frame, len, &before, 1u, &got, &got_len) == DR_PACKET_OK);
+    CHECK(dr_packet_unframe(frame, len, &ours, 1u, &got, &got_len) == DR_PACKET_FOREIGN);
+    dr_put_be32(frame + 4, ours.fingerprint);
+    recrc(frame, len);
+    CHECK(dr_packet_unframe(frame, len, &ours, 1u, &got, &got_len) == DR_PACKET_MALFORMED);
+    /* Execution 0 is the program's fingerprint itself (the frames of builds before it). */
+    CHECK(DR_PACKET_PROGRAM_WORD(fingerprint, 0u) == fingerprint);
+}
+
 int main(void)
 {
     test_reference_vector();
     test_frames();
+    test_executions();
     printf("auth tests (tag %u bytes): %u checks, %u failed\n", (unsigned)DR_CONF_PACKET_TAG,
            checks, failures);
     return failures == 0u ? 0 : 1;

@@ -13,6 +13,8 @@ static dr_statement_t statements[N_STMT];
 static const dr_dep_t no_deps[1] = { 0 };
 static const dr_program_t program = { 0x5Au, N_STMT, statements, no_deps, sim_args, 3u,
                                       sim_address_of, 0u };
+/* The program word of this program in this build's execution (dr_packet.h). */
+#define OURS DR_PACKET_PROGRAM_WORD(program.fingerprint, DR_EXECUTION)
 
 /* A frame of `payload` with any header bytes and a correct CRC. */
 /* A frame written byte by byte (not through dr_packet_frame), so that each header field can
@@ -119,48 +121,54 @@ void test_packets(void)
     CHECK_EQ(m->packets_malformed - before, flen);
     /* Wrong magic, with a valid CRC: malformed. */
     before = m->packets_malformed;
-    dr_module_receive(m, 0, bad, frame_raw(bad, 0xD1u, DR_ROBOT_ID, program.fingerprint,
+    dr_module_receive(m, 0, bad, frame_raw(bad, 0xD1u, DR_ROBOT_ID, OURS,
                                             DR_PACKET_LATTICE_STATE, payload, len));
     CHECK_EQ(m->packets_malformed - before, 1);
     /* A valid frame with a byte appended (zero or not): malformed. */
-    flen = frame_raw(bad, DR_PACKET_MAGIC, DR_ROBOT_ID, program.fingerprint,
+    flen = frame_raw(bad, DR_PACKET_MAGIC, DR_ROBOT_ID, OURS,
                      DR_PACKET_LATTICE_STATE, payload, len);
     bad[flen] = 0u;
     dr_module_receive(m, 0, bad, (uint8_t)(flen + 1u));
     CHECK_EQ(m->packets_malformed - before, 2);
     flen = FRAME_LEN;
     /* Another robot, another program (even one differing only in the fingerprint's top
-     * byte), or another kind: foreign. */
+     * byte), this program in another execution (a recording of another launch), or another
+     * kind: foreign. */
+    dr_module_receive(m, 0, bad, frame_raw(bad, DR_PACKET_MAGIC, DR_ROBOT_ID,
+                                            DR_PACKET_PROGRAM_WORD(program.fingerprint,
+                                                                   DR_EXECUTION ^ 1u),
+                                            DR_PACKET_LATTICE_STATE, payload, len));
     dr_module_receive(m, 0, bad, frame_raw(bad, DR_PACKET_MAGIC, (uint16_t)(DR_ROBOT_ID + 1u),
-                                            program.fingerprint, DR_PACKET_LATTICE_STATE,
+                                            OURS, DR_PACKET_LATTICE_STATE,
                                             payload, len));
     dr_module_receive(m, 0, bad, frame_raw(bad, DR_PACKET_MAGIC, DR_ROBOT_ID,
-                                            program.fingerprint ^ 0x01000000UL,
+                                            OURS ^ 0x01000000UL,
                                             DR_PACKET_LATTICE_STATE, payload, len));
-    dr_module_receive(m, 0, bad, frame_raw(bad, DR_PACKET_MAGIC, DR_ROBOT_ID, 0x5Bu,
+    dr_module_receive(m, 0, bad, frame_raw(bad, DR_PACKET_MAGIC, DR_ROBOT_ID,
+                                            DR_PACKET_PROGRAM_WORD(0x5Bu, DR_EXECUTION),
                                             DR_PACKET_LATTICE_STATE, payload, len));
-    dr_module_receive(m, 0, bad, frame_raw(bad, DR_PACKET_MAGIC, DR_ROBOT_ID, program.fingerprint,
+    dr_module_receive(m, 0, bad, frame_raw(bad, DR_PACKET_MAGIC, DR_ROBOT_ID, OURS,
                                             DR_PACKET_PAPER_STATE, payload, len));
-    CHECK_EQ(m->packets_foreign, 4);
+    CHECK_EQ(m->packets_foreign, 5);
     /* Valid frame, wrong payload size: malformed. */
     before = m->packets_malformed;
-    dr_module_receive(m, 0, bad, frame_raw(bad, DR_PACKET_MAGIC, DR_ROBOT_ID, program.fingerprint,
+    dr_module_receive(m, 0, bad, frame_raw(bad, DR_PACKET_MAGIC, DR_ROBOT_ID, OURS,
                                             DR_PACKET_LATTICE_STATE, payload,
                                             (uint8_t)(len - 1u)));
     /* Valid frame, low > n_statements: malformed. */
     state_with(&s, 1u, (uint16_t)(N_STMT + 1u), 0u);
     (void)dr_shared_encode(&s, payload, sizeof payload);
-    dr_module_receive(m, 0, bad, frame_raw(bad, DR_PACKET_MAGIC, DR_ROBOT_ID, program.fingerprint,
+    dr_module_receive(m, 0, bad, frame_raw(bad, DR_PACKET_MAGIC, DR_ROBOT_ID, OURS,
                                             DR_PACKET_LATTICE_STATE, payload, len));
     /* Valid frame, a bit for a statement that does not exist: malformed. */
     state_with(&s, 1u, (uint16_t)(N_STMT - 1u), 0x02u);
     (void)dr_shared_encode(&s, payload, sizeof payload);
-    dr_module_receive(m, 0, bad, frame_raw(bad, DR_PACKET_MAGIC, DR_ROBOT_ID, program.fingerprint,
+    dr_module_receive(m, 0, bad, frame_raw(bad, DR_PACKET_MAGIC, DR_ROBOT_ID, OURS,
                                             DR_PACKET_LATTICE_STATE, payload, len));
     /* Valid frame, an epoch beyond the end (3 epochs: 3 is the end, 4 cannot exist). */
     state_with(&s, 4u, 0u, 0u);
     (void)dr_shared_encode(&s, payload, sizeof payload);
-    dr_module_receive(m, 0, bad, frame_raw(bad, DR_PACKET_MAGIC, DR_ROBOT_ID, program.fingerprint,
+    dr_module_receive(m, 0, bad, frame_raw(bad, DR_PACKET_MAGIC, DR_ROBOT_ID, OURS,
                                             DR_PACKET_LATTICE_STATE, payload, len));
     CHECK_EQ(m->packets_malformed - before, 4);
     /* None of that changed the state. */
@@ -169,10 +177,10 @@ void test_packets(void)
     /* The end itself is accepted and is final. */
     state_with(&s, 3u, 0u, 0u);
     (void)dr_shared_encode(&s, payload, sizeof payload);
-    dr_module_receive(m, 0, bad, frame_raw(bad, DR_PACKET_MAGIC, DR_ROBOT_ID, program.fingerprint,
+    dr_module_receive(m, 0, bad, frame_raw(bad, DR_PACKET_MAGIC, DR_ROBOT_ID, OURS,
                                             DR_PACKET_LATTICE_STATE, payload, len));
     CHECK(dr_module_finished(m));
-    CHECK_EQ(m->packets_received, 8u * flen + flen + 1u + 1u + 1u + 4u + 4u + 1u);
+    CHECK_EQ(m->packets_received, 8u * flen + flen + 1u + 1u + 1u + 5u + 4u + 1u);
 
     /* A module with no address sends its state but starts nothing. */
     sim.time += 1000u;

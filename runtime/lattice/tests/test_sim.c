@@ -304,6 +304,65 @@ static void test_without_nv(void)
     CHECK_EQ(sim.starts[0][1], 1);
 }
 
+/* A new launch of the same program (the image flashed again with another execution,
+ * dr_packet.h): what the last launch left in NV is ignored, so the sequence runs again from
+ * the start, and the last launch's end, recorded and replayed under this robot's identity
+ * with the key, is foreign. The old records are written as the other execution's (this
+ * binary has one DR_EXECUTION: from the new image's side that is the same thing). */
+static void test_another_launch(void)
+{
+    const uint32_t before_word =
+        DR_PACKET_PROGRAM_WORD(p1.fingerprint, DR_EXECUTION ^ 0x80000001UL);
+    const uint8_t record_len = (uint8_t)(5u + 4u + DR_CONF_WINDOW / 8u + 2u);
+    dr_identity_t recorded;
+    uint8_t nv[3][SIM_NV];
+    uint8_t frames[3][DR_CONF_MAX_PACKET];
+    uint8_t lens[3];
+    uint8_t payload[4u + DR_CONF_WINDOW / 8u];
+    uint8_t i;
+    uint8_t copy;
+    recorded.robot = DR_ROBOT_ID;
+    recorded.fingerprint = before_word;
+    sim_setup(&p1, 3, addr3, 61u);
+    CHECK(sim_run(60000u));
+    for (i = 0; i < 3u; i++) {
+        uint8_t *rec;
+        CHECK(dr_module_finished(&sim.nodes[i].mod));
+        /* The end each module broadcast, as the earlier launch sent it. */
+        (void)dr_shared_encode(&sim.nodes[i].mod.shared, payload, sizeof payload);
+        lens[i] = dr_packet_frame(frames[i], DR_CONF_MAX_PACKET, &recorded,
+                                  DR_PACKET_LATTICE_STATE, payload, sizeof payload);
+        CHECK(lens[i] > 0u);
+        memcpy(nv[i], sim.nodes[i].fake.nv, SIM_NV);
+        for (copy = 0; copy < 2u; copy++) {
+            rec = nv[i] + DR_CONF_LATTICE_NV_ADDR + copy * record_len;
+            CHECK_EQ(dr_crc16(rec, record_len), 0); /* a valid record of this launch */
+            dr_put_be32(rec, before_word);
+            dr_crc16_put(rec, (uint8_t)(record_len - 2u));
+        }
+    }
+    /* The new launch: the old records in NV, the old end replayed before anything else. */
+    sim_setup(&p1, 3, addr3, 62u);
+    for (i = 0; i < 3u; i++) {
+        memcpy(sim.nodes[i].fake.nv, nv[i], SIM_NV);
+        sim_reset(i);
+        CHECK(!dr_module_finished(&sim.nodes[i].mod));
+        CHECK_EQ(sim.nodes[i].mod.shared.low, 0);
+        dr_module_receive(&sim.nodes[i].mod, 0, frames[i], lens[i]);
+        CHECK_EQ(sim.nodes[i].mod.packets_foreign, 1);
+        CHECK(!dr_module_finished(&sim.nodes[i].mod));
+    }
+    CHECK(sim_run(60000u));
+    CHECK_EQ(sim.violations, 0);
+    check_starts(&p1, 1, 1, SIM_NONE, 0); /* every operation once, in this launch */
+    /* And the records now name this launch: a module reset now restores its record and
+     * re-issues nothing (with its record ignored it would redo A: test_without_nv). */
+    sim_reset(0);
+    run_for(2000u);
+    CHECK(dr_module_finished(&sim.nodes[0].mod));
+    check_starts(&p1, 1, 1, SIM_NONE, 0);
+}
+
 /* A failed operation is re-issued at the pace of the broadcast until it succeeds. */
 static void test_failures(void)
 {
@@ -1071,6 +1130,7 @@ void test_sim(void)
     test_resets();
     test_address_kept();
     test_without_nv();
+    test_another_launch();
     test_failures();
     test_epochs();
     test_old_epoch_completion();
