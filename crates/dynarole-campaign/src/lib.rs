@@ -5,6 +5,8 @@
 
 mod emit;
 mod exec;
+mod files;
+mod inputs;
 mod limits;
 mod load;
 pub mod picture;
@@ -21,6 +23,7 @@ pub use dynarole_input::{read_limited, MAX_INPUT_BYTES};
 pub use emit::{
     check as check_jobs, job_files, write as write_job_files, JobFile, Jobs, Scheduler,
 };
+pub use inputs::INPUTS_FILE;
 pub use plan::{plan, Axis, Faults, Plan, PlannedRun, MAX_RUNS};
 pub use plot::{bounds, rasterise_svg};
 pub use progress::{Progress, ProgressMode, INTERVAL_VARIABLE};
@@ -127,7 +130,12 @@ pub fn run(options: &Options) -> Result<Done, Error> {
     let mut done = match options.shard {
         None => {
             let csv_path = options.out_dir.join("runs.csv");
-            let (rows, already, ran) = execute(&inputs, &planned, &csv_path, None, options)?;
+            let before = recorded(&csv_path, &planned, inputs.campaign, None)?.rows;
+            let what = format!("the {} runs of {}", before.len(), csv_path.display());
+            let has_results = !before.is_empty();
+            shard::keep_inputs(&options.out_dir, &inputs.fingerprint, has_results, &what)?;
+            let run = (csv_path.as_path(), None, before, "");
+            let (rows, already, ran) = execute(&inputs, &planned, run, options)?;
             let (summaries, files) = write_outputs(&rows, &options.out_dir, options.plots)?;
             Done {
                 total: planned.len(),
@@ -179,18 +187,24 @@ fn run_shard(
             shard.count
         )));
     }
-    shard::keep_campaign(dir, text)?;
+    let has_results = !shard::find(dir)?.files.is_empty();
+    shard::keep_campaign(dir, text, has_results)?;
+    let what = format!("the shards in {}", dir.display());
+    shard::keep_inputs(dir, &inputs.fingerprint, has_results, &what)?;
     let finished = dir.join(shard.file_name());
     let partial = dir.join(shard.partial_name());
-    if finished.exists() {
+    if finished.exists() || finished.is_symlink() {
         // Checked and completed like a partial file (it may have been cut or edited).
         std::fs::rename(&finished, &partial).map_err(|e| Error::io(&partial, e))?;
     }
-    let (rows, already, ran) = execute(inputs, planned, &partial, Some(shard), options)?;
+    let before = resumable(&partial, planned, inputs, shard)?;
+    let preamble = inputs.fingerprint.to_text();
+    let run = (partial.as_path(), Some(shard), before, preamble.as_str());
+    let (rows, already, ran) = execute(inputs, planned, run, options)?;
     let total = shard.size(planned.len());
     let mut files = vec![partial.clone()];
     if rows.len() as u64 == total {
-        results::write_atomically(&finished, &rows)?;
+        results::write_atomically(&finished, &rows, &preamble)?;
         std::fs::remove_file(&partial).map_err(|e| Error::io(&partial, e))?;
         files = vec![finished];
     }
@@ -205,17 +219,53 @@ fn run_shard(
     })
 }
 
-/// Runs the runs of `shard` (all when `None`) not yet recorded in `csv_path`, at most
+/// The rows of a shard's partial file that a resumed shard keeps: all of them when the file
+/// records the inputs of this run, none when it holds no row (the file is started again, with
+/// the record); an error naming what changed otherwise.
+fn resumable(
+    partial: &Path,
+    planned: &Plan,
+    inputs: &load::Inputs,
+    shard: Shard,
+) -> Result<Vec<Row>, Error> {
+    let before = recorded(partial, planned, inputs.campaign, Some(shard))?;
+    if before.rows.is_empty() {
+        match std::fs::remove_file(partial) {
+            Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+                return Err(Error::io(partial, e))
+            }
+            _ => return Ok(Vec::new()),
+        }
+    }
+    let changes = match &before.inputs {
+        Some(recorded) => recorded.changes(&inputs.fingerprint),
+        None => vec!["inputs it holds no record of (written by an older dynarole?)".into()],
+    };
+    if changes.is_empty() {
+        return Ok(before.rows);
+    }
+    Err(Error::Results(format!(
+        "{}: its {} runs were computed from {}; remove it to run shard {shard} again, or \
+         write to another directory (-o)",
+        partial.display(),
+        before.rows.len(),
+        changes.join("; ")
+    )))
+}
+
+/// Where `execute` records: the results file, the shard (all runs when `None`), the rows
+/// already checked in it, and what heads a new file (the record of the inputs, for a shard).
+type Target<'a> = (&'a Path, Option<Shard>, Vec<Row>, &'a str);
+
+/// Runs the runs of the target's shard not yet recorded in its file, at most
 /// `options.max_runs` of them, appending each to it; returns every recorded row in run order,
 /// how many were there before and how many ran now.
 fn execute(
     inputs: &load::Inputs,
     planned: &Plan,
-    csv_path: &Path,
-    shard: Option<Shard>,
+    (csv_path, shard, mut rows, preamble): Target<'_>,
     options: &Options,
 ) -> Result<(Vec<Row>, u64, u64), Error> {
-    let mut rows = recorded(csv_path, planned, inputs.campaign, shard)?;
     let already = rows.len() as u64;
     let done: std::collections::BTreeSet<u64> = rows.iter().map(|r| r.run).collect();
     let pending: Vec<PlannedRun> = planned
@@ -227,7 +277,7 @@ fn execute(
         exec::prepare(inputs)?;
     }
     let label = shard.map_or("campaign".to_string(), |s| format!("shard {s}"));
-    let sink = results::Sink::open(csv_path)?;
+    let sink = results::Sink::open(csv_path, preamble)?;
     let total = shard.map_or(planned.len(), |s| s.size(planned.len()));
     // Counted against the runs this command may do (`--max-runs` stops before the end).
     let target = total.min(already + pending.len() as u64);
@@ -260,8 +310,11 @@ pub struct MergeOptions {
 /// then writes the same outputs as a one-machine run of it.
 pub fn merge(options: &MergeOptions) -> Result<Done, Error> {
     let started = Instant::now();
-    let rows = shard::merged_rows(&options.dir)?;
+    let (rows, inputs) = shard::merged_rows(&options.dir)?;
     std::fs::create_dir_all(&options.out_dir).map_err(|e| Error::io(&options.out_dir, e))?;
+    // The merged runs.csv is bound to its inputs as a one-machine run's is.
+    let record = options.out_dir.join(INPUTS_FILE);
+    files::write_atomically(&record, &inputs.to_text())?;
     let (summaries, files) = write_outputs(&rows, &options.out_dir, options.plots)?;
     Ok(Done {
         total: rows.len() as u64,
@@ -283,7 +336,7 @@ fn write_outputs(
     plots: bool,
 ) -> Result<(Vec<PointSummary>, Vec<PathBuf>), Error> {
     let csv_path = dir.join("runs.csv");
-    results::write_atomically(&csv_path, rows)?;
+    results::write_atomically(&csv_path, rows, "")?;
     let summaries = summarise(rows);
     let tables = dir.join("summary.md");
     std::fs::write(&tables, tables::markdown(&summaries)).map_err(|e| Error::io(&tables, e))?;
@@ -301,12 +354,14 @@ fn recorded(
     planned: &plan::Plan,
     campaign: &CampaignFile,
     shard: Option<Shard>,
-) -> Result<Vec<Row>, Error> {
-    let rows = results::read_existing(path)?;
+) -> Result<results::Recorded, Error> {
+    let runs = shard.map_or(planned.len(), |s| s.size(planned.len()));
+    let read = results::read_existing(path, files::results_bound(runs))?;
+    let rows = &read.rows;
     let preset = campaign.scenario.network.preset.name();
     let timeout = campaign.scenario.timeout_ms;
     let mut seen = std::collections::BTreeSet::new();
-    for row in &rows {
+    for row in rows {
         if let Some(s) = shard.filter(|s| !s.holds(row.run)) {
             return Err(Error::Results(format!(
                 "{}: run {} does not belong to shard {s}",
@@ -333,7 +388,7 @@ fn recorded(
             )));
         }
     }
-    Ok(rows)
+    Ok(read)
 }
 
 fn write_summary(summaries: &[PointSummary], dir: &Path) -> Result<PathBuf, Error> {

@@ -2,6 +2,7 @@
 //! campaign's plugins, and a `NAME.robot.toml` beside the source), the sequences'
 //! plans and the configurations.
 
+use crate::inputs::Fingerprint;
 use crate::spec::{CampaignFile, SpecError};
 use crate::Error;
 use dynarole_codegen::{CompileOptions, Variant};
@@ -22,6 +23,8 @@ pub struct Sources {
     pub parsed: dynarole_core::Parsed,
     pub start: Configuration,
     pub expect: Option<Configuration>,
+    /// The files read so far (the campaign file, the program, the configurations).
+    pub fingerprint: Fingerprint,
 }
 
 /// Everything the runs share (all `Sync`: each worker builds its own simulators from it).
@@ -32,6 +35,8 @@ pub struct Inputs<'a> {
     pub plans: Vec<Plan>,
     pub start: &'a Configuration,
     pub expect: Option<&'a Configuration>,
+    /// Every file the runs are computed from, the robot plugins included.
+    pub fingerprint: Fingerprint,
 }
 
 /// Every file a campaign names is read through `dynarole_input` (the size limit); the error
@@ -49,11 +54,18 @@ pub fn sources(path: &Path) -> Result<Sources, Error> {
         text: text.clone(),
         error: Box::new(e),
     })?;
+    let mut fingerprint = Fingerprint::new();
+    fingerprint.add("campaign", path, &text);
     let source = read(&campaign.file)?;
+    fingerprint.add("program", &campaign.file, &source);
     let parsed = dynarole_core::parse(&source);
-    let start = configuration(&campaign.from)?;
-    let expect = campaign.expect.as_deref().map(configuration).transpose()?;
+    let start = configuration(&campaign.from, &mut fingerprint, "from")?;
+    let expect = match campaign.expect.as_deref() {
+        Some(p) => Some(configuration(p, &mut fingerprint, "expect")?),
+        None => None,
+    };
     Ok(Sources {
+        fingerprint,
         path: path.to_path_buf(),
         text,
         campaign,
@@ -67,7 +79,8 @@ pub fn sources(path: &Path) -> Result<Sources, Error> {
 /// Checks the program and expands its sequences.
 pub fn inputs(sources: &Sources) -> Result<Inputs<'_>, Error> {
     let campaign = &sources.campaign;
-    let program = program(sources)?;
+    let mut fingerprint = sources.fingerprint.clone();
+    let program = program(sources, &mut fingerprint)?;
     let plans = dynarole_core::driver::plans(&program, &campaign.sequences)
         .map_err(|e| unknown_sequence(sources, &e))?;
     Ok(Inputs {
@@ -77,6 +90,7 @@ pub fn inputs(sources: &Sources) -> Result<Inputs<'_>, Error> {
         plans,
         start: &sources.start,
         expect: sources.expect.as_ref(),
+        fingerprint,
     })
 }
 
@@ -100,22 +114,32 @@ fn unknown_sequence(sources: &Sources, e: &SelectError) -> Error {
     }
 }
 
-fn configuration(path: &Path) -> Result<Configuration, Error> {
-    Configuration::from_json_str(&read(path)?)
+/// The configuration in `path`, recorded in `fingerprint` as `role`.
+fn configuration(
+    path: &Path,
+    fingerprint: &mut Fingerprint,
+    role: &str,
+) -> Result<Configuration, Error> {
+    let text = read(path)?;
+    fingerprint.add(role, path, &text);
+    Configuration::from_json_str(&text)
         .map_err(|e| Error::Input(format!("{}: {e}", path.display())))
 }
 
-fn program(sources: &Sources) -> Result<Program<'_>, Error> {
+/// The checked program; every plugin it loads is recorded in `fingerprint`.
+fn program<'a>(sources: &'a Sources, fingerprint: &mut Fingerprint) -> Result<Program<'a>, Error> {
     let campaign = &sources.campaign;
-    let plugins = campaign
-        .plugins
-        .iter()
-        .map(|path| plugin(path))
-        .collect::<Result<Vec<_>, _>>()?;
+    let mut plugins = Vec::new();
+    for path in &campaign.plugins {
+        plugins.push(plugin(path, fingerprint)?);
+    }
     let robot = driver::robot_name(&sources.parsed.file);
     let registry = driver::registry(robot, plugins, |file| {
         let beside = campaign.file.with_file_name(file);
-        beside.is_file().then(|| plugin(&beside)).transpose()
+        beside
+            .is_file()
+            .then(|| plugin(&beside, fingerprint))
+            .transpose()
     })?;
     driver::check(&sources.parsed, &registry).map_err(|diagnostics| Error::Diagnostics {
         path: campaign.file.clone(),
@@ -124,8 +148,9 @@ fn program(sources: &Sources) -> Result<Program<'_>, Error> {
     })
 }
 
-fn plugin(path: &Path) -> Result<RobotApi, Error> {
+fn plugin(path: &Path, fingerprint: &mut Fingerprint) -> Result<RobotApi, Error> {
     let text = read(path)?;
+    fingerprint.add("plugin", path, &text);
     RobotApi::from_toml(&text).map_err(|error| Error::Spec {
         path: path.to_path_buf(),
         text,

@@ -1,6 +1,8 @@
 //! `runs.csv`: one row per run (its parameters, seed and results), appended and flushed as
 //! runs finish, and read back to resume an interrupted campaign.
 
+use crate::files;
+use crate::inputs::Fingerprint;
 use crate::plan::PlannedRun;
 use crate::Error;
 use dynarole_sim::Report;
@@ -163,13 +165,19 @@ impl Row {
     }
 }
 
-/// Reads the rows already in `path` (none if it does not exist). A last line cut short by an
-/// interruption (no final newline) is removed from the file.
-pub fn read_existing(path: &Path) -> Result<Vec<Row>, Error> {
-    let text = match std::fs::read_to_string(path) {
-        Ok(t) => t,
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Vec::new()),
-        Err(e) => return Err(Error::io(path, e)),
+/// A results file read back: the record of its inputs heading it (shard files), and its rows.
+#[derive(Debug, Default)]
+pub struct Recorded {
+    pub inputs: Option<Fingerprint>,
+    pub rows: Vec<Row>,
+}
+
+/// Reads the rows already in `path` (none if it does not exist), reading at most `bound`
+/// bytes. A last line cut short by an interruption (no final newline) is removed from the
+/// file.
+pub fn read_existing(path: &Path, bound: u64) -> Result<Recorded, Error> {
+    let Some(text) = files::read_bounded(path, bound)? else {
+        return Ok(Recorded::default());
     };
     let complete = match text.rfind('\n') {
         Some(end) => &text[..=end],
@@ -183,33 +191,42 @@ pub fn read_existing(path: &Path) -> Result<Vec<Row>, Error> {
         file.set_len(complete.len() as u64)
             .map_err(|e| Error::io(path, e))?;
     }
-    parse_rows(complete, path)
+    let (inputs, head) = Fingerprint::parse(complete);
+    let body: usize = complete
+        .split_inclusive('\n')
+        .take(head)
+        .map(str::len)
+        .sum();
+    let rows = parse_rows(&complete[body..], path, head as u64)?;
+    Ok(Recorded { inputs, rows })
 }
 
-/// The number of complete rows in `path` (0 if it does not exist), without changing the file:
-/// another process may be appending to it.
-pub fn count_complete(path: &Path) -> Result<u64, Error> {
-    let text = match std::fs::read_to_string(path) {
-        Ok(t) => t,
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(0),
-        Err(e) => return Err(Error::io(path, e)),
+/// The number of complete rows in `path` (0 if it does not exist), reading at most `bound`
+/// bytes, without changing the file: another process may be appending to it.
+pub fn count_complete(path: &Path, bound: u64) -> Result<u64, Error> {
+    let Some(text) = files::read_bounded(path, bound)? else {
+        return Ok(0);
     };
+    let (_, head) = Fingerprint::parse(&text);
     let lines = text.bytes().filter(|&b| b == b'\n').count() as u64;
-    Ok(lines.saturating_sub(1))
+    Ok(lines.saturating_sub(head as u64 + 1))
 }
 
-/// Writes `rows` (header first) to `path` through a temporary file renamed into place, so that
-/// a reader sees the old file or the whole new one, never a part.
-pub fn write_atomically(path: &Path, rows: &[Row]) -> Result<(), Error> {
+/// Writes `preamble` (the record of the inputs, for a shard file), the header and `rows` to
+/// `path` through a temporary file renamed into place, so that a reader sees the old file or
+/// the whole new one, never a part.
+pub fn write_atomically(path: &Path, rows: &[Row], preamble: &str) -> Result<(), Error> {
     let name = path
         .file_name()
         .map_or("results".into(), |n| n.to_string_lossy().into_owned());
     let temp = path.with_file_name(format!(".{name}.{}.tmp", std::process::id()));
     let fail = |e: csv::Error| Error::Results(format!("{}: {e}", temp.display()));
+    let mut file = File::create(&temp).map_err(|e| Error::io(&temp, e))?;
+    file.write_all(preamble.as_bytes())
+        .map_err(|e| Error::io(&temp, e))?;
     let mut writer = csv::WriterBuilder::new()
         .has_headers(false)
-        .from_path(&temp)
-        .map_err(fail)?;
+        .from_writer(file);
     writer.write_record(COLUMNS).map_err(fail)?;
     for row in rows {
         writer.serialize(row).map_err(fail)?;
@@ -219,25 +236,48 @@ pub fn write_atomically(path: &Path, rows: &[Row]) -> Result<(), Error> {
     std::fs::rename(&temp, path).map_err(|e| Error::io(path, e))
 }
 
-fn parse_rows(text: &str, path: &Path) -> Result<Vec<Row>, Error> {
+/// The rows of `text` (a header, then rows), which starts at line `before + 1` of `path`.
+fn parse_rows(text: &str, path: &Path, before: u64) -> Result<Vec<Row>, Error> {
     if text.is_empty() {
         return Ok(Vec::new());
     }
     let mut reader = csv::Reader::from_reader(text.as_bytes());
     let headers = reader
         .headers()
-        .map_err(|e| Error::Results(format!("{}: {e}", path.display())))?;
+        .map_err(|e| Error::Results(format!("{}: {e}", path.display())))?
+        .clone();
     if headers.iter().ne(COLUMNS) {
         return Err(Error::Results(format!(
-            "{}: the columns are not those of this version of dynarole campaign; \
+            "{}:{}: the columns are not those of this version of dynarole campaign; \
              write to another directory (-o)",
-            path.display()
+            path.display(),
+            before + 1
         )));
     }
-    reader
-        .deserialize()
-        .map(|r| r.map_err(|e| Error::Results(format!("{}: {e}", path.display()))))
-        .collect()
+    let mut rows = Vec::new();
+    for record in reader.records() {
+        let record = record.map_err(|e| Error::Results(format!("{}: {e}", path.display())))?;
+        let line = before + record.position().map_or(0, |p| p.line());
+        let row: Row = record.deserialize(Some(&headers)).map_err(|e| {
+            Error::Results(format!("{}:{line}: {}", path.display(), field_error(&e)))
+        })?;
+        rows.push(row);
+    }
+    Ok(rows)
+}
+
+/// A row's deserialisation error, with the column's name rather than its number.
+fn field_error(e: &csv::Error) -> String {
+    match e.kind() {
+        csv::ErrorKind::Deserialize { err, .. } => {
+            let field = err
+                .field()
+                .and_then(|i| COLUMNS.get(i as usize))
+                .map_or(String::new(), |name| format!("field {name}: "));
+            format!("{field}{}", err.kind())
+        }
+        _ => e.to_string(),
+    }
 }
 
 /// Appends rows to `runs.csv`, flushing each.
@@ -246,8 +286,9 @@ pub struct Sink {
 }
 
 impl Sink {
-    /// Opens `path` for appending; writes the header when the file is new or empty.
-    pub fn open(path: &Path) -> Result<Sink, Error> {
+    /// Opens `path` for appending; writes `preamble` (the record of the inputs, for a shard
+    /// file) and the header when the file is new or empty.
+    pub fn open(path: &Path, preamble: &str) -> Result<Sink, Error> {
         let mut file = OpenOptions::new()
             .create(true)
             .append(true)
@@ -255,7 +296,9 @@ impl Sink {
             .map_err(|e| Error::io(path, e))?;
         let empty = file.metadata().map_err(|e| Error::io(path, e))?.len() == 0;
         if empty {
-            writeln!(file, "{}", COLUMNS.join(",")).map_err(|e| Error::io(path, e))?;
+            let head = format!("{preamble}{}\n", COLUMNS.join(","));
+            file.write_all(head.as_bytes())
+                .map_err(|e| Error::io(path, e))?;
         }
         let writer = csv::WriterBuilder::new()
             .has_headers(false)

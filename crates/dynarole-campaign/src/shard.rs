@@ -4,6 +4,8 @@
 //! `merge` checks that every run is there exactly once and writes the outputs of a
 //! one-machine run, `status` counts the runs done so far.
 
+use crate::files;
+use crate::inputs::{hash_text, Fingerprint, INPUTS_FILE};
 use crate::plan::Plan;
 use crate::results::{self, Row};
 use crate::spec::CampaignFile;
@@ -102,10 +104,16 @@ pub struct Found {
 pub fn find(dir: &Path) -> Result<Found, Error> {
     let entries = std::fs::read_dir(dir).map_err(|e| Error::io(dir, e))?;
     let mut found = Found::default();
+    let mut strange = Vec::new();
     for entry in entries {
         let entry = entry.map_err(|e| Error::io(dir, e))?;
         let name = entry.file_name().to_string_lossy().into_owned();
         let Some((shard, finished)) = Shard::of_file_name(&name) else {
+            // A name like a shard file's that no shard has (shard-9-of-8.csv, shard-03-of-8.csv,
+            // shard-1-of-8.csv.bak): said, not skipped, since it may hold runs of the split.
+            if name.starts_with("shard-") {
+                strange.push(entry.path());
+            }
             continue;
         };
         if let Some(n) = found.count.filter(|&n| n != shard.count) {
@@ -125,34 +133,94 @@ pub fn find(dir: &Path) -> Result<Found, Error> {
             slot.1 = path;
         }
     }
+    if !strange.is_empty() {
+        strange.sort();
+        let names: Vec<String> = strange.iter().map(|p| p.display().to_string()).collect();
+        return Err(Error::Results(format!(
+            "{}: {} named like a shard's results but no shard's (expected \
+             shard-K-of-N.csv or shard-K-of-N.csv.partial, 0 <= K < N, no leading zeros): {}; \
+             rename or remove {}",
+            dir.display(),
+            if names.len() == 1 {
+                "a file is"
+            } else {
+                "files are"
+            },
+            names.join(", "),
+            if names.len() == 1 { "it" } else { "them" },
+        )));
+    }
     Ok(found)
 }
 
 /// Writes the campaign file's text into `dir` (atomically: many shards may start at once),
-/// or checks that the copy already there is the same text.
-pub fn keep_campaign(dir: &Path, text: &str) -> Result<(), Error> {
+/// or checks that the copy already there is the same text. With no results in `dir` yet
+/// (`has_results` false: right after `--emit`, say) a different copy is replaced: no run
+/// of it would be mixed with runs of the new one.
+pub fn keep_campaign(dir: &Path, text: &str, has_results: bool) -> Result<(), Error> {
     let path = dir.join(CAMPAIGN_COPY);
-    match crate::read_limited(&path) {
-        Ok(there) if there == text => return Ok(()),
-        Ok(_) => {
+    match files::read_bounded(&path, crate::MAX_INPUT_BYTES)? {
+        Some(there) if there == text => return Ok(()),
+        Some(_) if has_results => {
             return Err(Error::Results(format!(
                 "{}: the shards in this directory were run from another campaign file \
                  (or it changed since); write to another directory (-o)",
                 path.display()
             )))
         }
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
-        Err(e) => return Err(Error::io(&path, e)),
+        _ => {}
     }
-    let temp = dir.join(format!(".{CAMPAIGN_COPY}.{}.tmp", std::process::id()));
-    std::fs::write(&temp, text).map_err(|e| Error::io(&temp, e))?;
-    std::fs::rename(&temp, &path).map_err(|e| Error::io(&path, e))
+    files::write_atomically(&path, text)
+}
+
+/// Writes the record of the inputs into `dir` (`campaign.inputs`), or checks that the one
+/// there has the same inputs; replaced when `dir` holds no results yet (as the copy of the
+/// campaign file). `what` says whose results a mismatch refuses (`the shards in DIR`).
+pub fn keep_inputs(
+    dir: &Path,
+    now: &Fingerprint,
+    has_results: bool,
+    what: &str,
+) -> Result<(), Error> {
+    let path = dir.join(INPUTS_FILE);
+    let there = files::read_bounded(&path, files::MAX_PREAMBLE_BYTES)?;
+    let recorded = there.as_deref().and_then(|t| Fingerprint::parse(t).0);
+    if let Some(before) = &recorded {
+        let changes = before.changes(now);
+        if changes.is_empty() {
+            return Ok(());
+        }
+        if has_results {
+            return Err(Error::Results(format!(
+                "{}: {what} were computed from other inputs than now: {}; write to \
+                 another directory (-o), or remove them to start over",
+                path.display(),
+                changes.join("; ")
+            )));
+        }
+    } else if has_results {
+        return Err(Error::Results(format!(
+            "{}: {}; {what} cannot be told apart from runs of other inputs: remove them to \
+             start over, or write to another directory (-o)",
+            path.display(),
+            if there.is_some() {
+                "not a record of a campaign's inputs"
+            } else {
+                "missing"
+            }
+        )));
+    }
+    files::write_atomically(&path, &now.to_text())
 }
 
 /// The campaign and plan of the shards in `dir` (from the copy of the campaign file).
-pub fn campaign_of(dir: &Path) -> Result<(CampaignFile, Plan), Error> {
+pub fn campaign_of(dir: &Path) -> Result<(CampaignFile, Plan, String), Error> {
     let path = dir.join(CAMPAIGN_COPY);
-    let text = crate::read_limited(&path).map_err(|e| {
+    let text = files::read_bounded(&path, crate::MAX_INPUT_BYTES)?.ok_or_else(|| {
+        // The system's own words for a missing file.
+        let e = std::fs::metadata(&path)
+            .err()
+            .unwrap_or_else(|| std::io::ErrorKind::NotFound.into());
         Error::Results(format!(
             "{}: {e}; is {} the output directory of `dynarole campaign FILE --shard K/N -o DIR`?",
             path.display(),
@@ -166,13 +234,14 @@ pub fn campaign_of(dir: &Path) -> Result<(CampaignFile, Plan), Error> {
     };
     let campaign = CampaignFile::parse(&text, dir).map_err(spec)?;
     let plan = crate::plan::plan(&campaign).map_err(spec)?;
-    Ok((campaign, plan))
+    Ok((campaign, plan, text))
 }
 
-/// Every row of a complete split in `dir`, in run order; an error naming the missing or
-/// unfinished shards and the missing runs otherwise.
-pub fn merged_rows(dir: &Path) -> Result<Vec<Row>, Error> {
-    let (campaign, plan) = campaign_of(dir)?;
+/// Every row of a complete split in `dir`, in run order, and the record of the inputs they
+/// were all computed from; an error naming the shards run from other inputs, or the missing
+/// or unfinished shards and the missing runs.
+pub fn merged_rows(dir: &Path) -> Result<(Vec<Row>, Fingerprint), Error> {
+    let (campaign, plan, text) = campaign_of(dir)?;
     let found = find(dir)?;
     let count = found.count.ok_or_else(|| {
         Error::Results(format!(
@@ -180,22 +249,39 @@ pub fn merged_rows(dir: &Path) -> Result<Vec<Row>, Error> {
             dir.display()
         ))
     })?;
+    let recorded = files::read_bounded(&dir.join(INPUTS_FILE), files::MAX_PREAMBLE_BYTES)?;
+    let mut reference = recorded.as_deref().and_then(|t| Fingerprint::parse(t).0);
+    let mut mixed = Vec::new();
     let mut problems = Vec::new();
     let mut rows = Vec::new();
     for index in 0..count {
         let shard = Shard { index, count };
         match found.files.get(&index) {
             Some((Some(file), _)) => {
-                rows.extend(crate::recorded(file, &plan, &campaign, Some(shard))?);
+                let shard_rows = crate::recorded(file, &plan, &campaign, Some(shard))?;
+                let inputs = shard_rows.inputs.as_ref();
+                if reference.is_none() {
+                    reference = inputs.cloned();
+                }
+                let against = (reference.as_ref(), text.as_str(), dir);
+                mixed.extend(mixed_inputs(shard, file, inputs, against));
+                rows.extend(shard_rows.rows);
             }
             Some((None, Some(partial))) => problems.push(format!(
                 "shard {shard} is unfinished ({} of {} runs in {}): run it again",
-                results::count_complete(partial)?,
+                results::count_complete(partial, files::results_bound(shard.size(plan.len())))?,
                 shard.size(plan.len()),
                 partial.display()
             )),
             _ => problems.push(format!("shard {shard} is missing: run it")),
         }
+    }
+    if !mixed.is_empty() {
+        return Err(Error::Results(format!(
+            "{}: cannot merge, the shards' runs were computed from different inputs:\n  {}",
+            dir.display(),
+            mixed.join("\n  ")
+        )));
     }
     rows.sort_by_key(|r| r.run);
     let missing = missing_runs(&rows, plan.len());
@@ -203,7 +289,7 @@ pub fn merged_rows(dir: &Path) -> Result<Vec<Row>, Error> {
         problems.push(format!("runs missing: {}", list_runs(&missing)));
     }
     if problems.is_empty() {
-        Ok(rows)
+        Ok((rows, reference.unwrap_or_default()))
     } else {
         Err(Error::Results(format!(
             "{}: cannot merge, {} of {} runs are not recorded:\n  {}",
@@ -213,6 +299,32 @@ pub fn merged_rows(dir: &Path) -> Result<Vec<Row>, Error> {
             problems.join("\n  ")
         )))
     }
+}
+
+/// What makes the runs of a finished shard file differ from the split's: no record of their
+/// inputs, another campaign file than `dir`'s copy (`text`), or inputs other than
+/// `reference` (the directory's record, else the first shard's).
+fn mixed_inputs(
+    shard: Shard,
+    file: &Path,
+    inputs: Option<&Fingerprint>,
+    (reference, text, dir): (Option<&Fingerprint>, &str, &Path),
+) -> Option<String> {
+    let Some(inputs) = inputs else {
+        return Some(format!(
+            "shard {shard} ({}) holds no record of its inputs (written by an older dynarole?): \
+             run it again",
+            file.display()
+        ));
+    };
+    if inputs.campaign_hash() != Some(hash_text(text).as_str()) {
+        return Some(format!(
+            "shard {shard} was run with another campaign file than {}",
+            dir.join(CAMPAIGN_COPY).display()
+        ));
+    }
+    let changes = reference.map_or(Vec::new(), |r| r.changes(inputs));
+    (!changes.is_empty()).then(|| format!("shard {shard} was run with {}", changes.join("; ")))
 }
 
 /// The runs of `0..total` not in `rows` (sorted, each index at most once: `recorded` refuses
@@ -256,15 +368,16 @@ impl Status {
 
 /// Counts the runs recorded by the shards in `dir`, reading only (shards may be running).
 pub fn status(dir: &Path) -> Result<Status, Error> {
-    let (_, plan) = campaign_of(dir)?;
+    let (_, plan, _) = campaign_of(dir)?;
     let found = find(dir)?;
     let mut per_shard = Vec::new();
     if let Some(count) = found.count {
         for index in 0..count {
             let shard = Shard { index, count };
+            let bound = files::results_bound(shard.size(plan.len()));
             let (done, finished) = match found.files.get(&index) {
-                Some((Some(file), _)) => (results::count_complete(file)?, true),
-                Some((None, Some(partial))) => (results::count_complete(partial)?, false),
+                Some((Some(file), _)) => (results::count_complete(file, bound)?, true),
+                Some((None, Some(partial))) => (results::count_complete(partial, bound)?, false),
                 _ => (0, false),
             };
             per_shard.push((shard, done, shard.size(plan.len()), finished));

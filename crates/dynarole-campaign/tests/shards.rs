@@ -141,7 +141,9 @@ fn missing_runs_and_mixed_splits_are_named() {
     // A finished file that lost rows (edited by hand, say) names the runs.
     let file = dir.join("shard-1-of-2.csv");
     let text = std::fs::read_to_string(&file).expect("shard 1");
-    let kept: Vec<&str> = text.lines().take(3).collect();
+    // The record of the inputs, the header and two rows.
+    let head = text.lines().take_while(|l| l.starts_with('#')).count();
+    let kept: Vec<&str> = text.lines().take(head + 3).collect();
     std::fs::write(&file, kept.join("\n") + "\n").expect("rewrite");
     let err = merged(&dir, &dir).expect_err("runs missing").to_string();
     assert!(
@@ -160,4 +162,138 @@ fn missing_runs_and_mixed_splits_are_named() {
         .expect_err("not a shard directory")
         .to_string();
     assert!(none.contains("campaign.toml"), "{none}");
+}
+
+/// A copy of the smoke campaign and its files in `root` (`campaigns/smoke.toml`, `atron/`),
+/// to edit; returns the campaign file's path.
+fn copy_of_smoke(root: &Path) -> PathBuf {
+    let examples = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples");
+    for (from, to) in [
+        ("campaigns/smoke.toml", "campaigns/smoke.toml"),
+        ("atron/eight2car.dr", "atron/eight2car.dr"),
+        ("atron/eight.json", "atron/eight.json"),
+        ("atron/car.json", "atron/car.json"),
+    ] {
+        let to = root.join(to);
+        std::fs::create_dir_all(to.parent().expect("a folder")).expect("a folder");
+        std::fs::copy(examples.join(from), to).expect("a copy");
+    }
+    root.join("campaigns/smoke.toml")
+}
+
+fn run_from(
+    campaign: &Path,
+    out: &Path,
+    shard: Option<&str>,
+    max_runs: Option<u64>,
+) -> Result<Done, Error> {
+    run(&Options {
+        campaign: campaign.to_path_buf(),
+        ..options(out, shard, max_runs)
+    })
+}
+
+fn error_of(result: Result<Done, Error>) -> String {
+    match result {
+        Ok(_) => panic!("expected an error"),
+        Err(e) => e.to_string(),
+    }
+}
+
+#[test]
+fn shards_and_resumes_of_other_inputs_are_refused() {
+    let root = tempfile::tempdir().expect("temp dir");
+    let a = copy_of_smoke(&root.path().join("a"));
+    let b = copy_of_smoke(&root.path().join("b"));
+    // Copy b expects another configuration: the same campaign text, other results.
+    std::fs::copy(
+        root.path().join("b/atron/eight.json"),
+        root.path().join("b/atron/car.json"),
+    )
+    .expect("another expect");
+    let dir = root.path().join("shards");
+    let elsewhere = root.path().join("elsewhere");
+    for k in 0..2 {
+        run_from(&a, &dir, Some(&format!("{k}/2")), None).expect("a shard");
+    }
+    run_from(&b, &elsewhere, Some("1/2"), None).expect("the shard run elsewhere");
+
+    // Started in the split's directory, it is refused at once.
+    let direct = error_of(run_from(&b, &dir, Some("1/2"), None));
+    assert!(
+        direct.contains(
+            "were computed from other inputs than now: another expected configuration (expect): "
+        ) && direct.contains("b/campaigns/../atron/car.json instead of "),
+        "{direct}"
+    );
+    // Copied in, the merge names it.
+    std::fs::copy(
+        elsewhere.join("shard-1-of-2.csv"),
+        dir.join("shard-1-of-2.csv"),
+    )
+    .expect("copy");
+    let merge_err = error_of(merged(&dir, &root.path().join("merged")));
+    assert!(
+        merge_err.contains("cannot merge, the shards' runs were computed from different inputs")
+            && merge_err
+                .contains("shard 1/2 was run with another expected configuration (expect): ")
+            && merge_err.contains("b/campaigns/../atron/car.json instead of ")
+            && merge_err.contains("a/campaigns/../atron/car.json"),
+        "{merge_err}"
+    );
+
+    // An edit of the program after some runs: a resumed one-machine campaign is refused.
+    let one = root.path().join("one");
+    run_from(&a, &one, None, Some(3)).expect("three runs");
+    append(&root.path().join("a/atron/eight2car.dr"), "// edited\n");
+    let resumed = error_of(run_from(&a, &one, None, None));
+    assert!(
+        resumed.contains("the 3 runs of ")
+            && resumed
+                .contains("runs.csv were computed from other inputs than now: another program: ")
+            && resumed.contains("a/campaigns/../atron/eight2car.dr changed"),
+        "{resumed}"
+    );
+}
+
+/// A shard file that is not a regular file, a dangling link, a name no shard has, or a file
+/// larger than its runs can fill: named by `merge` and `status` at once.
+#[cfg(unix)]
+#[test]
+fn unreadable_or_strange_shard_files_are_named() {
+    let root = tempfile::tempdir().expect("temp dir");
+    let dir = root.path().join("shards");
+    for k in 0..2 {
+        shard(&dir, k, 2, None);
+    }
+    let file = dir.join("shard-1-of-2.csv");
+    let saved = std::fs::read(&file).expect("shard 1");
+    let both = |expected: &str| {
+        let merge_err = error_of(merged(&dir, &root.path().join("merged")));
+        assert!(merge_err.contains(expected), "{merge_err}");
+        let status_err = status(&dir).expect_err("status refuses too").to_string();
+        assert!(status_err.contains(expected), "{status_err}");
+    };
+    std::fs::remove_file(&file).expect("remove");
+    let fifo = std::process::Command::new("mkfifo")
+        .arg(&file)
+        .status()
+        .expect("mkfifo");
+    assert!(fifo.success());
+    both("shard-1-of-2.csv: not a regular file (a FIFO)");
+    std::fs::remove_file(&file).expect("remove");
+    std::os::unix::fs::symlink("/dev/zero", &file).expect("a link");
+    both("shard-1-of-2.csv: not a regular file (a device)");
+    std::fs::remove_file(&file).expect("remove");
+    std::os::unix::fs::symlink(root.path().join("gone.csv"), &file).expect("a link");
+    both("shard-1-of-2.csv: a dangling link (to ");
+    std::fs::remove_file(&file).expect("remove");
+    let huge = std::fs::File::create(&file).expect("a file");
+    huge.set_len(1 << 30).expect("a sparse gigabyte");
+    both("shard-1-of-2.csv: larger than ");
+    std::fs::write(&file, &saved).expect("restored");
+    std::fs::write(dir.join("shard-9-of-2.csv"), "").expect("a strange name");
+    both("a file is named like a shard's results but no shard's");
+    std::fs::remove_file(dir.join("shard-9-of-2.csv")).expect("remove");
+    merged(&dir, &root.path().join("merged")).expect("merges again");
 }
