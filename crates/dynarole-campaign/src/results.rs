@@ -27,6 +27,17 @@ pub enum Outcome {
 }
 
 impl Outcome {
+    /// The name written in `runs.csv`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Outcome::Success => "success",
+            Outcome::Timeout => "timeout",
+            Outcome::WrongConfiguration => "wrong-configuration",
+            Outcome::Violation => "violation",
+            Outcome::Incomplete => "incomplete",
+        }
+    }
+
     fn of(report: &Report) -> Outcome {
         if report.success {
             Outcome::Success
@@ -145,6 +156,72 @@ impl Row {
         }
     }
 
+    /// Whether the row's results agree with each other as [`Row::new`] makes them: the times
+    /// are finite, positive and in order, the lost packets are among the dropped ones, and
+    /// the outcome fits the rest (see [`Row::check_outcome`]). The first field that does not,
+    /// and why.
+    pub fn check(&self) -> Result<(), (&'static str, String)> {
+        let times = [
+            ("end_ms", Some(self.end_ms)),
+            ("completion_ms", self.completion_ms),
+        ];
+        for (field, time) in times {
+            if let Some(t) = time.filter(|t| !t.is_finite() || *t < 0.0) {
+                return Err((field, format!("{t} is not a time (finite, 0 or more)")));
+            }
+        }
+        if self.completion_ms.is_some_and(|c| c > self.end_ms) {
+            return Err((
+                "completion_ms",
+                "the end was declared after the run ended".into(),
+            ));
+        }
+        if self.packets_lost > self.packets_dropped {
+            return Err((
+                "packets_lost",
+                format!(
+                    "{} packets lost but only {} dropped (the lost are among the dropped)",
+                    self.packets_lost, self.packets_dropped
+                ),
+            ));
+        }
+        self.check_outcome()
+    }
+
+    /// A success has its end declared and no violation, a violation has one, a timeout has
+    /// no end time, the other outcomes have one and no violation (`Outcome::of`).
+    fn check_outcome(&self) -> Result<(), (&'static str, String)> {
+        let outcome = self.outcome.name();
+        let counts = [
+            ("s1", self.s1, "S1"),
+            ("s2", self.s2, "S2"),
+            ("s3", self.s3, "S3"),
+        ];
+        let first = counts.into_iter().find(|c| c.1 > 0);
+        let ended = self.completion_ms.is_some();
+        match (self.outcome, first) {
+            (Outcome::Violation, None) => Err((
+                "s1",
+                "a run whose outcome is violation has no S1, S2 or S3 violation".into(),
+            )),
+            (Outcome::Violation, Some(_)) => Ok(()),
+            (_, Some((field, n, check))) => Err((
+                field,
+                format!("a run whose outcome is {outcome} has {n} {check} violations"),
+            )),
+            (Outcome::Timeout, None) if ended => Err((
+                "completion_ms",
+                "a run whose outcome is timeout has an end time".into(),
+            )),
+            (Outcome::Timeout, None) => Ok(()),
+            (_, None) if !ended => Err((
+                "completion_ms",
+                format!("a run whose outcome is {outcome} has no end time"),
+            )),
+            _ => Ok(()),
+        }
+    }
+
     /// Whether this recorded row is a result of `run` (same index and parameters).
     pub fn is_result_of(&self, run: &PlannedRun, preset: &str, timeout_ms: u64) -> bool {
         let p = Row::parameters(run, preset, timeout_ms);
@@ -260,6 +337,12 @@ fn parse_rows(text: &str, path: &Path, before: u64) -> Result<Vec<Row>, Error> {
         let line = before + record.position().map_or(0, |p| p.line());
         let row: Row = record.deserialize(Some(&headers)).map_err(|e| {
             Error::Results(format!("{}:{line}: {}", path.display(), field_error(&e)))
+        })?;
+        row.check().map_err(|(field, why)| {
+            Error::Results(format!(
+                "{}:{line}: field {field}: {why}; the row is not one a run writes",
+                path.display()
+            ))
         })?;
         rows.push(row);
     }

@@ -297,3 +297,54 @@ fn unreadable_or_strange_shard_files_are_named() {
     std::fs::remove_file(dir.join("shard-9-of-2.csv")).expect("remove");
     merged(&dir, &root.path().join("merged")).expect("merges again");
 }
+
+/// Rewrites column `column` of the first row of `path` whose outcome is `success` to
+/// `value`; returns that row's line number (from 1).
+fn edit_success_row(path: &Path, column: usize, value: &str) -> usize {
+    let text = std::fs::read_to_string(path).expect("a shard file");
+    let mut lines: Vec<String> = text.lines().map(String::from).collect();
+    let at = lines
+        .iter()
+        .position(|l| l.split(',').nth(12) == Some("success"))
+        .expect("a successful run");
+    let mut fields: Vec<&str> = lines[at].split(',').collect();
+    fields[column] = value;
+    lines[at] = fields.join(",");
+    std::fs::write(path, lines.join("\n") + "\n").expect("rewritten");
+    at + 1
+}
+
+#[test]
+fn rows_that_contradict_themselves_are_refused_with_file_line_and_field() {
+    let root = tempfile::tempdir().expect("temp dir");
+    let dir = root.path().join("shards");
+    for k in 0..2 {
+        shard(&dir, k, 2, None);
+    }
+    let file = dir.join("shard-1-of-2.csv");
+    let saved = std::fs::read(&file).expect("shard 1");
+    let out = root.path().join("merged");
+    let line = edit_success_row(&file, 19, "7");
+    let violations = error_of(merged(&dir, &out));
+    let at = format!("{}:{line}: field s1: ", file.display());
+    assert!(
+        violations.contains(&at)
+            && violations.contains("a run whose outcome is success has 7 S1 violations"),
+        "{violations}"
+    );
+    std::fs::write(&file, &saved).expect("restored");
+    let line = edit_success_row(&file, 13, "NaN");
+    let nan = error_of(merged(&dir, &out));
+    let at = format!(
+        "{}:{line}: field completion_ms: NaN is not a time",
+        file.display()
+    );
+    assert!(nan.contains(&at), "{nan}");
+    std::fs::write(&file, &saved).expect("restored");
+    let line = edit_success_row(&file, 16, "many");
+    let garbled = error_of(merged(&dir, &out));
+    let at = format!("{}:{line}: field packets_sent: ", file.display());
+    assert!(garbled.contains(&at), "{garbled}");
+    std::fs::write(&file, &saved).expect("restored");
+    merged(&dir, &out).expect("merges again");
+}
