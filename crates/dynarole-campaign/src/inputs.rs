@@ -78,7 +78,9 @@ impl Fingerprint {
     pub fn to_text(&self) -> String {
         let mut text = format!("{MARKER}\n");
         for i in &self.inputs {
-            text.push_str(&format!("# {} {} {}\n", i.role, i.hash, i.path));
+            let line = format!("# {} {} {}", i.role, i.hash, i.path);
+            text.push_str(line.trim_end());
+            text.push('\n');
         }
         text
     }

@@ -161,6 +161,32 @@ pub fn count_runs(path: &Path) -> Result<u64, Error> {
     Ok(plan_of(&sources, inputs.campaign)?.len())
 }
 
+/// `--emit`: checks the campaign as `run` would (so that a campaign that cannot run is refused
+/// here, not in each of N jobs), keeps its copy and the record of its inputs in `jobs.dir` as
+/// the first shard would (so that `status` works before any shard ran), and writes the job
+/// files. Returns the number of runs and the files written.
+pub fn emit(scheduler: Scheduler, jobs: &Jobs) -> Result<(u64, Vec<PathBuf>), Error> {
+    emit::check(scheduler, jobs)?;
+    let sources = load::sources(&jobs.campaign)?;
+    let inputs = load::inputs(&sources)?;
+    let runs = plan_of(&sources, inputs.campaign)?.len();
+    let dir = &jobs.dir;
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    let found = shard::find(dir)?;
+    if let Some(n) = found.count.filter(|&n| n != jobs.shards) {
+        return Err(Error::Results(format!(
+            "{}: holds shards of a split into {n}, not {}; write to another directory (-o)",
+            dir.display(),
+            jobs.shards
+        )));
+    }
+    let has_results = !found.files.is_empty();
+    shard::keep_campaign(dir, &sources.text, has_results)?;
+    let what = format!("the shards in {}", dir.display());
+    shard::keep_inputs(dir, &inputs.fingerprint, has_results, &what)?;
+    Ok((runs, emit::write(scheduler, jobs)?))
+}
+
 /// The plan of a loaded campaign; an error points into the campaign file.
 fn plan_of(sources: &load::Sources, campaign: &CampaignFile) -> Result<Plan, Error> {
     plan::plan(campaign).map_err(|error| Error::Spec {

@@ -344,3 +344,43 @@ fn paths_the_job_files_cannot_carry_are_refused() {
     let zero = refused(Scheduler::Slurm, "c.toml", "out", 0);
     assert!(zero.starts_with("-j 0: "), "{zero}");
 }
+
+/// `campaign status DIR` works right after `--emit`: 0 of the campaign's runs, no shard yet;
+/// the first shard then finds the copy and the record `--emit` kept, and counts.
+#[test]
+fn status_right_after_emit_counts_no_run_done() {
+    let root = tempfile::tempdir().expect("temp dir");
+    let campaign =
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../examples/campaigns/smoke.toml");
+    let jobs = Jobs {
+        campaign: campaign.clone(),
+        dir: root.path().join("jobs"),
+        shards: 3,
+        throttle: 3,
+        threads: 1,
+    };
+    let (runs, files) = dynarole_campaign::emit(Scheduler::Parallel, &jobs).expect("emitted");
+    assert_eq!((runs, files.len()), (36, 2));
+    let now = dynarole_campaign::status(&jobs.dir).expect("a status");
+    assert_eq!((now.total, now.done(), now.shards), (36, 0, None));
+    let options = dynarole_campaign::Options {
+        campaign,
+        out_dir: jobs.dir.clone(),
+        max_runs: Some(2),
+        jobs: Some(1),
+        progress: dynarole_campaign::ProgressMode::Off,
+        plots: false,
+        shard: Some("0/3".parse().expect("a shard")),
+    };
+    dynarole_campaign::run(&options).expect("the first shard starts");
+    let now = dynarole_campaign::status(&jobs.dir).expect("a status");
+    assert_eq!((now.total, now.done(), now.shards), (36, 2, Some(3)));
+    let other = Jobs { shards: 4, ..jobs };
+    let err = dynarole_campaign::emit(Scheduler::Parallel, &other)
+        .expect_err("another split")
+        .to_string();
+    assert!(
+        err.contains("holds shards of a split into 3, not 4"),
+        "{err}"
+    );
+}

@@ -138,11 +138,14 @@ fn input_failure(e: Error) -> Failure {
 
 /// `--emit`: the job files, and how to submit them.
 fn emit_jobs(args: &CampaignArgs, emit: &EmitArgs, dir: PathBuf) -> Result<ExitCode, Failure> {
-    // A campaign that cannot run is refused here, not in each of N jobs.
-    let runs = match dynarole_campaign::count_runs(args.file) {
-        Ok(runs) => runs,
-        Err(e) => return refused(e),
-    };
+    if args.jobs == Some(0) {
+        // The job files would ask the scheduler for no core at all.
+        return Err(Failure::Usage(
+            "campaign --emit: -j 0: each shard needs at least one worker thread; \
+             -j N asks the scheduler for N cores per shard (default 1)"
+                .into(),
+        ));
+    }
     let scheduler = match emit.scheduler {
         Emit::Slurm => Scheduler::Slurm,
         Emit::Htcondor => Scheduler::Htcondor,
@@ -155,7 +158,11 @@ fn emit_jobs(args: &CampaignArgs, emit: &EmitArgs, dir: PathBuf) -> Result<ExitC
         throttle: emit.throttle,
         threads: args.jobs.unwrap_or(1),
     };
-    let files = dynarole_campaign::write_job_files(scheduler, &jobs).map_err(input_failure)?;
+    // A campaign that cannot run is refused here, not in each of N jobs.
+    let (runs, files) = match dynarole_campaign::emit(scheduler, &jobs) {
+        Ok(done) => done,
+        Err(e) => return refused(e),
+    };
     for f in &files {
         println!("wrote {}", f.display());
     }
@@ -195,10 +202,14 @@ fn print_status(status: &dynarole_campaign::Status) {
         100.0
     };
     let finished = status.per_shard.iter().filter(|s| s.3).count();
+    let shards = match status.shards {
+        Some(n) => format!("{finished} of {n} shards finished"),
+        // Right after `--emit`: the split is known only once a shard has started.
+        None => "no shard started yet".to_string(),
+    };
     println!(
-        "{done} of {} runs done ({percent:.1} %), {finished} of {} shards finished",
-        status.total,
-        status.shards.unwrap_or(0)
+        "{done} of {} runs done ({percent:.1} %), {shards}",
+        status.total
     );
 }
 
