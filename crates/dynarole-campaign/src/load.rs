@@ -45,6 +45,44 @@ fn read(path: &Path) -> Result<String, Error> {
     dynarole_input::read_input(path).map_err(|e| Error::io(&e.path, e.error))
 }
 
+/// Reads the file that the campaign's `field` names (resolved to `path`); an error points at
+/// the field in the campaign file and says, for a relative path, what it was relative to.
+fn read_field(
+    campaign_path: &Path,
+    text: &str,
+    campaign: &CampaignFile,
+    field: &str,
+    path: &Path,
+) -> Result<String, Error> {
+    dynarole_input::read_input(path).map_err(|e| {
+        let written = campaign.written(field).unwrap_or(path);
+        let mut error = SpecError::new(
+            field,
+            format!("cannot read \"{}\": {}", written.display(), e.error),
+        );
+        if written.is_relative() {
+            let dir = campaign_path.parent().unwrap_or(Path::new("."));
+            error.hint = Some(format!(
+                "a relative path in a campaign file is relative to the campaign file's \
+                 directory ({}), not to where dynarole runs: \"{}\" resolved to {}",
+                if dir.as_os_str().is_empty() {
+                    Path::new(".")
+                } else {
+                    dir
+                }
+                .display(),
+                written.display(),
+                path.display()
+            ));
+        }
+        Error::Spec {
+            path: campaign_path.to_path_buf(),
+            text: text.to_string(),
+            error: Box::new(error.locate(text)),
+        }
+    })
+}
+
 /// Reads the campaign file and everything it names.
 pub fn sources(path: &Path) -> Result<Sources, Error> {
     let text = read(path)?;
@@ -56,12 +94,19 @@ pub fn sources(path: &Path) -> Result<Sources, Error> {
     })?;
     let mut fingerprint = Fingerprint::new();
     fingerprint.add("campaign", path, &text);
-    let source = read(&campaign.file)?;
+    let field = |name: &str, file: &Path| read_field(path, &text, &campaign, name, file);
+    let source = field("file", &campaign.file)?;
     fingerprint.add("program", &campaign.file, &source);
     let parsed = dynarole_core::parse(&source);
-    let start = configuration(&campaign.from, &mut fingerprint, "from")?;
+    let from = field("from", &campaign.from)?;
+    let start = configuration(&campaign.from, &from, &mut fingerprint, "from")?;
     let expect = match campaign.expect.as_deref() {
-        Some(p) => Some(configuration(p, &mut fingerprint, "expect")?),
+        Some(p) => Some(configuration(
+            p,
+            &field("expect", p)?,
+            &mut fingerprint,
+            "expect",
+        )?),
         None => None,
     };
     Ok(Sources {
@@ -114,24 +159,25 @@ fn unknown_sequence(sources: &Sources, e: &SelectError) -> Error {
     }
 }
 
-/// The configuration in `path`, recorded in `fingerprint` as `role`.
+/// The configuration read from `path` as `text`, recorded in `fingerprint` as `role`.
 fn configuration(
     path: &Path,
+    text: &str,
     fingerprint: &mut Fingerprint,
     role: &str,
 ) -> Result<Configuration, Error> {
-    let text = read(path)?;
-    fingerprint.add(role, path, &text);
-    Configuration::from_json_str(&text)
-        .map_err(|e| Error::Input(format!("{}: {e}", path.display())))
+    fingerprint.add(role, path, text);
+    Configuration::from_json_str(text).map_err(|e| Error::Input(format!("{}: {e}", path.display())))
 }
 
 /// The checked program; every plugin it loads is recorded in `fingerprint`.
 fn program<'a>(sources: &'a Sources, fingerprint: &mut Fingerprint) -> Result<Program<'a>, Error> {
     let campaign = &sources.campaign;
     let mut plugins = Vec::new();
-    for path in &campaign.plugins {
-        plugins.push(plugin(path, fingerprint)?);
+    for (i, path) in campaign.plugins.iter().enumerate() {
+        let field = format!("plugins[{i}]");
+        let text = read_field(&sources.path, &sources.text, campaign, &field, path)?;
+        plugins.push(plugin_of(path, text, fingerprint)?);
     }
     let robot = driver::robot_name(&sources.parsed.file);
     let registry = driver::registry(robot, plugins, |file| {
@@ -149,7 +195,11 @@ fn program<'a>(sources: &'a Sources, fingerprint: &mut Fingerprint) -> Result<Pr
 }
 
 fn plugin(path: &Path, fingerprint: &mut Fingerprint) -> Result<RobotApi, Error> {
-    let text = read(path)?;
+    plugin_of(path, read(path)?, fingerprint)
+}
+
+/// The plugin read from `path` as `text`, recorded in `fingerprint`.
+fn plugin_of(path: &Path, text: String, fingerprint: &mut Fingerprint) -> Result<RobotApi, Error> {
     fingerprint.add("plugin", path, &text);
     RobotApi::from_toml(&text).map_err(|error| Error::Spec {
         path: path.to_path_buf(),

@@ -70,6 +70,10 @@ pub struct CampaignFile {
     pub scenario: Scenario,
     #[serde(default)]
     pub sweep: Sweep,
+    /// Each path field (`file`, `plugins[i]`, `from`, `expect`) as written, before
+    /// `resolve_paths`: errors reading a file name the field and both paths.
+    #[serde(skip)]
+    pub written: Vec<(String, PathBuf)>,
 }
 
 /// An error in the campaign file: the field, the message, where in the text.
@@ -124,17 +128,30 @@ impl CampaignFile {
     }
 
     fn resolve_paths(&mut self, dir: &Path) {
-        let join = |p: &mut PathBuf| {
+        let mut written = Vec::new();
+        let mut join = |field: String, p: &mut PathBuf| {
+            written.push((field, p.clone()));
             if p.is_relative() {
                 *p = dir.join(&*p);
             }
         };
-        join(&mut self.file);
-        join(&mut self.from);
-        if let Some(e) = &mut self.expect {
-            join(e);
+        join("file".into(), &mut self.file);
+        for (i, plugin) in self.plugins.iter_mut().enumerate() {
+            join(format!("plugins[{i}]"), plugin);
         }
-        self.plugins.iter_mut().for_each(join);
+        join("from".into(), &mut self.from);
+        if let Some(e) = &mut self.expect {
+            join("expect".into(), e);
+        }
+        self.written = written;
+    }
+
+    /// How `field` (a path field) was written in the file, if it was.
+    pub fn written(&self, field: &str) -> Option<&Path> {
+        self.written
+            .iter()
+            .find(|(f, _)| f == field)
+            .map(|(_, p)| p.as_path())
     }
 }
 

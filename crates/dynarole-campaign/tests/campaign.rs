@@ -220,3 +220,63 @@ fn a_plan_gives_each_run_from_its_index() {
     assert_eq!(runs[8], (8, 0.2, 9));
     assert!(plan.get(9).is_none());
 }
+
+/// A path in a campaign file that does not resolve: the error names the field, the path as
+/// written and the path it resolved to, and says what relative paths are relative to.
+#[test]
+fn unresolved_relative_paths_say_what_they_are_relative_to() {
+    let root = tempfile::tempdir().expect("temp dir");
+    let examples = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples");
+    let text = std::fs::read_to_string(smoke()).expect("smoke.toml");
+    let dir = root.path().join("campaigns");
+    std::fs::create_dir(&dir).expect("a folder");
+    let file = dir.join("moved.toml");
+    let refused = |text: &str| {
+        std::fs::write(&file, text).expect("the campaign");
+        match run(&Options {
+            campaign: file.clone(),
+            ..options(&root.path().join("out"), Some(1), false)
+        }) {
+            Err(dynarole_campaign::Error::Spec { error, .. }) => *error,
+            Err(other) => panic!("not a field error: {other}"),
+            Ok(_) => panic!("ran"),
+        }
+    };
+    // Moved away from examples/: "../atron/eight2car.dr" now points into the temp dir.
+    let error = refused(&text);
+    assert_eq!(error.field, "file");
+    assert!(
+        error
+            .message
+            .starts_with("cannot read \"../atron/eight2car.dr\": No such file"),
+        "{}",
+        error.message
+    );
+    let hint = error.hint.expect("a hint");
+    let resolved = dir.join("../atron/eight2car.dr");
+    assert!(
+        hint.contains("relative to the campaign file's directory")
+            && hint.contains(&format!("resolved to {}", resolved.display())),
+        "{hint}"
+    );
+    assert!(error.span.is_some(), "the field is located in the text");
+    // The program found again (absolute), the expected configuration not.
+    let program = examples.join("atron/eight2car.dr");
+    let from = examples.join("atron/eight.json");
+    let text = text
+        .replace(
+            "\"../atron/eight2car.dr\"",
+            &format!("{:?}", program.display().to_string()),
+        )
+        .replace(
+            "\"../atron/eight.json\"",
+            &format!("{:?}", from.display().to_string()),
+        );
+    let error = refused(&text);
+    assert_eq!(error.field, "expect");
+    assert!(
+        error.message.contains("\"../atron/car.json\""),
+        "{}",
+        error.message
+    );
+}
