@@ -206,83 +206,6 @@ impl ProtocolOptions {
     }
 }
 
-#[cfg(test)]
-mod flag_tests {
-    use super::*;
-    use clap::Parser;
-
-    #[derive(Parser)]
-    struct Line {
-        #[command(flatten)]
-        options: ProtocolOptions,
-    }
-
-    fn round_trip(args: &[&str]) {
-        let given = Line::try_parse_from(std::iter::once("dynarole").chain(args.iter().copied()))
-            .unwrap()
-            .options;
-        let flags = given.flags().join(" ");
-        let again = Line::try_parse_from(
-            std::iter::once("dynarole").chain(flags.split(' ').filter(|w| !w.is_empty())),
-        )
-        .unwrap()
-        .options;
-        assert_eq!(format!("{given:?}"), format!("{again:?}"), "flags: {flags}");
-    }
-
-    #[test]
-    fn the_printed_flags_give_the_same_options() {
-        round_trip(&[]);
-        round_trip(&[
-            "--robot-id",
-            "7",
-            "--key",
-            "000102030405060708090a0b0c0d0eff",
-            "--execution",
-            "0xfffffffe",
-        ]);
-        round_trip(&[
-            "--protocol",
-            "paper",
-            "--merge",
-            "java",
-            "--restart-pending",
-        ]);
-        round_trip(&["--protocol", "paper", "--single-step-handover"]);
-        round_trip(&["--no-nv", "--dissemination", "fixed"]);
-        round_trip(&["--protocol", "token", "--token-retries", "unlimited"]);
-        round_trip(&["--protocol", "token", "--token-retries", "plain"]);
-    }
-
-    #[test]
-    fn a_keyed_build_prints_its_key_and_identity() {
-        let line = Line::try_parse_from([
-            "dynarole",
-            "--robot-id",
-            "9",
-            "--key",
-            "ffeeddccbbaa99887766554433221100",
-        ])
-        .unwrap();
-        let flags = line.options.flags().join(" ");
-        assert!(flags.contains("--robot-id 9"), "{flags}");
-        assert!(
-            flags.contains("--key ffeeddccbbaa99887766554433221100"),
-            "{flags}"
-        );
-    }
-    #[test]
-    fn an_execution_is_32_bits_in_decimal_or_hexadecimal() {
-        assert_eq!(parse_execution("41"), Ok(41));
-        assert_eq!(parse_execution("0xDEAD0002"), Ok(0xDEAD_0002));
-        assert_eq!(parse_execution("4294967295"), Ok(u32::MAX));
-        for bad in ["4294967296", "0x100000000", "-1", "", "0x", "seven"] {
-            let error = parse_execution(bad).expect_err(bad);
-            assert!(error.contains("32-bit"), "{error}");
-        }
-    }
-}
-
 /// What `compile` was asked to do.
 pub struct CompileArgs<'a> {
     pub file: &'a Path,
@@ -383,4 +306,82 @@ pub fn add_token_routes(
             options.routes = Some(routes);
         }),
     )
+}
+
+#[cfg(test)]
+mod flag_tests {
+    use super::*;
+    use clap::Parser;
+
+    #[derive(Parser)]
+    struct Line {
+        #[command(flatten)]
+        options: ProtocolOptions,
+    }
+
+    fn round_trip(args: &[&str]) {
+        let given = Line::try_parse_from(std::iter::once("dynarole").chain(args.iter().copied()))
+            .expect("the flags parse")
+            .options;
+        let flags = given.flags().join(" ");
+        let again = Line::try_parse_from(
+            std::iter::once("dynarole").chain(flags.split(' ').filter(|w| !w.is_empty())),
+        )
+        .expect("the flags parse")
+        .options;
+        assert_eq!(format!("{given:?}"), format!("{again:?}"), "flags: {flags}");
+    }
+
+    #[test]
+    fn the_printed_flags_give_the_same_options() {
+        round_trip(&[]);
+        round_trip(&[
+            "--robot-id",
+            "7",
+            "--key",
+            "000102030405060708090a0b0c0d0eff",
+            "--execution",
+            "0xfffffffe",
+        ]);
+        round_trip(&[
+            "--protocol",
+            "paper",
+            "--merge",
+            "java",
+            "--restart-pending",
+        ]);
+        round_trip(&["--protocol", "paper", "--single-step-handover"]);
+        round_trip(&["--no-nv", "--dissemination", "fixed"]);
+        round_trip(&["--protocol", "token", "--token-retries", "unlimited"]);
+        round_trip(&["--protocol", "token", "--token-retries", "plain"]);
+    }
+
+    #[test]
+    fn a_keyed_build_prints_its_key_and_identity() {
+        let line = Line::try_parse_from([
+            "dynarole",
+            "--robot-id",
+            "9",
+            "--key",
+            "ffeeddccbbaa99887766554433221100",
+        ])
+        .expect("the flags parse");
+        let flags = line.options.flags().join(" ");
+        assert!(flags.contains("--robot-id 9"), "{flags}");
+        assert!(
+            flags.contains("--key ffeeddccbbaa99887766554433221100"),
+            "{flags}"
+        );
+    }
+
+    #[test]
+    fn an_execution_is_32_bits_in_decimal_or_hexadecimal() {
+        assert_eq!(parse_execution("41"), Ok(41));
+        assert_eq!(parse_execution("0xDEAD0002"), Ok(0xDEAD_0002));
+        assert_eq!(parse_execution("4294967295"), Ok(u32::MAX));
+        for bad in ["4294967296", "0x100000000", "-1", "", "0x", "seven"] {
+            let error = parse_execution(bad).expect_err(bad);
+            assert!(error.contains("32-bit"), "{error}");
+        }
+    }
 }

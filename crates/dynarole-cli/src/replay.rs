@@ -50,13 +50,14 @@ pub fn run(args: &ReplayArgs) -> Result<ExitCode, Failure> {
         ));
         diagnostics.sort_by_key(|d| d.span);
         render::diagnostics(&display, source, &diagnostics);
+        let warnings = diagnostics.len() - result.n_rejected;
         println!(
-            "replayed {} from {}: {} statements, {} rejected, {} warnings",
+            "replayed {} from {}: {} statements, {} rejected, {warnings} warning{}",
             prepared.names.join(", "),
             args.from.display(),
             result.n_statements,
             result.n_rejected,
-            diagnostics.len() - result.n_rejected
+            if warnings == 1 { "" } else { "s" }
         );
         // A configuration file's robot always has the file format.
         let final_configuration = result.final_world.configuration().ok_or_else(|| {

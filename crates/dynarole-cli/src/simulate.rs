@@ -55,6 +55,12 @@ pub fn run(args: &SimulateArgs) -> Result<ExitCode, Failure> {
         let (scenario, scenario_text) = scenario(args)?;
         let start = read_configuration(args.from)?;
         let expect = args.expect.map(|p| read_configuration(p)).transpose()?;
+        // A module the program names but the configuration lacks would never act: the run
+        // would only time out. Refused here as `replay` refuses it, with the same message.
+        if let Err(diagnostics) = dynarole_replay::assign_modules(program, &plans, &start) {
+            render::diagnostics(&display, source, &diagnostics);
+            return Ok(ExitCode::from(1));
+        }
         let mut options = args.options.compile_options(1, names.join(" + "))?;
         let routed = add_token_routes(&mut options, program, &plans, Some(args.from))?;
         if let Err(diagnostics) = routed {

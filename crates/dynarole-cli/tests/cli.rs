@@ -294,7 +294,8 @@ fn replay_of_fig5_gives_exactly_the_car_and_its_reverse_the_eight() {
         text(&forward.stdout),
         text(&forward.stderr)
     );
-    assert!(text(&forward.stdout).contains("25 statements, 0 rejected, 0 warnings"));
+    // One warning, as `check --from` gives: the extend and the retract joined by `&`.
+    assert!(text(&forward.stdout).contains("25 statements, 0 rejected, 1 warning\n"));
     let back = replay(
         "examples/atron/eight2car.dr",
         &["car2eight"],
@@ -814,8 +815,9 @@ fn the_paper_protocol_as_it_is() {
         "{}",
         text(&restarted.stdout)
     );
-    // The other experiments succeed with it too (single runs of each).
-    for scenario in [&SCENARIOS[1], &SCENARIOS[3], &SCENARIOS[4]] {
+    // The other experiments succeed with it too (single runs of each), the four-sequence
+    // long-running one included (examples/scenarios/README.md once said it could not run).
+    for scenario in [&SCENARIOS[0], &SCENARIOS[1], &SCENARIOS[3], &SCENARIOS[4]] {
         let out = simulate(scenario, &["--protocol", "paper"]);
         assert_eq!(
             out.status.code(),
@@ -1172,7 +1174,8 @@ fn endless_or_huge_inputs_are_refused_with_the_limit() {
             stderr.contains("cannot read /dev/zero") || stderr.contains("/dev/zero:"),
             "{stderr}"
         );
-        assert!(stderr.contains("larger than 8 MiB"), "{stderr}");
+        // A device is refused before it is read (once: after 8 MiB of it).
+        assert!(stderr.contains("not a regular file"), "{stderr}");
     }
 }
 

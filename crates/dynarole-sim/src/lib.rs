@@ -30,6 +30,7 @@ mod scenario;
 mod sequence;
 mod state;
 mod trace;
+mod unended;
 mod wake;
 
 pub use build::{cache_entries, cache_root};
@@ -386,6 +387,17 @@ impl Simulator {
                 finished_ms: m.finished_at.map(ms),
             })
             .collect();
+        let finished: Vec<bool> = state
+            .modules
+            .iter()
+            .map(|m| m.finished_at.is_some())
+            .collect();
+        // Only a run some module finished says who did not: with none, the timeout says it.
+        let never_ended = if state.first_finished.is_some() {
+            unended::never_ended(view, &finished)
+        } else {
+            Vec::new()
+        };
         let all_finished_ms = state
             .all_finished()
             .then(|| state.modules.iter().filter_map(|m| m.finished_at).max())
@@ -399,6 +411,7 @@ impl Simulator {
             preset: state.preset.name().into(),
             completion_ms: state.first_finished.map(ms),
             all_finished_ms,
+            never_ended,
             end_ms: ms(state.now),
             statements: self.sequence.len(),
             statements_done,

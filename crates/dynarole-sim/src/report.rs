@@ -98,6 +98,10 @@ pub struct Report {
     pub completion_ms: Option<f64>,
     /// When the last module declared the end.
     pub all_finished_ms: Option<f64>,
+    /// The modules that never declared the end, each with whether it could have heard it
+    /// (said on success too: a run that ends with a module cut off is not silent about it).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub never_ended: Vec<String>,
     /// Simulated time at which the run stopped.
     pub end_ms: f64,
     pub statements: usize,
@@ -172,6 +176,9 @@ impl Report {
         );
         for f in &self.failures {
             let _ = writeln!(out, "  not reached: {f}");
+        }
+        for m in &self.never_ended {
+            let _ = writeln!(out, "  note: {m}");
         }
         self.packets_line(&mut out);
         let c = &self.counters;

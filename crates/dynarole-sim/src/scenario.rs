@@ -306,6 +306,7 @@ impl Scenario {
                 return Err(error(format!("power[{i}].on_ms"), "must be after off_ms"));
             }
         }
+        no_overlapping_power(&self.power)?;
         for (i, b) in self.block.iter().enumerate() {
             if b.to_ms <= b.from_ms {
                 return Err(error(format!("block[{i}].to_ms"), "must be after from_ms"));
@@ -450,4 +451,23 @@ mod tests {
         assert_eq!(error.span, Some(11..17));
         assert_eq!(error.hint.as_deref(), Some("did you mean `tickless`?"));
     }
+}
+
+/// Two `[[power]]` windows of one module that overlap are refused: the module cannot be off
+/// twice at once, and taking either window's end would silently shorten the other.
+fn no_overlapping_power(power: &[Power]) -> Result<(), ScenarioError> {
+    let mut order: Vec<usize> = (0..power.len()).collect();
+    order.sort_by_key(|&i| (&power[i].module, power[i].off_ms, i));
+    for pair in order.windows(2) {
+        let (a, b) = (&power[pair[0]], &power[pair[1]]);
+        if a.module == b.module && b.off_ms < a.on_ms {
+            let message = format!(
+                "overlaps power[{}] of the same module `{}` (off {} to {} ms): merge the two \
+                 windows into one, or make them disjoint",
+                pair[0], a.module, a.off_ms, a.on_ms
+            );
+            return Err(error(format!("power[{}].off_ms", pair[1]), message));
+        }
+    }
+    Ok(())
 }
