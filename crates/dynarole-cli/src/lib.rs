@@ -556,6 +556,15 @@ pub fn main() -> ExitCode {
     }
 }
 
+/// `--repeat`: a count of runs, at least one (zero runs would report nothing and succeed).
+fn at_least_one(text: &str) -> Result<u64, String> {
+    match text.parse::<u64>() {
+        Ok(0) => Err("expected at least 1 run, found 0".into()),
+        Ok(n) => Ok(n),
+        Err(e) => Err(format!("expected a count of runs (1 or more): {e}")),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::Cli;
@@ -575,14 +584,5 @@ mod tests {
                 );
             }
         }
-    }
-}
-
-/// `--repeat`: a count of runs, at least one (zero runs would report nothing and succeed).
-fn at_least_one(text: &str) -> Result<u64, String> {
-    match text.parse::<u64>() {
-        Ok(0) => Err("expected at least 1 run, found 0".into()),
-        Ok(n) => Ok(n),
-        Err(e) => Err(format!("expected a count of runs (1 or more): {e}")),
     }
 }

@@ -407,6 +407,25 @@ fn before(field: &str, at: u64, end: u64) -> Result<(), ScenarioError> {
     }
 }
 
+/// Two `[[power]]` windows of one module that overlap are refused: the module cannot be off
+/// twice at once, and taking either window's end would silently shorten the other.
+fn no_overlapping_power(power: &[Power]) -> Result<(), ScenarioError> {
+    let mut order: Vec<usize> = (0..power.len()).collect();
+    order.sort_by_key(|&i| (&power[i].module, power[i].off_ms, i));
+    for pair in order.windows(2) {
+        let (a, b) = (&power[pair[0]], &power[pair[1]]);
+        if a.module == b.module && b.off_ms < a.on_ms {
+            let message = format!(
+                "overlaps power[{}] of the same module `{}` (off {} to {} ms): merge the two \
+                 windows into one, or make them disjoint",
+                pair[0], a.module, a.off_ms, a.on_ms
+            );
+            return Err(error(format!("power[{}].off_ms", pair[1]), message));
+        }
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -451,23 +470,4 @@ mod tests {
         assert_eq!(error.span, Some(11..17));
         assert_eq!(error.hint.as_deref(), Some("did you mean `tickless`?"));
     }
-}
-
-/// Two `[[power]]` windows of one module that overlap are refused: the module cannot be off
-/// twice at once, and taking either window's end would silently shorten the other.
-fn no_overlapping_power(power: &[Power]) -> Result<(), ScenarioError> {
-    let mut order: Vec<usize> = (0..power.len()).collect();
-    order.sort_by_key(|&i| (&power[i].module, power[i].off_ms, i));
-    for pair in order.windows(2) {
-        let (a, b) = (&power[pair[0]], &power[pair[1]]);
-        if a.module == b.module && b.off_ms < a.on_ms {
-            let message = format!(
-                "overlaps power[{}] of the same module `{}` (off {} to {} ms): merge the two \
-                 windows into one, or make them disjoint",
-                pair[0], a.module, a.off_ms, a.on_ms
-            );
-            return Err(error(format!("power[{}].off_ms", pair[1]), message));
-        }
-    }
-    Ok(())
 }
