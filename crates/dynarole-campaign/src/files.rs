@@ -27,27 +27,8 @@ pub fn results_bound(runs: u64) -> u64 {
 /// or not UTF-8.
 pub fn read_bounded(path: &Path, limit: u64) -> Result<Option<String>, Error> {
     let bad = |why: String| Error::Results(format!("{}: {why}", path.display()));
-    let link = match std::fs::symlink_metadata(path) {
-        Ok(m) => m.file_type().is_symlink(),
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
-        Err(e) => return Err(Error::io(path, e)),
-    };
-    let meta = match std::fs::metadata(path) {
-        Ok(m) => m,
-        Err(e) if link && e.kind() == std::io::ErrorKind::NotFound => {
-            let target = std::fs::read_link(path).map_or("?".into(), |t| t.display().to_string());
-            return Err(bad(format!(
-                "a dangling link (to {target}, which does not exist); remove it or restore \
-                 its target"
-            )));
-        }
-        Err(e) => return Err(Error::io(path, e)),
-    };
-    if !meta.is_file() {
-        return Err(bad(format!(
-            "not a regular file ({}); results and copies in an output directory must be files",
-            kind(&meta.file_type())
-        )));
+    if !regular(path)? {
+        return Ok(None);
     }
     let file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
     // Checked again on the open file: the path may have been replaced in between.
@@ -71,6 +52,36 @@ pub fn read_bounded(path: &Path, limit: u64) -> Result<Option<String>, Error> {
             e.utf8_error().valid_up_to()
         ))
     })
+}
+
+/// Whether `path` is a regular file (false: nothing is there); an error naming it when it is
+/// a dangling link or anything but a file (checked without opening it: opening a FIFO
+/// blocks).
+pub fn regular(path: &Path) -> Result<bool, Error> {
+    let bad = |why: String| Error::Results(format!("{}: {why}", path.display()));
+    let link = match std::fs::symlink_metadata(path) {
+        Ok(m) => m.file_type().is_symlink(),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(false),
+        Err(e) => return Err(Error::io(path, e)),
+    };
+    let meta = match std::fs::metadata(path) {
+        Ok(m) => m,
+        Err(e) if link && e.kind() == std::io::ErrorKind::NotFound => {
+            let target = std::fs::read_link(path).map_or("?".into(), |t| t.display().to_string());
+            return Err(bad(format!(
+                "a dangling link (to {target}, which does not exist); remove it or restore \
+                 its target"
+            )));
+        }
+        Err(e) => return Err(Error::io(path, e)),
+    };
+    if !meta.is_file() {
+        return Err(bad(format!(
+            "not a regular file ({}); results and copies in an output directory must be files",
+            kind(&meta.file_type())
+        )));
+    }
+    Ok(true)
 }
 
 /// What a file that is not a regular file is, in words.

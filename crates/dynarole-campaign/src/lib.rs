@@ -219,7 +219,7 @@ fn run_shard(
     shard::keep_inputs(dir, &inputs.fingerprint, has_results, &what)?;
     let finished = dir.join(shard.file_name());
     let partial = dir.join(shard.partial_name());
-    if finished.exists() || finished.is_symlink() {
+    if files::regular(&finished)? {
         // Checked and completed like a partial file (it may have been cut or edited).
         std::fs::rename(&finished, &partial).map_err(|e| Error::io(&partial, e))?;
     }

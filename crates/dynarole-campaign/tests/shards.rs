@@ -281,6 +281,10 @@ fn unreadable_or_strange_shard_files_are_named() {
         .expect("mkfifo");
     assert!(fifo.success());
     both("shard-1-of-2.csv: not a regular file (a FIFO)");
+    // The shard run again names it too, and leaves it where it is.
+    let again = error_of(run(&options(&dir, Some("1/2"), None)));
+    assert!(again.contains("not a regular file (a FIFO)"), "{again}");
+    assert!(!dir.join("shard-1-of-2.csv.partial").exists());
     std::fs::remove_file(&file).expect("remove");
     std::os::unix::fs::symlink("/dev/zero", &file).expect("a link");
     both("shard-1-of-2.csv: not a regular file (a device)");
