@@ -172,19 +172,30 @@ pub fn emit(scheduler: Scheduler, jobs: &Jobs) -> Result<(u64, Vec<PathBuf>), Er
     let runs = plan_of(&sources, inputs.campaign)?.len();
     let dir = &jobs.dir;
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    keep_split(dir, jobs.shards, &sources.text, &inputs.fingerprint)?;
+    Ok((runs, emit::write(scheduler, jobs)?))
+}
+
+/// Checks that `dir` holds no shards of a split other than into `count`, and keeps the copy
+/// of the campaign file (`text`) and the record of its inputs there, or checks them against
+/// those of the shards already there.
+fn keep_split(
+    dir: &Path,
+    count: u64,
+    text: &str,
+    fingerprint: &inputs::Fingerprint,
+) -> Result<(), Error> {
     let found = shard::find(dir)?;
-    if let Some(n) = found.count.filter(|&n| n != jobs.shards) {
+    if let Some(n) = found.count.filter(|&n| n != count) {
         return Err(Error::Results(format!(
-            "{}: holds shards of a split into {n}, not {}; write to another directory (-o)",
-            dir.display(),
-            jobs.shards
+            "{}: holds shards of a split into {n}, not {count}; write to another directory (-o)",
+            dir.display()
         )));
     }
     let has_results = !found.files.is_empty();
-    shard::keep_campaign(dir, &sources.text, has_results)?;
+    shard::keep_campaign(dir, text, has_results)?;
     let what = format!("the shards in {}", dir.display());
-    shard::keep_inputs(dir, &inputs.fingerprint, has_results, &what)?;
-    Ok((runs, emit::write(scheduler, jobs)?))
+    shard::keep_inputs(dir, fingerprint, has_results, &what)
 }
 
 /// The plan of a loaded campaign; an error points into the campaign file.
@@ -206,17 +217,7 @@ fn run_shard(
     options: &Options,
 ) -> Result<Done, Error> {
     let dir = &options.out_dir;
-    if let Some(n) = shard::find(dir)?.count.filter(|&n| n != shard.count) {
-        return Err(Error::Results(format!(
-            "{}: holds shards of a split into {n}, not {}; write to another directory (-o)",
-            dir.display(),
-            shard.count
-        )));
-    }
-    let has_results = !shard::find(dir)?.files.is_empty();
-    shard::keep_campaign(dir, text, has_results)?;
-    let what = format!("the shards in {}", dir.display());
-    shard::keep_inputs(dir, &inputs.fingerprint, has_results, &what)?;
+    keep_split(dir, shard.count, text, &inputs.fingerprint)?;
     let finished = dir.join(shard.file_name());
     let partial = dir.join(shard.partial_name());
     if files::regular(&finished)? {

@@ -251,9 +251,7 @@ pub fn merged_rows(dir: &Path) -> Result<(Vec<Row>, Fingerprint), Error> {
     })?;
     let recorded = files::read_bounded(&dir.join(INPUTS_FILE), files::MAX_PREAMBLE_BYTES)?;
     let mut reference = recorded.as_deref().and_then(|t| Fingerprint::parse(t).0);
-    let mut mixed = Vec::new();
-    let mut problems = Vec::new();
-    let mut rows = Vec::new();
+    let (mut mixed, mut problems, mut rows) = (Vec::new(), Vec::new(), Vec::new());
     for index in 0..count {
         let shard = Shard { index, count };
         match found.files.get(&index) {
@@ -283,22 +281,32 @@ pub fn merged_rows(dir: &Path) -> Result<(Vec<Row>, Fingerprint), Error> {
             mixed.join("\n  ")
         )));
     }
+    let rows = every_run(dir, rows, plan.len(), problems)?;
+    Ok((rows, reference.unwrap_or_default()))
+}
+
+/// `rows` in run order when they hold each of the `total` runs and no shard had a problem;
+/// else an error with the problems, or the runs missing.
+fn every_run(
+    dir: &Path,
+    mut rows: Vec<Row>,
+    total: u64,
+    mut problems: Vec<String>,
+) -> Result<Vec<Row>, Error> {
     rows.sort_by_key(|r| r.run);
-    let missing = missing_runs(&rows, plan.len());
+    let missing = missing_runs(&rows, total);
     if !missing.is_empty() && problems.is_empty() {
         problems.push(format!("runs missing: {}", list_runs(&missing)));
     }
     if problems.is_empty() {
-        Ok((rows, reference.unwrap_or_default()))
-    } else {
-        Err(Error::Results(format!(
-            "{}: cannot merge, {} of {} runs are not recorded:\n  {}",
-            dir.display(),
-            missing.len(),
-            plan.len(),
-            problems.join("\n  ")
-        )))
+        return Ok(rows);
     }
+    Err(Error::Results(format!(
+        "{}: cannot merge, {} of {total} runs are not recorded:\n  {}",
+        dir.display(),
+        missing.len(),
+        problems.join("\n  ")
+    )))
 }
 
 /// What makes the runs of a finished shard file differ from the split's: no record of their
