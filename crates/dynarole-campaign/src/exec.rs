@@ -66,15 +66,6 @@ impl<'a> Worker<'a> {
 /// A simulator for `protocol`.
 pub fn simulator(inputs: &Inputs, protocol: dynarole_codegen::Variant) -> Result<Simulator, Error> {
     let mut options = compile_options(inputs.campaign, protocol);
-    // A module the program names but the start lacks would never act: every run would only
-    // time out.
-    dynarole_replay::assign_modules(&inputs.program, &inputs.plans, inputs.start).map_err(
-        |diagnostics| Error::Diagnostics {
-            path: inputs.campaign.file.clone(),
-            source: inputs.source.to_string(),
-            diagnostics,
-        },
-    )?;
     if options.protocol == dynarole_codegen::Protocol::Token {
         let routes = dynarole_replay::token_routes(&inputs.program, &inputs.plans, inputs.start)
             .map_err(|diagnostics| Error::Diagnostics {

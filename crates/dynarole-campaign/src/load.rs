@@ -128,6 +128,15 @@ pub fn inputs(sources: &Sources) -> Result<Inputs<'_>, Error> {
     let program = program(sources, &mut fingerprint)?;
     let plans = dynarole_core::driver::plans(&program, &campaign.sequences)
         .map_err(|e| unknown_sequence(sources, &e))?;
+    // A module the program names but the start lacks would never act: every run would only
+    // time out. Refused here, before anything is written (run, --emit, status alike).
+    dynarole_replay::assign_modules(&program, &plans, &sources.start).map_err(|diagnostics| {
+        Error::Diagnostics {
+            path: campaign.file.clone(),
+            source: sources.source.clone(),
+            diagnostics,
+        }
+    })?;
     Ok(Inputs {
         campaign,
         source: &sources.source,
