@@ -134,7 +134,10 @@ fn different_module_names_are_listed() -> Result<(), String> {
     assert_eq!(diff.only_in_first.len(), 7);
     assert_eq!(diff.only_in_second.len(), 7);
     let text = diff.to_string();
-    assert!(text.contains("module M0 in the first configuration only"), "{text}");
+    assert!(
+        text.contains("module M0 in the first configuration only"),
+        "{text}"
+    );
     Ok(())
 }
 
@@ -194,7 +197,10 @@ fn different_robots_differ() -> Result<(), String> {
     let diff = compare(&load("eight")?, &load("mtran-snake4")?)
         .err()
         .ok_or("equal?")?;
-    assert_eq!(diff.to_string(), "different robots: ATRON (first) and MTRAN (second)");
+    assert_eq!(
+        diff.to_string(),
+        "different robots: ATRON (first) and MTRAN (second)"
+    );
     Ok(())
 }
 
