@@ -245,8 +245,9 @@ fn as_argument(path: &Path) -> String {
 }
 
 /// `word` for a POSIX shell: as is when it has only safe characters, else single-quoted
-/// (inside single quotes only `'` itself is special).
-fn quote(word: &str) -> String {
+/// (inside single quotes only `'` itself is special). The one quoting of the tool: the job
+/// files, and the commands it prints for a user to run (`replay with:`, `submit ...`).
+pub fn quote(word: &str) -> String {
     if !word.is_empty() && word.chars().all(is_plain) {
         word.to_string()
     } else {

@@ -21,7 +21,8 @@ mod tables;
 
 pub use dynarole_input::{read_limited, MAX_INPUT_BYTES};
 pub use emit::{
-    check as check_jobs, job_files, write as write_job_files, JobFile, Jobs, Scheduler,
+    check as check_jobs, job_files, quote as shell_word, write as write_job_files, JobFile, Jobs,
+    Scheduler,
 };
 pub use inputs::INPUTS_FILE;
 pub use plan::{plan, Axis, Faults, Plan, PlannedRun, MAX_RUNS};

@@ -166,7 +166,9 @@ fn emit_jobs(args: &CampaignArgs, emit: &EmitArgs, dir: PathBuf) -> Result<ExitC
     for f in &files {
         println!("wrote {}", f.display());
     }
-    let first = |name: &str| jobs.dir.join(name).display().to_string();
+    // Printed for a user to paste into a shell: quoted as the job files quote.
+    let first =
+        |name: &str| dynarole_campaign::shell_word(&jobs.dir.join(name).display().to_string());
     let submit = match scheduler {
         Scheduler::Slurm => first("submit.sh"),
         Scheduler::Htcondor => format!("condor_submit_dag {}", first("campaign.dag")),
@@ -179,7 +181,10 @@ fn emit_jobs(args: &CampaignArgs, emit: &EmitArgs, dir: PathBuf) -> Result<ExitC
         runs.div_ceil(emit.shards)
     );
     println!("submit from this directory: {submit}");
-    println!("progress: dynarole campaign status {}", jobs.dir.display());
+    println!(
+        "progress: dynarole campaign status {}",
+        dynarole_campaign::shell_word(&jobs.dir.display().to_string())
+    );
     Ok(ExitCode::SUCCESS)
 }
 

@@ -8,6 +8,7 @@ use crate::load::{self, Failure, PluginArgs};
 use crate::render;
 use crate::world::read_configuration;
 use clap::ValueEnum;
+use dynarole_campaign::shell_word;
 use dynarole_codegen::Choice;
 use dynarole_recording::Source;
 use dynarole_sim::{
@@ -296,21 +297,24 @@ fn firmware_table(f: &FirmwareReport) -> String {
 fn replay_command(args: &SimulateArgs, seed: u64) -> String {
     let mut parts = vec![
         "dynarole simulate".to_string(),
-        quote(&args.file.display().to_string()),
+        shell_word(&args.file.display().to_string()),
     ];
     for s in args.sequences {
-        parts.push(format!("--sequence {}", quote(s)));
+        parts.push(format!("--sequence {}", shell_word(s)));
     }
     parts.push(format!(
         "--from {}",
-        quote(&args.from.display().to_string())
+        shell_word(&args.from.display().to_string())
     ));
     if let Some(e) = args.expect {
-        parts.push(format!("--expect {}", quote(&e.display().to_string())));
+        parts.push(format!("--expect {}", shell_word(&e.display().to_string())));
     }
     parts.extend(args.options.flags());
     if let Some(s) = args.scenario {
-        parts.push(format!("--scenario {}", quote(&s.display().to_string())));
+        parts.push(format!(
+            "--scenario {}",
+            shell_word(&s.display().to_string())
+        ));
     }
     if let Some(l) = args.loss {
         parts.push(format!("--loss {l}"));
@@ -319,22 +323,11 @@ fn replay_command(args: &SimulateArgs, seed: u64) -> String {
         parts.push(format!("--stepping {}", s.name()));
     }
     for p in &args.plugins.plugins {
-        parts.push(format!("--plugin {}", quote(&p.display().to_string())));
+        parts.push(format!("--plugin {}", shell_word(&p.display().to_string())));
     }
     if let Some(name) = args.firmware.and_then(|f| f.to_possible_value()) {
         parts.push(format!("--firmware {}", name.get_name()));
     }
     parts.push(format!("--seed {seed}"));
     parts.join(" ")
-}
-
-fn quote(s: &str) -> String {
-    let plain = s
-        .chars()
-        .all(|c| c.is_ascii_alphanumeric() || "-_./=+,:@".contains(c));
-    if plain && !s.is_empty() {
-        s.to_string()
-    } else {
-        format!("'{}'", s.replace('\'', "'\\''"))
-    }
 }

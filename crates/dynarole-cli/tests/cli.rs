@@ -158,6 +158,35 @@ fn replay_reports_the_warnings_check_from_reports() {
 }
 
 #[test]
+fn the_commands_emit_prints_are_quoted_for_a_shell() {
+    // Pasting the printed `submit` line once ran what the output folder's name contained.
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli-emit-quoted");
+    let _ = std::fs::remove_dir_all(&dir);
+    let out_dir = dir.join("o$(touch PWNED)");
+    let out = dynarole(&[
+        "campaign",
+        "examples/campaigns/smoke.toml",
+        "--emit",
+        "slurm",
+        "--shards",
+        "2",
+        "-o",
+        out_dir.to_str().expect("path"),
+    ]);
+    let stdout = text(&out.stdout);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let quoted = format!("'{}/submit.sh'", out_dir.display());
+    assert!(
+        stdout.contains(&format!("submit from this directory: {quoted}")),
+        "{stdout}"
+    );
+    assert!(
+        stdout.contains(&format!("campaign status '{}'", out_dir.display())),
+        "{stdout}"
+    );
+}
+
+#[test]
 fn check_accepts_the_examples() {
     let out = dynarole(&["check", "examples/atron/eight2car.dr"]);
     assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
