@@ -44,7 +44,8 @@ uint8_t fuzz_seal(uint8_t *bytes, uint8_t len, uint8_t cap);
 /* Framing laws on arbitrary bytes (fuzz_packet.c). Aborts when one is broken. */
 void fuzz_packet_check(const uint8_t *data, size_t size);
 
-/* Called by fuzz_fail before it aborts (the plain driver saves the input there). */
+/* Called by fuzz_fail before it aborts (the plain driver saves the input there). fuzz_fail.c
+ * defines both: every other driver file may call them, and they call none of those files. */
 extern void (*fuzz_failure_hook)(void);
 
 /* A broken property: prints it and aborts (so libFuzzer and the sanitizers see a crash). */

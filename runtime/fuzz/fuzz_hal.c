@@ -1,24 +1,11 @@
 /* fuzz_hal.c - the fuzz drivers' platform: every HAL call answered from the module's
  * fuzz_node_t (its `platform`), deterministic, with checks on what the runtime sends. */
-#include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 #include "fuzz.h"
 
 static fuzz_node_t *node_of(struct dr_module *m)
 {
     return (fuzz_node_t *)m->platform;
-}
-
-void (*fuzz_failure_hook)(void);
-
-void fuzz_fail(const char *what)
-{
-    fprintf(stderr, "fuzz: %s\n", what);
-    if (fuzz_failure_hook != NULL) {
-        fuzz_failure_hook();
-    }
-    abort();
 }
 
 void fuzz_node_reset(fuzz_node_t *node, uint16_t id)

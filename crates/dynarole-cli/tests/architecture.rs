@@ -1,7 +1,9 @@
 //! The layering ARCHITECTURE.md promises, checked on the tree: no import circle among the
 //! top-level modules of any crate (read from the `crate::` and `super::` paths of its
 //! sources), no crate depending on one after it in ARCHITECTURE.md's dependency order (from
-//! `cargo metadata`), and `compile` not linking the simulator.
+//! `cargo metadata`), `compile` not linking the simulator, no two C files of `runtime/` calling
+//! each other (from the functions each defines and the names each uses), and no Makefile or
+//! Rust file but `runtime/dr_warn.mk` spelling a warning flag.
 
 use serde_json::Value;
 use std::collections::{BTreeMap, BTreeSet};
@@ -731,4 +733,342 @@ fn a_module_reaching_the_simulator_through_imports_is_found() {
         vec!["load.rs names dynarole-campaign".to_string()]
     );
     assert!(links(&crate_files, &["load"], &deps, "dynarole-core").is_empty());
+}
+
+// ---------------------------------------------------------------------------------------
+// The C runtime: no two files that call each other, and one list of warning flags.
+
+/// Every file under `dir` whose name `wanted` accepts, as (path relative to the workspace with
+/// `/`, text), skipping build outputs (`build/`, `target/`: copies and generated programs,
+/// not sources), `node_modules/` and `.git/`.
+fn tree_files(dir: &Path, wanted: &dyn Fn(&str) -> bool) -> Vec<(String, String)> {
+    const SKIPPED: [&str; 4] = ["build", "target", "node_modules", ".git"];
+    let root = workspace();
+    let mut out = Vec::new();
+    let mut pending = vec![dir.to_path_buf()];
+    while let Some(d) = pending.pop() {
+        let Ok(entries) = std::fs::read_dir(&d) else {
+            continue;
+        };
+        for entry in entries.flatten() {
+            let path = entry.path();
+            let name = entry.file_name().to_string_lossy().into_owned();
+            if path.is_dir() {
+                if !SKIPPED.contains(&name.as_str()) {
+                    pending.push(path);
+                }
+            } else if wanted(&name) {
+                let rel = path.strip_prefix(&root).unwrap_or(&path);
+                let rel = rel
+                    .components()
+                    .map(|c| c.as_os_str().to_string_lossy())
+                    .collect::<Vec<_>>()
+                    .join("/");
+                let Ok(text) = std::fs::read_to_string(&path) else {
+                    continue;
+                };
+                out.push((rel, text));
+            }
+        }
+    }
+    out.sort();
+    out
+}
+
+/// C source without comments, string and character literals, or preprocessor lines (each
+/// replaced by a space): what is left names only what the file's code uses and defines.
+fn c_code(text: &str) -> String {
+    let chars: Vec<char> = text.chars().collect();
+    let mut out = String::new();
+    let mut i = 0;
+    let mut line_start = true;
+    while i < chars.len() {
+        let c = chars[i];
+        let next = chars.get(i + 1).copied();
+        if c == '/' && next == Some('*') {
+            i += 2;
+            while i < chars.len() && !(chars[i] == '*' && chars.get(i + 1) == Some(&'/')) {
+                i += 1;
+            }
+            i += 2;
+            out.push(' ');
+        } else if c == '/' && next == Some('/') {
+            while i < chars.len() && chars[i] != '\n' {
+                i += 1;
+            }
+        } else if c == '"' || c == '\'' {
+            i += 1;
+            while i < chars.len() && chars[i] != c && chars[i] != '\n' {
+                i += if chars[i] == '\\' { 2 } else { 1 };
+            }
+            i += 1;
+            out.push(' ');
+            line_start = false;
+        } else if c == '#' && line_start {
+            // A directive, with its `\`-continued lines (a macro body names no definition).
+            while i < chars.len() && chars[i] != '\n' {
+                i += if chars[i] == '\\' { 2 } else { 1 };
+            }
+        } else {
+            if c == '\n' {
+                line_start = true;
+            } else if !c.is_whitespace() {
+                line_start = false;
+            }
+            out.push(c);
+            i += 1;
+        }
+    }
+    out
+}
+
+fn c_identifiers(code: &str) -> Vec<(usize, &str)> {
+    let mut out = Vec::new();
+    let mut start = None;
+    for (i, c) in code.char_indices().chain([(code.len(), ' ')]) {
+        let ident = c == '_' || c.is_ascii_alphanumeric();
+        match (start, ident) {
+            (None, true) => start = Some(i),
+            (Some(s), false) => {
+                if !code[s..].starts_with(|c: char| c.is_ascii_digit()) {
+                    out.push((s, &code[s..i]));
+                }
+                start = None;
+            }
+            _ => {}
+        }
+    }
+    out
+}
+
+/// The functions a C file defines with external linkage: at file scope, a name followed by a
+/// parenthesised parameter list and a body, in a declaration that does not say `static`.
+fn c_definitions(code: &str) -> BTreeSet<String> {
+    let mut out = BTreeSet::new();
+    let mut depth = 0usize;
+    // Where the current file-scope declaration started.
+    let mut start = 0;
+    for (i, c) in code.char_indices() {
+        match c {
+            '{' if depth == 0 => {
+                let head = code[start..i].trim_end();
+                if let Some(name) = defined_function(head) {
+                    out.insert(name);
+                }
+                depth = 1;
+            }
+            '{' => depth += 1,
+            '}' if depth > 0 => {
+                depth -= 1;
+                if depth == 0 {
+                    start = i + 1;
+                }
+            }
+            ';' if depth == 0 => start = i + 1,
+            _ => {}
+        }
+    }
+    out
+}
+
+/// The name `head` (a file-scope declaration up to its `{`) defines as a function with external
+/// linkage: `... name ( params )` with no `static` and no `=` (an initialiser's braces).
+fn defined_function(head: &str) -> Option<String> {
+    let params = head.strip_suffix(')')?;
+    let open = params.rfind('(')?;
+    if params[open + 1..].contains(['(', ')']) {
+        return None;
+    }
+    let before = &head[..open];
+    let (_, name) = *c_identifiers(before).last()?;
+    let storage = c_identifiers(before);
+    if before.contains('=') || storage.iter().any(|(_, w)| *w == "static") {
+        return None;
+    }
+    before.trim_end().ends_with(name).then(|| name.to_string())
+}
+
+/// Which C file calls which: an edge from A to B when A names a function that B defines. A
+/// function defined in several folders is a port, each build linking one of them (the
+/// platforms' `dr_hal.h`, the protocols' `dr_module.h`, each test world's `dr_fake_of`):
+/// naming it depends on no file in particular. Two definitions in one folder are not (a copy
+/// must not hide a call): each is a file called.
+fn c_call_graph(files: &[(String, String)]) -> BTreeMap<String, BTreeSet<String>> {
+    let folder = |path: &str| path.rsplit_once('/').map_or("", |(dir, _)| dir).to_string();
+    let code: Vec<(String, String)> = files.iter().map(|(p, t)| (p.clone(), c_code(t))).collect();
+    let mut definers: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+    for (path, text) in &code {
+        for name in c_definitions(text) {
+            definers.entry(name).or_default().insert(path.clone());
+        }
+    }
+    definers.retain(|_, owners| {
+        let folders: BTreeSet<String> = owners.iter().map(|p| folder(p)).collect();
+        folders.len() == 1
+    });
+    let mut graph = BTreeMap::new();
+    for (path, text) in &code {
+        let mut to = BTreeSet::new();
+        for (_, name) in c_identifiers(text) {
+            let owners = definers.get(name).into_iter().flatten();
+            // A file's own definition is what its uses of the name mean.
+            if !owners.clone().any(|owner| owner == path) {
+                to.extend(owners.cloned());
+            }
+        }
+        graph.insert(path.clone(), to);
+    }
+    graph
+}
+
+#[test]
+fn no_two_c_files_of_the_runtime_call_each_other() {
+    let files = tree_files(&workspace().join("runtime"), &|name| name.ends_with(".c"));
+    assert!(
+        files.iter().any(|(p, _)| p == "runtime/fuzz/fuzz_hal.c"),
+        "the runtime's C files are found"
+    );
+    let graph = c_call_graph(&files);
+    let problems: Vec<String> = circles(&graph)
+        .iter()
+        .map(|circle| {
+            let calls: Vec<String> = circle
+                .iter()
+                .map(|from| {
+                    let to: Vec<&str> = graph[from]
+                        .iter()
+                        .filter(|t| circle.contains(t))
+                        .map(String::as_str)
+                        .collect();
+                    format!("{from} calls {}", to.join(", "))
+                })
+                .collect();
+            format!("C files calling each other: {}", calls.join("; "))
+        })
+        .collect();
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
+
+#[test]
+fn a_circle_of_c_files_is_found_and_a_port_is_none() {
+    let c_files = files(&[
+        (
+            "hal.c",
+            "#include \"fuzz.h\"\n#define CHECK(x) \\\n    do { fail(\"x\"); } while (0)\n\
+             static void sent(void) { packet_check(); }\n\
+             unsigned dr_hal_id(void) { return 1u; }\nvoid step(void) { dr_module_step(); }\n",
+        ),
+        (
+            "packet.c",
+            "/* hal.c: fail() */\nvoid packet_check(void)\n{\n    fail(\"bad\");\n}\n",
+        ),
+        (
+            "fail.c",
+            "static const int table[] = { 1 };\nvoid fail(const char *what) { (void)what; }\n",
+        ),
+        ("sim/hal.c", "unsigned dr_hal_id(void) { return 2u; }\n"),
+        (
+            "protocol.c",
+            "void dr_module_step(void) { (void)dr_hal_id(); }\n",
+        ),
+    ]);
+    let graph = c_call_graph(&c_files);
+    assert_eq!(
+        graph["hal.c"],
+        BTreeSet::from(["packet.c".to_string(), "protocol.c".to_string()])
+    );
+    assert_eq!(graph["packet.c"], BTreeSet::from(["fail.c".to_string()]));
+    assert_eq!(
+        graph["fail.c"],
+        BTreeSet::new(),
+        "static and initialisers are no functions"
+    );
+    assert_eq!(
+        graph["protocol.c"],
+        BTreeSet::new(),
+        "dr_hal_id is a port: two folders define it"
+    );
+    assert!(circles(&graph).is_empty());
+    // The old fuzz drivers: the platform checks frames, the checks fail through the platform;
+    // a second `fail` beside them does not hide the call.
+    let mut circle = c_files.clone();
+    circle[0]
+        .1
+        .push_str("void fail(const char *what) { (void)what; }\n");
+    assert_eq!(
+        circles(&c_call_graph(&circle)),
+        vec![vec!["hal.c".to_string(), "packet.c".to_string()]]
+    );
+}
+
+/// Where `text` spells a compiler warning flag (`-W` and a letter, after neither a letter nor a
+/// digit; not the assembler's, preprocessor's or linker's pass-through `-Wa,` `-Wp,` `-Wl,`),
+/// outside comment lines (`#` in a Makefile, `//` in Rust), as line numbers.
+fn warning_flags_in(text: &str, comment: &str) -> Vec<usize> {
+    let mut out = Vec::new();
+    for (n, line) in text.lines().enumerate() {
+        if line.trim_start().starts_with(comment) {
+            continue;
+        }
+        let bytes = line.as_bytes();
+        let spelled = (0..bytes.len().saturating_sub(2)).any(|i| {
+            bytes[i] == b'-'
+                && bytes[i + 1] == b'W'
+                && bytes[i + 2].is_ascii_alphabetic()
+                && bytes.get(i + 3) != Some(&b',')
+                && (i == 0 || !bytes[i - 1].is_ascii_alphanumeric())
+        });
+        if spelled {
+            out.push(n + 1);
+        }
+    }
+    out
+}
+
+#[test]
+fn warning_flags_are_spelled_only_in_dr_warn_mk() {
+    let root = workspace();
+    let makefiles = tree_files(&root, &|name| {
+        name == "Makefile" || name.starts_with("Makefile.") || name.ends_with(".mk")
+    });
+    assert!(
+        makefiles.iter().any(|(p, _)| p == "runtime/dr_warn.mk"),
+        "runtime/dr_warn.mk is found"
+    );
+    let rust = tree_files(&root.join("crates"), &|name| name.ends_with(".rs"));
+    let mut problems = Vec::new();
+    for (files, comment) in [(&makefiles, "#"), (&rust, "//")] {
+        for (path, text) in files {
+            // dr_warn.mk is the one list; this file names the flags it looks for.
+            if path == "runtime/dr_warn.mk" || path.ends_with("dynarole-cli/tests/architecture.rs")
+            {
+                continue;
+            }
+            for line in warning_flags_in(text, comment) {
+                problems.push(format!(
+                    "{path}:{line}: a warning flag outside runtime/dr_warn.mk (include it, or take \
+                     dynarole_codegen::warning_flags())"
+                ));
+            }
+        }
+    }
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
+
+#[test]
+fn a_warning_flag_is_found_outside_comments() {
+    assert_eq!(
+        warning_flags_in(
+            "# -Wall in a comment\nWARN = -std=c99 -Wall\nLD = -Wl,--gc-sections\n",
+            "#"
+        ),
+        vec![2]
+    );
+    assert_eq!(
+        warning_flags_in(
+            "// \"-Wshadow\"\nlet a = [\"-Wshadow\"];\nlet b = \"dynarole-WHAT\";\n",
+            "//"
+        ),
+        vec![2]
+    );
 }

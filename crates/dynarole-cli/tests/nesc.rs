@@ -66,7 +66,9 @@ fn c_harness(dir: &Path, ids: &str) -> String {
     sources.sort();
     let binary = dir.join("c-harness");
     let status = Command::new("cc")
-        .args(["-std=c99", "-Wall", "-Wextra", "-Werror", "-I"])
+        // The runtime's strict flags (runtime/dr_warn.mk), as the codegen tests build it.
+        .args(dynarole_codegen::warning_flags())
+        .arg("-I")
         .arg(dir)
         .args(&sources)
         .arg(repo_root().join("runtime/harness/harness.c"))

@@ -30,4 +30,5 @@ pub use promela::{
 pub use protocol::{
     Dissemination, PaperMerge, Protocol, ProtocolInfo, Setting, TokenRetries, Variant, PROTOCOLS,
 };
+pub use runtime::warning_flags;
 pub use token::TokenRoutes;

@@ -12,6 +12,30 @@ pub const COMMON: [(&str, &str); 8] = [
     ("dr_mcu.mk", include_str!("../../../runtime/dr_mcu.mk")),
 ];
 
+/// `runtime/dr_warn.mk`, the one definition of the C language and warning flags. It is not
+/// copied into a compiled directory: its flags are written into the generated Makefile
+/// (`c::makefile`), so that the directory's bytes, and with them the program fingerprint, stay
+/// what they were when the Makefile spelled them itself.
+const DR_WARN_MK: &str = include_str!("../../../runtime/dr_warn.mk");
+
+/// The flags of `DR_WARN = ...` in `runtime/dr_warn.mk`, in their order: what every C build of
+/// dynarole compiles with (the runtime's Makefiles include the file, the generated Makefile
+/// gets these words, the simulator passes them to `cc`).
+pub fn warning_flags() -> Vec<&'static str> {
+    const NAME: &str = "DR_WARN =";
+    let flags: Vec<&'static str> = DR_WARN_MK
+        .lines()
+        .find_map(|line| line.strip_prefix(NAME))
+        .map(|value| value.split_whitespace().collect())
+        .unwrap_or_default();
+    // The file is embedded at build time and a test reads it: this cannot fail at run time.
+    assert!(
+        !flags.is_empty() && flags.iter().all(|f| f.starts_with('-')),
+        "runtime/dr_warn.mk defines DR_WARN as one line of flags"
+    );
+    flags
+}
+
 /// The lattice protocol. The describe file is for traces (host, simulator); the MCU build in
 /// the generated Makefile leaves it out, with dr_text.c.
 pub const LATTICE: [(&str, &str); 3] = [

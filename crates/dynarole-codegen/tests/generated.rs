@@ -145,22 +145,16 @@ fn c_sources(dir: &Path) -> Vec<PathBuf> {
     sources
 }
 
-const STRICT: [&str; 9] = [
-    "-std=c99",
-    "-pedantic",
-    "-Wall",
-    "-Wextra",
-    "-Werror",
-    "-Wshadow",
-    "-Wconversion",
-    "-Wstrict-prototypes",
-    "-Wmissing-prototypes",
-];
+/// The runtime's strict flags (`runtime/dr_warn.mk`: C99, pedantic, every warning an error),
+/// the same list the runtime's Makefiles, the generated Makefile and the simulator use.
+fn strict() -> Vec<&'static str> {
+    dynarole_codegen::warning_flags()
+}
 
 /// `cc -std=c99 -c *.c` in the directory, with no include path and every warning an error.
 fn builds_alone(dir: &Path) {
     let status = Command::new("cc")
-        .args(STRICT)
+        .args(strict())
         .arg("-c")
         .args(c_sources(dir))
         .current_dir(dir)
@@ -177,7 +171,8 @@ fn harness_run(dir: &Path) -> String {
     let harness = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../runtime/harness/harness.c");
     let binary = dir.join("harness");
     let status = Command::new("cc")
-        .args(["-std=c99", "-Wall", "-Wextra", "-Werror", "-I"])
+        .args(strict())
+        .arg("-I")
         .arg(dir)
         .args(c_sources(dir))
         .arg(&harness)
@@ -461,7 +456,8 @@ fn host_and_mcu_builds_do_not_share_objects() {
     for source in ["dr_packet", "dr_lattice", "dr_program"] {
         assert!(
             stdout.contains(&format!(
-                "avr-gcc -Os -mcall-prologues -mstrict-X -flto -ffat-lto-objects -mrelax -fno-tree-loop-optimize -fno-gcse -fno-move-loop-invariants -mmcu=atmega128 -std=c99 -Wall -Wextra -Werror -pedantic -Wshadow -Wconversion -Wstrict-prototypes -Wmissing-prototypes -c {source}.c -o build/atmega128/{source}.o"
+                "avr-gcc -Os -mcall-prologues -mstrict-X -flto -ffat-lto-objects -mrelax -fno-tree-loop-optimize -fno-gcse -fno-move-loop-invariants -mmcu=atmega128 {} -c {source}.c -o build/atmega128/{source}.o",
+                strict().join(" ")
             )),
             "{stdout}"
         );
@@ -476,7 +472,7 @@ fn host_and_mcu_builds_do_not_share_objects() {
 fn lattice_imports(dir: &Path) -> String {
     let object = dir.join("dr_lattice.o");
     let status = Command::new("cc")
-        .args(STRICT)
+        .args(strict())
         .args(["-Os", "-c", "dr_lattice.c", "-o"])
         .arg(&object)
         .current_dir(dir)

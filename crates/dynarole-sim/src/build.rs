@@ -102,6 +102,10 @@ fn cache_key(files: &[(String, String)], defines: &[String]) -> u64 {
         }
     };
     feed(DR_SIM_C.as_bytes());
+    // The flags too: a build made with other warnings or options is not this one.
+    for flag in compile_flags() {
+        feed(flag.as_bytes());
+    }
     for (name, text) in files {
         feed(name.as_bytes());
         feed(text.as_bytes());
@@ -171,6 +175,15 @@ fn fresh_directory(root: &Path) -> Result<PathBuf, String> {
     ))
 }
 
+/// The runtime's language and warning flags (`runtime/dr_warn.mk`, the one list every C build
+/// of dynarole uses: C99, pedantic, `-Wconversion`, `-Wshadow`, every warning an error), then
+/// what a loadable library needs.
+fn compile_flags() -> Vec<&'static str> {
+    let mut flags = dynarole_codegen::warning_flags();
+    flags.extend(["-O2", "-shared", "-fPIC", "-I."]);
+    flags
+}
+
 fn write_and_compile(
     files: &[(String, String)],
     defines: &[String],
@@ -191,9 +204,7 @@ fn write_and_compile(
     }
     let output = Command::new("cc")
         .current_dir(dir)
-        .args([
-            "-std=c99", "-O2", "-shared", "-fPIC", "-Wall", "-Wextra", "-Werror", "-I.",
-        ])
+        .args(compile_flags())
         .args(defines)
         .args(&sources)
         .args(["-o", LIBRARY])

@@ -1,16 +1,19 @@
 //! Builds what `--firmware avr` runs: the module image (the generated C plus `runtime/avr`,
 //! with avr-gcc) and the emulated board (`runtime/avr/emu` linked with simavr), each with
-//! `runtime/avr/Makefile` (and the MCU options of `runtime/dr_mcu.mk`) so that its flags are
-//! defined once. Both are cached under the simulator's cache root, keyed by a hash of every
-//! input, built in a temporary directory and renamed into place.
+//! `runtime/avr/Makefile` (and the MCU options of `runtime/dr_mcu.mk`, the warning flags of
+//! `runtime/dr_warn.mk`) so that its flags are defined once. Both are cached under the
+//! simulator's cache root, keyed by a hash of every input, built in a temporary directory and
+//! renamed into place.
 
 use crate::build::{cache_root, publish};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-/// `runtime/avr` and the MCU options it includes, embedded so that a build needs only the AVR toolchain and simavr.
-const SOURCES: [(&str, &str); 7] = [
+/// `runtime/avr` and the MCU options and warning flags it includes, embedded so that a build
+/// needs only the AVR toolchain and simavr.
+const SOURCES: [(&str, &str); 8] = [
     ("dr_mcu.mk", include_str!("../../../../runtime/dr_mcu.mk")),
+    ("dr_warn.mk", include_str!("../../../../runtime/dr_warn.mk")),
     (
         "avr/Makefile",
         include_str!("../../../../runtime/avr/Makefile"),
