@@ -5,20 +5,44 @@
 
 use crate::load::Failure;
 use crate::render;
-use dynarole_campaign::{Done, Error, Jobs, MergeOptions, Options, ProgressMode, Scheduler, Shard};
+use dynarole_campaign::{Done, Error, Jobs, MergeOptions, Options, ProgressMode, Scheduler};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-/// What `campaign` was asked to do.
-pub struct CampaignArgs<'a> {
-    pub file: &'a Path,
-    pub out_dir: Option<&'a PathBuf>,
+/// What `campaign` was asked to do: its command line, parsed once.
+#[derive(clap::Args)]
+pub struct CampaignArgs {
+    #[command(subcommand)]
+    pub action: Option<Action>,
+    /// The campaign file (TOML; see crates/dynarole-campaign/README.md).
+    #[arg(required = true)]
+    pub file: Option<std::path::PathBuf>,
+    /// The output directory (default: out/NAME for NAME.toml).
+    #[arg(short = 'o', long = "output", value_name = "DIR")]
+    pub out_dir: Option<std::path::PathBuf>,
+    /// Do at most N of the runs not yet recorded, then stop (run again to go on).
+    #[arg(long, value_name = "N", conflicts_with = "emit")]
     pub max_runs: Option<u64>,
+    /// Worker threads (default: one per core; with --emit: per shard, default 1).
+    #[arg(short = 'j', long, value_name = "N")]
     pub jobs: Option<usize>,
+    /// Write no plots.
+    #[arg(long)]
     pub no_plots: bool,
-    pub shard: Option<Shard>,
-    /// Write job files instead of running.
-    pub emit: Option<EmitArgs>,
+    /// Run only shard K (from 0) of N into DIR/shard-K-of-N.csv (resumable); the split
+    /// depends only on the campaign and N. Then `dynarole campaign merge DIR`.
+    #[arg(long, value_name = "K/N", conflicts_with = "emit")]
+    pub shard: Option<dynarole_campaign::Shard>,
+    /// Write job files into DIR that run the campaign as --shards N shards on this
+    /// scheduler, then merge them (docs/cluster.md).
+    #[arg(long, value_enum, requires = "shards")]
+    pub emit: Option<Emit>,
+    /// With --emit: the number of shards.
+    #[arg(long, value_name = "N", requires = "emit", value_parser = clap::value_parser!(u64).range(1..=dynarole_campaign::MAX_SHARDS))]
+    pub shards: Option<u64>,
+    /// With --emit: most shards running at once (default: all).
+    #[arg(long, value_name = "T", requires = "emit", value_parser = clap::value_parser!(u64).range(1..))]
+    pub throttle: Option<u64>,
 }
 
 /// The schedulers `--emit` writes job files for.
@@ -63,15 +87,36 @@ pub enum Action {
 }
 
 pub fn run(args: &CampaignArgs) -> Result<ExitCode, Failure> {
-    let out_dir = match args.out_dir {
+    match (&args.action, &args.file) {
+        (Some(action), _) => act(action),
+        (None, Some(file)) => run_file(args, file),
+        (None, None) => Err(Failure::Usage(
+            "campaign: name a campaign file, or `merge DIR`, or `status DIR`".into(),
+        )),
+    }
+}
+
+/// `--emit S --shards N [--throttle T]`, when asked (clap makes --emit require --shards).
+fn emit_args(args: &CampaignArgs) -> Option<EmitArgs> {
+    args.emit
+        .zip(args.shards)
+        .map(|(scheduler, shards)| EmitArgs {
+            scheduler,
+            shards,
+            throttle: args.throttle.unwrap_or(shards),
+        })
+}
+
+fn run_file(args: &CampaignArgs, file: &Path) -> Result<ExitCode, Failure> {
+    let out_dir = match &args.out_dir {
         Some(d) => d.clone(),
-        None => default_out_dir(args.file),
+        None => default_out_dir(file),
     };
-    if let Some(emit) = &args.emit {
-        return emit_jobs(args, emit, out_dir);
+    if let Some(emit) = &emit_args(args) {
+        return emit_jobs(args, file, emit, out_dir);
     }
     let options = Options {
-        campaign: args.file.to_path_buf(),
+        campaign: file.to_path_buf(),
         out_dir,
         max_runs: args.max_runs,
         jobs: args.jobs,
@@ -110,7 +155,7 @@ fn refused(error: Error) -> Result<ExitCode, Failure> {
 }
 
 /// `campaign merge DIR` and `campaign status DIR`.
-pub fn act(action: &Action) -> Result<ExitCode, Failure> {
+fn act(action: &Action) -> Result<ExitCode, Failure> {
     match action {
         Action::Merge {
             dir,
@@ -137,7 +182,12 @@ fn input_failure(e: Error) -> Failure {
 }
 
 /// `--emit`: the job files, and how to submit them.
-fn emit_jobs(args: &CampaignArgs, emit: &EmitArgs, dir: PathBuf) -> Result<ExitCode, Failure> {
+fn emit_jobs(
+    args: &CampaignArgs,
+    file: &Path,
+    emit: &EmitArgs,
+    dir: PathBuf,
+) -> Result<ExitCode, Failure> {
     if args.jobs == Some(0) {
         // The job files would ask the scheduler for no core at all.
         return Err(Failure::Usage(
@@ -152,7 +202,7 @@ fn emit_jobs(args: &CampaignArgs, emit: &EmitArgs, dir: PathBuf) -> Result<ExitC
         Emit::Parallel => Scheduler::Parallel,
     };
     let jobs = Jobs {
-        campaign: args.file.to_path_buf(),
+        campaign: file.to_path_buf(),
         dir,
         shards: emit.shards,
         throttle: emit.throttle,

@@ -14,7 +14,35 @@ pub struct OnConfiguration<'a> {
     pub sequences: &'a [String],
 }
 
-pub fn run(
+/// What `check` was asked to do: its command line, parsed once.
+#[derive(clap::Args)]
+pub struct CheckArgs {
+    /// The `.dr` files to check.
+    #[arg(value_name = "FILE")]
+    pub files: Vec<std::path::PathBuf>,
+    #[command(flatten)]
+    pub plugins: crate::load::PluginArgs,
+    /// Also report what the given protocol cannot run.
+    #[arg(long, value_parser = crate::compile::choice::<dynarole_codegen::Protocol>(), default_value_t = dynarole_codegen::Protocol::Lattice)]
+    pub protocol: dynarole_codegen::Protocol,
+    /// Also run the sequences on this configuration: report refused and suspicious steps,
+    /// and `&`-joined statements that are not independent.
+    #[arg(long, value_name = "CONFIG")]
+    pub from: Option<std::path::PathBuf>,
+    /// With --from: the sequences to run, in turn (default: the first in the file).
+    #[arg(long = "sequence", value_name = "NAME", requires = "from")]
+    pub sequences: Vec<String>,
+}
+
+pub fn run(args: &CheckArgs) -> Result<ExitCode, Failure> {
+    let on = args.from.as_deref().map(|path| OnConfiguration {
+        path,
+        sequences: &args.sequences,
+    });
+    check_files(&args.files, &args.plugins, args.protocol, on.as_ref())
+}
+
+fn check_files(
     files: &[PathBuf],
     plugins: &PluginArgs,
     protocol: Protocol,

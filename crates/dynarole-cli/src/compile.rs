@@ -1,7 +1,7 @@
 //! `dynarole compile`: the checked sequence as a self-contained directory of C (runtime,
 //! generated state machine, Makefile) for the chosen protocol.
 
-use crate::load::{self, Failure, PluginArgs};
+use crate::load::{self, Failure};
 use crate::render;
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use dynarole_codegen::{
@@ -206,24 +206,41 @@ impl ProtocolOptions {
     }
 }
 
-/// What `compile` was asked to do.
-pub struct CompileArgs<'a> {
-    pub file: &'a Path,
-    pub sequences: &'a [String],
+/// What `compile` was asked to do: its command line, parsed once.
+#[derive(clap::Args)]
+pub struct CompileArgs {
+    /// The `.dr` file holding the sequences.
+    pub file: std::path::PathBuf,
+    /// Sequence to compile; repeat to run several in turn (default: the first in the file).
+    #[arg(long = "sequence", value_name = "NAME")]
+    pub sequences: Vec<String>,
+    /// What to generate: C for the modules, nesC (TinyOS), or the Promela model for spin.
+    #[arg(long, value_enum, default_value_t = Target::C)]
     pub target: Target,
-    pub options: &'a ProtocolOptions,
+    #[command(flatten)]
+    pub options: ProtocolOptions,
+    /// Lattice protocol: how many times the whole sequence runs (0: forever).
+    #[arg(long, default_value_t = 1)]
     pub epochs: u16,
-    pub out_dir: &'a Path,
-    /// The start configuration: `--target promela` and the token protocol need it.
-    pub from: Option<&'a Path>,
-    pub plugins: &'a PluginArgs,
+    /// The directory to write.
+    #[arg(short = 'o', long = "output", value_name = "DIR")]
+    pub out_dir: std::path::PathBuf,
+    /// The configuration the sequence starts from: required by `--target promela` (whose
+    /// model uses its communication graph) and `--protocol token` (whose hand-over routes
+    /// are computed on it).
+    #[arg(long, value_name = "CONFIG")]
+    pub from: Option<std::path::PathBuf>,
+    #[command(flatten)]
+    pub model: crate::bounds::ModelArgs,
+    #[command(flatten)]
+    pub plugins: crate::load::PluginArgs,
 }
 
 /// C or nesC (`--target promela` is `model::compile`, which lib.rs calls instead).
 pub fn run(args: &CompileArgs) -> Result<ExitCode, Failure> {
-    load::with_program(args.file, args.plugins, |program, source| {
+    load::with_program(&args.file, &args.plugins, |program, source| {
         let display = args.file.display().to_string();
-        let names = load::select_sequences(program, &display, args.sequences)?;
+        let names = load::select_sequences(program, &display, &args.sequences)?;
         let plans = crate::world::plans(program, &display, &names)?;
         let mut options = args
             .options
@@ -237,7 +254,9 @@ pub fn run(args: &CompileArgs) -> Result<ExitCode, Failure> {
             Ok(ir) => ir,
             Err(d) => return refused(&[d]),
         };
-        if let Err(diagnostics) = add_token_routes(&mut options, program, &plans, args.from)? {
+        if let Err(diagnostics) =
+            add_token_routes(&mut options, program, &plans, args.from.as_deref())?
+        {
             return refused(&diagnostics);
         }
         let generate = match args.target {
@@ -248,7 +267,7 @@ pub fn run(args: &CompileArgs) -> Result<ExitCode, Failure> {
             Ok(g) => g,
             Err(e) => return refused(&[e.into()]),
         };
-        std::fs::create_dir_all(args.out_dir).map_err(|e| {
+        std::fs::create_dir_all(&args.out_dir).map_err(|e| {
             Failure::Input(format!("cannot create {}: {e}", args.out_dir.display()))
         })?;
         for (name, text) in &generated.files {

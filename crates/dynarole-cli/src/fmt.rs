@@ -13,7 +13,28 @@ use std::process::ExitCode;
 /// Formats (or with `check_only`, checks the layout of) every file that `check` accepts; a
 /// file `check` rejects is left alone and its errors reported, so the two commands agree on
 /// what a valid file is.
-pub fn run(files: &[PathBuf], check_only: bool, plugins: &PluginArgs) -> Result<ExitCode, Failure> {
+/// What `fmt` was asked to do: its command line, parsed once.
+#[derive(clap::Args)]
+pub struct FmtArgs {
+    /// The `.dr` files to format in place.
+    #[arg(value_name = "FILE")]
+    pub files: Vec<std::path::PathBuf>,
+    /// Change nothing; exit 1 if a file is not formatted.
+    #[arg(long)]
+    pub check: bool,
+    #[command(flatten)]
+    pub plugins: crate::load::PluginArgs,
+}
+
+pub fn run(args: &FmtArgs) -> Result<ExitCode, Failure> {
+    format_files(&args.files, args.check, &args.plugins)
+}
+
+fn format_files(
+    files: &[PathBuf],
+    check_only: bool,
+    plugins: &PluginArgs,
+) -> Result<ExitCode, Failure> {
     if files.is_empty() {
         return Err(Failure::Usage(
             "no files given: `dynarole fmt [--check] FILE...`".into(),

@@ -3,6 +3,7 @@
 //! sequences modelled; the library's errors turned into exit codes; and the model files that
 //! `compile --target promela` writes.
 
+pub use crate::bounds::{MethodArg, ModelArgs};
 use crate::compile::{CompileArgs, ProtocolOptions};
 use crate::load::{self, Failure, PluginArgs};
 use crate::render;
@@ -11,35 +12,6 @@ use dynarole_codegen::Fault;
 use dynarole_verify::{BuildOptions, Built, Inputs, Method, Models, VerifyError};
 use std::path::Path;
 use std::process::ExitCode;
-
-/// The bounds of the environment, shared by `verify` and `compile --target promela`.
-#[derive(Clone, Debug, clap::Args)]
-pub struct ModelArgs {
-    /// Module resets, at most, in a run (any module, at any moment, mid-operation included).
-    #[arg(long, default_value_t = 0, value_name = "N")]
-    pub resets: u8,
-    /// Only this module may reset (its name in the configuration); may be repeated.
-    #[arg(long = "reset-only", value_name = "MODULE")]
-    pub reset_only: Vec<String>,
-    /// Packets that can be in flight at once and be delivered late (again and again, so also
-    /// duplicated and reordered). Losses are not bounded: any packet may be lost.
-    #[arg(long, default_value_t = 1, value_name = "K")]
-    pub late: u8,
-    /// How to model the robot: `full` (every module's logic and every link), `compositional`
-    /// (lattice only: one model per module, every packet any state the robot has reached;
-    /// scales to large robots), `auto` (compositional for the lattice protocol on more than
-    /// three modules).
-    #[arg(long, value_enum, default_value_t = MethodArg::Auto)]
-    pub method: MethodArg,
-}
-
-/// How the robot is modelled (see docs/verification.md).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
-pub enum MethodArg {
-    Auto,
-    Full,
-    Compositional,
-}
 
 /// A deliberately broken lattice protocol (for the tests of the checker itself).
 #[derive(Clone, Copy, Debug, clap::ValueEnum)]
@@ -169,23 +141,23 @@ pub fn build(
 }
 
 /// `dynarole compile --target promela`: the model of the sequences on `--from CONFIG`.
-pub fn compile(args: &CompileArgs, model: &ModelArgs) -> Result<ExitCode, Failure> {
-    let Some(from) = args.from else {
+pub fn compile(args: &CompileArgs) -> Result<ExitCode, Failure> {
+    let Some(from) = &args.from else {
         return Err(Failure::Usage(
             "--target promela needs --from CONFIG (the model is of a robot's communication graph)"
                 .into(),
         ));
     };
     let asked = Asked {
-        file: args.file,
-        plugins: args.plugins,
-        sequences: args.sequences,
+        file: &args.file,
+        plugins: &args.plugins,
+        sequences: &args.sequences,
         from,
-        options: args.options,
-        model,
+        options: &args.options,
+        model: &args.model,
         epochs: args.epochs,
     };
-    with_request(&asked, |request| write_model(request, args.out_dir))
+    with_request(&asked, |request| write_model(request, &args.out_dir))
 }
 
 /// `dynarole compile --target promela`: writes DIR/model.pml (the compositional method:

@@ -2,7 +2,7 @@
 //! that is provably safe on the model, printed as a complete `.dr` file with its makespan
 //! (the critical path with the simulator's timing preset) before and after.
 
-use crate::load::{self, Failure, PluginArgs};
+use crate::load::{self, Failure};
 use crate::render;
 use crate::world::{prepare, read_configuration};
 use dynarole_codegen::Protocol;
@@ -10,24 +10,40 @@ use dynarole_core::RobotApi;
 use dynarole_replay::{parallelise, Form, FormKind, ParalleliseError, Parallelised, Request};
 use dynarole_sim::{form_makespan, makespan, shortest};
 use std::fmt::Write;
-use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-/// What `parallelise` was asked to do.
-pub struct ParalleliseArgs<'a> {
-    pub file: &'a Path,
-    pub sequence: &'a str,
-    pub from: &'a Path,
-    pub name: Option<&'a str>,
-    pub out: Option<&'a PathBuf>,
-    pub protocol: Protocol,
+/// What `parallelise` was asked to do: its command line, parsed once.
+#[derive(clap::Args)]
+pub struct ParalleliseArgs {
+    /// The source file (.dr) holding the sequence.
+    pub file: std::path::PathBuf,
+    /// The sequence to parallelise.
+    #[arg(long, value_name = "NAME")]
+    pub sequence: String,
+    /// The configuration it starts from (JSON).
+    #[arg(long, value_name = "CONFIG")]
+    pub from: std::path::PathBuf,
+    /// Name of the new sequence (default: SEQUENCE_parallel).
+    #[arg(long)]
+    pub name: Option<String>,
+    /// Write the file here instead of printing it.
+    #[arg(short = 'o', long = "output", value_name = "OUT.dr")]
+    pub out: Option<std::path::PathBuf>,
+    /// `paper`: parallel groups only (no blocks), what the paper's protocol can run.
+    #[arg(long, value_parser = crate::compile::choice::<dynarole_codegen::Protocol>(), default_value_t = dynarole_codegen::Protocol::Lattice)]
+    pub protocol: dynarole_codegen::Protocol,
+    /// Check only statements at most N apart in the input; farther ones stay ordered
+    /// (faster on long sequences, less parallel). Default: every pair.
+    #[arg(long, value_name = "N")]
     pub window: Option<usize>,
-    pub plugins: &'a PluginArgs,
+    #[command(flatten)]
+    pub plugins: crate::load::PluginArgs,
 }
 
 pub fn run(args: &ParalleliseArgs) -> Result<ExitCode, Failure> {
     let name = args
         .name
+        .as_deref()
         .map_or_else(|| format!("{}_parallel", args.sequence), str::to_string);
     if !dynarole_core::lexer::is_identifier(&name) {
         return Err(Failure::Usage(format!(
@@ -39,9 +55,9 @@ pub fn run(args: &ParalleliseArgs) -> Result<ExitCode, Failure> {
             "--protocol takes `lattice` or `paper` here".into(),
         ));
     }
-    load::with_program(args.file, args.plugins, |program, source| {
+    load::with_program(&args.file, &args.plugins, |program, source| {
         let display = args.file.display().to_string();
-        let start = read_configuration(args.from)?;
+        let start = read_configuration(&args.from)?;
         let sequences = [args.sequence.to_string()];
         let prepared = match prepare(program, &display, &sequences, start)? {
             Ok(prepared) => prepared,
@@ -52,7 +68,7 @@ pub fn run(args: &ParalleliseArgs) -> Result<ExitCode, Failure> {
         };
         let request = Request {
             program,
-            sequence: args.sequence,
+            sequence: &args.sequence,
             world: prepared.world.clone(),
             assignment: &prepared.assignment,
             name: &name,
@@ -112,7 +128,7 @@ fn write_result(
             .collect(),
     };
     let text = format!("{}{}\n{}", summary.comments(), found.header, form.text);
-    match args.out {
+    match &args.out {
         Some(path) => std::fs::write(path, &text)
             .map_err(|e| Failure::Input(format!("cannot write {}: {e}", path.display())))?,
         None => print!("{text}"),
@@ -130,7 +146,7 @@ fn write_result(
 
 /// The comment block at the top of the output.
 struct Summary<'a> {
-    args: &'a ParalleliseArgs<'a>,
+    args: &'a ParalleliseArgs,
     found: &'a Parallelised,
     form: &'a Form,
     before: &'a Result<u64, String>,

@@ -1,29 +1,34 @@
 //! `dynarole replay`: run sequences on the kinematic model, with no network, and compare the
 //! result with the expected configuration.
 
-use crate::load::{self, Failure, PluginArgs};
+use crate::load::{self, Failure};
 use crate::render;
 use crate::world::{prepare, read_configuration};
 use dynarole_world::{compare_with_expected, Configuration};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::ExitCode;
 
-/// What `replay` was asked to do.
-pub struct ReplayArgs<'a> {
-    pub file: &'a Path,
-    pub sequences: &'a [String],
-    pub from: &'a Path,
-    pub expect: Option<&'a PathBuf>,
-    pub out: Option<&'a PathBuf>,
-    pub record: &'a crate::view::RecordArgs,
-    pub plugins: &'a PluginArgs,
+/// What `replay` was asked to do: its command line, parsed once.
+#[derive(clap::Args)]
+pub struct ReplayArgs {
+    /// The `.dr` file holding the sequences.
+    pub file: std::path::PathBuf,
+    #[command(flatten)]
+    pub run: crate::world::RunArgs,
+    /// Write the final configuration (JSON) here.
+    #[arg(long, value_name = "CONFIG")]
+    pub out: Option<std::path::PathBuf>,
+    #[command(flatten)]
+    pub record: crate::view::RecordArgs,
+    #[command(flatten)]
+    pub plugins: crate::load::PluginArgs,
 }
 
 pub fn run(args: &ReplayArgs) -> Result<ExitCode, Failure> {
-    load::with_program(args.file, args.plugins, |program, source| {
+    load::with_program(&args.file, &args.plugins, |program, source| {
         let display = args.file.display().to_string();
-        let start = read_configuration(args.from)?;
-        let prepared = match prepare(program, &display, args.sequences, start)? {
+        let start = read_configuration(&args.run.from)?;
+        let prepared = match prepare(program, &display, &args.run.sequences, start)? {
             Ok(prepared) => prepared,
             Err(errors) => {
                 render::diagnostics(&display, source, &errors);
@@ -54,7 +59,7 @@ pub fn run(args: &ReplayArgs) -> Result<ExitCode, Failure> {
         println!(
             "replayed {} from {}: {} statements, {} rejected, {warnings} warning{}",
             prepared.names.join(", "),
-            args.from.display(),
+            args.run.from.display(),
             result.n_statements,
             result.n_rejected,
             if warnings == 1 { "" } else { "s" }
@@ -64,12 +69,12 @@ pub fn run(args: &ReplayArgs) -> Result<ExitCode, Failure> {
             Failure::Internal("the robot model has no configuration format".into())
         })?;
         print_configuration(&final_configuration);
-        if let Some(out) = args.out {
+        if let Some(out) = &args.out {
             std::fs::write(out, final_configuration.to_json_string())
                 .map_err(|e| Failure::Input(format!("cannot write {}: {e}", out.display())))?;
             println!("final configuration written to {}", out.display());
         }
-        let matches = match args.expect {
+        let matches = match &args.run.expect {
             Some(path) => expect(&final_configuration, path)?,
             None => true,
         };

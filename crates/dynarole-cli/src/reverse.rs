@@ -7,7 +7,31 @@ use dynarole_core::standalone::standalone;
 use std::path::Path;
 use std::process::ExitCode;
 
-pub fn run(
+/// What `reverse` was asked to do: its command line, parsed once.
+#[derive(clap::Args)]
+pub struct ReverseArgs {
+    /// The `.dr` file holding the sequence.
+    pub file: std::path::PathBuf,
+    /// The sequence to reverse.
+    pub sequence: String,
+    /// Name of the reversed sequence (default: the file's `X = reverse SEQUENCE`,
+    /// else `b2a` for `a2b`, else `SEQUENCE_reversed`).
+    #[arg(long)]
+    pub name: Option<String>,
+    #[command(flatten)]
+    pub plugins: crate::load::PluginArgs,
+}
+
+pub fn run(args: &ReverseArgs) -> Result<ExitCode, Failure> {
+    reverse_file(
+        &args.file,
+        &args.sequence,
+        args.name.as_deref(),
+        &args.plugins,
+    )
+}
+
+fn reverse_file(
     path: &Path,
     sequence: &str,
     name: Option<&str>,

@@ -7,7 +7,21 @@ pub use dynarole_campaign::picture::render_svg;
 use std::path::Path;
 use std::process::ExitCode;
 
-pub fn run(config_path: &Path, output: &Path) -> Result<ExitCode, Failure> {
+/// What `show` was asked to do: its command line, parsed once.
+#[derive(clap::Args)]
+pub struct ShowArgs {
+    /// The configuration to draw (JSON).
+    pub config: std::path::PathBuf,
+    /// The picture to write: FILE.svg or FILE.png.
+    #[arg(short = 'o', long = "output", value_name = "FILE")]
+    pub output: std::path::PathBuf,
+}
+
+pub fn run(args: &ShowArgs) -> Result<ExitCode, Failure> {
+    draw(&args.config, &args.output)
+}
+
+fn draw(config_path: &Path, output: &Path) -> Result<ExitCode, Failure> {
     let config = read_configuration(config_path)?;
     let svg = render_svg(&config)
         .map_err(|e| Failure::Input(format!("cannot draw {}: {e}", config_path.display())))?;

@@ -3,8 +3,8 @@
 
 mod progress;
 
-use crate::compile::{add_token_routes, ProtocolOptions};
-use crate::load::{self, Failure, PluginArgs};
+use crate::compile::add_token_routes;
+use crate::load::{self, Failure};
 use crate::render;
 use crate::world::read_configuration;
 use clap::ValueEnum;
@@ -12,30 +12,51 @@ use dynarole_campaign::shell_word;
 use dynarole_codegen::Choice;
 use dynarole_recording::Source;
 use dynarole_sim::{
-    FirmwareReport, FirmwareSource, Outputs, Report, Run, Scenario, SimError, Simulator, Stepping,
+    FirmwareReport, FirmwareSource, Outputs, Report, Run, Scenario, SimError, Simulator,
 };
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
-/// What `simulate` was asked to do.
-pub struct SimulateArgs<'a> {
-    pub file: &'a Path,
-    pub sequences: &'a [String],
-    pub from: &'a Path,
-    pub expect: Option<&'a PathBuf>,
-    pub options: &'a ProtocolOptions,
-    pub scenario: Option<&'a PathBuf>,
+/// What `simulate` was asked to do: its command line, parsed once.
+#[derive(clap::Args)]
+pub struct SimulateArgs {
+    /// The `.dr` file holding the sequences.
+    pub file: std::path::PathBuf,
+    #[command(flatten)]
+    pub run: crate::world::RunArgs,
+    #[command(flatten)]
+    pub options: crate::compile::ProtocolOptions,
+    /// Faults, network and timing (TOML; see crates/dynarole-sim/SCENARIO.md).
+    #[arg(long, value_name = "FILE")]
+    pub scenario: Option<std::path::PathBuf>,
+    /// Per-packet loss at the receiving connector (overrides the scenario's).
+    #[arg(long, value_name = "P")]
     pub loss: Option<f64>,
-    /// `--stepping`: replaces the scenario's.
-    pub stepping: Option<Stepping>,
+    /// How modules are stepped (overrides the scenario's `stepping`).
+    #[arg(long, value_name = "MODE", value_parser = crate::compile::choice::<dynarole_sim::Stepping>())]
+    pub stepping: Option<dynarole_sim::Stepping>,
+    /// Seed of every random draw (loss, faults, timing): the same seed and inputs give
+    /// the same run, byte for byte.
+    #[arg(long, default_value_t = 0)]
     pub seed: u64,
+    /// Runs with seeds SEED, SEED+1, ... (at least 1).
+    #[arg(long, default_value_t = 1, value_parser = crate::at_least_one)]
     pub repeat: u64,
-    pub trace: Option<&'a PathBuf>,
+    /// Write the event trace (fixed columns) here.
+    #[arg(long, value_name = "FILE")]
+    pub trace: Option<std::path::PathBuf>,
+    /// Print the report as JSON (one line per run).
+    #[arg(long)]
     pub json: bool,
+    /// Run every module's firmware on an emulated microcontroller instead of the C
+    /// compiled for the host (docs/simulator.md; needs scripts/ensure-avr).
+    #[arg(long, value_name = "MCU")]
     pub firmware: Option<FirmwareArg>,
-    pub record: &'a crate::view::RecordArgs,
-    pub plugins: &'a PluginArgs,
+    #[command(flatten)]
+    pub record: crate::view::RecordArgs,
+    #[command(flatten)]
+    pub plugins: crate::load::PluginArgs,
 }
 
 /// `--firmware`: the microcontroller every module's firmware runs on, emulated.
@@ -49,13 +70,18 @@ pub enum FirmwareArg {
 }
 
 pub fn run(args: &SimulateArgs) -> Result<ExitCode, Failure> {
-    load::with_program(args.file, args.plugins, |program, source| {
+    load::with_program(&args.file, &args.plugins, |program, source| {
         let display = args.file.display().to_string();
-        let names = load::select_sequences(program, &display, args.sequences)?;
+        let names = load::select_sequences(program, &display, &args.run.sequences)?;
         let plans = crate::world::plans(program, &display, &names)?;
         let (scenario, scenario_text) = scenario(args)?;
-        let start = read_configuration(args.from)?;
-        let expect = args.expect.map(|p| read_configuration(p)).transpose()?;
+        let start = read_configuration(&args.run.from)?;
+        let expect = args
+            .run
+            .expect
+            .as_ref()
+            .map(|p| read_configuration(p))
+            .transpose()?;
         // A module the program names but the configuration lacks would never act: the run
         // would only time out. Refused here as `replay` refuses it, with the same message.
         if let Err(diagnostics) = dynarole_replay::assign_modules(program, &plans, &start) {
@@ -63,7 +89,7 @@ pub fn run(args: &SimulateArgs) -> Result<ExitCode, Failure> {
             return Ok(ExitCode::from(1));
         }
         let mut options = args.options.compile_options(1, names.join(" + "))?;
-        let routed = add_token_routes(&mut options, program, &plans, Some(args.from))?;
+        let routed = add_token_routes(&mut options, program, &plans, Some(&args.run.from))?;
         if let Err(diagnostics) = routed {
             render::diagnostics(&display, source, &diagnostics);
             return Ok(ExitCode::from(1));
@@ -76,7 +102,7 @@ pub fn run(args: &SimulateArgs) -> Result<ExitCode, Failure> {
             }
             Err(e) => return Err(Failure::Input(e.to_string())),
         };
-        if let (Some(path), Some(text)) = (args.scenario, scenario_text) {
+        if let (Some(path), Some(text)) = (args.scenario.as_ref(), scenario_text) {
             simulator
                 .check_scenario(&scenario, &start)
                 .map_err(|e| Failure::toml(path, text, e))?;
@@ -149,7 +175,7 @@ fn run_once(
     k: u64,
     clock: std::sync::Arc<std::sync::atomic::AtomicU64>,
 ) -> Result<(Report, Option<FirmwareReport>), Failure> {
-    let path = args.trace.map(|p| trace_path(p, args.repeat, k));
+    let path = args.trace.as_ref().map(|p| trace_path(p, args.repeat, k));
     let cannot = |path: &Path, e: std::io::Error| {
         Failure::Input(format!("cannot write {}: {e}", path.display()))
     };
@@ -190,7 +216,7 @@ fn trace_path(path: &Path, repeat: u64, k: u64) -> PathBuf {
 
 /// The scenario, and its text when it comes from a file (to show later errors in it).
 fn scenario(args: &SimulateArgs) -> Result<(Scenario, Option<String>), Failure> {
-    let (mut scenario, text) = match args.scenario {
+    let (mut scenario, text) = match &args.scenario {
         Some(path) => {
             let text = load::read_source(path)?;
             let scenario =
@@ -299,18 +325,18 @@ fn replay_command(args: &SimulateArgs, seed: u64) -> String {
         "dynarole simulate".to_string(),
         shell_word(&args.file.display().to_string()),
     ];
-    for s in args.sequences {
+    for s in &args.run.sequences {
         parts.push(format!("--sequence {}", shell_word(s)));
     }
     parts.push(format!(
         "--from {}",
-        shell_word(&args.from.display().to_string())
+        shell_word(&args.run.from.display().to_string())
     ));
-    if let Some(e) = args.expect {
+    if let Some(e) = &args.run.expect {
         parts.push(format!("--expect {}", shell_word(&e.display().to_string())));
     }
     parts.extend(args.options.flags());
-    if let Some(s) = args.scenario {
+    if let Some(s) = &args.scenario {
         parts.push(format!(
             "--scenario {}",
             shell_word(&s.display().to_string())

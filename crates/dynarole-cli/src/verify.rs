@@ -2,31 +2,75 @@
 //! (progress on stderr), its verdict turned into an exit code, and a counterexample recorded.
 
 use crate::load::{self, Failure};
+use crate::model::Asked;
 use crate::model::{build, failed, with_request, Request, Scene};
-pub use crate::model::{Asked, FaultArg, MethodArg, ModelArgs};
 use dynarole_campaign::ProgressMode;
 use dynarole_verify::{
     BuildOptions, Built, Entry, Header, Observer, Phase, Source, Verdict, VerifyOptions,
 };
 use indicatif::{ProgressBar, ProgressStyle};
-use std::path::Path;
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
 
-/// What `verify` was asked to do: the model (`asked`) and how to check it.
-pub struct VerifyArgs<'a> {
-    pub asked: Asked<'a>,
-    pub memory_mb: u64,
-    pub time_s: u64,
+/// What `verify` was asked to do: its command line, parsed once.
+#[derive(clap::Args)]
+pub struct VerifyArgs {
+    /// The `.dr` file holding the sequences.
+    pub file: std::path::PathBuf,
+    /// Sequence to check; repeat to run several in turn (default: the first in the file).
+    #[arg(long = "sequence", value_name = "NAME")]
+    pub sequences: Vec<String>,
+    /// The configuration to start from (JSON): modules, roles and who hears whom.
+    #[arg(long, value_name = "CONFIG")]
+    pub from: std::path::PathBuf,
+    #[command(flatten)]
+    pub options: crate::compile::ProtocolOptions,
+    #[command(flatten)]
+    pub model: crate::model::ModelArgs,
+    /// Lattice protocol: how many times the whole sequence runs.
+    #[arg(long, default_value_t = 1)]
+    pub epochs: u16,
+    /// Memory for each search (MB); beyond it the search falls back to bitstate hashing.
+    #[arg(long, default_value_t = 4096, value_name = "MB")]
+    pub memory: u64,
+    /// Time for each search (seconds); beyond it the search falls back to bitstate hashing.
+    #[arg(long, default_value_t = 600, value_name = "SECONDS")]
+    pub time_limit: u64,
+    /// Use bitstate hashing from the start (a partial search, never a proof).
+    #[arg(long)]
     pub bitstate: bool,
+    /// Check S1, S2 and S3 only (not L).
+    #[arg(long)]
     pub safety_only: bool,
-    pub keep: Option<&'a Path>,
-    pub fault: Option<FaultArg>,
-    pub record: &'a crate::view::RecordArgs,
+    /// Keep the model, spin's files and the trail in DIR.
+    #[arg(long, value_name = "DIR")]
+    pub keep: Option<std::path::PathBuf>,
+    /// Check a deliberately broken lattice protocol (tests of the checker).
+    #[arg(long, value_enum, hide = true)]
+    pub fault: Option<crate::model::FaultArg>,
+    #[command(flatten)]
+    pub record: crate::view::RecordArgs,
+    #[command(flatten)]
+    pub plugins: crate::load::PluginArgs,
+}
+
+impl VerifyArgs {
+    /// The model asked for, in the form `compile --target promela` gives it too.
+    fn asked(&self) -> Asked<'_> {
+        Asked {
+            file: &self.file,
+            plugins: &self.plugins,
+            sequences: &self.sequences,
+            from: &self.from,
+            options: &self.options,
+            model: &self.model,
+            epochs: self.epochs,
+        }
+    }
 }
 
 pub fn run(args: &VerifyArgs) -> Result<ExitCode, Failure> {
-    let asked = &args.asked;
+    let asked = &args.asked();
     let protocol = asked
         .options
         .compile_options(asked.epochs, String::new())?
@@ -47,16 +91,16 @@ fn check(
     options: &BuildOptions,
     scene: &Scene,
 ) -> Result<ExitCode, Failure> {
-    let dir = match args.keep {
+    let dir = match &args.keep {
         Some(d) => d.to_path_buf(),
         None => load::scratch_dir("verify"),
     };
     std::fs::create_dir_all(&dir)
         .map_err(|e| Failure::Internal(format!("cannot create {}: {e}", dir.display())))?;
-    let header = dynarole_verify::header(built, options, &args.asked.from.display().to_string());
+    let header = dynarole_verify::header(built, options, &args.from.display().to_string());
     let verify = VerifyOptions {
-        memory_mb: args.memory_mb,
-        time_s: args.time_s,
+        memory_mb: args.memory,
+        time_s: args.time_limit,
         bitstate: args.bitstate,
         safety_only: args.safety_only,
     };
@@ -80,7 +124,7 @@ fn check(
         Err(e) => return failed(e, request),
     };
     if args.record.wanted() {
-        record(args.record, request, built, scene, &report)?;
+        record(&args.record, request, built, scene, &report)?;
     }
     let verdict = report.verdict;
     print!("{verdict}");

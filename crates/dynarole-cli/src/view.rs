@@ -98,13 +98,25 @@ fn pose_line(recording: &Recording, t: f64) -> Result<String, Failure> {
     Ok(serde_json::json!({ "time_ms": t, "modules": modules }).to_string())
 }
 
-/// What `view` was asked to do.
-pub struct ViewArgs<'a> {
-    pub recording: &'a Path,
-    pub output: Option<&'a PathBuf>,
-    pub poses_at: &'a [f64],
-    pub video: Option<&'a Path>,
+/// What `view` was asked to do: its command line, parsed once.
+#[derive(clap::Args)]
+pub struct ViewArgs {
+    /// The recording (JSON, written by `--record`).
+    pub recording: std::path::PathBuf,
+    /// The page to write.
+    #[arg(short = 'o', long = "output", value_name = "FILE.html")]
+    pub output: Option<std::path::PathBuf>,
+    /// Print every module's pose at these times (milliseconds, comma-separated), as JSON.
+    #[arg(long, value_name = "MS,...", value_delimiter = ',')]
+    pub poses_at: Vec<f64>,
+    /// Render the run as a video (MP4; headless chromium and ffmpeg).
+    #[arg(long, value_name = "FILE.mp4")]
+    pub video: Option<std::path::PathBuf>,
+    /// Frames per second of the video.
+    #[arg(long, default_value_t = 25)]
     pub fps: u32,
+    /// Run seconds per video second.
+    #[arg(long, default_value_t = 1.0)]
     pub speed: f64,
 }
 
@@ -119,16 +131,16 @@ pub fn run(args: &ViewArgs) -> Result<ExitCode, Failure> {
             "--fps and --speed must be more than 0".into(),
         ));
     }
-    let text = dynarole_input::read_recording(args.recording)
+    let text = dynarole_input::read_recording(&args.recording)
         .map_err(|e| Failure::Input(e.to_string()))?;
     let recording = Recording::from_json(&text)
         .map_err(|e| Failure::Input(format!("{}: {e}", args.recording.display())))?;
-    let poses = pose_lines(&recording, args.poses_at)?;
-    if let Some(path) = args.output {
+    let poses = pose_lines(&recording, &args.poses_at)?;
+    if let Some(path) = &args.output {
         write_html(&recording, path)?;
     }
     poses.iter().for_each(|line| println!("{line}"));
-    if let Some(out) = args.video {
+    if let Some(out) = &args.video {
         video(&recording, out, args)?;
         eprintln!("wrote {}", out.display());
     }
