@@ -380,29 +380,7 @@ fn circle_problems(
 
 /// Every `.rs` file under `dir`, as (path relative to `dir` with `/`, text).
 fn sources(dir: &Path) -> Vec<(String, String)> {
-    let mut out = Vec::new();
-    let mut pending = vec![dir.to_path_buf()];
-    while let Some(d) = pending.pop() {
-        let Ok(entries) = std::fs::read_dir(&d) else {
-            continue;
-        };
-        for entry in entries.flatten() {
-            let path = entry.path();
-            if path.is_dir() {
-                pending.push(path);
-            } else if path.extension().is_some_and(|e| e == "rs") {
-                let rel = path.strip_prefix(dir).expect("under dir");
-                let rel = rel
-                    .components()
-                    .map(|c| c.as_os_str().to_string_lossy())
-                    .collect::<Vec<_>>()
-                    .join("/");
-                out.push((rel, std::fs::read_to_string(&path).expect("source")));
-            }
-        }
-    }
-    out.sort();
-    out
+    files_under(dir, dir, &|name| name.ends_with(".rs"))
 }
 
 fn crate_dirs() -> Vec<(String, PathBuf)> {
@@ -742,8 +720,13 @@ fn a_module_reaching_the_simulator_through_imports_is_found() {
 /// `/`, text), skipping build outputs (`build/`, `target/`: copies and generated programs,
 /// not sources), `node_modules/` and `.git/`.
 fn tree_files(dir: &Path, wanted: &dyn Fn(&str) -> bool) -> Vec<(String, String)> {
+    files_under(dir, &workspace(), wanted)
+}
+
+/// The one walk of the tree behind [`sources`] and [`tree_files`]: the files under `dir` whose
+/// names `wanted` takes, as (path relative to `root` with `/`, text), build outputs skipped.
+fn files_under(dir: &Path, root: &Path, wanted: &dyn Fn(&str) -> bool) -> Vec<(String, String)> {
     const SKIPPED: [&str; 4] = ["build", "target", "node_modules", ".git"];
-    let root = workspace();
     let mut out = Vec::new();
     let mut pending = vec![dir.to_path_buf()];
     while let Some(d) = pending.pop() {
@@ -758,7 +741,7 @@ fn tree_files(dir: &Path, wanted: &dyn Fn(&str) -> bool) -> Vec<(String, String)
                     pending.push(path);
                 }
             } else if wanted(&name) {
-                let rel = path.strip_prefix(&root).unwrap_or(&path);
+                let rel = path.strip_prefix(root).unwrap_or(&path);
                 let rel = rel
                     .components()
                     .map(|c| c.as_os_str().to_string_lossy())
