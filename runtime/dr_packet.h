@@ -25,7 +25,9 @@
 #define DR_PACKET_MAGIC 0xD2u
 /* Bytes before the payload. */
 #define DR_PACKET_HEADER 9u
-#define DR_PACKET_OVERHEAD (DR_PACKET_HEADER + DR_CONF_PACKET_TAG + 2u)
+/* Bytes of the CRC-16 that ends a frame. */
+#define DR_PACKET_CRC 2u
+#define DR_PACKET_OVERHEAD (DR_PACKET_HEADER + DR_CONF_PACKET_TAG + DR_PACKET_CRC)
 
 /* Packet kinds. */
 #define DR_PACKET_LATTICE_STATE 1u

@@ -29,7 +29,7 @@ extern const dr_program_t dr_program;
 #define W ((uint16_t)DR_CONF_WINDOW)
 #define NBYTES ((uint8_t)(DR_CONF_WINDOW / 8))
 /* Payload: epoch (2, big-endian), low (2, big-endian), done (W/8). */
-#define PAYLOAD ((uint8_t)(4u + NBYTES))
+#define PAYLOAD ((uint8_t)(DR_LATTICE_PAYLOAD_FIXED + NBYTES))
 #define FRAME ((uint8_t)(PAYLOAD + DR_PACKET_OVERHEAD))
 /* NV record: program word, address, payload, CRC-16 (big-endian) over the bytes before it. */
 #define RECORD ((uint8_t)(5u + PAYLOAD + 2u))

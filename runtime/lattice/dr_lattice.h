@@ -13,6 +13,10 @@
 #include "dr_module.h"
 #include "dr_packet.h"
 
+/* Bytes of a state payload before its DR_CONF_WINDOW / 8 bytes of done bits: epoch (2) and
+ * low (2), big-endian. The compiler reads this line to size the frame (one source). */
+#define DR_LATTICE_PAYLOAD_FIXED 4u
+
 /* Returned by a program's address_of when no role, or several, match this module. */
 #define DR_NO_ADDRESS 0xFFu
 #define DR_MANY_ADDRESSES 0xFEu

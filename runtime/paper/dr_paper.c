@@ -5,11 +5,11 @@
 #define N_PENDING ((uint8_t)DR_CONF_MAX_PENDING)
 /* Payload: alternate flag, global state, recipient, pending_0 .. pending_{N-1} (e.1 without
  * the leading 107, whose job the dr_packet frame does). */
-#define PAYLOAD_LEN ((uint8_t)(3u + DR_CONF_MAX_PENDING))
-#define FRAME_LEN ((uint8_t)(DR_PACKET_OVERHEAD + 3u + DR_CONF_MAX_PENDING))
+#define PAYLOAD_LEN ((uint8_t)(DR_PAPER_PAYLOAD_FIXED + DR_CONF_MAX_PENDING))
+#define FRAME_LEN ((uint8_t)(DR_PACKET_OVERHEAD + DR_PAPER_PAYLOAD_FIXED + DR_CONF_MAX_PENDING))
 
 /* Compile-time check: a frame fits the receive buffers and a uint8_t length. */
-typedef char dr_paper_frame_fits[(DR_PACKET_OVERHEAD + 3u + DR_CONF_MAX_PENDING
+typedef char dr_paper_frame_fits[(DR_PACKET_OVERHEAD + DR_PAPER_PAYLOAD_FIXED + DR_CONF_MAX_PENDING
                                   <= DR_CONF_MAX_PACKET && DR_CONF_MAX_PACKET <= 255u) ? 1 : -1];
 
 /* Whether state `s` is in the N-slot set. Cost: O(N). */
@@ -243,7 +243,7 @@ void dr_module_receive(dr_module_t *m, uint8_t channel, const uint8_t *bytes, ui
 /* Sends this module's copy of the global state (e.1) and schedules the next broadcast. */
 static void broadcast(dr_module_t *m, uint32_t now_ms)
 {
-    uint8_t payload[3u + DR_CONF_MAX_PENDING];
+    uint8_t payload[DR_PAPER_PAYLOAD_FIXED + DR_CONF_MAX_PENDING];
     uint8_t frame[DR_PACKET_OVERHEAD + 3u + DR_CONF_MAX_PENDING];
     uint8_t len;
     uint8_t i;

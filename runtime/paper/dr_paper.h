@@ -13,6 +13,10 @@
 #include "dr_module.h"
 #include "dr_packet.h"
 
+/* Bytes of a state payload before its DR_CONF_MAX_PENDING pending slots: alternate flag,
+ * global state, recipient. The compiler reads this line to size the frame (one source). */
+#define DR_PAPER_PAYLOAD_FIXED 3u
+
 #define DR_NO_ADDRESS 0xFFu
 #define DR_MANY_ADDRESSES 0xFEu
 #define DR_STATE_INITIAL 0u

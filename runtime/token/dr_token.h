@@ -29,6 +29,10 @@
 #include "dr_packet.h"
 
 /* Returned by a program's address_of when no role, or several, match this module. */
+/* Bytes of a safe token's payload, the largest packet (dr_token.c lays it out). The compiler
+ * reads this line to size the frame (one source). */
+#define DR_TOKEN_SAFE_PAYLOAD 8u
+
 #define DR_NO_ADDRESS 0xFFu
 #define DR_MANY_ADDRESSES 0xFEu
 #define DR_NONE 0xFFFFu

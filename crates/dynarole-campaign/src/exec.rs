@@ -66,7 +66,7 @@ impl<'a> Worker<'a> {
 /// A simulator for `protocol`.
 pub fn simulator(inputs: &Inputs, protocol: dynarole_codegen::Variant) -> Result<Simulator, Error> {
     let mut options = compile_options(inputs.campaign, protocol);
-    if options.protocol == dynarole_codegen::Protocol::Token {
+    if options.protocol.needs_routes() {
         let routes = dynarole_replay::token_routes(&inputs.program, &inputs.plans, inputs.start)
             .map_err(|diagnostics| Error::Diagnostics {
                 path: inputs.campaign.file.clone(),

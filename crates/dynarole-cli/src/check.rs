@@ -81,8 +81,12 @@ pub fn check_one(
     let (program, mut diagnostics) = driver::analyze_all(&parsed, &registry);
     if let (Some(program), Some(on)) = (&program, on) {
         diagnostics.extend(on_configuration(program, path, on, protocol)?);
-    } else if protocol == Protocol::Token && program.is_some() {
-        eprintln!("note: {}: the token baseline's hand-over routes are checked only on a configuration (--from CONFIG)", path.display());
+    } else if protocol.needs_routes() && program.is_some() {
+        eprintln!(
+            "note: {}: the {}'s hand-over routes are checked only on a configuration (--from CONFIG)",
+            path.display(),
+            protocol.info().description
+        );
     }
     if let Some(program) = program {
         diagnostics.extend(dynarole_codegen::target_limits(&program, protocol));
@@ -101,7 +105,7 @@ fn on_configuration(
     let config = crate::world::read_configuration(on.path)?;
     let display = path.display().to_string();
     match crate::world::prepare(program, &display, on.sequences, config)? {
-        Ok(prepared) => Ok(prepared.diagnose(program, protocol == Protocol::Token)),
+        Ok(prepared) => Ok(prepared.diagnose(program, protocol.needs_routes())),
         Err(errors) => Ok(errors),
     }
 }

@@ -109,15 +109,17 @@ impl ProtocolOptions {
     /// The back-end's options for these flags; a usage error for `--dissemination` with a
     /// protocol other than lattice (it would silently change nothing).
     pub fn compile_options(&self, epochs: u16, name: String) -> Result<CompileOptions, Failure> {
-        if let (Some(d), false) = (
-            self.dissemination,
-            self.protocol.takes(Setting::Dissemination),
-        ) {
-            return Err(Failure::Usage(format!(
-                "--dissemination {d} applies to the {} protocol only; the {} protocol has its own fixed broadcast period",
-                Protocol::taking(Setting::Dissemination).join(" and "),
-                self.protocol
-            )));
+        let runs = (epochs != 1).then(|| (Some(Setting::Epochs), format!("--epochs {epochs}")));
+        let given = self.flag_list().into_iter().chain(runs);
+        for (setting, flag) in given {
+            if let Some(setting) = setting.filter(|s| !self.protocol.takes(*s)) {
+                return Err(Failure::Usage(format!(
+                    "{flag} applies to the {} protocol only; the {} protocol {}",
+                    Protocol::taking(setting).join(" and "),
+                    self.protocol,
+                    setting.without_it()
+                )));
+            }
         }
         Ok(CompileOptions {
             protocol: self.protocol,
@@ -143,6 +145,12 @@ impl ProtocolOptions {
     /// destructuring names every field, so a new option cannot be left out without a compile
     /// error.
     pub fn flags(&self) -> Vec<String> {
+        self.flag_list().into_iter().map(|(_, flag)| flag).collect()
+    }
+
+    /// `flags`, each with the protocol setting it belongs to (none for the protocol itself
+    /// and the packet identity, which every protocol takes).
+    fn flag_list(&self) -> Vec<(Option<Setting>, String)> {
         let ProtocolOptions {
             protocol,
             merge,
@@ -156,36 +164,45 @@ impl ProtocolOptions {
             execution,
         } = self;
         let defaults = Self::defaults();
-        let mut flags = vec![format!("--protocol {protocol}")];
+        let mut flags = vec![(None, format!("--protocol {protocol}"))];
         if *merge != defaults.merge {
-            flags.push(format!("--merge {merge}"));
+            flags.push((Some(Setting::Merge), format!("--merge {merge}")));
         }
         let switches = [
-            (*single_step_handover, "--single-step-handover"),
-            (*restart_pending, "--restart-pending"),
-            (*no_nv, "--no-nv"),
+            (
+                *single_step_handover,
+                Setting::PaperVariants,
+                "--single-step-handover",
+            ),
+            (
+                *restart_pending,
+                Setting::PaperVariants,
+                "--restart-pending",
+            ),
+            (*no_nv, Setting::NoNv, "--no-nv"),
         ];
         flags.extend(
-            switches
-                .iter()
-                .filter(|(on, _)| *on)
-                .map(|(_, f)| f.to_string()),
+            (switches.iter())
+                .filter(|(on, _, _)| *on)
+                .map(|(_, setting, f)| (Some(*setting), f.to_string())),
         );
         if let Some(d) = dissemination {
-            flags.push(format!("--dissemination {}", d.name()));
+            let flag = format!("--dissemination {}", d.name());
+            flags.push((Some(Setting::Dissemination), flag));
         }
         if *token_retries != defaults.token_retries {
-            flags.push(format!("--token-retries {}", token_retries.name()));
+            let flag = format!("--token-retries {}", token_retries.name());
+            flags.push((Some(Setting::TokenRetries), flag));
         }
         if *robot_id != defaults.robot_id {
-            flags.push(format!("--robot-id {robot_id}"));
+            flags.push((None, format!("--robot-id {robot_id}")));
         }
         if let Some(key) = key {
             let hex: String = key.iter().map(|b| format!("{b:02x}")).collect();
-            flags.push(format!("--key {hex}"));
+            flags.push((None, format!("--key {hex}")));
         }
         if *execution != defaults.execution {
-            flags.push(format!("--execution {execution}"));
+            flags.push((None, format!("--execution {execution}")));
         }
         flags
     }
@@ -254,9 +271,7 @@ pub fn run(args: &CompileArgs) -> Result<ExitCode, Failure> {
             Ok(ir) => ir,
             Err(d) => return refused(&[d]),
         };
-        if let Err(diagnostics) =
-            add_token_routes(&mut options, program, &plans, args.from.as_deref())?
-        {
+        if let Err(diagnostics) = add_routes(&mut options, program, &plans, args.from.as_deref())? {
             return refused(&diagnostics);
         }
         let generate = match args.target {
@@ -302,22 +317,23 @@ pub fn run(args: &CompileArgs) -> Result<ExitCode, Failure> {
     })
 }
 
-/// Token protocol: computes its routes on the configuration `from` (required) into
-/// `options`; other protocols need nothing. The inner error is the statement that cannot be
+/// A protocol that needs routes (the token baseline): computes them on the configuration
+/// `from` (required) into `options`; other protocols need nothing. The inner error is the statement that cannot be
 /// routed.
-pub fn add_token_routes(
+pub fn add_routes(
     options: &mut CompileOptions,
     program: &dynarole_core::Program,
     plans: &[dynarole_core::expand::Plan],
     from: Option<&Path>,
 ) -> Result<Result<(), Vec<Diagnostic>>, Failure> {
-    if options.protocol != Protocol::Token {
+    if !options.protocol.needs_routes() {
         return Ok(Ok(()));
     }
     let Some(from) = from else {
-        return Err(Failure::Usage(
-            "--protocol token needs --from CONFIG: its hand-over routes are computed on the configuration".into(),
-        ));
+        return Err(Failure::Usage(format!(
+            "--protocol {} needs --from CONFIG: its hand-over routes are computed on the configuration",
+            options.protocol
+        )));
     };
     let start = crate::world::read_configuration(from)?;
     Ok(

@@ -5,10 +5,11 @@
 use crate::load::{self, Failure};
 use crate::render;
 use crate::world::{prepare, read_configuration};
-use dynarole_codegen::Protocol;
+use dynarole_codegen::{GroupRun, Protocol};
+use dynarole_core::driver::Shape;
 use dynarole_core::RobotApi;
 use dynarole_replay::{parallelise, Form, FormKind, ParalleliseError, Parallelised, Request};
-use dynarole_sim::{form_makespan, makespan, shortest};
+use dynarole_sim::{choose_form, makespan, Estimated};
 use std::fmt::Write;
 use std::process::ExitCode;
 
@@ -50,10 +51,13 @@ pub fn run(args: &ParalleliseArgs) -> Result<ExitCode, Failure> {
             "--name `{name}` is not a sequence name (a letter or `_`, then letters, digits or `_`; not a keyword)"
         )));
     }
-    if args.protocol == Protocol::Token {
-        return Err(Failure::Usage(
-            "--protocol takes `lattice` or `paper` here".into(),
-        ));
+    if args.protocol.groups() == GroupRun::OneAtATime {
+        let parallel = Protocol::names_where(|p| p.groups != GroupRun::OneAtATime);
+        return Err(Failure::Usage(format!(
+            "--protocol takes `{}` here: the {} runs one statement at a time",
+            parallel.join("` or `"),
+            args.protocol.info().description
+        )));
     }
     load::with_program(&args.file, &args.plugins, |program, source| {
         let display = args.file.display().to_string();
@@ -72,8 +76,8 @@ pub fn run(args: &ParalleliseArgs) -> Result<ExitCode, Failure> {
             world: prepared.world.clone(),
             assignment: &prepared.assignment,
             name: &name,
-            blocks: args.protocol != Protocol::Paper,
-            one_module_overlap: args.protocol != Protocol::Paper,
+            blocks: args.protocol.shape() == Shape::Nested,
+            one_module_overlap: args.protocol.groups() == GroupRun::Overlapping,
             window: args.window,
         };
         let found = match parallelise(&request) {
@@ -89,12 +93,12 @@ pub fn run(args: &ParalleliseArgs) -> Result<ExitCode, Failure> {
             }
             Err(ParalleliseError::Message(m)) => return Err(Failure::Input(m)),
         };
-        let before = makespan(program, &prepared.plans, estimated(args.protocol));
+        let before = makespan(program, &prepared.plans, args.protocol);
         write_result(args, &name, &found, before, &program.robot)
     })
 }
 
-/// Estimates every form, picks the shortest, prints or writes the file and the summary.
+/// Prints or writes the form the estimates choose, and the summary.
 fn write_result(
     args: &ParalleliseArgs,
     name: &str,
@@ -102,12 +106,7 @@ fn write_result(
     before: Result<u64, String>,
     robot: &RobotApi,
 ) -> Result<ExitCode, Failure> {
-    let estimates: Vec<Result<u64, String>> = found
-        .forms
-        .iter()
-        .map(|form| form_makespan(found, form, name, estimated(args.protocol), robot))
-        .collect();
-    let chosen = shortest(&estimates);
+    let Estimated { estimates, chosen } = choose_form(found, name, args.protocol, robot);
     let form = found
         .forms
         .get(chosen)
@@ -228,14 +227,5 @@ fn seconds(estimate: &Result<u64, String>) -> String {
     match estimate {
         Ok(ms) => format!("{:.2} s", *ms as f64 / 1000.0),
         Err(reason) => format!("not estimated ({reason})"),
-    }
-}
-
-/// The protocol whose code orders the statements in an estimate (the token baseline is
-/// refused before: it runs what the lattice protocol runs).
-fn estimated(protocol: Protocol) -> Protocol {
-    match protocol {
-        Protocol::Paper => Protocol::Paper,
-        Protocol::Lattice | Protocol::Token => Protocol::Lattice,
     }
 }

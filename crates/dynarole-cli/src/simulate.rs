@@ -3,7 +3,7 @@
 
 mod progress;
 
-use crate::compile::add_token_routes;
+use crate::compile::add_routes;
 use crate::load::{self, Failure};
 use crate::render;
 use crate::world::read_configuration;
@@ -89,7 +89,7 @@ pub fn run(args: &SimulateArgs) -> Result<ExitCode, Failure> {
             return Ok(ExitCode::from(1));
         }
         let mut options = args.options.compile_options(1, names.join(" + "))?;
-        let routed = add_token_routes(&mut options, program, &plans, Some(&args.run.from))?;
+        let routed = add_routes(&mut options, program, &plans, Some(&args.run.from))?;
         if let Err(diagnostics) = routed {
             render::diagnostics(&display, source, &diagnostics);
             return Ok(ExitCode::from(1));

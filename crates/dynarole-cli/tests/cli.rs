@@ -1309,3 +1309,55 @@ fn dissemination_selects_the_lattice_mode_and_is_refused_elsewhere() {
         text(&out.stderr)
     );
 }
+
+/// Every protocol option given to a protocol that does not take it is a usage error naming
+/// the protocols it applies to (the protocol table's settings), never silently ignored.
+#[test]
+fn an_option_of_another_protocol_is_refused() {
+    let cases: [(&[&str], &str); 5] = [
+        (
+            &["--protocol", "paper", "--no-nv"],
+            "--no-nv applies to the lattice protocol only",
+        ),
+        (
+            &["--protocol", "lattice", "--merge", "java"],
+            "--merge java applies to the paper protocol only",
+        ),
+        (
+            &["--protocol", "token", "--restart-pending"],
+            "--restart-pending applies to the paper protocol only",
+        ),
+        (
+            &["--protocol", "paper", "--token-retries", "plain"],
+            "--token-retries plain applies to the token protocol only",
+        ),
+        (
+            &["--protocol", "paper", "--epochs", "3"],
+            "--epochs 3 applies to the lattice protocol only",
+        ),
+    ];
+    let never_written = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli-refused-option");
+    for (flags, expected) in cases {
+        let mut args = vec![
+            "compile",
+            "examples/atron/eight2car.dr",
+            "--from",
+            "examples/atron/eight.json",
+            "-o",
+            never_written.to_str().expect("path"),
+        ];
+        args.extend_from_slice(flags);
+        let out = dynarole(&args);
+        assert_eq!(
+            out.status.code(),
+            Some(2),
+            "{flags:?}: {}",
+            text(&out.stderr)
+        );
+        assert!(
+            text(&out.stderr).contains(expected),
+            "{flags:?}: {}",
+            text(&out.stderr)
+        );
+    }
+}

@@ -5,7 +5,7 @@
 use crate::options::{op_macro, CompileOptions};
 use crate::paper::{paper_machine, pending_slots};
 use crate::predicate;
-use crate::protocol::Protocol;
+use crate::protocol::{Growth, Protocol};
 use crate::runtime;
 use crate::token::token_tables;
 use dynarole_core::check::Label;
@@ -23,28 +23,53 @@ pub struct Generated {
     pub fingerprint: u32,
 }
 
-/// Bytes of every frame besides its payload and tag: `DR_PACKET_HEADER` of
-/// runtime/dr_packet.h (read from the header, the one place the frame is laid out) and the
-/// CRC-16.
-fn packet_overhead() -> usize {
-    const NAME: &str = "#define DR_PACKET_HEADER ";
-    let header = runtime::COMMON
+/// The value of `#define NAME` in the embedded runtime file `file` (runtime/), for the sizes
+/// the C states once and the compiler must agree with.
+fn runtime_define(file: &str, name: &str) -> Option<usize> {
+    let text = runtime::COMMON
         .iter()
-        .find(|(name, _)| *name == "dr_packet.h")
-        .map(|(_, text)| *text)
-        .unwrap_or_default();
-    let bytes = header
-        .lines()
-        .find_map(|line| line.strip_prefix(NAME))
-        .and_then(|value| value.trim().trim_end_matches('u').parse::<usize>().ok());
-    // The header is embedded at build time, and a test reads it: this cannot fail at run time.
-    bytes.expect("runtime/dr_packet.h defines DR_PACKET_HEADER as a number") + 2
+        .chain(Protocol::ALL.iter().flat_map(|p| p.info().runtime))
+        .find(|(path, _)| path.rsplit('/').next() == Some(file))
+        .map(|(_, text)| *text)?;
+    let prefix = format!("#define {name} ");
+    text.lines()
+        .find_map(|line| line.strip_prefix(prefix.as_str()))
+        .and_then(|value| value.trim().trim_end_matches('u').parse::<usize>().ok())
+}
+
+/// A size the embedded runtime defines. The files are embedded at build time and a test reads
+/// every size named here: this cannot fail at run time.
+fn runtime_size(file: &str, name: &str) -> usize {
+    runtime_define(file, name)
+        .unwrap_or_else(|| panic!("runtime/{file} defines {name} as a number"))
+}
+
+/// Bytes of every frame besides its payload and tag: `DR_PACKET_HEADER` and `DR_PACKET_CRC` of
+/// runtime/dr_packet.h, the one place the frame is laid out.
+fn packet_overhead() -> usize {
+    runtime_size("dr_packet.h", "DR_PACKET_HEADER") + runtime_size("dr_packet.h", "DR_PACKET_CRC")
+}
+
+/// The runtime's default receive buffer (`DR_CONF_MAX_PACKET` of runtime/dr_conf.h), raised in
+/// a program's configuration when a frame needs more.
+fn default_max_packet() -> usize {
+    runtime_size("dr_conf.h", "DR_CONF_MAX_PACKET")
+}
+
+/// Bytes of `protocol`'s state payload for `ir`: the fixed part its runtime header defines
+/// (`Payload::fixed`) and what grows with the sequence.
+fn payload_bytes(protocol: Protocol, ir: &Ir, pending_slots: usize) -> usize {
+    let info = protocol.info();
+    runtime_size(info.header, info.payload.fixed)
+        + match info.payload.grows {
+            Growth::WindowBits => ir.window / 8,
+            Growth::PendingSlots => pending_slots,
+            Growth::Nothing => 0,
+        }
 }
 /// Bytes of the authentication tag of keyed builds: forging one takes about 2^31 tries, years
 /// on an infrared channel of tens of packets a second, for 4 bytes more per packet.
 pub const PACKET_TAG_BYTES: usize = 4;
-/// The runtime's default receive buffer (`DR_CONF_MAX_PACKET`), raised when a frame needs more.
-const DEFAULT_MAX_PACKET: usize = 48;
 /// Most statements a lattice module runs at once, a batch (`DR_CONF_LATTICE_BATCH`, 1 to 9; 1:
 /// one at a time). Decided here only: written into every lattice program's
 /// `dr_program_conf.h` and into its Promela model, so the image and the model run the same
@@ -56,16 +81,16 @@ pub fn generate_c(
     robot: &RobotApi,
     options: &CompileOptions,
 ) -> Result<Generated, LimitError> {
-    let pending_slots = match options.protocol {
-        Protocol::Lattice | Protocol::Token => 0,
-        Protocol::Paper => pending_slots(ir)?,
+    let pending_slots = match options.protocol.info().payload.grows {
+        Growth::PendingSlots => pending_slots(ir)?,
+        Growth::WindowBits | Growth::Nothing => 0,
     };
-    // Token: the largest packet, a safe token's hand-over (acknowledgements have 2 bytes).
-    let (machine, packet_payload) = match options.protocol {
-        Protocol::Lattice => (lattice_tables(ir, options), 4 + ir.window / 8),
-        Protocol::Paper => (paper_machine(ir, options)?, 3 + pending_slots),
-        Protocol::Token => (token_tables(ir, options)?, 8),
+    let machine = match options.protocol {
+        Protocol::Lattice => lattice_tables(ir, options),
+        Protocol::Paper => paper_machine(ir, options)?,
+        Protocol::Token => token_tables(ir, options)?,
     };
+    let packet_payload = payload_bytes(options.protocol, ir, pending_slots);
     let tag = if options.key.is_some() {
         PACKET_TAG_BYTES
     } else {
@@ -186,36 +211,46 @@ fn program_conf(
     );
     let _ = writeln!(out, "#define DR_CONF_WINDOW {}", ir.window);
     let _ = writeln!(out, "#define DR_CONF_MAX_ARGS {}", ir.max_args.max(1));
-    if options.protocol == Protocol::Paper {
-        let _ = writeln!(out, "#define DR_CONF_MAX_PENDING {pending_slots}");
+    match options.protocol {
+        Protocol::Lattice => lattice_conf(ir, options, &mut out),
+        Protocol::Paper => {
+            let _ = writeln!(out, "#define DR_CONF_MAX_PENDING {pending_slots}");
+        }
+        Protocol::Token => {}
     }
-    if options.protocol == Protocol::Lattice {
-        // The image carries only the way of surviving resets this program uses (the
-        // program's DR_PROGRAM_NO_NV option says the same).
-        let nv = if options.no_nv { "NONE" } else { "RECORD" };
-        let _ = writeln!(out, "#define DR_CONF_NV DR_CONF_NV_{nv}");
-        let _ = writeln!(
-            out,
-            "#define DR_CONF_LATTICE_DISSEMINATION {} /* {} */",
-            options.dissemination.c_macro(),
-            options.dissemination.name()
-        );
-        // The widths of the statement table's indices (dr_lattice.h).
-        let (rows, _) = argument_rows(ir);
-        let _ = writeln!(
-            out,
-            "#define DR_CONF_DEP_ENTRIES {}",
-            dependency_entries(ir)
-        );
-        let _ = writeln!(out, "#define DR_CONF_ARG_ROWS {}", rows.len());
-        let _ = writeln!(out, "#define DR_CONF_LATTICE_BATCH {LATTICE_BATCH}");
-    }
-    if packet_bytes > DEFAULT_MAX_PACKET {
+    if packet_bytes > default_max_packet() {
         let _ = writeln!(out, "#define DR_CONF_MAX_PACKET {packet_bytes}");
     }
     out.push('\n');
     out.push_str(CONF_END);
     out
+}
+
+/// The lattice protocol's part of `dr_program_conf.h`.
+fn lattice_conf(ir: &Ir, options: &CompileOptions, out: &mut String) {
+    // The image carries only the way of surviving resets this program uses (the program's
+    // DR_PROGRAM_NO_NV option says the same).
+    let nv = if options.without_nv() {
+        "NONE"
+    } else {
+        "RECORD"
+    };
+    let _ = writeln!(out, "#define DR_CONF_NV DR_CONF_NV_{nv}");
+    let _ = writeln!(
+        out,
+        "#define DR_CONF_LATTICE_DISSEMINATION {} /* {} */",
+        options.dissemination.c_macro(),
+        options.dissemination.name()
+    );
+    // The widths of the statement table's indices (dr_lattice.h).
+    let (rows, _) = argument_rows(ir);
+    let _ = writeln!(
+        out,
+        "#define DR_CONF_DEP_ENTRIES {}",
+        dependency_entries(ir)
+    );
+    let _ = writeln!(out, "#define DR_CONF_ARG_ROWS {}", rows.len());
+    let _ = writeln!(out, "#define DR_CONF_LATTICE_BATCH {LATTICE_BATCH}");
 }
 
 fn program_header(ir: &Ir, options: &CompileOptions) -> String {
@@ -528,7 +563,35 @@ fn makefile(protocol: Protocol) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::make_variable;
+    use super::{default_max_packet, make_variable, packet_overhead, runtime_define};
+    use crate::protocol::Protocol;
+
+    /// Every size the compiler reads from the runtime is there, and the protocol's C builds its
+    /// payload from the same constant (so the two cannot drift apart).
+    #[test]
+    fn the_sizes_come_from_the_runtime_headers() {
+        assert_eq!(packet_overhead(), 11);
+        assert_eq!(default_max_packet(), 48);
+        for protocol in Protocol::ALL {
+            let info = protocol.info();
+            let fixed = runtime_define(info.header, info.payload.fixed);
+            assert!(
+                fixed.is_some_and(|n| n > 0),
+                "{protocol}: {}",
+                info.payload.fixed
+            );
+            let source = (info.runtime.iter())
+                .find(|(name, _)| *name == info.source)
+                .map(|(_, text)| *text)
+                .unwrap_or_default();
+            assert!(
+                source.contains(info.payload.fixed),
+                "{} does not build its payload from {}",
+                info.source,
+                info.payload.fixed
+            );
+        }
+    }
 
     /// The generated Makefile's `WARN` keeps the layout it had when it was written out by hand
     /// (what fits before column 80, then `\` and the rest under the first word), so that its

@@ -28,7 +28,8 @@ pub use promela::{
     ModelOptions, Topology, TopologyLink, TopologyModule, MAX_MODEL_MODULES, MAX_MODEL_WINDOW,
 };
 pub use protocol::{
-    Dissemination, PaperMerge, Protocol, ProtocolInfo, Setting, TokenRetries, Variant, PROTOCOLS,
+    Dissemination, GroupRun, Growth, Modelled, PaperMerge, Payload, Protocol, ProtocolInfo,
+    Setting, TokenRetries, Variant, PROTOCOLS,
 };
 pub use runtime::warning_flags;
 pub use token::TokenRoutes;

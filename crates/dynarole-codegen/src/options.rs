@@ -1,7 +1,7 @@
 //! What a compilation is asked for (`CompileOptions`), shared by every back-end, and the
 //! helpers the back-ends' modules share; it sits below them so that none imports another's.
 
-use crate::protocol::{Dissemination, PaperMerge, Protocol, TokenRetries};
+use crate::protocol::{Dissemination, PaperMerge, Protocol, Setting, TokenRetries};
 use dynarole_core::lower::TokenRoutes;
 
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -62,20 +62,54 @@ impl CompileOptions {
     /// java merge, pending restart"): the one description reports and model headers use.
     pub fn describe(&self) -> String {
         let mut out = self.protocol.info().description.to_string();
-        match self.protocol {
-            Protocol::Lattice if self.no_nv => out.push_str(" without NV"),
-            Protocol::Paper => {
-                out.push_str(&format!(", {} merge", self.merge));
+        for setting in self.protocol.info().settings {
+            out.push_str(&self.describe_setting(*setting));
+        }
+        out
+    }
+
+    /// What `setting` adds to [`CompileOptions::describe`] when it is not the default (the
+    /// match names every setting, so a new one says here what it shows).
+    fn describe_setting(&self, setting: Setting) -> String {
+        match setting {
+            Setting::NoNv if self.no_nv => " without NV".into(),
+            Setting::Merge => format!(", {} merge", self.merge),
+            Setting::PaperVariants => {
+                let mut out = String::new();
                 if self.single_step_handover {
                     out.push_str(", single-step handover");
                 }
                 if self.restart_pending {
                     out.push_str(", pending restart");
                 }
+                out
             }
-            Protocol::Lattice | Protocol::Token => {}
+            Setting::NoNv | Setting::Epochs | Setting::Dissemination | Setting::TokenRetries => {
+                String::new()
+            }
         }
-        out
+    }
+
+    /// The runs of the sequence its code makes: `epochs` (0: forever) where the protocol
+    /// takes it, else one.
+    pub fn runs(&self) -> u16 {
+        if self.protocol.takes(Setting::Epochs) {
+            self.epochs
+        } else {
+            1
+        }
+    }
+
+    /// The modules survive resets without NV storage: `no_nv` where the protocol takes it.
+    pub fn without_nv(&self) -> bool {
+        self.no_nv && self.protocol.takes(Setting::NoNv)
+    }
+
+    /// How the state is broadcast, where the protocol lets one choose.
+    pub fn chosen_dissemination(&self) -> Option<Dissemination> {
+        self.protocol
+            .takes(Setting::Dissemination)
+            .then_some(self.dissemination)
     }
 }
 

@@ -36,6 +36,21 @@ pub enum Setting {
     TokenRetries,
 }
 
+impl Setting {
+    /// Why a protocol that does not take this setting has no use for it, for the usage error
+    /// a flag of it gets ("the paper protocol has its own fixed broadcast period").
+    pub fn without_it(self) -> &'static str {
+        match self {
+            Setting::Merge => "has no merge function to choose",
+            Setting::PaperVariants => "has no such variant",
+            Setting::Epochs => "runs the sequence once",
+            Setting::NoNv => "has no such variant",
+            Setting::Dissemination => "has its own fixed broadcast period",
+            Setting::TokenRetries => "hands no token over",
+        }
+    }
+}
+
 /// What the tools know of one protocol. A new protocol is one entry here (and its runtime in
 /// `runtime/`, its tables in a module of this crate called from `c::generate_c`).
 #[derive(Debug)]
@@ -58,8 +73,60 @@ pub struct ProtocolInfo {
     pub program_type: &'static str,
     /// The options of `CompileOptions` that apply to it.
     pub settings: &'static [Setting],
-    /// The model checker has its transcription (`promela/NAME.rs`).
-    pub modelled: bool,
+    /// How its code runs the statements of a `&` group: what `parallelise` may write for it.
+    pub groups: GroupRun,
+    /// Its code needs hand-over routes computed on the start configuration
+    /// (`CompileOptions::routes`, `dynarole_replay::token_routes`): a compile needs `--from`.
+    pub needs_routes: bool,
+    /// Its state packet's payload: the runtime's own constant for its fixed part and what
+    /// grows with the sequence (the one source of the wire size both the C and the compiler
+    /// use).
+    pub payload: Payload,
+    /// What the model checker has of it (`promela/NAME.rs`), or `None`: not modelled.
+    pub model: Option<Modelled>,
+}
+
+/// How a protocol's code runs the statements of one `&` group.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum GroupRun {
+    /// At the same time, a module's own statements too (the lattice runtime starts them as
+    /// one batch).
+    Overlapping,
+    /// At the same time on different modules; a module's own statements one after the other.
+    OnePerModule,
+    /// One statement at a time in source order: a parallel form gains nothing.
+    OneAtATime,
+}
+
+/// The payload of a protocol's state packet: a fixed part, named by a `#define` of the
+/// protocol's runtime header (read from the header text the compiler embeds), plus a part
+/// that grows with the sequence.
+#[derive(Clone, Copy, Debug)]
+pub struct Payload {
+    /// The `#define` in [`ProtocolInfo::header`] that gives the fixed bytes.
+    pub fixed: &'static str,
+    pub grows: Growth,
+}
+
+/// What part of a payload grows with the sequence.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Growth {
+    /// One bit per statement of the window (`DR_CONF_WINDOW / 8` bytes).
+    WindowBits,
+    /// One byte per pending slot (`DR_CONF_MAX_PENDING`).
+    PendingSlots,
+    /// Nothing: the payload has one size.
+    Nothing,
+}
+
+/// What the model checker has of a protocol.
+#[derive(Clone, Copy, Debug)]
+pub struct Modelled {
+    /// A compositional model (one module concrete, the others abstract) for robots too large
+    /// for the full one; it models NV storage and one run.
+    pub compositional: bool,
+    /// The deliberately broken variants that show the checker catches each guarantee's loss.
+    pub broken_variants: bool,
 }
 
 /// Every protocol, in the order the command line lists them (the default first). Entry `i`
@@ -76,7 +143,16 @@ pub static PROTOCOLS: [ProtocolInfo; 3] = [
         source: "dr_lattice.c",
         program_type: "dr_program_t",
         settings: &[Setting::Epochs, Setting::NoNv, Setting::Dissemination],
-        modelled: true,
+        groups: GroupRun::Overlapping,
+        needs_routes: false,
+        payload: Payload {
+            fixed: "DR_LATTICE_PAYLOAD_FIXED",
+            grows: Growth::WindowBits,
+        },
+        model: Some(Modelled {
+            compositional: true,
+            broken_variants: true,
+        }),
     },
     ProtocolInfo {
         protocol: Protocol::Paper,
@@ -89,7 +165,16 @@ pub static PROTOCOLS: [ProtocolInfo; 3] = [
         source: "dr_paper.c",
         program_type: "dr_paper_program_t",
         settings: &[Setting::Merge, Setting::PaperVariants],
-        modelled: true,
+        groups: GroupRun::OnePerModule,
+        needs_routes: false,
+        payload: Payload {
+            fixed: "DR_PAPER_PAYLOAD_FIXED",
+            grows: Growth::PendingSlots,
+        },
+        model: Some(Modelled {
+            compositional: false,
+            broken_variants: false,
+        }),
     },
     ProtocolInfo {
         protocol: Protocol::Token,
@@ -102,7 +187,14 @@ pub static PROTOCOLS: [ProtocolInfo; 3] = [
         source: "dr_token.c",
         program_type: "dr_token_program_t",
         settings: &[Setting::TokenRetries],
-        modelled: false,
+        groups: GroupRun::OneAtATime,
+        needs_routes: true,
+        // The largest packet, a safe token's hand-over (acknowledgements are shorter).
+        payload: Payload {
+            fixed: "DR_TOKEN_SAFE_PAYLOAD",
+            grows: Growth::Nothing,
+        },
+        model: None,
     },
 ];
 
@@ -143,19 +235,52 @@ impl Protocol {
     pub fn modelled_in_words() -> String {
         let names: Vec<&str> = Protocol::ALL
             .into_iter()
-            .filter(|p| p.info().modelled)
+            .filter(|p| p.info().model.is_some())
             .map(Protocol::name)
             .collect();
         format!("the {} protocols", names.join(" and "))
     }
 
+    /// What the model checker has of this protocol, or the message that says it has nothing
+    /// ("the model checker models the lattice and paper protocols, not the token baseline").
+    pub fn model(self) -> Result<Modelled, String> {
+        self.info().model.ok_or_else(|| {
+            format!(
+                "the model checker models {}, not the {}",
+                Protocol::modelled_in_words(),
+                self.info().description
+            )
+        })
+    }
+
+    /// Its code needs hand-over routes computed on the start configuration.
+    pub fn needs_routes(self) -> bool {
+        self.info().needs_routes
+    }
+
+    /// How its code runs a `&` group.
+    pub fn groups(self) -> GroupRun {
+        self.info().groups
+    }
+
     /// The protocols `setting` applies to, by name ("lattice"), for messages.
     pub fn taking(setting: Setting) -> Vec<&'static str> {
-        Protocol::ALL
-            .into_iter()
-            .filter(|p| p.takes(setting))
-            .map(Protocol::name)
+        Protocol::names_where(|info| info.settings.contains(&setting))
+    }
+
+    /// The names of the protocols whose entry satisfies `test`, in the table's order, for
+    /// messages ("the compositional model is for the lattice protocol").
+    pub fn names_where(test: impl Fn(&ProtocolInfo) -> bool) -> Vec<&'static str> {
+        PROTOCOLS
+            .iter()
+            .filter(|info| test(info))
+            .map(|info| info.name)
             .collect()
+    }
+
+    /// Whether the model checker has a compositional model of it.
+    pub fn has_compositional_model(self) -> bool {
+        self.info().model.is_some_and(|m| m.compositional)
     }
 }
 

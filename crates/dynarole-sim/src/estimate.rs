@@ -2,21 +2,50 @@
 //! their dependencies, no network. `dynarole parallelise` compares a sequence with the
 //! parallel forms found for it by these, and keeps the shortest.
 
-use crate::{Simulator, Timing};
-use dynarole_codegen::{CompileOptions, Protocol};
+use crate::critical::critical_path;
+use crate::sequence::Sequence;
+use crate::Timing;
+use dynarole_codegen::Protocol;
 use dynarole_core::expand::Plan;
 use dynarole_core::{driver, parse, Program, RobotApi};
 use dynarole_replay::{Form, Parallelised};
 
-/// The critical path of `plans` in ms, as `protocol`'s code orders them.
+/// The critical path of `plans` in ms, as `protocol`'s code orders them: lowered for the
+/// shapes it runs and weighed by the timing preset. No C is generated: the critical path is a
+/// property of the dependencies and durations alone.
 pub fn makespan(program: &Program, plans: &[Plan], protocol: Protocol) -> Result<u64, String> {
-    let options = CompileOptions {
-        protocol,
-        name: "parallelise".into(),
-        ..CompileOptions::default()
-    };
-    let simulator = Simulator::new(program, plans, &options).map_err(|e| e.to_string())?;
-    Ok(simulator.critical_path(&Timing::default()).duration_ms)
+    let ir =
+        driver::lower(program, plans, protocol.shape()).map_err(|d| format!("{:?}", d.kind))?;
+    let resolved = plans
+        .iter()
+        .flat_map(|p| p.statements().into_iter().cloned())
+        .collect();
+    let sequence = Sequence::new(program.robot.clone(), ir, resolved);
+    Ok(critical_path(&sequence, &Timing::default()).duration_ms)
+}
+
+/// The makespans of a parallelised sequence's written forms and the one to write.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Estimated {
+    /// One estimate per form of `Parallelised::forms`, in their order.
+    pub estimates: Vec<Result<u64, String>>,
+    /// The index of the form to write: the shortest estimate (`shortest`).
+    pub chosen: usize,
+}
+
+/// Estimates every form of `found` (sequence `name`) as `protocol`'s code would run it and
+/// chooses the one to write.
+pub fn choose_form(
+    found: &Parallelised,
+    name: &str,
+    protocol: Protocol,
+    robot: &RobotApi,
+) -> Estimated {
+    let estimates: Vec<Result<u64, String>> = (found.forms.iter())
+        .map(|form| form_makespan(found, form, name, protocol, robot))
+        .collect();
+    let chosen = shortest(&estimates);
+    Estimated { estimates, chosen }
 }
 
 /// The makespan of a written form of sequence `name`, from its text (what the user gets).

@@ -35,7 +35,7 @@ mod wake;
 
 pub use build::{cache_entries, cache_root};
 pub use critical::CriticalPath;
-pub use estimate::{form_makespan, makespan, shortest};
+pub use estimate::{choose_form, form_makespan, makespan, shortest, Estimated};
 pub use firmware::{FirmwareReport, FirmwareSource, ModuleFirmware};
 pub use model_recording::{replay_steps, ModelRecording, ModelRecordingError};
 pub use recorded::{Recorded, MAX_RECORDED, RECORDED_PACKETS};

@@ -8,7 +8,7 @@ use crate::report::{CheckName, Entry, Header, Observer, Report, Verdict};
 use crate::spin::{self, Check, Limits, PanResult, Progress};
 use crate::trail::{parse_events, Event};
 use crate::VerifyError;
-use dynarole_codegen::{LivenessGraph, Model, Protocol};
+use dynarole_codegen::{LivenessGraph, Model, Setting};
 use std::path::Path;
 
 /// How the checks run.
@@ -105,7 +105,7 @@ pub fn header(built: &Built, options: &crate::BuildOptions, configuration: &str)
             Models::Full(_) => Some(options.late),
             Models::Compositional { .. } => None,
         },
-        epochs: (o.protocol == Protocol::Lattice).then_some(o.epochs.max(1)),
+        epochs: o.protocol.takes(Setting::Epochs).then_some(o.runs().max(1)),
         fault: options.fault.is_some(),
     }
 }

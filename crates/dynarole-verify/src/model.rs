@@ -5,7 +5,7 @@
 use crate::VerifyError;
 use dynarole_codegen::{
     generate_compositional, generate_promela, liveness_graph, CompileOptions, Fault, LivenessGraph,
-    Model, ModelOptions, Protocol, Topology, TopologyLink, TopologyModule,
+    Model, ModelOptions, Protocol, ProtocolInfo, Topology, TopologyLink, TopologyModule,
 };
 use dynarole_core::ast::SeparatorKind;
 use dynarole_core::check::Label;
@@ -99,14 +99,7 @@ impl Built {
 
 /// Whether `protocol` is one the model checker models (asked before anything is read).
 pub fn modelled(protocol: Protocol) -> Result<(), VerifyError> {
-    if !protocol.info().modelled {
-        return Err(VerifyError::Usage(format!(
-            "verify models {}; the {} is not modelled",
-            Protocol::modelled_in_words(),
-            protocol.info().description
-        )));
-    }
-    Ok(())
+    protocol.model().map(|_| ()).map_err(VerifyError::Usage)
 }
 
 fn limit_error(e: LimitError) -> VerifyError {
@@ -165,17 +158,20 @@ fn reset_modules(
 /// The broken variants and the compositional method exist for the lattice protocol only.
 fn refuse_what_is_not_modelled(options: &BuildOptions) -> Result<(), VerifyError> {
     let o = &options.compile;
-    if o.protocol != Protocol::Lattice && options.fault.is_some() {
-        return Err(VerifyError::Usage(
-            "the broken variants exist for the lattice protocol only".into(),
-        ));
+    let broken = |info: &ProtocolInfo| info.model.is_some_and(|m| m.broken_variants);
+    if !broken(o.protocol.info()) && options.fault.is_some() {
+        return Err(VerifyError::Usage(format!(
+            "the broken variants exist for the {} protocol only",
+            Protocol::names_where(broken).join(" and ")
+        )));
     }
     if options.method == Method::Compositional
-        && (o.protocol != Protocol::Lattice || o.no_nv || o.epochs != 1)
+        && (!o.protocol.has_compositional_model() || o.without_nv() || o.runs() != 1)
     {
-        return Err(VerifyError::Usage(
-            "--method compositional models the lattice protocol with NV storage and one run (--epochs 1); use --method full".into(),
-        ));
+        return Err(VerifyError::Usage(format!(
+            "--method compositional models the {} protocol with NV storage and one run (--epochs 1); use --method full",
+            Protocol::names_where(|p| p.model.is_some_and(|m| m.compositional)).join(" and ")
+        )));
     }
     Ok(())
 }
@@ -188,9 +184,9 @@ fn compositional(options: &ModelOptions, modules: usize, method: Method) -> bool
         Method::Full => false,
         Method::Compositional => true,
         Method::Auto => {
-            o.protocol == Protocol::Lattice
-                && !o.no_nv
-                && o.epochs == 1
+            o.protocol.has_compositional_model()
+                && !o.without_nv()
+                && o.runs() == 1
                 && options.fault.is_none()
                 && modules > AUTO_FULL_MODULES
         }
