@@ -1,10 +1,9 @@
 /* dr_lattice.c - the lattice protocol: semilattice state, statement scheduling, persistence
- * (or, with DR_PROGRAM_NO_NV, the two rules that stand in for it), and dissemination (fixed
- * period or adaptive: DR_CONF_LATTICE_DISSEMINATION). */
+ * (or, with DR_PROGRAM_NO_NV, the two rules that stand in for it). When to broadcast is the
+ * dissemination policy's (fixed period or adaptive: DR_CONF_LATTICE_DISSEMINATION), whose
+ * hooks (dr_dissemination.h) this file calls. */
 #include "dr_lattice.h"
 #include "dr_packet.h"
-
-#define ADAPTIVE (DR_CONF_LATTICE_DISSEMINATION == DR_DISSEMINATION_ADAPTIVE)
 
 /* The module's program: with DR_CONF_ONE_PROGRAM the image's only one, whose fields are then
  * constants in the code (dr_module_init's precondition: it is passed that one). */
@@ -205,51 +204,6 @@ uint8_t dr_shared_decode(dr_shared_t *s, const uint8_t *in, uint8_t len, uint16_
     return (uint8_t)!trim(s, n_statements);
 }
 
-#if ADAPTIVE
-/* Sends the state now, as a frame of `kind` (DR_PACKET_LATTICE_ASK: a retry, answered at
- * once by a receiver that holds our copy): on every channel (`to` = 0), or only on the
- * channels of `to` (a retry or an answer that only some neighbours need costs one packet per
- * such neighbour, not one per channel). The adaptive schedule is set by disseminate, below.
- * O(DR_CONF_CHANNELS). */
-static void send_state(dr_module_t *m, dr_channels_t to, uint8_t kind)
-#else
-/* Sends the state now and schedules the next periodic broadcast. */
-static void broadcast(dr_module_t *m, uint32_t now)
-#endif
-{
-    uint8_t frame[FRAME];
-    uint8_t len;
-    /* Encoded in place: dr_packet_frame then copies each payload byte onto itself. */
-    (void)dr_shared_encode(&m->shared, frame + DR_PACKET_HEADER, PAYLOAD);
-#if !ADAPTIVE
-#define kind DR_PACKET_LATTICE_STATE
-#endif
-    len = dr_packet_frame(frame, FRAME, &m->identity, kind, frame + DR_PACKET_HEADER, PAYLOAD);
-#undef kind
-#if ADAPTIVE
-    if (to != 0u) {
-        uint8_t c;
-        for (c = 0; c < DR_CONF_CHANNELS; c++) {
-            if ((to & (dr_channels_t)((dr_channels_t)1 << c)) != 0u) {
-                dr_hal_send(m, c, frame, len);
-            }
-        }
-    } else {
-        dr_hal_broadcast(m, frame, len);
-    }
-#else
-    dr_hal_broadcast(m, frame, len);
-#endif
-    m->packets_sent++;
-#if ADAPTIVE
-    m->asking = 0; /* answered */
-#else
-    m->next_broadcast_ms = now + DR_CONF_BROADCAST_MS;
-#if DR_CONF_BROADCAST_JITTER_MS > 0
-    m->next_broadcast_ms += (uint32_t)(dr_hal_random(m) % (DR_CONF_BROADCAST_JITTER_MS + 1u));
-#endif
-#endif
-}
 
 /* The program word of this program and launch (dr_packet.h): a constant in an MCU image. */
 #define WORD(m) DR_PACKET_PROGRAM_WORD(PROGRAM(m)->fingerprint, DR_EXECUTION)
@@ -333,187 +287,11 @@ static uint8_t held_back(const dr_module_t *m)
     return (uint8_t)(no_nv(m) && (m->unheard != 0u || m->unechoed != DR_NONE));
 }
 
-#if ADAPTIVE
-typedef char dr_lattice_check_doublings[(DR_CONF_LATTICE_DOUBLINGS <= 16 &&
-                                         DR_CONF_LATTICE_UNACKED_DOUBLINGS <=
-                                             DR_CONF_LATTICE_DOUBLINGS &&
-                                         DR_CONF_LATTICE_INTERVAL_MS >= 1 &&
-                                         DR_CONF_LATTICE_INTERVAL_MS <= 0xFFFF &&
-                                         DR_CONF_LATTICE_RESEND_SPREAD <= 100) ? 1 : -1];
-
-/* The resend spread of the smallest interval, in whole milliseconds (rounded down); a try's
- * spread is it doubled with the interval. The largest (after DR_CONF_LATTICE_UNACKED_DOUBLINGS
- * doublings) fits 16 bits, so a spread is computed in 16 bits: no 32-bit multiplication and
- * division (libgcc helpers on an 8-bit core). */
-#define SPREAD_BASE ((uint32_t)DR_CONF_LATTICE_INTERVAL_MS * DR_CONF_LATTICE_RESEND_SPREAD / 100u)
-typedef char dr_lattice_check_spread[(SPREAD_BASE << DR_CONF_LATTICE_UNACKED_DOUBLINGS) < 0xFFFFu
-                                         ? 1
-                                         : -1];
-
-/* Bits of m->answer: the next broadcast answers (it is never suppressed) ... */
-#define ANSWER_THEM 1u /* ... a neighbour heard behind or asking: on its channel (with the others
-                          still wanting our copy) */
-#define ANSWER_NEWS 2u /* ... our copy grew: on every channel, the sender's too (the relay is
-                          its acknowledgement) */
-
-/* Back to the smallest interval, with every resend allowed again. */
-static void restart_interval(dr_module_t *m)
-{
-    m->doublings = 0;
-    m->resends = DR_CONF_LATTICE_RESENDS;
-}
-
-/* The adaptive counterpart of the fixed broadcast, called when a broadcast is due or the own
- * copy changed (`changed`: a local completion, always sent and a restart of the interval). A
- * due broadcast may be suppressed (DR_CONF_LATTICE_SUPPRESS). Then the next one is
- * scheduled: toward a connected neighbour heard behind and not heard with our copy since,
- * the smallest interval (a near-dead link: try as often as the fixed period does); while
- * another connected neighbour has not been heard with our copy, first the resends at the
- * smallest interval, then at most DR_CONF_LATTICE_UNACKED_DOUBLINGS doublings (its packets
- * may be lost; a silent neighbour costs one packet per such interval); once all have, the
- * longest interval (nothing is left to tell them: the broadcasts only keep the links alive). */
-static void disseminate(dr_module_t *m, uint32_t now, uint8_t changed)
-{
-    dr_channels_t linked = connected(m);
-    dr_channels_t unacked = (dr_channels_t)(linked & (dr_channels_t)~m->acked);
-    dr_channels_t wanting = (dr_channels_t)(unacked | m->lagging | m->asking);
-    dr_channels_t to = 0;
-    /* A retry (nothing new, nothing to answer, a connected neighbour not heard with our copy)
-     * asks: a receiver that holds our copy answers at once. */
-    uint8_t kind = (uint8_t)((!changed && m->answer == 0u && unacked != 0u)
-                                 ? DR_PACKET_LATTICE_ASK
-                                 : DR_PACKET_LATTICE_STATE);
-#if DR_CONF_LATTICE_RESEND_SPREAD > 0
-    uint16_t spread;
-#endif
-    if (changed) {
-        restart_interval(m);
-    }
-    /* A retry or an answer that only some neighbours need (the others have been heard with
-     * our copy and did not ask) goes to those channels only. News and the quiet broadcasts go
-     * on every channel: they are also for neighbours facing us without a latch; and without
-     * NV every send does (a neighbour in its rule-1 wait must hear us). */
-    if (!changed && (m->answer & ANSWER_NEWS) == 0u && !no_nv(m) && wanting != 0u &&
-        (linked & (dr_channels_t)~wanting) != 0u) {
-        to = wanting;
-    }
-#if DR_CONF_LATTICE_SUPPRESS > 0
-    /* Never without NV: a neighbour in its rule-1 wait (or awaiting an echo) must hear us
-     * even when our copy is the same as its own. */
-    if (changed || m->answer || unacked != 0u || m->consistent < DR_CONF_LATTICE_SUPPRESS ||
-        no_nv(m)) {
-        send_state(m, to, kind);
-    }
-#else
-    send_state(m, to, kind);
-#endif
-    m->consistent = 0;
-    m->answer = 0;
-    if ((unacked & m->lagging) != 0u) {
-        m->doublings = 0; /* a neighbour known to lack a fact: again soon */
-    } else if (unacked != 0u && m->resends > 0u) {
-        /* A neighbour may have missed it: again after the smallest interval. */
-        m->resends--;
-        m->doublings = 0;
-    } else if (unacked != 0u) {
-        /* Still unacknowledged after the resends: less often, up to the cap. */
-        m->doublings = (uint8_t)(m->doublings < DR_CONF_LATTICE_UNACKED_DOUBLINGS
-                                     ? m->doublings + 1u
-                                     : DR_CONF_LATTICE_UNACKED_DOUBLINGS);
-    } else {
-        m->doublings = DR_CONF_LATTICE_DOUBLINGS;
-    }
-    m->next_broadcast_ms = now + ((uint32_t)DR_CONF_LATTICE_INTERVAL_MS << m->doublings);
-#if DR_CONF_LATTICE_RESEND_SPREAD > 0
-    if (unacked != 0u) {
-        /* A try toward an unacknowledged neighbour at a random time in the last SPREAD % of
-         * its interval: the modules that heard the same news at the same time would
-         * otherwise resend in step and collide again. */
-        spread = (uint16_t)((uint16_t)SPREAD_BASE << m->doublings); /* doublings <= UNACKED */
-        m->next_broadcast_ms -= spread;
-        m->next_broadcast_ms += (uint32_t)(dr_hal_random(m) % (uint16_t)(spread + 1u));
-    }
-#endif
-#if DR_CONF_BROADCAST_JITTER_MS > 0
-    m->next_broadcast_ms += (uint32_t)(dr_hal_random(m) % (DR_CONF_BROADCAST_JITTER_MS + 1u));
-#endif
-}
-
-/* Whether two normalised copies hold the same facts (epoch, low, done). O(W/8). */
-static uint8_t same_facts(const dr_shared_t *a, const dr_shared_t *b)
-{
-    uint8_t i;
-    uint8_t same = (uint8_t)(a->epoch == b->epoch && a->low == b->low);
-    for (i = 0; i < NBYTES; i++) {
-        same = (uint8_t)(same && a->done[i] == b->done[i]);
-    }
-    return same;
-}
-
-/* A broadcast at the next step plus 0..DR_CONF_LATTICE_RELAY_JITTER_MS ms, unless one is due
- * sooner. */
-static void send_soon(dr_module_t *m)
-{
-    uint32_t soon = dr_hal_now_ms(m);
-#if DR_CONF_LATTICE_RELAY_JITTER_MS > 0
-    soon += (uint32_t)(dr_hal_random(m) % (DR_CONF_LATTICE_RELAY_JITTER_MS + 1u));
-#endif
-    if ((uint32_t)(m->next_broadcast_ms - soon) < 0x80000000u) {
-        m->next_broadcast_ms = soon;
-    }
-}
-
-/* After the join of a packet `in` heard on `channel` (`before`: our copy before it). News
- * (our copy grew: relayed on every channel, the sender's too) and a sender that lacks
- * something we hold (it is behind: answer it) are sent at the next step, with the interval
- * back to the smallest; a packet equal to our copy acknowledges that channel, and when it
- * asks (`asked`: a DR_PACKET_LATTICE_ASK frame, a retry) it is answered at the next step on
- * that channel: the sender retries because it has not heard us with its copy (our packet
- * was lost), and nothing else would make us speak. O(W). */
-static void heard_copy(dr_module_t *m, uint8_t channel, const dr_shared_t *before,
-                       dr_shared_t *in, uint8_t asked)
-{
-    dr_channels_t bit_c = 0;
-    uint8_t grew = (uint8_t)!same_facts(before, &m->shared);
-    uint8_t behind;
-    dr_shared_normalise(in, PROGRAM(m)->n_statements);
-    behind = (uint8_t)!same_facts(in, &m->shared);
-    if (channel < DR_CONF_CHANNELS) {
-        bit_c = (dr_channels_t)((dr_channels_t)1 << channel);
-    }
-    if (grew || behind) {
-        restart_interval(m);
-        send_soon(m);
-        if (grew) {
-            m->acked = 0;
-            m->answer = ANSWER_NEWS;
-        }
-    }
-    if (behind) {
-        m->answer = (uint8_t)(m->answer | ANSWER_THEM);
-        m->acked = (dr_channels_t)(m->acked & (dr_channels_t)~bit_c);
-        m->lagging = (dr_channels_t)(m->lagging | bit_c);
-    } else {
-        m->acked = (dr_channels_t)(m->acked | bit_c);
-        m->lagging = (dr_channels_t)(m->lagging & (dr_channels_t)~bit_c);
-        if (!grew) {
-            if (asked) {
-                m->answer = (uint8_t)(m->answer | ANSWER_THEM);
-                m->asking = (dr_channels_t)(m->asking | bit_c);
-                send_soon(m);
-            }
-            if (m->consistent < 0xFFu) {
-                m->consistent++;
-            }
-            /* Heard nothing new: the interval doubles (the broadcast already scheduled keeps
-             * its time; the next one is scheduled with the longer interval). */
-            if (m->doublings < DR_CONF_LATTICE_DOUBLINGS) {
-                m->doublings++;
-            }
-        }
-    }
-}
-#endif
+/* The dissemination policy's hooks (dr_dissemination.h, which dr_lattice.h included for the
+ * policy's fields): here, after the helpers they may use and before the functions that call
+ * them. */
+#define DR_DISSEMINATION_HOOKS
+#include "dr_dissemination.h"
 
 /* The running batch as a set relative to `running`: bit k = statement running + k. */
 static uint16_t members(const dr_module_t *m)
@@ -537,9 +315,7 @@ static void issue(dr_module_t *m)
             dr_hal_op_start(m, s, st.op, st.index, args);
         }
     }
-#if ADAPTIVE
-    m->issued_ms = (uint16_t)dr_hal_now_ms(m);
-#endif
+    dissemination_issued(m);
 }
 
 /* This module's first statement at or above offset `from` of the window that is not done and
@@ -640,15 +416,7 @@ void dr_module_init(dr_module_t *m, const dr_program_t *program, void *platform)
     m->running_epoch = 0;
     m->batch = 0;
     m->next_broadcast_ms = dr_hal_now_ms(m);
-#if ADAPTIVE
-    /* Speak at once (a restarted module's copy may be behind: its neighbours answer). */
-    restart_interval(m);
-    m->consistent = 0;
-    m->answer = 0;
-    m->acked = 0;
-    m->lagging = 0;
-    m->asking = 0;
-#endif
+    dissemination_init(m);
 }
 
 /* Cost: O(W * deps) plus, on a completion, an NV write (with DR_PROGRAM_NO_NV: a scan of the
@@ -659,9 +427,7 @@ void dr_module_step(dr_module_t *m)
     uint32_t now = dr_hal_now_ms(m);
     uint8_t due = (uint8_t)((uint32_t)(now - m->next_broadcast_ms) < 0x80000000u);
     uint8_t changed = 0;
-#if ADAPTIVE
-    uint8_t retrying = 0;
-#endif
+    uint8_t retrying = 0; /* a failed batch awaits its retry */
     dr_stmt_t i;
     dr_stmt_t s;
     uint16_t in;
@@ -692,20 +458,13 @@ void dr_module_step(dr_module_t *m)
                 }
                 m->running = DR_NONE;
                 changed = 1;
-#if ADAPTIVE
-                m->acked = 0; /* a new fact: no neighbour is known to hold our copy */
-#endif
+                dissemination_completed(m);
             } else if (due) {
-#if ADAPTIVE
-                /* Failed: retried at the smallest interval, however soon an answer or news
-                 * is due (the start itself was not broadcast). */
+                /* Failed: re-issued when the policy says (operations are idempotent). */
                 retrying = 1;
-                if ((uint16_t)((uint16_t)now - m->issued_ms) >= DR_CONF_LATTICE_INTERVAL_MS) {
+                if (dissemination_retry_now(m, now)) {
                     issue(m);
                 }
-#else
-                issue(m); /* failed: retry, at the pace of the periodic broadcast */
-#endif
             }
         }
     }
@@ -713,21 +472,10 @@ void dr_module_step(dr_module_t *m)
         m->unheard = (dr_channels_t)(m->unheard & connected(m)); /* unlatched meanwhile */
     }
     if (m->running == DR_NONE && !held_back(m)) {
-#if ADAPTIVE
-        (void)start_next(m); /* not news: a start changes no shared fact */
-#else
-        changed = (uint8_t)(changed | start_next(m));
-#endif
+        changed = (uint8_t)(changed | dissemination_start_is_news(start_next(m)));
     }
     if (changed || due) {
-#if ADAPTIVE
-        disseminate(m, now, changed);
-        if (retrying) {
-            m->next_broadcast_ms = now + DR_CONF_LATTICE_INTERVAL_MS;
-        }
-#else
-        broadcast(m, now);
-#endif
+        dissemination_send(m, now, changed, retrying);
     }
 }
 
@@ -759,17 +507,14 @@ void dr_module_receive(dr_module_t *m, uint8_t channel, const uint8_t *bytes, ui
     const uint8_t *payload;
     uint8_t payload_len;
     dr_shared_t in;
-#if ADAPTIVE
     dr_shared_t before;
-#endif
     enum dr_packet_result r;
     uint8_t kind = DR_PACKET_LATTICE_STATE;
     count(&m->packets_received);
-#if ADAPTIVE
-    if (len >= DR_PACKET_HEADER && bytes[DR_PACKET_HEADER - 1u] == DR_PACKET_LATTICE_ASK) {
+    if (DR_DISSEMINATION_ASKS && len >= DR_PACKET_HEADER &&
+        bytes[DR_PACKET_HEADER - 1u] == DR_PACKET_LATTICE_ASK) {
         kind = DR_PACKET_LATTICE_ASK; /* a retry: its sender awaits our copy */
     }
-#endif
     r = dr_packet_unframe(bytes, len, &m->identity, kind, &payload, &payload_len);
     if (r == DR_PACKET_FOREIGN) {
         count(&m->packets_foreign);
@@ -789,13 +534,9 @@ void dr_module_receive(dr_module_t *m, uint8_t channel, const uint8_t *bytes, ui
                 m->unechoed = DR_NONE; /* (is_done of DR_NONE is 0) */
             }
         }
-#if ADAPTIVE
         before = m->shared;
-#endif
         dr_shared_join(&m->shared, &in, p->n_statements);
-#if ADAPTIVE
-        heard_copy(m, channel, &before, &in, (uint8_t)(kind == DR_PACKET_LATTICE_ASK));
-#endif
+        dissemination_heard(m, channel, &before, &in, (uint8_t)(kind == DR_PACKET_LATTICE_ASK));
     }
 }
 

@@ -10,6 +10,7 @@
 #include <stdint.h>
 #include "dr_conf.h"
 #include "dr_hal.h"
+#include "dr_dissemination.h"
 #include "dr_module.h"
 #include "dr_packet.h"
 
@@ -138,25 +139,8 @@ typedef struct dr_module {
     uint8_t heard;                     /* a state packet arrived since the (re)start */
     uint32_t next_broadcast_ms;        /* the next broadcast, and (adaptive) the next retry
                                           of a failed operation: the one timer of the runtime */
-#if DR_CONF_LATTICE_DISSEMINATION == DR_DISSEMINATION_ADAPTIVE
-    /* Adaptive dissemination (README.md): the interval is DR_CONF_LATTICE_INTERVAL_MS <<
-     * doublings; `acked` the channels heard with a copy at least ours since ours last changed
-     * (or a neighbour was heard behind); `resends` the broadcasts left at the smallest
-     * interval while one is missing; `consistent` the packets equal to our copy heard since
-     * our last broadcast (for suppression). */
-    uint8_t doublings;
-    uint8_t resends;
-    uint8_t consistent;
-    uint8_t answer;                    /* a neighbour was heard behind (or asking), or our
-                                          copy grew: the next broadcast answers, never
-                                          suppressed */
-    dr_channels_t acked;
-    dr_channels_t lagging;             /* heard behind and not heard with our copy since */
-    dr_channels_t asking;              /* heard asking (a retry) with our copy since our
-                                          last broadcast: the next one answers them */
-    uint16_t issued_ms;                /* when the running batch was last issued (low
-                                          16 bits): a failed one is retried an interval on */
-#endif
+    /* The dissemination policy's own fields (dr_dissemination.h; none for the fixed period). */
+    DR_DISSEMINATION_STATE
     /* counters, for reports */
     dr_counter_t packets_sent;
     dr_counter_t packets_received;

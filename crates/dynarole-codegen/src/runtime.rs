@@ -37,11 +37,25 @@ pub fn warning_flags() -> Vec<&'static str> {
 }
 
 /// The lattice protocol. The describe file is for traces (host, simulator); the MCU build in
-/// the generated Makefile leaves it out, with dr_text.c.
-pub const LATTICE: [(&str, &str); 3] = [
+/// the generated Makefile leaves it out, with dr_text.c. The dissemination policies are
+/// headers that dr_lattice.c includes (dr_dissemination.h), both copied: the configuration
+/// header chooses one.
+pub const LATTICE: [(&str, &str); 6] = [
     (
         "dr_lattice.h",
         include_str!("../../../runtime/lattice/dr_lattice.h"),
+    ),
+    (
+        "dr_dissemination.h",
+        include_str!("../../../runtime/lattice/dr_dissemination.h"),
+    ),
+    (
+        "dr_dissemination_adaptive.h",
+        include_str!("../../../runtime/lattice/dr_dissemination_adaptive.h"),
+    ),
+    (
+        "dr_dissemination_fixed.h",
+        include_str!("../../../runtime/lattice/dr_dissemination_fixed.h"),
     ),
     (
         "dr_lattice.c",
