@@ -4,7 +4,7 @@
 
 use crate::load::{compile_options, Inputs};
 use crate::plan::PlannedRun;
-use crate::progress::{Progress, ProgressMode};
+use crate::progress::Progress;
 use crate::results::{Row, Sink};
 use crate::Error;
 use dynarole_sim::{Run, SimError, Simulator};
@@ -98,22 +98,24 @@ pub fn prepare(inputs: &Inputs) -> Result<(), Error> {
 }
 
 /// Runs `pending` on `jobs` threads (all cores when `None`), appending each row to `sink` and
-/// showing progress on stderr as `label`, `before` of `total` runs recorded earlier; returns the new rows (in completion order).
+/// telling `progress` of them as `label`, `before` of `total` runs recorded earlier; returns
+/// the new rows (in completion order).
 pub fn run_all(
     inputs: &Inputs<'_>,
     pending: &[PlannedRun],
     sink: Sink,
     jobs: Option<usize>,
-    progress: ProgressMode,
+    progress: &mut dyn Progress,
     (label, before, total): (&str, u64, u64),
 ) -> Result<Vec<Row>, Error> {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(jobs.unwrap_or(0))
         .build()
         .map_err(|e| Error::Sim(format!("cannot start the worker threads: {e}")))?;
-    let bar = Progress::resume(progress, label, before, total, "runs");
+    progress.started(label, before, total, "runs");
     let shared = Mutex::new((sink, Vec::with_capacity(pending.len())));
-    pool.install(|| {
+    let ticks: &dyn Progress = progress;
+    let outcome = pool.install(|| {
         pending.par_iter().try_for_each_init(
             || Worker::new(inputs),
             |worker, run| {
@@ -121,11 +123,13 @@ pub fn run_all(
                 let mut guard = shared.lock().unwrap_or_else(|e| e.into_inner());
                 guard.0.write(&row)?;
                 guard.1.push(row);
-                bar.inc();
+                ticks.advanced();
                 Ok::<(), Error>(())
             },
         )
-    })?;
-    bar.finish();
+    });
+    // Finished on an error too, so that the bar is gone before the error is printed.
+    progress.finished();
+    outcome?;
     Ok(shared.into_inner().unwrap_or_else(|e| e.into_inner()).1)
 }

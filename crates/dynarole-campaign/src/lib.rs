@@ -9,7 +9,6 @@ mod files;
 mod inputs;
 mod limits;
 mod load;
-pub mod picture;
 mod plan;
 mod plot;
 mod progress;
@@ -27,7 +26,7 @@ pub use emit::{
 pub use inputs::INPUTS_FILE;
 pub use plan::{plan, Axis, Faults, Plan, PlannedRun, MAX_RUNS};
 pub use plot::{bounds, rasterise_svg};
-pub use progress::{Progress, ProgressMode, INTERVAL_VARIABLE};
+pub use progress::{Progress, Quiet};
 pub use results::{Outcome, Row, COLUMNS};
 pub use shard::{status, Shard, Status, CAMPAIGN_COPY, MAX_SHARDS};
 pub use spec::{CampaignFile, ProtocolOptions, Range, SpecError, Sweep};
@@ -94,8 +93,6 @@ pub struct Options {
     pub max_runs: Option<u64>,
     /// Worker threads (default: one per core).
     pub jobs: Option<usize>,
-    /// Progress on stderr: a bar, periodic lines, or nothing.
-    pub progress: ProgressMode,
     /// Draw the plots (SVG and PNG).
     pub plots: bool,
     /// Run only this shard (into `shard-K-of-N.csv`; no summary or plots).
@@ -121,8 +118,9 @@ pub struct Done {
 }
 
 /// Runs (or resumes) the campaign described by `options.campaign`, writing into
-/// `options.out_dir`: all of it, or only `options.shard`.
-pub fn run(options: &Options) -> Result<Done, Error> {
+/// `options.out_dir`: all of it, or only `options.shard`; `progress` is told how the runs
+/// advance.
+pub fn run(options: &Options, progress: &mut dyn Progress) -> Result<Done, Error> {
     let started = Instant::now();
     let sources = load::sources(&options.campaign)?;
     let inputs = load::inputs(&sources)?;
@@ -136,7 +134,7 @@ pub fn run(options: &Options) -> Result<Done, Error> {
             let has_results = !before.is_empty();
             shard::keep_inputs(&options.out_dir, &inputs.fingerprint, has_results, &what)?;
             let run = (csv_path.as_path(), None, before, "");
-            let (rows, already, ran) = execute(&inputs, &planned, run, options)?;
+            let (rows, already, ran) = execute(&inputs, &planned, run, options, progress)?;
             let (summaries, files) = write_outputs(&rows, &options.out_dir, options.plots)?;
             Done {
                 total: planned.len(),
@@ -148,7 +146,7 @@ pub fn run(options: &Options) -> Result<Done, Error> {
                 wall_seconds: 0.0,
             }
         }
-        Some(shard) => run_shard(&inputs, &planned, &sources.text, shard, options)?,
+        Some(shard) => run_shard(&inputs, &planned, &sources.text, shard, options, progress)?,
     };
     done.wall_seconds = started.elapsed().as_secs_f64();
     Ok(done)
@@ -216,6 +214,7 @@ fn run_shard(
     text: &str,
     shard: Shard,
     options: &Options,
+    progress: &mut dyn Progress,
 ) -> Result<Done, Error> {
     let dir = &options.out_dir;
     keep_split(dir, shard.count, text, &inputs.fingerprint)?;
@@ -228,7 +227,7 @@ fn run_shard(
     let before = resumable(&partial, planned, inputs, shard)?;
     let preamble = inputs.fingerprint.to_text();
     let run = (partial.as_path(), Some(shard), before, preamble.as_str());
-    let (rows, already, ran) = execute(inputs, planned, run, options)?;
+    let (rows, already, ran) = execute(inputs, planned, run, options, progress)?;
     let total = shard.size(planned.len());
     let mut files = vec![partial.clone()];
     if rows.len() as u64 == total {
@@ -293,6 +292,7 @@ fn execute(
     planned: &Plan,
     (csv_path, shard, mut rows, preamble): Target<'_>,
     options: &Options,
+    progress: &mut dyn Progress,
 ) -> Result<(Vec<Row>, u64, u64), Error> {
     let already = rows.len() as u64;
     let done: std::collections::BTreeSet<u64> = rows.iter().map(|r| r.run).collect();
@@ -309,15 +309,8 @@ fn execute(
     let total = shard.map_or(planned.len(), |s| s.size(planned.len()));
     // Counted against the runs this command may do (`--max-runs` stops before the end).
     let target = total.min(already + pending.len() as u64);
-    let progress = (label.as_str(), already, target);
-    let new = exec::run_all(
-        inputs,
-        &pending,
-        sink,
-        options.jobs,
-        options.progress,
-        progress,
-    )?;
+    let count = (label.as_str(), already, target);
+    let new = exec::run_all(inputs, &pending, sink, options.jobs, progress, count)?;
     let ran = new.len() as u64;
     rows.extend(new);
     rows.sort_by_key(|r| r.run);

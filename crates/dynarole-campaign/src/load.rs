@@ -8,7 +8,8 @@ use crate::Error;
 use dynarole_codegen::{CompileOptions, Variant};
 use dynarole_core::driver::{self, SelectError};
 use dynarole_core::expand::Plan;
-use dynarole_core::{Program, RobotApi};
+use dynarole_core::Program;
+use dynarole_input::program::{self, PluginError};
 use dynarole_world::Configuration;
 use std::path::Path;
 
@@ -179,23 +180,21 @@ fn configuration(
     Configuration::from_json_str(text).map_err(|e| Error::Input(format!("{}: {e}", path.display())))
 }
 
-/// The checked program; every plugin it loads is recorded in `fingerprint`.
+/// The checked program; every plugin it loads (through `dynarole_input::program`, the
+/// commands' loader too) is recorded in `fingerprint`.
 fn program<'a>(sources: &'a Sources, fingerprint: &mut Fingerprint) -> Result<Program<'a>, Error> {
     let campaign = &sources.campaign;
     let mut plugins = Vec::new();
     for (i, path) in campaign.plugins.iter().enumerate() {
         let field = format!("plugins[{i}]");
         let text = read_field(&sources.path, &sources.text, campaign, &field, path)?;
-        plugins.push(plugin_of(path, text, fingerprint)?);
+        fingerprint.add("plugin", path, &text);
+        plugins.push(program::plugin(path, text).map_err(plugin_error)?);
     }
     let robot = driver::robot_name(&sources.parsed.file);
-    let registry = driver::registry(robot, plugins, |file| {
-        let beside = campaign.file.with_file_name(file);
-        beside
-            .is_file()
-            .then(|| plugin(&beside, fingerprint))
-            .transpose()
-    })?;
+    let mut seen = |path: &Path, text: &str| fingerprint.add("plugin", path, text);
+    let registry =
+        program::registry(&campaign.file, robot, plugins, &mut seen).map_err(plugin_error)?;
     driver::check(&sources.parsed, &registry).map_err(|diagnostics| Error::Diagnostics {
         path: campaign.file.clone(),
         source: sources.source.clone(),
@@ -203,18 +202,13 @@ fn program<'a>(sources: &'a Sources, fingerprint: &mut Fingerprint) -> Result<Pr
     })
 }
 
-fn plugin(path: &Path, fingerprint: &mut Fingerprint) -> Result<RobotApi, Error> {
-    plugin_of(path, read(path)?, fingerprint)
-}
-
-/// The plugin read from `path` as `text`, recorded in `fingerprint`.
-fn plugin_of(path: &Path, text: String, fingerprint: &mut Fingerprint) -> Result<RobotApi, Error> {
-    fingerprint.add("plugin", path, &text);
-    RobotApi::from_toml(&text).map_err(|error| Error::Spec {
-        path: path.to_path_buf(),
-        text,
-        error: Box::new(error),
-    })
+/// A plugin that cannot be read names the file, as any unreadable file of a campaign; one that
+/// is not a plugin is an error in its TOML.
+fn plugin_error(error: PluginError) -> Error {
+    match error {
+        PluginError::Read(e) => Error::io(&e.path, e.error),
+        PluginError::Invalid { path, text, error } => Error::Spec { path, text, error },
+    }
 }
 
 /// The back-end's options for `protocol` and the campaign's `[options]`.

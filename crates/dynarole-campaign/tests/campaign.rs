@@ -2,7 +2,7 @@
 //! a resumed campaign gives the rows of an uninterrupted one, plots are written, and errors in
 //! the campaign file name their field.
 
-use dynarole_campaign::{run, CampaignFile, Done, Options, ProgressMode, COLUMNS};
+use dynarole_campaign::{run, CampaignFile, Done, Options, Quiet, COLUMNS};
 use std::path::{Path, PathBuf};
 
 fn smoke() -> PathBuf {
@@ -15,14 +15,13 @@ fn options(out: &Path, max_runs: Option<u64>, plots: bool) -> Options {
         out_dir: out.to_path_buf(),
         max_runs,
         jobs: Some(2),
-        progress: ProgressMode::Off,
         plots,
         shard: None,
     }
 }
 
 fn campaign(out: &Path, max_runs: Option<u64>, plots: bool) -> Done {
-    match run(&options(out, max_runs, plots)) {
+    match run(&options(out, max_runs, plots), &mut Quiet) {
         Ok(done) => done,
         Err(e) => panic!("campaign failed: {e}"),
     }
@@ -104,7 +103,7 @@ fn rows_of_another_campaign_are_refused() {
     let csv = dir.path().join("runs.csv");
     let text = std::fs::read_to_string(&csv).expect("runs.csv");
     std::fs::write(&csv, text.replacen(",atron,", ",ussr,", 1)).expect("write");
-    let err = run(&options(dir.path(), None, false)).expect_err("must refuse");
+    let err = run(&options(dir.path(), None, false), &mut Quiet).expect_err("must refuse");
     assert!(err.to_string().contains("other parameters"), "{err}");
 }
 
@@ -233,10 +232,11 @@ fn unresolved_relative_paths_say_what_they_are_relative_to() {
     let file = dir.join("moved.toml");
     let refused = |text: &str| {
         std::fs::write(&file, text).expect("the campaign");
-        match run(&Options {
+        let options = Options {
             campaign: file.clone(),
             ..options(&root.path().join("out"), Some(1), false)
-        }) {
+        };
+        match run(&options, &mut Quiet) {
             Err(dynarole_campaign::Error::Spec { error, .. }) => *error,
             Err(other) => panic!("not a field error: {other}"),
             Ok(_) => panic!("ran"),

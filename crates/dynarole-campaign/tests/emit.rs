@@ -368,11 +368,11 @@ fn status_right_after_emit_counts_no_run_done() {
         out_dir: jobs.dir.clone(),
         max_runs: Some(2),
         jobs: Some(1),
-        progress: dynarole_campaign::ProgressMode::Off,
         plots: false,
         shard: Some("0/3".parse().expect("a shard")),
     };
-    dynarole_campaign::run(&options).expect("the first shard starts");
+    dynarole_campaign::run(&options, &mut dynarole_campaign::Quiet)
+        .expect("the first shard starts");
     let now = dynarole_campaign::status(&jobs.dir).expect("a status");
     assert_eq!((now.total, now.done(), now.shards), (36, 2, Some(3)));
     let other = Jobs { shards: 4, ..jobs };

@@ -2,7 +2,7 @@
 //! bytes of a one-machine run; shards stopped midway (or cut) and run again give the same
 //! merge; a missing or unfinished shard, or runs missing, are named.
 
-use dynarole_campaign::{merge, run, status, Done, Error, MergeOptions, Options, ProgressMode};
+use dynarole_campaign::{merge, run, status, Done, Error, MergeOptions, Options, Quiet};
 use std::path::{Path, PathBuf};
 
 fn smoke() -> PathBuf {
@@ -15,14 +15,16 @@ fn options(out: &Path, shard: Option<&str>, max_runs: Option<u64>) -> Options {
         out_dir: out.to_path_buf(),
         max_runs,
         jobs: Some(1),
-        progress: ProgressMode::Off,
         plots: true,
         shard: shard.map(|s| s.parse().expect("a shard")),
     }
 }
 
 fn shard(out: &Path, k: u64, n: u64, max_runs: Option<u64>) -> Done {
-    match run(&options(out, Some(&format!("{k}/{n}")), max_runs)) {
+    match run(
+        &options(out, Some(&format!("{k}/{n}")), max_runs),
+        &mut Quiet,
+    ) {
         Ok(done) => done,
         Err(e) => panic!("shard {k}/{n} failed: {e}"),
     }
@@ -59,7 +61,7 @@ fn outputs(dir: &Path) -> Vec<(String, Vec<u8>)> {
 fn merging_any_number_of_shards_gives_the_one_machine_bytes() {
     let root = tempfile::tempdir().expect("temp dir");
     let one = root.path().join("one");
-    run(&options(&one, None, None)).expect("the one-machine run");
+    run(&options(&one, None, None), &mut Quiet).expect("the one-machine run");
     let expected = outputs(&one);
     let names: Vec<&str> = expected.iter().map(|(n, _)| n.as_str()).collect();
     for name in ["runs.csv", "summary.csv", "summary.md", "success-loss.svg"] {
@@ -151,7 +153,7 @@ fn missing_runs_and_mixed_splits_are_named() {
             && err.contains("runs missing: 5, 7, 9, 11, 13, 15, 17, 19, 21, 23 and 6 more"),
         "{err}"
     );
-    let other = run(&options(&dir, Some("0/3"), None))
+    let other = run(&options(&dir, Some("0/3"), None), &mut Quiet)
         .expect_err("another split in the same directory")
         .to_string();
     assert!(
@@ -187,10 +189,13 @@ fn run_from(
     shard: Option<&str>,
     max_runs: Option<u64>,
 ) -> Result<Done, Error> {
-    run(&Options {
-        campaign: campaign.to_path_buf(),
-        ..options(out, shard, max_runs)
-    })
+    run(
+        &Options {
+            campaign: campaign.to_path_buf(),
+            ..options(out, shard, max_runs)
+        },
+        &mut Quiet,
+    )
 }
 
 fn error_of(result: Result<Done, Error>) -> String {
@@ -282,7 +287,7 @@ fn unreadable_or_strange_shard_files_are_named() {
     assert!(fifo.success());
     both("shard-1-of-2.csv: not a regular file (a FIFO)");
     // The shard run again names it too, and leaves it where it is.
-    let again = error_of(run(&options(&dir, Some("1/2"), None)));
+    let again = error_of(run(&options(&dir, Some("1/2"), None), &mut Quiet));
     assert!(again.contains("not a regular file (a FIFO)"), "{again}");
     assert!(!dir.join("shard-1-of-2.csv.partial").exists());
     std::fs::remove_file(&file).expect("remove");

@@ -4,8 +4,9 @@
 //! schedulers, the merge and the status of the shards (`docs/cluster.md`).
 
 use crate::load::Failure;
+use crate::progress::{CampaignProgress, ProgressMode};
 use crate::render;
-use dynarole_campaign::{Done, Error, Jobs, MergeOptions, Options, ProgressMode, Scheduler};
+use dynarole_campaign::{Done, Error, Jobs, MergeOptions, Options, Scheduler};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -120,11 +121,11 @@ fn run_file(args: &CampaignArgs, file: &Path) -> Result<ExitCode, Failure> {
         out_dir,
         max_runs: args.max_runs,
         jobs: args.jobs,
-        progress: ProgressMode::for_stderr().map_err(Failure::Usage)?,
         plots: !args.no_plots,
         shard: args.shard,
     };
-    finish(dynarole_campaign::run(&options))
+    let mut progress = CampaignProgress::new(ProgressMode::for_stderr().map_err(Failure::Usage)?);
+    finish(dynarole_campaign::run(&options, &mut progress))
 }
 
 /// Prints what a campaign, a shard or a merge did, or its error.

@@ -11,6 +11,7 @@ mod fmt;
 pub mod load;
 mod model;
 mod parallelise;
+mod progress;
 pub mod render;
 mod replay;
 mod reverse;

@@ -2,8 +2,8 @@
 
 use dynarole_core::driver;
 pub use dynarole_core::driver::robot_name;
-use dynarole_core::robot::RobotApi;
 use dynarole_core::RobotRegistry;
+use dynarole_input::program::{self, PluginError};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -24,7 +24,8 @@ pub fn read_source(path: &Path) -> Result<String, Failure> {
 }
 
 /// Built-in robots, then `--plugin` files, then a `NAME.robot.toml` beside `source_path`
-/// for a `robot NAME;` that is still unknown (the order is the driver's).
+/// for a `robot NAME;` that is still unknown (`dynarole_input::program`, the loader campaigns
+/// use too).
 pub fn registry(
     args: &PluginArgs,
     source_path: &Path,
@@ -33,17 +34,19 @@ pub fn registry(
     let plugins = args
         .plugins
         .iter()
-        .map(|path| load_plugin(path))
-        .collect::<Result<Vec<_>, _>>()?;
-    driver::registry(robot_name, plugins, |file| {
-        let beside = source_path.with_file_name(file);
-        beside.is_file().then(|| load_plugin(&beside)).transpose()
-    })
+        .map(|path| program::read_plugin(path, &mut |_, _| {}))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(plugin_failure)?;
+    program::registry(source_path, robot_name, plugins, &mut |_, _| {}).map_err(plugin_failure)
 }
 
-fn load_plugin(path: &Path) -> Result<RobotApi, Failure> {
-    let text = read_source(path)?;
-    RobotApi::from_toml(&text).map_err(|e| Failure::toml(path, text.clone(), e))
+/// A plugin that cannot be read is bad input, as any unreadable file; one that is not a
+/// plugin shows its TOML error.
+fn plugin_failure(error: PluginError) -> Failure {
+    match error {
+        PluginError::Read(e) => Failure::Input(e.to_string()),
+        PluginError::Invalid { path, text, error } => Failure::toml(&path, text, *error),
+    }
 }
 
 /// Reads, parses and checks a source file: renders its errors and exits 1, or hands the checked

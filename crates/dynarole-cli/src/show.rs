@@ -1,9 +1,11 @@
-//! `dynarole show`: a picture of a configuration (`dynarole_campaign::picture`: SVG, or PNG
-//! rasterised from it), written to the file named.
+//! `dynarole show`: a picture of a configuration (`show/picture.rs`: SVG, or PNG rasterised
+//! from it), written to the file named.
+
+mod picture;
 
 use crate::load::Failure;
 use crate::world::read_configuration;
-pub use dynarole_campaign::picture::render_svg;
+pub use picture::render_svg;
 use std::path::Path;
 use std::process::ExitCode;
 

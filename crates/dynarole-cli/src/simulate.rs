@@ -112,7 +112,7 @@ pub fn run(args: &SimulateArgs) -> Result<ExitCode, Failure> {
                 "--record, --html and --poses-at record one run: not with --repeat".into(),
             ));
         }
-        let mode = dynarole_campaign::ProgressMode::for_stderr().map_err(Failure::Usage)?;
+        let mode = crate::progress::ProgressMode::for_stderr().map_err(Failure::Usage)?;
         let progress = progress::RunProgress::start(mode, args.repeat.max(1), scenario.timeout_ms);
         let mut failed = 0u64;
         for k in 0..args.repeat.max(1) {

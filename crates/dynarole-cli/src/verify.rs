@@ -4,7 +4,7 @@
 use crate::load::{self, Failure};
 use crate::model::Asked;
 use crate::model::{build, failed, with_request, Request, Scene};
-use dynarole_campaign::ProgressMode;
+use crate::progress::ProgressMode;
 use dynarole_verify::{
     BuildOptions, Built, Entry, Header, Observer, Phase, Source, Verdict, VerifyOptions,
 };
@@ -201,7 +201,7 @@ impl Observer for Printer {
 }
 
 /// Progress of one check on stderr, shown as every long command shows it
-/// (`dynarole_campaign::ProgressMode`: a spinner on a terminal, otherwise a line every
+/// (`crate::progress::ProgressMode`: a spinner on a terminal, otherwise a line every
 /// `DYNAROLE_PROGRESS_SECONDS`, none when it is 0). Nothing goes to stdout, whose report stays
 /// deterministic.
 struct Ticker {

@@ -239,8 +239,8 @@ impl Browser {
             .stdin(Stdio::piped())
             .spawn()
             .map_err(|e| Failure::Internal(format!("cannot start ffmpeg: {e}")))?;
-        let mode = dynarole_campaign::ProgressMode::for_stderr().map_err(Failure::Usage)?;
-        let progress = dynarole_campaign::Progress::start(mode, "video", frames, "frames");
+        let mode = crate::progress::ProgressMode::for_stderr().map_err(Failure::Usage)?;
+        let progress = crate::progress::Progress::start(mode, "video", frames, "frames");
         let written = self.write_frames(&mut ffmpeg, frames, step_ms, &progress);
         progress.finish();
         drop(ffmpeg.stdin.take());
@@ -259,7 +259,7 @@ impl Browser {
         ffmpeg: &mut Child,
         frames: u64,
         step_ms: f64,
-        progress: &dynarole_campaign::Progress,
+        progress: &crate::progress::Progress,
     ) -> Result<(), Failure> {
         let Some(stdin) = ffmpeg.stdin.as_mut() else {
             return Err(Failure::Internal("ffmpeg has no input".into()));

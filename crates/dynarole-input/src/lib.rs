@@ -1,7 +1,10 @@
 //! Reading the files users give dynarole (sources, plugins, configurations, scenarios,
 //! campaigns, recordings): the one place that bounds their size and names the file in its
-//! errors. It sits below every crate, so the commands that do not simulate (`check`,
-//! `compile`, `verify`) read their inputs without linking the simulator.
+//! errors, and the one loader of robot plugin files (`program.rs`). It sits below every crate
+//! but the core, so the commands that do not simulate (`check`, `compile`, `verify`) read
+//! their inputs without linking the simulator.
+
+pub mod program;
 
 use std::fmt;
 use std::io::Read;

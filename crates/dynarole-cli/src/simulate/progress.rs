@@ -1,14 +1,12 @@
 //! `simulate`'s progress on stderr, in simulated time: how far the run in progress has come
-//! toward its timeout, so that no long run is silent (a bar on a terminal, else a line every
-//! `DYNAROLE_PROGRESS_SECONDS`, as every long command shows progress; stdout stays the
-//! report's).
+//! toward its timeout, so that no long run is silent (drawn by `crate::progress`, as every
+//! long command's progress is: a bar on a terminal, else a line every
+//! `DYNAROLE_PROGRESS_SECONDS`; stdout stays the report's).
 
-use dynarole_campaign::ProgressMode;
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use crate::progress::{Look, ProgressMode, Shown, Status};
+use indicatif::ProgressBar;
 use std::sync::atomic::{AtomicU64, Ordering};
-use std::sync::mpsc::{channel, Receiver, RecvTimeoutError, Sender};
 use std::sync::Arc;
-use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
 /// How often the bar is brought up to the simulator's clock.
@@ -17,9 +15,7 @@ const BAR_TICK: Duration = Duration::from_millis(200);
 /// Progress of `runs` runs of at most `timeout_ms` simulated milliseconds each.
 pub struct RunProgress {
     shared: Arc<Shared>,
-    bar: Option<ProgressBar>,
-    stop: Option<Sender<()>>,
-    ticker: Option<JoinHandle<()>>,
+    shown: Shown,
 }
 
 struct Shared {
@@ -45,28 +41,16 @@ impl RunProgress {
             started: Instant::now(),
             run_started_ms: AtomicU64::new(0),
         });
-        let bar = (mode == ProgressMode::Bar).then(|| bar(timeout_ms / 1000));
-        let every = match mode {
-            ProgressMode::Off => None,
-            ProgressMode::Bar => Some(BAR_TICK),
-            ProgressMode::Lines { every } => Some(every),
+        // A bar of simulated seconds up to the timeout.
+        let look = Look {
+            template: "simulate: {elapsed_precise} [{wide_bar}] {pos}/{len} simulated s, {msg}"
+                .into(),
+            length: (timeout_ms / 1000).max(1),
+            steady: None,
+            poll: Some(BAR_TICK),
         };
-        let mut progress = RunProgress {
-            shared,
-            bar,
-            stop: None,
-            ticker: None,
-        };
-        if let Some(every) = every {
-            let (stop, stopped) = channel::<()>();
-            let shared = Arc::clone(&progress.shared);
-            let bar = progress.bar.clone();
-            progress.stop = Some(stop);
-            progress.ticker = Some(std::thread::spawn(move || {
-                tick(&shared, bar.as_ref(), every, &stopped);
-            }));
-        }
-        progress
+        let shown = Shown::start(mode, look, Arc::clone(&shared) as Arc<dyn Status>);
+        RunProgress { shared, shown }
     }
 
     /// The clock the simulator sets (`dynarole_sim::Outputs::clock`).
@@ -85,35 +69,16 @@ impl RunProgress {
 
     /// Runs `f` (which prints) with the bar out of the way.
     pub fn suspend<R>(&self, f: impl FnOnce() -> R) -> R {
-        match &self.bar {
-            Some(bar) => bar.suspend(f),
-            None => f(),
-        }
+        self.shown.suspend(f)
     }
 
     /// Stops showing progress (the bar is cleared; lines end with one for the finish).
-    pub fn finish(mut self) {
-        self.stop_now();
-    }
-
-    fn stop_now(&mut self) {
-        self.stop = None;
-        if let Some(ticker) = self.ticker.take() {
-            let _ = ticker.join();
-        }
-        if let Some(bar) = self.bar.take() {
-            bar.finish_and_clear();
-        }
+    pub fn finish(self) {
+        self.shown.finish();
     }
 }
 
-impl Drop for RunProgress {
-    fn drop(&mut self) {
-        self.stop_now();
-    }
-}
-
-impl Shared {
+impl Status for Shared {
     /// `simulate: run 1 of 1: 52000.0 of at most 1000000.0 simulated s (5.2 %), 10400 x real
     /// time, 5 s elapsed`
     fn line(&self) -> String {
@@ -144,37 +109,11 @@ impl Shared {
             self.runs
         )
     }
-}
 
-/// Every `every` until `stopped`: the bar moved to the clock, or a line (a thread rather
-/// than a check in the simulator's loop: the simulator only stores its clock). Lines end
-/// with one for the finish when any was printed.
-fn tick(shared: &Shared, bar: Option<&ProgressBar>, every: Duration, stopped: &Receiver<()>) {
-    let mut printed = false;
-    while let Err(RecvTimeoutError::Timeout) = stopped.recv_timeout(every) {
-        match bar {
-            Some(bar) => {
-                bar.set_position(shared.clock.load(Ordering::Relaxed) / 1_000_000);
-                let run = shared.done.load(Ordering::Relaxed) + 1;
-                bar.set_message(format!("run {} of {}", run.min(shared.runs), shared.runs));
-            }
-            None => {
-                eprintln!("{}", shared.line());
-                printed = true;
-            }
-        }
+    /// The bar moved to the clock (the simulator only stores its clock).
+    fn update(&self, bar: &ProgressBar) {
+        bar.set_position(self.clock.load(Ordering::Relaxed) / 1_000_000);
+        let run = self.done.load(Ordering::Relaxed) + 1;
+        bar.set_message(format!("run {} of {}", run.min(self.runs), self.runs));
     }
-    if printed {
-        eprintln!("{}", shared.line());
-    }
-}
-
-/// A bar of simulated seconds up to the timeout.
-fn bar(timeout_s: u64) -> ProgressBar {
-    let bar = ProgressBar::with_draw_target(Some(timeout_s.max(1)), ProgressDrawTarget::stderr());
-    let template = "simulate: {elapsed_precise} [{wide_bar}] {pos}/{len} simulated s, {msg}";
-    if let Ok(style) = ProgressStyle::with_template(template) {
-        bar.set_style(style);
-    }
-    bar
 }

@@ -1,15 +1,18 @@
 //! A picture of a configuration (`dynarole show`), drawn as SVG with plotters like the
-//! campaign's plots (PNG through the same `rasterise_svg`). The view direction is chosen per
-//! configuration so that no module hides another; modules are painted far ones first and
-//! paler with distance; every module is labelled, every latch is a bar between the two
-//! modules with its connector numbers at each end, and an axis gizmo and a legend explain
-//! the picture. The canvas has a fixed maximum size whatever the coordinates.
+//! campaign's plots (PNG through the same `dynarole_campaign::rasterise_svg`). The view
+//! direction is chosen per configuration so that no module hides another; modules are
+//! painted far ones first and paler with distance; every module is labelled, every latch is a
+//! bar between the two modules with its connector numbers at each end, and an axis gizmo and
+//! a legend explain the picture. The canvas has a fixed maximum size whatever the
+//! coordinates. What differs from robot to robot (the bodies, their shapes, the legend's
+//! words) is in `picture/robots.rs`.
 
-use crate::plot::bounds;
-use dynarole_world::{AtronConfiguration, Configuration, Latch, MtranConfiguration, Port};
+mod robots;
+
+use dynarole_campaign::bounds;
+use dynarole_world::Configuration;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
-use std::collections::BTreeSet;
 
 /// Pixels per lattice unit when the robot is small (larger robots are scaled down to fit).
 const MAX_SCALE_PX: f64 = 120.0;
@@ -23,11 +26,6 @@ const MARGIN_PX: f64 = 30.0;
 const HEADER_PX: f64 = 40.0;
 /// Room for the gizmo and the legend below the robot.
 const FOOTER_PX: f64 = 110.0;
-/// Drawn radius of an ATRON module, in lattice units (smaller than the real 0.69 so that
-/// neighbours seen at a slant stay apart).
-const ATRON_RADIUS: f64 = 0.36;
-/// Drawn half-size of an M-TRAN block, in block pitches.
-const MTRAN_HALF_BLOCK: f64 = 0.36;
 /// A module stays visible however far apart the robot is spread.
 const MIN_RADIUS_PX: f64 = 4.0;
 /// A module drawn smaller than this radius (pixels) has its name beside it rather than on it.
@@ -148,100 +146,12 @@ struct Scene {
 struct Body {
     centre: [f64; 3],
     name: String,
-    kind: BodyKind,
-}
-
-enum BodyKind {
-    /// An ATRON module and its north->south axis.
-    Sphere { axis: [f64; 3] },
-    /// An M-TRAN block, north (male connectors) or south.
-    Cube { north: bool },
+    kind: robots::BodyKind,
 }
 
 /// A latch between two bodies, with the connector number at each end.
 struct LatchBar {
     ends: [([f64; 3], u8); 2],
-}
-
-fn atron_scene(config: &AtronConfiguration) -> Scene {
-    let bodies = config
-        .modules()
-        .iter()
-        .map(|m| Body {
-            centre: m.position.map(f64::from),
-            name: m.name.clone(),
-            kind: BodyKind::Sphere {
-                axis: m.orientation.axis().map(f64::from),
-            },
-        })
-        .collect();
-    let end = |p: Port| {
-        config
-            .module(p.module)
-            .map(|m| (m.position.map(f64::from), p.connector))
-    };
-    let latches = latch_bars(config.latches(), end);
-    Scene {
-        bodies,
-        links: Vec::new(),
-        latches,
-        radius: ATRON_RADIUS,
-    }
-}
-
-/// A bar for every latch whose two ends `end` can place (a point and the connector number).
-fn latch_bars(
-    latches: &BTreeSet<Latch>,
-    end: impl Fn(Port) -> Option<([f64; 3], u8)>,
-) -> Vec<LatchBar> {
-    latches
-        .iter()
-        .filter_map(|l| {
-            Some(LatchBar {
-                ends: [end(l.male)?, end(l.female)?],
-            })
-        })
-        .collect()
-}
-
-/// Centres of an M-TRAN module's blocks (north, south) in block pitches.
-fn block_centres(config: &MtranConfiguration, module: usize) -> Option<[[f64; 3]; 2]> {
-    let pitch = |v: i32| f64::from(v) / 2.0;
-    config.modules().get(module).map(|m| {
-        [
-            m.north_block().centre_quarter_pitch.map(pitch),
-            m.south_block().centre_quarter_pitch.map(pitch),
-        ]
-    })
-}
-
-fn mtran_scene(config: &MtranConfiguration) -> Scene {
-    let mut bodies = Vec::new();
-    let mut links = Vec::new();
-    for (i, m) in config.modules().iter().enumerate() {
-        let Some([north, south]) = block_centres(config, i) else {
-            continue;
-        };
-        for (centre, north) in [(north, true), (south, false)] {
-            bodies.push(Body {
-                centre,
-                name: m.name.clone(),
-                kind: BodyKind::Cube { north },
-            });
-        }
-        links.push([north, south]);
-    }
-    let end = |p: Port| {
-        block_centres(config, p.module)
-            .map(|[n, s]| (if p.connector < 3 { n } else { s }, p.connector))
-    };
-    let latches = latch_bars(config.latches(), end);
-    Scene {
-        bodies,
-        links,
-        latches,
-        radius: MTRAN_HALF_BLOCK,
-    }
 }
 
 /// Where the scene lands on the canvas.
@@ -317,10 +227,7 @@ fn ipx(p: (f64, f64)) -> (i32, i32) {
 
 /// The configuration as an SVG document.
 pub fn render_svg(config: &Configuration) -> Result<String, String> {
-    let scene = match config {
-        Configuration::Atron(c) => atron_scene(c),
-        Configuration::Mtran(c) => mtran_scene(c),
-    };
+    let scene = robots::scene(config);
     let centres: Vec<[f64; 3]> = scene.bodies.iter().map(|b| b.centre).collect();
     let view = choose_view(&centres, 2.6 * scene.radius);
     let layout = Layout::new(&scene, view);
@@ -366,7 +273,7 @@ fn draw_picture<'a>(
         "{} ({}, {} modules)",
         config.metadata().name,
         config.robot().name(),
-        module_count(config)
+        robots::module_count(config)
     );
     if !labelled {
         title.push_str(&format!(
@@ -377,13 +284,6 @@ fn draw_picture<'a>(
     let bottom = i32::try_from(layout.size.1).unwrap_or(i32::MAX);
     draw_gizmo(root, &layout.view, (55, bottom - 50))?;
     draw_legend(root, config, layout, (130, bottom - FOOTER_PX as i32 + 12))
-}
-
-fn module_count(config: &Configuration) -> usize {
-    match config {
-        Configuration::Atron(c) => c.modules().len(),
-        Configuration::Mtran(c) => c.modules().len(),
-    }
 }
 
 /// Something painted in depth order.
@@ -414,7 +314,7 @@ fn draw_in_depth_order<'a>(root: &Area<'a>, scene: &Scene, layout: &Layout) -> D
     items.sort_by(|a, b| b.0.total_cmp(&a.0));
     for (_, item) in &items {
         match item {
-            Item::Body(body) => draw_body(root, body, scene.radius, layout)?,
+            Item::Body(body) => robots::draw_body(root, body, scene.radius, layout)?,
             Item::Link(link) => draw_bar(root, layout, **link, scene.radius, LINK, 9)?,
             Item::Latch(latch) => {
                 let ends = latch.ends.map(|(p, _)| p);
@@ -454,96 +354,6 @@ fn rim_spots(layout: &Layout, ends: [[f64; 3]; 2], radius: f64) -> [(f64, f64); 
     };
     let r = layout.radius_px(radius) * 0.8;
     [(a.0 + dx * r, a.1 + dy * r), (b.0 - dx * r, b.1 - dy * r)]
-}
-
-fn draw_body<'a>(root: &Area<'a>, body: &Body, radius: f64, layout: &Layout) -> DrawResult<'a> {
-    match body.kind {
-        BodyKind::Sphere { axis } => draw_sphere(root, body.centre, axis, radius, layout),
-        BodyKind::Cube { north } => draw_cube(root, body.centre, north, radius, layout),
-    }
-}
-
-/// An ATRON module: a disc whose halves are its hemispheres, split across the projected axis.
-/// When the axis points (almost) at the viewer only the facing hemisphere shows.
-fn draw_sphere<'a>(
-    root: &Area<'a>,
-    centre: [f64; 3],
-    axis: [f64; 3],
-    radius: f64,
-    layout: &Layout,
-) -> DrawResult<'a> {
-    let c = layout.px(centre);
-    let r = layout.radius_px(radius);
-    let (north, south) = (layout.shade(NORTH, centre), layout.shade(SOUTH, centre));
-    let (ax, ay) = layout.view.screen(axis);
-    let south_faces = dot(axis, layout.view.toward) > 0.0;
-    let back = if ax.hypot(ay) < 0.25 && south_faces {
-        south
-    } else {
-        north
-    };
-    root.draw(&Circle::new(ipx(c), r.round() as i32, back.filled()))?;
-    if ax.hypot(ay) >= 0.25 {
-        root.draw(&Polygon::new(half_disc(c, r, ay.atan2(ax)), south.filled()))?;
-    }
-    let outline = layout.shade(BLACK, centre);
-    root.draw(&Circle::new(
-        ipx(c),
-        r.round() as i32,
-        outline.stroke_width(1),
-    ))
-}
-
-/// The half of a disc (centre `c`, radius `r`) on the side of direction `towards` (radians).
-fn half_disc(c: (f64, f64), r: f64, towards: f64) -> Vec<(i32, i32)> {
-    (0..=36)
-        .map(|i| {
-            let angle =
-                towards - std::f64::consts::FRAC_PI_2 + std::f64::consts::PI * f64::from(i) / 36.0;
-            ipx((c.0 + r * angle.cos(), c.1 + r * angle.sin()))
-        })
-        .collect()
-}
-
-/// An M-TRAN block: an axis-aligned cube, its visible faces lit from above.
-fn draw_cube<'a>(
-    root: &Area<'a>,
-    centre: [f64; 3],
-    north: bool,
-    half: f64,
-    layout: &Layout,
-) -> DrawResult<'a> {
-    let base = layout.shade(if north { NORTH } else { SOUTH }, centre);
-    let outline = layout.shade(BLACK, centre);
-    for axis in 0..3 {
-        let sign = if layout.view.toward[axis] >= 0.0 {
-            1.0
-        } else {
-            -1.0
-        };
-        let face = cube_face(centre, half, axis, sign)
-            .map(|p| ipx(layout.px(p)))
-            .to_vec();
-        // The top face is lightest, the two side faces apart by shade.
-        let light = [0.15, 0.4, 0.0][axis];
-        root.draw(&Polygon::new(face.clone(), pale(base, light).filled()))?;
-        let mut closed = face;
-        closed.push(closed[0]);
-        root.draw(&PathElement::new(closed, outline.stroke_width(1)))?;
-    }
-    Ok(())
-}
-
-/// The four corners of the face of a cube normal to `axis` on the `sign` side.
-fn cube_face(centre: [f64; 3], half: f64, axis: usize, sign: f64) -> [[f64; 3]; 4] {
-    let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
-    [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)].map(|(a, b)| {
-        let mut p = centre;
-        p[axis] += sign * half;
-        p[u] += a * half;
-        p[v] += b * half;
-        p
-    })
 }
 
 /// Each end's connector number in a small white badge on the body's rim, towards the other end.
@@ -636,16 +446,7 @@ fn draw_legend<'a>(
     layout: &Layout,
     at: (i32, i32),
 ) -> DrawResult<'a> {
-    let (north, south) = match config {
-        Configuration::Atron(_) => (
-            "north hemisphere (connectors 0-3)",
-            "south hemisphere (connectors 4-7)",
-        ),
-        Configuration::Mtran(_) => (
-            "north block (male connectors 0-2)",
-            "south block (female connectors 3-5); grey bar: the module's link",
-        ),
-    };
+    let (north, south) = robots::legend_words(config);
     let rows = [
         (Some(NORTH), north.to_string()),
         (Some(SOUTH), south.to_string()),
