@@ -2,8 +2,9 @@
 //! top-level modules of any crate (read from the `crate::` and `super::` paths of its
 //! sources), no crate depending on one after it in ARCHITECTURE.md's dependency order (from
 //! `cargo metadata`), `compile` not linking the simulator, no two C files of `runtime/` calling
-//! each other (from the functions each defines and the names each uses), and no Makefile or
-//! Rust file but `runtime/dr_warn.mk` spelling a warning flag.
+//! each other (from the functions each defines and the names each uses), no Makefile or
+//! Rust file but `runtime/dr_warn.mk` spelling a warning flag, and trace events named only
+//! through their vocabulary (`dynarole_recording::TraceEvent`).
 
 use serde_json::Value;
 use std::collections::{BTreeMap, BTreeSet};
@@ -1054,4 +1055,171 @@ fn a_warning_flag_is_found_outside_comments() {
         ),
         vec![2]
     );
+}
+
+// ---------------------------------------------------------------------------------------
+// Trace events: one vocabulary (`crates/dynarole-recording/src/trace_event.rs`).
+
+/// The functions that write a trace event, as (file, the start of their definition): each
+/// takes the vocabulary's enum, so no caller can pass a word.
+const EVENT_WRITERS: &[(&str, &str)] = &[
+    ("crates/dynarole-sim/src/state.rs", "pub fn log("),
+    ("crates/dynarole-sim/src/recorded.rs", "pub fn row("),
+    ("crates/dynarole-sim/src/ops.rs", "fn violation("),
+    ("crates/dynarole-recording/src/builder.rs", "pub fn event("),
+    ("crates/dynarole-recording/src/builder.rs", "fn mark("),
+];
+
+/// The calls of the writers' names in Rust source, whose arguments must hold no event word.
+const EVENT_CALLS: &[&str] = &[".log(", ".row(", ".violation(", ".event(", ".mark("];
+
+/// The text of a function's parameters: from `head` (which ends with its `(`) to its `)`.
+fn parameters<'t>(text: &'t str, head: &str) -> Option<&'t str> {
+    let start = text.find(head)? + head.len();
+    let end = text[start..].find(')')? + start;
+    Some(&text[start..end])
+}
+
+/// The string literals (their text) passed to a call starting at each `callee` in `text`,
+/// as (line, literal).
+fn call_literals(text: &str, callee: &str) -> Vec<(usize, String)> {
+    let mut out = Vec::new();
+    for (at, _) in text.match_indices(callee) {
+        let line = text[..at].matches('\n').count() + 1;
+        let mut depth = 0;
+        let mut literal: Option<String> = None;
+        let mut escaped = false;
+        for c in text[at + callee.len() - 1..].chars() {
+            if let Some(l) = literal.as_mut() {
+                match (escaped, c) {
+                    (false, '\\') => escaped = true,
+                    (false, '"') => out.push((line, literal.take().unwrap_or_default())),
+                    _ => {
+                        escaped = false;
+                        l.push(c);
+                    }
+                }
+                continue;
+            }
+            match c {
+                '"' => literal = Some(String::new()),
+                '(' => depth += 1,
+                ')' => depth -= 1,
+                _ => {}
+            }
+            if depth == 0 {
+                break;
+            }
+        }
+    }
+    out
+}
+
+/// Where a JavaScript source maps an event or a marker kind to a colour by name
+/// (`done: '#2ca02c'`, `"reset": "#d62728"`), or keeps one of the old colour tables.
+fn js_colour_maps(text: &str, names: &[&str]) -> Vec<usize> {
+    let mut out = Vec::new();
+    for (n, line) in text.lines().enumerate() {
+        let spaced: String = line.split_whitespace().collect();
+        let keyed = names.iter().any(|name| {
+            [
+                format!("{name}:'#"),
+                format!("'{name}':'#"),
+                format!("\"{name}\":\"#"),
+            ]
+            .iter()
+            .any(|k| spaced.contains(k.as_str()))
+        });
+        if keyed || line.contains("KIND_COLOURS") || line.contains("OUTCOME_COLOURS") {
+            out.push(n + 1);
+        }
+    }
+    out
+}
+
+fn event_words() -> Vec<&'static str> {
+    let events = dynarole_recording::EVENTS.iter().map(|e| e.name);
+    events
+        .chain(dynarole_recording::MARKS.iter().map(|m| m.name))
+        .collect()
+}
+
+/// Problems of the Rust sources `files` (path from the workspace, text): a writer not taking
+/// the enum, or an event word passed to a writer's name.
+fn rust_event_problems(files: &[(String, String)], words: &[&str]) -> Vec<String> {
+    let mut problems = Vec::new();
+    for (file, head) in EVENT_WRITERS {
+        let Some((_, text)) = files.iter().find(|(p, _)| p == file) else {
+            problems.push(format!("{file}: not found (the writer `{head}` moved?)"));
+            continue;
+        };
+        if !parameters(text, head).is_some_and(|p| p.contains("TraceEvent")) {
+            problems.push(format!(
+                "{file}: `{head}..)` must take a `TraceEvent`, not a word"
+            ));
+        }
+    }
+    for (path, text) in files {
+        if path.ends_with("trace_event.rs") || path.contains("/tests/") {
+            continue;
+        }
+        for callee in EVENT_CALLS {
+            for (line, literal) in call_literals(text, callee) {
+                if words.contains(&literal.as_str()) {
+                    problems.push(format!(
+                        "{path}:{line}: the event `{literal}` spelled as a word (take \
+                         dynarole_recording::TraceEvent)"
+                    ));
+                }
+            }
+        }
+    }
+    problems
+}
+
+#[test]
+fn trace_events_are_named_only_by_their_vocabulary() {
+    let root = workspace();
+    let words = event_words();
+    let rust = tree_files(&root.join("crates"), &|name| name.ends_with(".rs"));
+    let mut problems = rust_event_problems(&rust, &words);
+    let js = tree_files(&root.join("crates/dynarole-viewer/web"), &|name| {
+        name.ends_with(".js")
+    });
+    assert!(!js.is_empty(), "the viewer's sources are found");
+    for (path, text) in &js {
+        for line in js_colour_maps(text, &words) {
+            problems.push(format!(
+                "{path}:{line}: a colour by event name (take the page's vocabulary, from \
+                 dynarole_recording::vocabulary_json)"
+            ));
+        }
+    }
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
+
+#[test]
+fn a_word_for_an_event_is_found_in_a_call_and_in_a_colour_map() {
+    let words = ["start", "reset"];
+    let state = "pub fn log(&mut self, module: Option<usize>, event: &str) {}\n\
+                 fn f(s: &mut State) {\n    s.log(Some(m), \"start\", format!(\"{x}\"));\n}\n";
+    let files = vec![(
+        "crates/dynarole-sim/src/state.rs".to_string(),
+        state.to_string(),
+    )];
+    let problems = rust_event_problems(&files, &words);
+    assert!(
+        problems
+            .iter()
+            .any(|p| p.contains("state.rs: `pub fn log(..)`")),
+        "{problems:?}"
+    );
+    assert!(
+        problems
+            .iter()
+            .any(|p| p.contains("state.rs:3: the event `start`")),
+        "{problems:?}"
+    );
+    let js = "const A = { reset: '#d62728' };\nconst B = { running: '#1f77b4' };\n";
+    assert_eq!(js_colour_maps(js, &words), vec![1]);
 }

@@ -4,7 +4,7 @@
 //! writes what it shows into its DOM, which the browser dumps. Checked: module colours on the
 //! canvas, every module's position against the simulator's `--poses-at`, the statement
 //! highlight and the state panel against the trace, the fault marker where the scenario put
-//! it, and no request of any kind.
+//! it, the legend listing the trace event vocabulary, and no request of any kind.
 
 mod common;
 
@@ -206,6 +206,7 @@ fn check_page(browser: &Path, run: &Simulated, times: &[f64], program: &str) -> 
         "the page made requests"
     );
     assert_eq!(shown["violations"], Value::Array(vec![]));
+    check_legend(&shown["legend"]);
     // Both hemisphere colours are on the canvas.
     let colours = &shown["colours"];
     let total = colours["pixels"].as_f64().expect("pixels");
@@ -237,6 +238,38 @@ fn check_page(browser: &Path, run: &Simulated, times: &[f64], program: &str) -> 
     }
     assert!(moved, "no sample caught a module between lattice sites");
     shown
+}
+
+/// The legend lists every marker kind with the events that place it, and every bar colour
+/// with the event that ends it, in the vocabulary's colours.
+fn check_legend(legend: &Value) {
+    use dynarole_recording::{Operation, EVENTS, MARKS};
+    let entries = legend.as_array().expect("a legend");
+    // A marker and a bar may share a name (`refused`): an entry is its kind and its name.
+    let entry = |kind: &str, name: &str| {
+        entries
+            .iter()
+            .find(|e| e["kind"] == kind && e["name"] == name)
+            .unwrap_or_else(|| panic!("no {kind} {name} in the legend {legend}"))
+    };
+    for mark in MARKS {
+        let events: Vec<&str> = EVENTS
+            .iter()
+            .filter(|e| e.mark == Some(mark.kind))
+            .map(|e| e.name)
+            .collect();
+        let shown = entry("marker", mark.name);
+        assert_eq!(shown["colour"], mark.colour);
+        assert_eq!(shown["events"], serde_json::json!(events), "{}", mark.name);
+        let text = shown["text"].as_str().expect("text");
+        assert!(events.iter().all(|e| text.contains(e)), "{text}");
+    }
+    for e in EVENTS {
+        if let Operation::Ends(colour) = e.operation {
+            assert_eq!(entry("bar", e.name)["colour"], colour);
+            assert_eq!(entry("bar", e.name)["events"], serde_json::json!([e.name]));
+        }
+    }
 }
 
 /// The highlighted statements are those running at `t`, shown with their source text.

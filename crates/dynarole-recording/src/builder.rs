@@ -7,6 +7,7 @@ use crate::format::{
     Recording, SourceText, StatementInfo, Turn, FORMAT_VERSION,
 };
 use crate::pose::{latches, poses};
+use crate::trace_event::{Mark, Operation, TraceEvent};
 use dynarole_core::check::ResolvedStatement;
 use dynarole_core::robot::RobotApi;
 use dynarole_replay::RobotWorld;
@@ -21,8 +22,6 @@ pub const KEYFRAME_INTERVAL_MS: f64 = 1000.0;
 pub const MAX_PACKETS: usize = 200_000;
 /// Trace lines of dropped packets kept (the other trace lines are always kept).
 pub const MAX_PACKET_EVENTS: usize = 200_000;
-/// The trace's events for a packet that did not arrive.
-const PACKET_EVENTS: [&str; 6] = ["lost", "dead-link", "collision", "blocked", "broken", "off"];
 
 /// The sequence's source file, for the statement highlight.
 #[derive(Clone, Copy, Debug)]
@@ -40,7 +39,7 @@ pub struct Builder<'r> {
     start: Configuration,
     recording: Recording,
     /// Per (event, link) of the faults that strike every packet, the time of its last drop.
-    last_link_drop: Vec<(String, f64)>,
+    last_link_drop: Vec<(TraceEvent, String, f64)>,
     powered_once: Vec<bool>,
     /// Interval keyframes written so far (some left out), and whether the world changed
     /// since the last one written.
@@ -119,28 +118,27 @@ impl<'r> Builder<'r> {
         Ok(builder)
     }
 
-    /// One trace line. Operation events (`start`, `retry`, `reissue`, `done`, `refused`,
-    /// `interrupt`) name their statement as `#N` at the start of `detail`.
+    /// One trace line. Events that start or end an operation (the vocabulary's
+    /// `Operation`) name their statement as `#N` at the start of `detail`.
     pub fn event(
         &mut self,
         time_ms: f64,
         module: Option<usize>,
-        event: &str,
+        event: TraceEvent,
         state: &str,
         detail: &str,
     ) {
         self.keyframes_until(time_ms, false);
         let statement = statement_of(detail).filter(|s| *s < self.statements.len());
         if let (Some(m), Some(s)) = (module, statement) {
-            match event {
-                "start" | "retry" | "reissue" => self.op_start(time_ms, m, s),
-                "done" => self.op_end(time_ms, m, s, "done"),
-                "refused" | "interrupt" => self.op_end(time_ms, m, s, event),
-                _ => {}
+            match event.spec().operation {
+                Operation::Starts => self.op_start(time_ms, m, s),
+                Operation::Ends(_) => self.op_end(time_ms, m, s, event.name()),
+                Operation::None => {}
             }
         }
         self.mark(time_ms, module, event, statement, detail);
-        if PACKET_EVENTS.contains(&event) {
+        if event.spec().dropped_packet {
             if self.packet_events >= MAX_PACKET_EVENTS {
                 self.recording.omitted_packet_events += 1;
                 return;
@@ -150,7 +148,7 @@ impl<'r> Builder<'r> {
         self.recording.events.push(Event {
             time_ms,
             module,
-            event: event.into(),
+            event: event.name().into(),
             state: state.into(),
             detail: detail.into(),
             statement,
@@ -168,7 +166,7 @@ impl<'r> Builder<'r> {
         duration: &dyn Fn(usize, Option<&Turn>) -> f64,
     ) -> (f64, Option<String>) {
         let label = format!("#{s} {}", self.statement_text(s));
-        self.event(start_ms, Some(m), "start", "-", &label);
+        self.event(start_ms, Some(m), TraceEvent::Start, "-", &label);
         let turn = self.recording.motions.last().and_then(|x| x.turn.clone());
         let end_ms = start_ms + duration(s, turn.as_ref());
         let refusal = self.statements.get(s).and_then(|statement| {
@@ -178,11 +176,11 @@ impl<'r> Builder<'r> {
                 .err()
         });
         match &refusal {
-            None => self.event(end_ms, Some(m), "done", "-", &label),
+            None => self.event(end_ms, Some(m), TraceEvent::Done, "-", &label),
             Some(reason) => self.event(
                 end_ms,
                 Some(m),
-                "refused",
+                TraceEvent::Refused,
                 "-",
                 &format!("{label}: {reason}"),
             ),
@@ -376,42 +374,34 @@ impl<'r> Builder<'r> {
         }
     }
 
-    /// Faults and violations on the timeline; the faults that strike every packet (blocked
-    /// and dead links) once a second per module.
+    /// The event's marker on the timeline (the vocabulary's `mark`), but for a module's
+    /// first power-on (every module has one) and for a link's drops after the first of an
+    /// episode (a blocked or dead link strikes every packet).
     fn mark(
         &mut self,
         time_ms: f64,
         module: Option<usize>,
-        event: &str,
+        event: TraceEvent,
         statement: Option<usize>,
         detail: &str,
     ) {
-        let Some(m) = module else { return };
-        let kind = match event {
-            "power-on" => {
-                let first = !self.powered_once.get(m).copied().unwrap_or(true);
-                if let Some(p) = self.powered_once.get_mut(m) {
-                    *p = true;
-                }
-                if first {
-                    return;
-                }
-                "power"
-            }
-            "power-off" => "power",
-            "reset" => "reset",
-            "S1" | "S2" | "S3" | "violation" => "violation",
-            "refused" => "refused",
-            "blocked" | "dead-link" => {
-                if !self.new_link_episode(event, detail, time_ms) {
-                    return;
-                }
-                "link"
-            }
-            _ => return,
+        let (Some(m), Some(kind)) = (module, event.mark()) else {
+            return;
         };
+        if event == TraceEvent::PowerOn {
+            let first = !self.powered_once.get(m).copied().unwrap_or(true);
+            if let Some(p) = self.powered_once.get_mut(m) {
+                *p = true;
+            }
+            if first {
+                return;
+            }
+        }
+        if kind == Mark::Link && !self.new_link_episode(event, detail, time_ms) {
+            return;
+        }
         let what = match statement {
-            Some(_) if event != "refused" => {
+            Some(_) if event != TraceEvent::Refused => {
                 format!("{event} on {}: {detail}", self.module_name(m))
             }
             Some(s) => format!("refused #{s} on {}", self.module_name(m)),
@@ -419,7 +409,7 @@ impl<'r> Builder<'r> {
         };
         self.recording.markers.push(Marker {
             time_ms,
-            kind: kind.into(),
+            kind: kind.name().into(),
             modules: vec![m],
             label: what.trim_end().into(),
         });
@@ -429,19 +419,18 @@ impl<'r> Builder<'r> {
 impl Builder<'_> {
     /// Whether a blocked or dead link's drop starts an episode (no drop of the same kind on
     /// the same link in the last `LINK_EPISODE_GAP_MS`): one marker per episode, not per packet.
-    fn new_link_episode(&mut self, event: &str, detail: &str, time_ms: f64) -> bool {
+    fn new_link_episode(&mut self, event: TraceEvent, detail: &str, time_ms: f64) -> bool {
         // The detail is `M3.C0 <- M5.C1 (17 bytes)`: the link is what precedes the size.
         let link = detail.split(" (").next().unwrap_or(detail);
-        let key = format!("{event} {link}");
-        let slot = self.last_link_drop.iter_mut().find(|(k, _)| *k == key);
+        let slot = (self.last_link_drop.iter_mut()).find(|(e, l, _)| *e == event && l == link);
         match slot {
-            Some((_, last)) => {
+            Some((_, _, last)) => {
                 let new = time_ms - *last > LINK_EPISODE_GAP_MS;
                 *last = time_ms;
                 new
             }
             None => {
-                self.last_link_drop.push((key, time_ms));
+                self.last_link_drop.push((event, link.to_string(), time_ms));
                 true
             }
         }

@@ -1,5 +1,6 @@
 //! The recording's serde types: the schema documented in `docs/viewer.md`.
 
+use crate::trace_event::{unknown_event, TraceEvent, MARKS};
 use serde::{Deserialize, Serialize};
 
 /// Version of the format; a reader refuses any other.
@@ -102,6 +103,7 @@ pub struct Event {
     pub time_ms: f64,
     /// Module index (`None`: the whole run, e.g. `timeout`).
     pub module: Option<usize>,
+    /// A [`TraceEvent`]'s name (`Recording::check` refuses any other word).
     pub event: String,
     /// The module's protocol state as its runtime describes it (`-`: none).
     pub state: String,
@@ -227,7 +229,32 @@ impl Recording {
             return Err("field `events` or `markers`: a module out of range".into());
         }
         self.check_statements()?;
-        self.check_times()
+        self.check_times()?;
+        self.check_words()
+    }
+
+    /// Every event is one of the vocabulary's and every marker one of its kinds: the page
+    /// colours and explains them from that table.
+    fn check_words(&self) -> Result<(), String> {
+        let unknown = |e: &Event| TraceEvent::parse(&e.event).is_none();
+        if let Some(k) = self.events.iter().position(unknown) {
+            return Err(unknown_event(
+                &format!("events[{k}].event"),
+                &self.events[k].event,
+            ));
+        }
+        let unmarked = |m: &Marker| MARKS.iter().all(|x| x.name != m.kind);
+        match self.markers.iter().position(unmarked) {
+            Some(k) => {
+                let kinds: Vec<&str> = MARKS.iter().map(|x| x.name).collect();
+                Err(format!(
+                    "field `markers[{k}].kind`: `{}` is not a marker kind (one of {})",
+                    self.markers[k].kind,
+                    kinds.join(", ")
+                ))
+            }
+            None => Ok(()),
+        }
     }
 
     /// Every statement index points at a statement, and every statement at its source text

@@ -4,7 +4,7 @@
 //! the fields it follows.
 
 use dynarole_core::{analyze, parse, RobotRegistry};
-use dynarole_recording::{poses_at, Builder, Recording};
+use dynarole_recording::{poses_at, Builder, Recording, TraceEvent};
 use dynarole_world::Configuration;
 
 const SOURCE: &str = "robot atron;\nsequence s {\n    M0.Connector[0].retract();\n    M3.Connector[4].retract();\n    M3.Joint.rotateFromToBy(0, 324, false, 150);\n}\n";
@@ -14,12 +14,12 @@ const SNAKE4: &str = include_str!("../../../examples/mtran/mtran-snake4.json");
 
 fn recording() -> Recording {
     let events = [
-        (0.0, 0, "start", "#0 retract"),
-        (2.0, 3, "start", "#1 retract"),
-        (50.0, 0, "done", "#0 retract"),
-        (52.0, 3, "done", "#1 retract"),
-        (100.0, 3, "start", "#2 turn"),
-        (650.0, 3, "done", "#2 turn"),
+        (0.0, 0, TraceEvent::Start, "#0 retract"),
+        (2.0, 3, TraceEvent::Start, "#1 retract"),
+        (50.0, 0, TraceEvent::Done, "#0 retract"),
+        (52.0, 3, TraceEvent::Done, "#1 retract"),
+        (100.0, 3, TraceEvent::Start, "#2 turn"),
+        (650.0, 3, TraceEvent::Done, "#2 turn"),
     ];
     built(SOURCE, "s", EIGHT, &events, 2000.0)
 }
@@ -30,7 +30,7 @@ fn built(
     source: &str,
     sequence: &str,
     start: &str,
-    events: &[(f64, usize, &str, &str)],
+    events: &[(f64, usize, TraceEvent, &str)],
     end_ms: f64,
 ) -> Recording {
     let parsed = parse(source);
@@ -55,7 +55,7 @@ fn built(
     )
     .expect("builder");
     for (time, module, event, detail) in events {
-        builder.event(*time, Some(*module), event, "-", detail);
+        builder.event(*time, Some(*module), *event, "-", detail);
     }
     builder.finish(end_ms, Vec::new())
 }
@@ -108,19 +108,46 @@ fn the_reader_names_the_field_that_points_nowhere() {
         .contains("keyframes"));
 }
 
+/// An event or a marker kind outside the vocabulary is refused, naming its field: the page
+/// would have no colour nor meaning for it.
+#[test]
+fn the_reader_refuses_a_word_outside_the_vocabulary() {
+    let mut r = recording();
+    r.events[2].event = "frobnicate".into();
+    let text = serde_json::to_string(&r).expect("serialises");
+    let error = Recording::from_json(&text).expect_err("refused");
+    assert!(
+        error.starts_with("field `events[2].event`: `frobnicate` is not a trace event (one of "),
+        "{error}"
+    );
+    r.events[2].event = "done".into();
+    r.markers.push(dynarole_recording::Marker {
+        time_ms: 1.0,
+        kind: "glitch".into(),
+        modules: vec![0],
+        label: "?".into(),
+    });
+    let text = serde_json::to_string(&r).expect("serialises");
+    let error = Recording::from_json(&text).expect_err("refused");
+    assert!(
+        error.starts_with("field `markers[0].kind`: `glitch`"),
+        "{error}"
+    );
+}
+
 /// M-TRAN: the world model lists moving blocks, the turner's own among them; the recording
 /// names each other module once and the turner's moving block as its half, so that every
 /// turn ends (fraction 1) exactly where the world model puts the robot after it.
 #[test]
 fn mtran_turns_move_their_blocks_and_end_where_the_world_does() {
     // The four bends, one after the other, each by its own module (M10..M13 are 0..3).
-    let events: Vec<(f64, usize, &str, String)> = (0u32..4)
+    let events: Vec<(f64, usize, TraceEvent, String)> = (0u32..4)
         .flat_map(|k| {
             let t = 1000.0 * f64::from(k);
             let m = k as usize;
             [
-                (t, m, "start", format!("#{k} turn")),
-                (t + 550.0, m, "done", format!("#{k} turn")),
+                (t, m, TraceEvent::Start, format!("#{k} turn")),
+                (t + 550.0, m, TraceEvent::Done, format!("#{k} turn")),
             ]
         })
         .collect();

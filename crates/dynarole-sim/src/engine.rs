@@ -163,7 +163,7 @@ pub fn run(entry: Entry, state: State) -> Result<Finished, String> {
         .into_inner();
     if !state.all_finished() {
         state.now = timeout;
-        state.log(None, "timeout", "");
+        state.log(None, dynarole_recording::TraceEvent::Timeout, "");
     }
     Ok(Finished { state, addresses })
 }

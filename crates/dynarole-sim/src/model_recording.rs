@@ -4,7 +4,7 @@
 
 use crate::Timing;
 use dynarole_core::check::ResolvedStatement;
-use dynarole_recording::{Builder, ModelStep, Recording};
+use dynarole_recording::{Builder, ModelStep, Recording, TraceEvent};
 use dynarole_replay::Assignment;
 
 /// Why a model run could not be recorded.
@@ -80,7 +80,7 @@ impl ModelRecording<'_> {
                 ModelStep::Issue(s, module) => {
                     let label = format!("#{s} {}", texts.get(*s).map_or("", String::as_str));
                     let m = index(module)?;
-                    builder.event(now, Some(m), "start", &states[m], &label);
+                    builder.event(now, Some(m), TraceEvent::Start, &states[m], &label);
                     let turn = builder.last_turn();
                     issued.retain(|(x, _, _)| x != s);
                     issued.push((*s, now, duration(*s, turn.as_ref())));
@@ -92,22 +92,22 @@ impl ModelRecording<'_> {
                     }
                     let label = format!("#{s} {}", texts.get(*s).map_or("", String::as_str));
                     let m = index(module)?;
-                    builder.event(now, Some(m), "done", &states[m], &label);
+                    builder.event(now, Some(m), TraceEvent::Done, &states[m], &label);
                     now += MODEL_GAP_MS;
                 }
                 ModelStep::Reset(module) => {
                     let m = index(module)?;
-                    builder.event(now, Some(m), "reset", &states[m], "");
+                    builder.event(now, Some(m), TraceEvent::Reset, &states[m], "");
                     now += MODEL_GAP_MS;
                 }
                 ModelStep::Copy(module, state) => {
                     let m = index(module)?;
                     state.clone_into(&mut states[m]);
-                    builder.event(now, Some(m), "copy", state, "");
+                    builder.event(now, Some(m), TraceEvent::Copy, state, "");
                 }
                 ModelStep::Violation(module, what) => {
                     let m = index(module)?;
-                    builder.event(now, Some(m), "violation", &states[m], what);
+                    builder.event(now, Some(m), TraceEvent::Violation, &states[m], what);
                     now += MODEL_GAP_MS;
                 }
             }

@@ -7,6 +7,7 @@ use crate::packet::{Air, Arrivals, Packet, Target, QUEUES};
 use crate::queue::Key;
 use crate::scenario::Preset;
 use crate::state::{uniform, State};
+use dynarole_recording::TraceEvent;
 use dynarole_world::Port;
 use std::rc::Rc;
 
@@ -33,16 +34,24 @@ pub enum Fate {
 }
 
 impl Fate {
-    fn name(self) -> &'static str {
+    /// The trace event of a packet that did not arrive; a delivered one has none (it is no
+    /// trace line).
+    fn event(self) -> Option<TraceEvent> {
         match self {
-            Fate::Delivered => "delivered",
-            Fate::Lost => "lost",
-            Fate::Dead => "dead-link",
-            Fate::Collision => "collision",
-            Fate::Blocked => "blocked",
-            Fate::Moving => "broken",
-            Fate::Off => "off",
+            Fate::Delivered => None,
+            Fate::Lost => Some(TraceEvent::Lost),
+            Fate::Dead => Some(TraceEvent::DeadLink),
+            Fate::Collision => Some(TraceEvent::Collision),
+            Fate::Blocked => Some(TraceEvent::Blocked),
+            Fate::Moving => Some(TraceEvent::Broken),
+            Fate::Off => Some(TraceEvent::Off),
         }
+    }
+
+    /// The recording's word for the fate (`PacketArc::fate`): `delivered`, or the drop's
+    /// event.
+    fn name(self) -> &'static str {
+        self.event().map_or("delivered", TraceEvent::name)
     }
 }
 
@@ -352,6 +361,9 @@ impl State {
         }
         self.counters.count_drop(fate);
         self.modules[packet.to().module].stats.dropped += 1;
+        let Some(event) = fate.event() else {
+            return false;
+        };
         if self.tracing() {
             let view = self.view();
             let detail = format!(
@@ -360,7 +372,7 @@ impl State {
                 view.port_name(packet.from()),
                 packet.bytes.len()
             );
-            self.log(Some(packet.to().module), fate.name(), detail);
+            self.log(Some(packet.to().module), event, detail);
         }
         false
     }

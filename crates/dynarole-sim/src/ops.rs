@@ -6,6 +6,7 @@ use crate::event::Event;
 use crate::report::{Refusal, Violation};
 use crate::sequence::OpKind;
 use crate::state::{uniform, Attempt, State};
+use dynarole_recording::TraceEvent;
 use dynarole_world::Action;
 
 /// How a call of `dr_hal_op_start` relates to what already happened to its statement.
@@ -59,7 +60,7 @@ impl State {
                 let detail = format!(
                     "statement {statement} is not address {address} op {op} index {index} args {args:?}"
                 );
-                self.log(Some(m), "unknown-op", detail);
+                self.log(Some(m), TraceEvent::UnknownOp, detail);
             }
             return;
         };
@@ -76,13 +77,13 @@ impl State {
             Call::First(s) => {
                 self.check_dependencies(m, s);
                 self.phys[s].started = Some(self.now);
-                self.log(Some(m), "start", label);
+                self.log(Some(m), TraceEvent::Start, label);
             }
-            Call::Resume(_) => self.log(Some(m), "resume", label),
-            Call::Retry(_) => self.log(Some(m), "retry", label),
+            Call::Resume(_) => self.log(Some(m), TraceEvent::Resume, label),
+            Call::Retry(_) => self.log(Some(m), TraceEvent::Retry, label),
             Call::Reissue(_) => {
                 self.counters.ops_reissued += 1;
-                self.log(Some(m), "reissue", label);
+                self.log(Some(m), TraceEvent::Reissue, label);
             }
         }
         if call != Call::First(s) {
@@ -144,7 +145,7 @@ impl State {
             .collect();
         if !missing.is_empty() {
             self.violation(
-                "S1",
+                TraceEvent::S1,
                 m,
                 s,
                 missing,
@@ -160,7 +161,7 @@ impl State {
             .collect();
         if !started.is_empty() {
             self.violation(
-                "S2",
+                TraceEvent::S2,
                 m,
                 s,
                 started,
@@ -176,7 +177,7 @@ impl State {
             .collect();
         if let Some(first) = open.first().copied() {
             self.violation(
-                "S3",
+                TraceEvent::S3,
                 m,
                 first,
                 open,
@@ -185,7 +186,16 @@ impl State {
         }
     }
 
-    fn violation(&mut self, check: &str, m: usize, s: usize, involved: Vec<usize>, what: &str) {
+    /// A check (`S1`, `S2`, `S3`) failed: its trace line and the report's violation, both
+    /// named by the check's event.
+    fn violation(
+        &mut self,
+        check: TraceEvent,
+        m: usize,
+        s: usize,
+        involved: Vec<usize>,
+        what: &str,
+    ) {
         if self.tracing() {
             let others: Vec<String> = involved.iter().map(|t| format!("#{t}")).collect();
             let detail = format!(
@@ -196,7 +206,7 @@ impl State {
             self.log(Some(m), check, &detail);
         }
         self.violations.push(Violation {
-            check: check.to_string(),
+            check: check.name().to_string(),
             time_ms: self.now as f64 / 1000.0,
             module: self.view().name(m),
             statement: s,
@@ -318,7 +328,7 @@ impl State {
             } else {
                 format!("{label} ({note})")
             };
-            self.log(Some(m), "done", detail);
+            self.log(Some(m), TraceEvent::Done, detail);
         }
     }
 
@@ -327,7 +337,7 @@ impl State {
         self.counters.ops_refused += 1;
         self.mark_failed(s);
         if self.tracing() {
-            self.log(Some(m), "refused", format!("{label}: {reason}"));
+            self.log(Some(m), TraceEvent::Refused, format!("{label}: {reason}"));
         }
         self.refusals.push(Refusal {
             time_ms: self.now as f64 / 1000.0,
@@ -394,7 +404,7 @@ impl State {
                 self.phys[a.statement].failed = true;
                 self.mark_failed(a.statement);
                 let label = self.trace_label(a.statement);
-                self.log(Some(m), "interrupt", label);
+                self.log(Some(m), TraceEvent::Interrupt, label);
             }
         }
     }

@@ -70,7 +70,7 @@ impl Simulator {
             builder.event(
                 ms(row.time_us),
                 row.module,
-                &row.event,
+                row.event,
                 &row.state,
                 &row.detail,
             );

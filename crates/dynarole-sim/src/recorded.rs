@@ -1,12 +1,14 @@
 //! The trace kept as data when a run is traced (below the state that fills it, the report
 //! that carries it and `record.rs`, which makes the viewer's recording of it).
 
+use dynarole_recording::TraceEvent;
+
 /// One trace line as data (time in microseconds).
-#[derive(Clone, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Row {
     pub time_us: u64,
     pub module: Option<usize>,
-    pub event: String,
+    pub event: TraceEvent,
     pub state: String,
     pub detail: String,
 }
@@ -70,7 +72,7 @@ impl Recorded {
         &mut self,
         time_us: u64,
         module: Option<usize>,
-        event: &str,
+        event: TraceEvent,
         state: &str,
         detail: &str,
     ) {
@@ -83,7 +85,7 @@ impl Recorded {
         self.rows.push(Row {
             time_us,
             module,
-            event: event.into(),
+            event,
             state: state.into(),
             detail: detail.into(),
         });

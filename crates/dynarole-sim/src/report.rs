@@ -315,3 +315,44 @@ pub(crate) fn trace_header() -> String {
         width = STATE_COLUMN
     )
 }
+
+#[cfg(test)]
+mod tests {
+    use super::trace_header;
+    use dynarole_recording::EVENTS;
+    use std::collections::BTreeSet;
+
+    /// The header's words naming events: after `events:`, outside parentheses.
+    fn header_events() -> BTreeSet<String> {
+        let header = trace_header();
+        let list = header
+            .split("events:")
+            .nth(1)
+            .expect("the header lists events");
+        let mut depth = 0;
+        let bare: String = list
+            .chars()
+            .map(|c| {
+                depth += i32::from(c == '(') - i32::from(c == ')');
+                if depth > 0 || c == ')' {
+                    ' '
+                } else {
+                    c
+                }
+            })
+            .collect();
+        bare.split(|c: char| !(c.is_alphanumeric() || c == '-'))
+            .map(str::to_string)
+            .collect()
+    }
+
+    /// The header's text is fixed (traces compare byte for byte); the vocabulary says which
+    /// events it names, and this keeps the two equal.
+    #[test]
+    fn the_header_names_exactly_the_events_the_vocabulary_puts_there() {
+        let named = header_events();
+        for e in EVENTS {
+            assert_eq!(named.contains(e.name), e.in_header, "{}", e.name);
+        }
+    }
+}

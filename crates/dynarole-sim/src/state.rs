@@ -15,6 +15,7 @@ use crate::report::{Counters, Refusal, Violation, STATE_COLUMN};
 use crate::scenario::{Preset, Scenario, Stepping};
 use crate::sequence::Sequence;
 use crate::trace::{Outputs, Trace};
+use dynarole_recording::TraceEvent;
 use dynarole_replay::RobotWorld;
 use dynarole_world::{Configuration, Port, View};
 use rand::{Rng, SeedableRng};
@@ -331,7 +332,7 @@ impl State {
                 f.connector,
                 frame.len()
             );
-            self.log(Some(module), "foreign", detail);
+            self.log(Some(module), TraceEvent::Foreign, detail);
         }
         Some((port, frame, f.robot, f.execution_beside(self.seq.execution)))
     }
@@ -413,8 +414,8 @@ impl State {
     }
 
     /// One trace line: time, module, event, the module's protocol state (`-` when there is
-    /// none), detail.
-    pub fn log(&mut self, module: Option<usize>, event: &str, detail: impl AsRef<str>) {
+    /// none), detail. Events are the vocabulary's (`TraceEvent`), never a word made up here.
+    pub fn log(&mut self, module: Option<usize>, event: TraceEvent, detail: impl AsRef<str>) {
         if !self.tracing() {
             return;
         }
@@ -438,7 +439,7 @@ impl State {
                 self.now / 1000,
                 self.now % 1000,
                 name,
-                event,
+                event.name(),
                 state,
                 detail.as_ref(),
                 width = STATE_COLUMN
@@ -481,7 +482,7 @@ impl State {
         module.generation = module.generation.wrapping_add(1);
         module.rank = self.next_rank;
         self.next_rank += 1;
-        self.log(Some(m), "power-on", "");
+        self.log(Some(m), TraceEvent::PowerOn, "");
         self.put_step(m, now);
         true
     }
@@ -499,7 +500,7 @@ impl State {
         module.next_step = None;
         module.stats.power_cycles += 1;
         self.counters.power_cycles += 1;
-        self.log(Some(m), "power-off", "");
+        self.log(Some(m), TraceEvent::PowerOff, "");
         self.op_waiters.remove(&m);
         self.interrupt_operations(m);
     }
@@ -511,7 +512,7 @@ impl State {
         }
         self.modules[m].stats.resets += 1;
         self.counters.resets += 1;
-        self.log(Some(m), "reset", "");
+        self.log(Some(m), TraceEvent::Reset, "");
         true
     }
 
@@ -584,7 +585,7 @@ impl State {
         self.modules[m].finished_at = Some(self.now);
         self.finished += 1;
         self.first_finished.get_or_insert(self.now);
-        self.log(Some(m), "finished", "declares the end");
+        self.log(Some(m), TraceEvent::Finished, "declares the end");
         self.check_end(m);
     }
 

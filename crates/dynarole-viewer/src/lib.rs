@@ -1,8 +1,9 @@
 //! dynarole-viewer: writes the one self-contained HTML page of `dynarole view` (the front end
-//! bundled at build time from `web/`, its styles and the recording inlined; a content
-//! security policy forbids every request, so the page opens from disk with no network).
+//! bundled at build time from `web/`, its styles, the recording and the trace event
+//! vocabulary inlined; a content security policy forbids every request, so the page opens
+//! from disk with no network).
 
-use dynarole_recording::Recording;
+use dynarole_recording::{vocabulary_json, Recording};
 
 /// The front end, bundled by `build.rs`.
 const BUNDLE: &str = include_str!(concat!(env!("OUT_DIR"), "/viewer.js"));
@@ -16,12 +17,16 @@ pub fn html(recording: &Recording) -> Result<String, String> {
     let data = serde_json::to_string(recording).map_err(|e| format!("the recording: {e}"))?;
     // In JSON `<` only occurs inside strings, where `\u003c` means the same: no `</script>`.
     let data = data.replace('<', "\\u003c");
+    // The events' colours and meanings come from the one table (`TraceEvent`), so the page
+    // spells none of them; it goes beside the recording, whose file format is unchanged.
+    let vocabulary = vocabulary_json().to_string().replace('<', "\\u003c");
     let title = escape(&recording.title);
     Ok(format!(
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
          <meta http-equiv=\"Content-Security-Policy\" content=\"{POLICY}\">\n\
          <title>dynarole view: {title}</title>\n<style>\n{STYLE}</style>\n</head>\n<body>\n\
          <script type=\"application/json\" id=\"recording\">{data}</script>\n\
+         <script type=\"application/json\" id=\"vocabulary\">{vocabulary}</script>\n\
          <script>\n{}\n</script>\n</body>\n</html>\n",
         BUNDLE.replace("</script", "<\\/script")
     ))

@@ -265,7 +265,7 @@ fn finish(
         .collect();
     if !state.all_finished() {
         state.now = timeout;
-        state.log(None, "timeout", "");
+        state.log(None, dynarole_recording::TraceEvent::Timeout, "");
     }
     let report = FirmwareReport {
         text: image.text,

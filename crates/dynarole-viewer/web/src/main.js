@@ -4,7 +4,7 @@
 // bundle: the page fetches nothing.
 import { World, lastAtOrBefore } from './world.js';
 import { Scene } from './scene.js';
-import { Timeline, Swimlanes } from './timeline.js';
+import { Timeline, Swimlanes, Legend } from './timeline.js';
 import { SourcePanel, StatePanel } from './panels.js';
 import { runProbe } from './probe.js';
 
@@ -20,7 +20,7 @@ function element(tag, attributes = {}, text = '') {
 }
 
 class Viewer {
-  constructor(recording) {
+  constructor(recording, vocabulary) {
     this.rec = recording;
     this.world = new World(recording);
     this.time = 0;
@@ -32,8 +32,9 @@ class Viewer {
     this.events = recording.events;
     this.layout();
     this.scene = new Scene(this.view, recording);
-    this.timeline = new Timeline(this.timelineBox, recording, (t) => this.seek(t));
-    this.swimlanes = new Swimlanes(this.swimBox, recording, (t) => this.seek(t));
+    this.timeline = new Timeline(this.timelineBox, recording, vocabulary, (t) => this.seek(t));
+    this.legend = new Legend(this.legendBox, vocabulary);
+    this.swimlanes = new Swimlanes(this.swimBox, recording, vocabulary, (t) => this.seek(t));
     this.source = new SourcePanel(this.sourceBox, recording);
     this.state = new StatePanel(this.stateBox, recording);
     this.labels = recording.modules.map((m) => {
@@ -110,6 +111,7 @@ class Viewer {
     toggle('packets', 'packets', 'showPackets');
     button('png', 'PNG', 'save the view as PNG', () => this.savePng());
     this.timelineBox = element('div', { id: 'timeline' });
+    this.legendBox = element('div', { id: 'legend' });
     this.swimBox = element('div', { id: 'swimlanes' });
     this.sourceBox = element('div', { id: 'source' });
     this.stateBox = element('div', { id: 'state' });
@@ -117,7 +119,7 @@ class Viewer {
     side.append(this.stateBox, this.sourceBox);
     const main = element('div', { id: 'main' });
     main.append(this.view, side);
-    root.append(header, main, controls, this.timelineBox, this.swimBox);
+    root.append(header, main, controls, this.timelineBox, this.legendBox, this.swimBox);
     document.body.appendChild(root);
     document.addEventListener('keydown', (e) => {
       if (e.key === ' ' && e.target === document.body) {
@@ -230,7 +232,9 @@ class Viewer {
 function start() {
   const data = document.getElementById('recording');
   const recording = JSON.parse(data.textContent);
-  const viewer = new Viewer(recording);
+  // The trace event vocabulary, written into the page beside the recording.
+  const vocabulary = JSON.parse(document.getElementById('vocabulary').textContent);
+  const viewer = new Viewer(recording, vocabulary);
   window.dynaroleViewer = viewer;
   // `#t=MS` opens the page at that time (links to a moment, screenshots).
   const at = /[#&]t=([0-9.]+)/.exec(window.location.hash);

@@ -56,6 +56,7 @@ export function runProbe(viewer, readyMs) {
     colours: colourCounts(viewer.scene.renderer.domElement),
     resources: performance.getEntriesByType('resource').map((r) => r.name),
     violations,
+    legend: viewer.legend.shown(),
     modules: viewer.rec.modules.length,
     ready_ms: readyMs,
     frame_ms: bench ? frameCost(viewer, Number(bench[1])) : null,

@@ -1,8 +1,69 @@
-// The timeline (faults and violations marked where they happened; click to seek) and the
-// swimlanes: one row per module, its operations as bars over time.
-const KIND_COLOURS = { reset: '#d62728', power: '#9467bd', violation: '#000000', refused: '#ff7f0e', link: '#8c564b' };
-const OUTCOME_COLOURS = { done: '#2ca02c', refused: '#d62728', interrupt: '#7f7f7f', running: '#1f77b4' };
+// The timeline (faults and violations marked where they happened; click to seek), the
+// swimlanes (one row per module, its operations as bars over time) and their legend. The
+// colours of markers and bars, and the events behind each, come from the trace event
+// vocabulary the page carries (dynarole-recording's `trace_event.rs`): none is named here.
+const UNKNOWN = '#333';
+// An operation the run stopped before it ended: the one bar no event ends.
+const RUNNING = { name: 'running', colour: '#1f77b4', meaning: 'the operation was still running when the run stopped' };
 const MAX_LANES = 64;
+
+// Marker kind -> colour, and motion outcome (the event that ended it) -> colour.
+export function colours(vocabulary) {
+  const marks = new Map(vocabulary.marks.map((m) => [m.name, m.colour]));
+  const bars = new Map(vocabulary.events.filter((e) => e.ends).map((e) => [e.name, e.ends]));
+  bars.set(RUNNING.name, RUNNING.colour);
+  return { marks, bars };
+}
+
+// What the legend shows: each marker kind with the events that place it, then each bar
+// colour with the event that ends it.
+export function legendEntries(vocabulary) {
+  const marks = vocabulary.marks.map((m) => ({
+    kind: 'marker',
+    name: m.name,
+    colour: m.colour,
+    meaning: m.meaning,
+    events: vocabulary.events.filter((e) => e.mark === m.name).map((e) => e.name),
+  }));
+  const ending = vocabulary.events.filter((e) => e.ends);
+  const bars = ending.map((e) => ({ kind: 'bar', name: e.name, colour: e.ends, meaning: e.meaning, events: [e.name] }));
+  bars.push({ kind: 'bar', ...RUNNING, events: [] });
+  return [...marks, ...bars];
+}
+
+export class Legend {
+  constructor(box, vocabulary) {
+    this.entries = legendEntries(vocabulary);
+    for (const entry of this.entries) {
+      const item = document.createElement('span');
+      item.className = `legend-item legend-${entry.kind}`;
+      item.dataset.kind = entry.kind;
+      item.dataset.name = entry.name;
+      item.dataset.colour = entry.colour;
+      item.dataset.events = entry.events.join(' ');
+      const swatch = document.createElement('span');
+      swatch.className = 'swatch';
+      swatch.style.background = entry.colour;
+      const words = entry.kind === 'marker' ? `${entry.meaning} (${entry.events.join(', ')})` : entry.name;
+      item.title = entry.meaning;
+      item.append(swatch, document.createTextNode(words));
+      box.appendChild(item);
+    }
+    // Every event's meaning, on hovering the legend.
+    box.title = vocabulary.events.map((e) => `${e.name}: ${e.meaning}`).join('\n');
+  }
+
+  // What the legend lists, read back from the page (for the tests).
+  shown() {
+    return [...document.querySelectorAll('.legend-item')].map((item) => ({
+      kind: item.dataset.kind,
+      name: item.dataset.name,
+      colour: item.dataset.colour,
+      events: item.dataset.events ? item.dataset.events.split(' ') : [],
+      text: item.textContent,
+    }));
+  }
+}
 
 function seekOnClick(element, end, onSeek) {
   element.addEventListener('click', (e) => {
@@ -12,14 +73,15 @@ function seekOnClick(element, end, onSeek) {
 }
 
 export class Timeline {
-  constructor(box, recording, onSeek) {
+  constructor(box, recording, vocabulary, onSeek) {
     this.rec = recording;
     this.box = box;
+    const { marks } = colours(vocabulary);
     this.markers = recording.markers.map((m) => {
       const mark = document.createElement('div');
       mark.className = `marker marker-${m.kind}`;
       mark.style.left = `${(100 * m.time_ms) / Math.max(1, recording.end_ms)}%`;
-      mark.style.background = KIND_COLOURS[m.kind] || '#333';
+      mark.style.background = marks.get(m.kind) || UNKNOWN;
       mark.title = `${(m.time_ms / 1000).toFixed(3)} s: ${m.label}`;
       mark.dataset.time = String(m.time_ms);
       box.appendChild(mark);
@@ -47,8 +109,9 @@ export class Timeline {
 }
 
 export class Swimlanes {
-  constructor(box, recording, onSeek) {
+  constructor(box, recording, vocabulary, onSeek) {
     this.rec = recording;
+    this.colours = colours(vocabulary);
     this.canvas = document.createElement('canvas');
     box.appendChild(this.canvas);
     this.lanes = Math.min(MAX_LANES, recording.modules.length);
@@ -75,13 +138,13 @@ export class Swimlanes {
     for (const m of this.rec.motions) {
       if (m.module >= this.lanes) continue;
       const end = m.end_ms > m.start_ms ? m.end_ms : this.rec.end_ms;
-      g.fillStyle = OUTCOME_COLOURS[m.outcome] || '#444';
+      g.fillStyle = this.colours.bars.get(m.outcome) || UNKNOWN;
       g.fillRect(x(m.start_ms), m.module * this.laneHeight + 2, Math.max(2, x(end) - x(m.start_ms)), this.laneHeight - 4);
     }
     for (const k of this.rec.markers) {
       for (const i of k.modules) {
         if (i >= this.lanes) continue;
-        g.fillStyle = KIND_COLOURS[k.kind] || '#333';
+        g.fillStyle = this.colours.marks.get(k.kind) || UNKNOWN;
         g.fillRect(x(k.time_ms) - 1, i * this.laneHeight, 2, this.laneHeight);
       }
     }
