@@ -6,9 +6,12 @@
 //! Rust file but `runtime/dr_warn.mk` spelling a warning flag, and trace events named only
 //! through their vocabulary (`dynarole_recording::TraceEvent`).
 
+mod common;
+
+use common::tree::{metadata, sources, tree_files, workspace};
 use serde_json::Value;
 use std::collections::{BTreeMap, BTreeSet};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// Circles that other changes are removing, as (crate, the modules of the circle). A circle
 /// found must lie inside one of these; an entry that no longer matches a circle fails too, so
@@ -17,10 +20,6 @@ const KNOWN_CIRCLES: &[(&str, &[&str])] = &[];
 
 /// The CLI's modules on the path of `dynarole compile` (every target).
 const COMPILE_MODULES: &[&str] = &["compile", "model"];
-
-fn workspace() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
 
 // ---------------------------------------------------------------------------------------
 // Module graph of one crate.
@@ -379,11 +378,6 @@ fn circle_problems(
     problems
 }
 
-/// Every `.rs` file under `dir`, as (path relative to `dir` with `/`, text).
-fn sources(dir: &Path) -> Vec<(String, String)> {
-    files_under(dir, dir, &|name| name.ends_with(".rs"))
-}
-
 fn crate_dirs() -> Vec<(String, PathBuf)> {
     let mut out: Vec<(String, PathBuf)> = std::fs::read_dir(workspace().join("crates"))
         .expect("crates/")
@@ -486,27 +480,6 @@ fn closure(deps: &BTreeMap<String, BTreeSet<String>>, start: &str) -> BTreeSet<S
         }
     }
     seen
-}
-
-fn metadata() -> Value {
-    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
-    let output = std::process::Command::new(cargo)
-        .args([
-            "metadata",
-            "--format-version",
-            "1",
-            "--no-deps",
-            "--offline",
-        ])
-        .current_dir(workspace())
-        .output()
-        .expect("cargo metadata runs");
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    serde_json::from_slice(&output.stdout).expect("cargo metadata's JSON")
 }
 
 // ---------------------------------------------------------------------------------------
@@ -716,48 +689,6 @@ fn a_module_reaching_the_simulator_through_imports_is_found() {
 
 // ---------------------------------------------------------------------------------------
 // The C runtime: no two files that call each other, and one list of warning flags.
-
-/// Every file under `dir` whose name `wanted` accepts, as (path relative to the workspace with
-/// `/`, text), skipping build outputs (`build/`, `target/`: copies and generated programs,
-/// not sources), `node_modules/` and `.git/`.
-fn tree_files(dir: &Path, wanted: &dyn Fn(&str) -> bool) -> Vec<(String, String)> {
-    files_under(dir, &workspace(), wanted)
-}
-
-/// The one walk of the tree behind [`sources`] and [`tree_files`]: the files under `dir` whose
-/// names `wanted` takes, as (path relative to `root` with `/`, text), build outputs skipped.
-fn files_under(dir: &Path, root: &Path, wanted: &dyn Fn(&str) -> bool) -> Vec<(String, String)> {
-    const SKIPPED: [&str; 4] = ["build", "target", "node_modules", ".git"];
-    let mut out = Vec::new();
-    let mut pending = vec![dir.to_path_buf()];
-    while let Some(d) = pending.pop() {
-        let Ok(entries) = std::fs::read_dir(&d) else {
-            continue;
-        };
-        for entry in entries.flatten() {
-            let path = entry.path();
-            let name = entry.file_name().to_string_lossy().into_owned();
-            if path.is_dir() {
-                if !SKIPPED.contains(&name.as_str()) {
-                    pending.push(path);
-                }
-            } else if wanted(&name) {
-                let rel = path.strip_prefix(root).unwrap_or(&path);
-                let rel = rel
-                    .components()
-                    .map(|c| c.as_os_str().to_string_lossy())
-                    .collect::<Vec<_>>()
-                    .join("/");
-                let Ok(text) = std::fs::read_to_string(&path) else {
-                    continue;
-                };
-                out.push((rel, text));
-            }
-        }
-    }
-    out.sort();
-    out
-}
 
 /// C source without comments, string and character literals, or preprocessor lines (each
 /// replaced by a space): what is left names only what the file's code uses and defines.

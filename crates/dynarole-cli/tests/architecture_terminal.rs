@@ -3,39 +3,16 @@
 //! indicatif and none writes to stderr outside its tests (checked on `cargo metadata` and on
 //! the sources).
 
+mod common;
+
+use common::tree::{metadata, tree_files, workspace};
 use serde_json::Value;
-use std::path::{Path, PathBuf};
 
 /// The crate that owns the terminal.
 const CLI: &str = "dynarole-cli";
 
 /// What writes to stderr in Rust source.
 const STDERR_WRITES: &[&str] = &["eprintln!", "eprint!", "io::stderr()"];
-
-fn workspace() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn metadata() -> Value {
-    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
-    let output = std::process::Command::new(cargo)
-        .args([
-            "metadata",
-            "--format-version",
-            "1",
-            "--no-deps",
-            "--offline",
-        ])
-        .current_dir(workspace())
-        .output()
-        .expect("cargo metadata runs");
-    assert!(
-        output.status.success(),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    serde_json::from_slice(&output.stdout).expect("cargo metadata's JSON")
-}
 
 /// The workspace crates other than the CLI that depend on indicatif (dev-dependencies aside).
 fn indicatif_users(metadata: &Value) -> Vec<String> {
@@ -70,43 +47,15 @@ fn stderr_writes(text: &str) -> Vec<usize> {
         .collect()
 }
 
-/// Every `.rs` file under `dir`, as its path and text.
-fn rust_files(dir: &Path) -> Vec<(PathBuf, String)> {
-    let mut out = Vec::new();
-    let mut pending = vec![dir.to_path_buf()];
-    while let Some(d) = pending.pop() {
-        for entry in std::fs::read_dir(&d).expect("a source folder").flatten() {
-            let path = entry.path();
-            if path.is_dir() {
-                pending.push(path);
-            } else if path.extension().is_some_and(|e| e == "rs") {
-                let text = std::fs::read_to_string(&path).expect("a source file");
-                out.push((path, text));
-            }
-        }
-    }
-    out
-}
-
-/// The lines below the CLI that write to stderr, as `crate/src/FILE:LINE`.
+/// The lines below the CLI that write to stderr, as `crates/NAME/src/FILE:LINE`.
 fn stderr_writers() -> Vec<String> {
-    let crates = workspace().join("crates");
     let mut found = Vec::new();
-    for entry in std::fs::read_dir(&crates).expect("crates/").flatten() {
-        let name = entry.file_name().to_string_lossy().into_owned();
-        if name == CLI {
-            continue;
-        }
-        for (path, text) in rust_files(&entry.path().join("src")) {
-            let shown = path
-                .strip_prefix(&crates)
-                .unwrap_or(&path)
-                .display()
-                .to_string();
-            found.extend(stderr_writes(&text).iter().map(|k| format!("{shown}:{k}")));
+    for (path, text) in tree_files(&workspace().join("crates"), &|n| n.ends_with(".rs")) {
+        let below_the_cli = !path.starts_with(&format!("crates/{CLI}/"));
+        if below_the_cli && path.contains("/src/") {
+            found.extend(stderr_writes(&text).iter().map(|k| format!("{path}:{k}")));
         }
     }
-    found.sort();
     found
 }
 

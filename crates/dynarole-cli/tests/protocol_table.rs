@@ -3,44 +3,20 @@
 //! with a protocol's name (`== "token"`), tests that fall through silently for a new protocol.
 //! A `match` naming every variant is allowed: the compiler makes a new protocol answer it.
 
-use std::path::{Path, PathBuf};
+mod common;
+
+use common::tree::{tree_files, workspace};
 
 /// The file that holds the table (and so may compare with its variants).
 const TABLE: &str = "crates/dynarole-codegen/src/protocol.rs";
 
-fn workspace() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
 /// Every `.rs` file under each crate's `src/` and `benches/` (tests may name the protocol
 /// they test), as (path from the workspace, text).
 fn sources() -> Vec<(String, String)> {
-    let root = workspace();
-    let mut out = Vec::new();
-    let crates = std::fs::read_dir(root.join("crates")).expect("crates/ is readable");
-    for entry in crates.flatten() {
-        for dir in ["src", "benches"] {
-            collect(&entry.path().join(dir), &root, &mut out);
-        }
-    }
-    out.sort();
-    out
-}
-
-fn collect(dir: &Path, root: &Path, out: &mut Vec<(String, String)>) {
-    let Ok(entries) = std::fs::read_dir(dir) else {
-        return;
-    };
-    for entry in entries.flatten() {
-        let path = entry.path();
-        if path.is_dir() {
-            collect(&path, root, out);
-        } else if path.extension().is_some_and(|e| e == "rs") {
-            let text = std::fs::read_to_string(&path).expect("a source is UTF-8");
-            let relative = path.strip_prefix(root).unwrap_or(&path);
-            out.push((relative.display().to_string(), text));
-        }
-    }
+    let crates = tree_files(&workspace().join("crates"), &|name| name.ends_with(".rs"));
+    (crates.into_iter())
+        .filter(|(path, _)| path.contains("/src/") || path.contains("/benches/"))
+        .collect()
 }
 
 /// The line without its `//` comment (a `//` inside a string is rare enough in the patterns

@@ -2,6 +2,8 @@
 //! root and read its output as text.
 #![allow(dead_code)]
 
+pub mod tree;
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
