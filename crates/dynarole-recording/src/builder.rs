@@ -82,7 +82,7 @@ impl<'r> Builder<'r> {
             connectors: (0..view.connectors())
                 .map(|c| ConnectorInfo {
                     male: view.is_male(c),
-                    half: u8::from(view.hemisphere(c) == 1),
+                    half: u8::from(view.side(c) == 1),
                 })
                 .collect(),
             statements: statements_info,

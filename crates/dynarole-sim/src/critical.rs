@@ -107,19 +107,18 @@ fn durations<'a>(seq: &'a Sequence, timing: &'a Timing) -> impl Fn(usize) -> u64
     let mut last_target: BTreeMap<(u8, u8), i64> = BTreeMap::new();
     let mut out = Vec::with_capacity(seq.len());
     for (s, st) in seq.ir.statements.iter().enumerate() {
-        out.push(match seq.kinds[s] {
-            OpKind::Extend => timing.extend_ms,
-            OpKind::Retract => timing.retract_ms,
-            OpKind::Turn => {
-                let joint = (st.address, st.index);
-                let current = last_target.get(&joint).copied().unwrap_or(0);
-                if let Some(to) = seq.turn_target(s) {
-                    last_target.insert(joint, to);
-                }
-                timing.turn_ms(seq.quarters(s, current))
+        let kind = seq.kinds[s];
+        let quarters = if kind == OpKind::Turn {
+            let joint = (st.address, st.index);
+            let current = last_target.get(&joint).copied().unwrap_or(0);
+            if let Some(to) = seq.turn_target(s) {
+                last_target.insert(joint, to);
             }
-            OpKind::Other => 0,
-        });
+            seq.quarters(s, current)
+        } else {
+            0
+        };
+        out.push(kind.nominal_ms(timing, quarters));
     }
     move |s: usize| out.get(s).copied().unwrap_or(0)
 }

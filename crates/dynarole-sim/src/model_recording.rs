@@ -2,6 +2,7 @@
 //! counterexamples): its steps in order, each operation taking the simulator's default
 //! duration ([`Timing`]), so that the viewer plays it like a simulation.
 
+use crate::sequence::OpKind;
 use crate::Timing;
 use dynarole_core::check::ResolvedStatement;
 use dynarole_recording::{Builder, ModelStep, Recording, TraceEvent};
@@ -57,8 +58,11 @@ impl ModelRecording<'_> {
             self.source,
         )
         .map_err(ModelRecordingError::Input)?;
+        let kinds: Vec<OpKind> = (self.statements.iter())
+            .map(|s| OpKind::of_statement(self.robot, s))
+            .collect();
         let duration = |s: usize, turn: Option<&dynarole_recording::Turn>| -> f64 {
-            nominal_ms(texts.get(s).map_or("", String::as_str), turn)
+            nominal_ms(kinds.get(s).copied().unwrap_or(OpKind::Other), turn)
         };
         let view = dynarole_world::View::of(self.start);
         let index = |name: &str| {
@@ -116,15 +120,11 @@ impl ModelRecording<'_> {
     }
 }
 
-/// The simulator's default duration of an operation (`dynarole_sim::Timing`).
-fn nominal_ms(text: &str, turn: Option<&dynarole_recording::Turn>) -> f64 {
-    let timing = Timing::default();
-    let ms = match turn {
-        Some(t) => timing.turn_ms((t.angle_deg.abs() / 90.0).round() as u64),
-        None if text.contains(".retract(") => timing.retract_ms,
-        None => timing.extend_ms,
-    };
-    ms as f64
+/// The simulator's default duration of an operation (`dynarole_sim::Timing`), a turn's
+/// quarter turns read from the motion the world gave it.
+fn nominal_ms(kind: OpKind, turn: Option<&dynarole_recording::Turn>) -> f64 {
+    let quarters = turn.map_or(0, |t| (t.angle_deg.abs() / 90.0).round() as u64);
+    kind.nominal_ms(&Timing::default(), quarters) as f64
 }
 
 /// A replay's steps: each statement (numbered in `statements`' order) done by the module of
@@ -135,4 +135,25 @@ pub fn replay_steps(statements: &[ResolvedStatement], assignment: &Assignment) -
         .enumerate()
         .filter_map(|(i, s)| Some(ModelStep::Operation(i, assignment.get(&s.label)?.clone())))
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{nominal_ms, OpKind};
+    use crate::Timing;
+
+    /// An operation's duration comes from the kind its plugin declares, as in a run: once a
+    /// retract was told from an extend by the word `.retract(` in its text, so a plugin that
+    /// names it otherwise, or an operation of kind `none`, played for the extend's 3 s.
+    #[test]
+    fn an_operation_lasts_as_its_kind_does_in_a_run() {
+        let timing = Timing::default();
+        let ms = |kind| nominal_ms(kind, None);
+        assert_eq!(ms(OpKind::Retract), timing.retract_ms as f64);
+        assert_eq!(ms(OpKind::Extend), timing.extend_ms as f64);
+        assert_eq!(ms(OpKind::Other), 0.0);
+        // A turn with no motion (refused, or already at its angle) moves nothing.
+        assert_eq!(ms(OpKind::Turn), 0.0);
+        assert_ne!(timing.retract_ms, timing.extend_ms);
+    }
 }

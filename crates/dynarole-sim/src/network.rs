@@ -270,7 +270,7 @@ impl State {
     fn send_queue(&self, connector: u8) -> usize {
         match self.preset {
             Preset::Ussr => usize::from(connector),
-            Preset::Atron => self.view().hemisphere(connector),
+            Preset::Atron => self.view().side(connector),
         }
     }
 
@@ -328,7 +328,7 @@ impl State {
         for (k, send) in (0u64..).zip(sends.list()) {
             self.longest_air_us = self.longest_air_us.max(send.air.1 - send.air.0);
             if self.preset == Preset::Atron {
-                let hemisphere = self.view().hemisphere(send.to.connector);
+                let hemisphere = self.view().side(send.to.connector);
                 let air = Air::new(send.air, first_id + k, hemisphere);
                 if let Some(log) = self.air.get_mut(send.to.module) {
                     log.push(air);
@@ -430,7 +430,7 @@ impl State {
     /// Half duplex: the receiver's hemisphere UART heard another packet, or was sending,
     /// while this one was on the air.
     fn collides(&self, p: &Packet) -> bool {
-        let h = self.view().hemisphere(p.to().connector);
+        let h = self.view().side(p.to().connector);
         self.air.get(p.to().module).is_some_and(|log| {
             log.iter().any(|a| {
                 a.hemisphere() == h && a.packet() != p.id && a.start < p.end && a.end > p.start

@@ -249,16 +249,14 @@ impl State {
     }
 
     fn nominal_ms(&self, m: usize, s: usize) -> u64 {
-        let timing = &self.scenario.timing;
-        match self.seq.kinds[s] {
-            OpKind::Extend => timing.extend_ms,
-            OpKind::Retract => timing.retract_ms,
-            // A turn to the angle the joint already has (re-issued after it completed, or
-            // written with a `from` that is not the joint's angle) moves nothing.
-            OpKind::Turn if self.already_there(m, s) => 0,
-            OpKind::Turn => timing.turn_ms(self.quarter_turns(m, s)),
-            OpKind::Other => 0,
-        }
+        let kind = self.seq.kinds[s];
+        // A turn to the angle the joint already has (re-issued after it completed, or written
+        // with a `from` that is not the joint's angle) moves nothing.
+        let quarters = match kind {
+            OpKind::Turn if !self.already_there(m, s) => self.quarter_turns(m, s),
+            _ => 0,
+        };
+        kind.nominal_ms(&self.scenario.timing, quarters)
     }
 
     /// Which modules move during a turn, so that their links break while it lasts.

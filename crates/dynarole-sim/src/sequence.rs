@@ -5,13 +5,11 @@
 //! statements and their dependency edges: a table of every statement's transitive dependents
 //! was quadratic (1 GB at 10,000 statements; `tests/sequence_memory.rs` keeps it linear).
 
+use crate::scenario::Timing;
 use dynarole_core::check::ResolvedStatement;
 use dynarole_core::lower::Ir;
 use dynarole_core::RobotApi;
-use dynarole_world::{builtin_quarter_turns, Action};
-
-/// Degrees in a quarter turn: the estimate's unit for a robot with no built-in model.
-const DEGREES_PER_QUARTER: u64 = 90;
+use dynarole_world::Action;
 
 /// The physical kind of an operation (for its duration and the links it breaks).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -23,6 +21,24 @@ pub enum OpKind {
 }
 
 impl OpKind {
+    /// The kind of `statement` on `robot`, by the kind its plugin declares for the operation
+    /// (`dynarole_replay::action`), never by its text.
+    pub fn of_statement(robot: &RobotApi, statement: &ResolvedStatement) -> OpKind {
+        OpKind::of(dynarole_replay::action(robot, statement))
+    }
+
+    /// The nominal duration of an operation of this kind with `timing`, a turn passing
+    /// `quarters` quarter turns (0 for a turn that moves nothing): the one rule the run, the
+    /// critical path and the model recordings share.
+    pub fn nominal_ms(self, timing: &Timing, quarters: u64) -> u64 {
+        match self {
+            OpKind::Extend => timing.extend_ms,
+            OpKind::Retract => timing.retract_ms,
+            OpKind::Turn => timing.turn_ms(quarters),
+            OpKind::Other => 0,
+        }
+    }
+
     fn of(action: Option<Action>) -> OpKind {
         match action {
             Some(Action::Extend { .. }) => OpKind::Extend,
@@ -126,9 +142,8 @@ impl Sequence {
     }
 
     /// Quarter turns a turn makes from joint angle `current`, for the critical path, which has
-    /// no robot model to ask: a built-in robot's own count (`builtin_quarter_turns`); for a
-    /// robot defined elsewhere, angles taken as degrees that do not wrap (an estimate: a run
-    /// asks its model).
+    /// no robot model to ask: counted as the robot's plugin says its angles are
+    /// (`RobotApi::joint_angle`; a run asks its model, which agrees: `tests/joint_angle.rs`).
     pub fn quarters(&self, s: usize, current: i64) -> u64 {
         let Some(Some(Action::Turn {
             from,
@@ -140,8 +155,7 @@ impl Sequence {
             return 0;
         };
         let from = from.unwrap_or(current);
-        builtin_quarter_turns(&self.robot.name, from, to, increasing)
-            .unwrap_or_else(|| (to - from).unsigned_abs().div_ceil(DEGREES_PER_QUARTER))
+        self.robot.joint_angle.quarter_turns(from, to, increasing)
     }
 }
 

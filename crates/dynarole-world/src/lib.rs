@@ -35,7 +35,7 @@ pub use atron::{
     AtronConfiguration, AtronModule, Orientation, OrientationBase, World,
     MIN_SWEEP_DISTANCE_LATTICE,
 };
-pub use builtin::{builtin_quarter_turns, BUILTIN_ROBOTS};
+pub use builtin::BUILTIN_ROBOTS;
 pub use common::{ConfigError, Latch, Metadata, NamedConnection, Port};
 pub use compare::{compare, compare_with_expected, Difference, JointDifference, Misplaced, Sides};
 pub use configuration::{Configuration, Robot};

@@ -18,6 +18,11 @@ pub trait RobotShape {
     fn connectors(&self) -> u8;
     /// Whether `connector` is a male one (the side of a latch that can release).
     fn is_male(&self, connector: u8) -> bool;
+    /// Which rigid side of its module `connector` is fixed on: 0 for the side that turns
+    /// against the others (ATRON's north hemisphere, M-TRAN's north block), 1 for the rest.
+    /// The connectors of one side share its infrared transceiver (the ATRON preset's
+    /// collisions), and a recording draws a connector on its side.
+    fn side(&self, connector: u8) -> usize;
     /// Number of modules.
     fn len(&self) -> usize;
     /// Whether there is no module.

@@ -33,9 +33,10 @@ impl<'c> View<'c> {
         self.0.is_male(connector)
     }
 
-    /// Which half of a module a connector is on (an ATRON hemisphere, an M-TRAN block).
-    pub fn hemisphere(self, connector: u8) -> usize {
-        usize::from(connector >= self.connectors() / 2)
+    /// Which rigid side of its module a connector is on, as the robot says
+    /// (`RobotShape::side`: an ATRON hemisphere, an M-TRAN block).
+    pub fn side(self, connector: u8) -> usize {
+        self.0.side(connector)
     }
 
     /// Number of modules.

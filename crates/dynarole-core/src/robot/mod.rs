@@ -20,6 +20,49 @@ pub struct RobotApi {
     pub connector_part: Option<usize>,
     /// The part the role query `joint` (or `joint(j)`) reads.
     pub joint_part: Option<usize>,
+    /// How its joints' angles are counted (`[joint_angle]`).
+    pub joint_angle: JointAngle,
+}
+
+/// How a robot's joint angles are counted (a plugin's `[joint_angle]`): the units of a quarter
+/// turn, and whether a joint turns round (its angles wrap at four quarters) or stops at the
+/// ends of its range. What the critical path counts a turn's quarters with, for any robot.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct JointAngle {
+    /// Units of a quarter turn (ATRON 108, M-TRAN 90).
+    pub quarter: i64,
+    /// The joint turns round: an angle and the same plus four quarters are one position.
+    pub wraps: bool,
+}
+
+impl Default for JointAngle {
+    /// Degrees, with end stops: what a plugin without `[joint_angle]` means.
+    fn default() -> JointAngle {
+        JointAngle {
+            quarter: 90,
+            wraps: false,
+        }
+    }
+}
+
+impl JointAngle {
+    /// Quarter turns (rounded up) a joint passes from `from` to `to`, upwards if `increasing`:
+    /// the way round matters only for a joint that turns round.
+    pub fn quarter_turns(self, from: i64, to: i64, increasing: bool) -> u64 {
+        let delta = if !self.wraps {
+            to.saturating_sub(from).saturating_abs()
+        } else {
+            let full = self.quarter.saturating_mul(4);
+            let forward = to.saturating_sub(from);
+            (if increasing {
+                forward
+            } else {
+                forward.saturating_neg()
+            })
+            .rem_euclid(full)
+        };
+        u64::try_from(delta).map_or(0, |d| d.div_ceil(self.quarter.unsigned_abs()))
+    }
 }
 
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -16,8 +16,40 @@ struct RawPlugin {
     description: String,
     connectors: Option<String>,
     joints: Option<String>,
+    joint_angle: Option<RawJointAngle>,
     #[serde(default)]
     part: Vec<RawPart>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawJointAngle {
+    quarter: i64,
+    #[serde(default)]
+    wraps: bool,
+}
+
+/// The largest quarter turn a plugin may count in (its angles stay far inside `i64`).
+const MAX_QUARTER_UNITS: i64 = 1 << 20;
+
+/// `[joint_angle]`, or the default (degrees, end stops) when the plugin has none.
+fn joint_angle(raw: Option<&RawJointAngle>) -> Result<JointAngle, PluginError> {
+    let Some(raw) = raw else {
+        return Ok(JointAngle::default());
+    };
+    if !(1..=MAX_QUARTER_UNITS).contains(&raw.quarter) {
+        return Err(error(
+            "joint_angle.quarter",
+            format!(
+                "expected the units of a quarter turn, from 1 to {MAX_QUARTER_UNITS}, found {}",
+                raw.quarter
+            ),
+        ));
+    }
+    Ok(JointAngle {
+        quarter: raw.quarter,
+        wraps: raw.wraps,
+    })
 }
 
 #[derive(Deserialize)]
@@ -115,6 +147,7 @@ impl RobotApi {
             }
         }
         Ok(RobotApi {
+            joint_angle: joint_angle(raw.joint_angle.as_ref())?,
             name: raw.name,
             description: raw.description,
             parts,

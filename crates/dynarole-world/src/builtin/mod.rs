@@ -1,7 +1,6 @@
 //! The built-in robots behind the robot API: each one's `RobotShape` and `RobotModel`
 //! (`atron.rs`, `mtran.rs`), the model made from a configuration of the data files, and the
-//! one place that knows the built-in robots by plugin name (`BUILTIN_ROBOTS`,
-//! `builtin_quarter_turns`).
+//! one place that knows the built-in robots by plugin name (`BUILTIN_ROBOTS`).
 //!
 //! The layering that keeps the crate free of import circles: a robot's folder (`atron/`,
 //! `mtran/`: lattice, data-file configuration, world) is below `Configuration` and
@@ -38,6 +37,12 @@ macro_rules! robot_shape {
 
             fn is_male(&self, connector: u8) -> bool {
                 <$module as $crate::structure::RobotModule>::is_male(connector)
+            }
+
+            fn side(&self, connector: u8) -> usize {
+                usize::from(!<$module as $crate::structure::RobotModule>::is_north_side(
+                    connector,
+                ))
             }
 
             fn len(&self) -> usize {
@@ -82,15 +87,3 @@ use robot_shape;
 
 /// The plugin names of the robots this crate has a model of.
 pub const BUILTIN_ROBOTS: [&str; 2] = [atron::NAME, mtran::NAME];
-
-/// Quarter turns a joint of the built-in robot `robot` (a plugin name) passes through from
-/// `from` to `to` in the given direction: what its model's `RobotModel::quarter_turns`
-/// answers, for estimates made with no model at hand (the critical path). `None` for a robot
-/// this crate has no model of.
-pub fn builtin_quarter_turns(robot: &str, from: i64, to: i64, increasing: bool) -> Option<u64> {
-    match robot {
-        atron::NAME => Some(atron::quarter_turns(from, to, increasing)),
-        mtran::NAME => Some(mtran::quarter_turns(from, to)),
-        _ => None,
-    }
-}
