@@ -128,35 +128,11 @@ fn expect(actual: &Configuration, path: &Path) -> Result<bool, Failure> {
 /// One line per module and the latches, in file order.
 fn print_configuration(config: &Configuration) {
     println!("final configuration:");
-    match config {
-        Configuration::Atron(c) => {
-            for m in c.modules() {
-                let [x, y, z] = m.position;
-                println!(
-                    "  {:<6} at ({x}, {y}, {z})  {:<12} joint {}",
-                    m.name,
-                    m.orientation.name(),
-                    m.joint_units
-                );
-            }
-        }
-        Configuration::Mtran(c) => {
-            for m in c.modules() {
-                let [n, s] = m.joints_deg;
-                println!(
-                    "  {:<6} {:<12} joints {n} / {s} deg",
-                    m.name,
-                    m.orientation.name()
-                );
-            }
-        }
+    for line in config.module_lines() {
+        println!("  {line}");
     }
-    let connections: Vec<String> = match config {
-        Configuration::Atron(c) => c.named_connections(),
-        Configuration::Mtran(c) => c.named_connections(),
-    }
-    .into_iter()
-    .map(|(a, ca, b, cb)| format!("{a}.{ca}-{b}.{cb}"))
-    .collect();
+    let connections: Vec<String> = (config.named_connections().into_iter())
+        .map(|(a, ca, b, cb)| format!("{a}.{ca}-{b}.{cb}"))
+        .collect();
     println!("  latches: {}", connections.join(" "));
 }

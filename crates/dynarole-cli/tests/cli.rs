@@ -377,6 +377,16 @@ fn replay_of_the_mtran_experiment_and_its_derived_reverse() {
         out,
     ]);
     assert_eq!(forward.status.code(), Some(0), "{}", text(&forward.stdout));
+    // The final configuration as the robot summarises its modules (`module_lines`).
+    let printed = "final configuration:\n  T10    -y-z+x       joints 0 / 0 deg\n  \
+                   T11    -y-z+x       joints 0 / 0 deg\n  T12    -y-z+x       joints 0 / 0 deg\n  \
+                   T13    -y-z+x       joints 0 / 0 deg\n  \
+                   latches: T10.0-T13.3 T12.0-T11.3 T13.0-T12.3\n";
+    assert!(
+        text(&forward.stdout).contains(printed),
+        "{}",
+        text(&forward.stdout)
+    );
     let back = dynarole(&[
         "replay",
         "examples/mtran/move_module.dr",

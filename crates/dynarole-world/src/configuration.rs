@@ -51,6 +51,23 @@ impl Configuration {
         }
     }
 
+    /// One line per module, in file order, as the robot summarises its modules (a command's
+    /// printed final configuration).
+    pub fn module_lines(&self) -> Vec<String> {
+        match self {
+            Configuration::Atron(c) => c.module_lines(),
+            Configuration::Mtran(c) => c.module_lines(),
+        }
+    }
+
+    /// The latches as names, male first, in latch order.
+    pub fn named_connections(&self) -> Vec<crate::common::NamedConnection> {
+        match self {
+            Configuration::Atron(c) => c.named_connections(),
+            Configuration::Mtran(c) => c.named_connections(),
+        }
+    }
+
     /// The ATRON configuration, if this is one.
     pub fn as_atron(&self) -> Option<&AtronConfiguration> {
         match self {

@@ -48,6 +48,22 @@ pub struct AtronConfiguration {
 }
 
 impl AtronConfiguration {
+    /// One line per module, in file order, for a summary: name, lattice position,
+    /// orientation and joint angle.
+    pub fn module_lines(&self) -> Vec<String> {
+        (self.modules().iter())
+            .map(|m| {
+                let [x, y, z] = m.position;
+                format!(
+                    "{:<6} at ({x}, {y}, {z})  {:<12} joint {}",
+                    m.name,
+                    m.orientation.name(),
+                    m.joint_units
+                )
+            })
+            .collect()
+    }
+
     /// Validates modules and connections (paths in errors are `modules[i]...` and
     /// `connections[k]...`, as in the JSON format).
     pub fn new(

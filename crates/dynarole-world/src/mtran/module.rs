@@ -266,6 +266,21 @@ pub struct MtranConfiguration {
 }
 
 impl MtranConfiguration {
+    /// One line per module, in file order, for a summary: name, orientation and the two joint
+    /// angles.
+    pub fn module_lines(&self) -> Vec<String> {
+        (self.modules().iter())
+            .map(|m| {
+                let [n, s] = m.joints_deg;
+                format!(
+                    "{:<6} {:<12} joints {n} / {s} deg",
+                    m.name,
+                    m.orientation.name()
+                )
+            })
+            .collect()
+    }
+
     /// Validates modules and connections (error paths as in the JSON format).
     pub fn new(
         metadata: Metadata,
