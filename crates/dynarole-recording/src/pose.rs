@@ -109,14 +109,16 @@ pub fn poses_at(recording: &Recording, time_ms: f64) -> Option<Vec<Pose>> {
             continue;
         }
         let fraction = (time_ms - motion.start_ms) / (motion.end_ms - motion.start_ms);
-        turn_poses(&mut frame.poses, motion.module, turn, fraction);
+        let half_of: Vec<u8> = recording.connectors.iter().map(|c| c.half).collect();
+        turn_poses(&mut frame.poses, motion.module, turn, fraction, &half_of);
     }
     Some(frame.poses)
 }
 
 /// Turns the moving side of `turn` (whole modules and the turning module's moving half) by
-/// `fraction` of its angle.
-pub fn turn_poses(poses: &mut [Pose], turner: usize, turn: &Turn, fraction: f64) {
+/// `fraction` of its angle; `half_of[k]` is the half connector `k` sits on (the recording's
+/// `connectors`, as the robot said: `RobotShape::side`).
+pub fn turn_poses(poses: &mut [Pose], turner: usize, turn: &Turn, fraction: f64, half_of: &[u8]) {
     let motion = TurnMotion {
         pivot: turn.pivot,
         axis: turn.axis.map(|v| v.round() as i32),
@@ -140,7 +142,7 @@ pub fn turn_poses(poses: &mut [Pose], turner: usize, turn: &Turn, fraction: f64)
             pose.connectors.iter_mut().for_each(|c| *c = point(*c));
         }
     }
-    turn_half(poses, turner, turn, &point, &direction);
+    turn_half(poses, turner, turn, &point, &direction, half_of);
 }
 
 fn turn_half(
@@ -149,6 +151,7 @@ fn turn_half(
     turn: &Turn,
     point: &dyn Fn([f64; 3]) -> [f64; 3],
     direction: &dyn Fn([f64; 3]) -> [f64; 3],
+    half_of: &[u8],
 ) {
     let Some(pose) = poses.get_mut(turner) else {
         return;
@@ -161,12 +164,44 @@ fn turn_half(
     // The centre lies between the halves (an M-TRAN block moves it; ATRON halves share it).
     let [a, b] = [pose.halves[0].centre, pose.halves[1].centre];
     pose.centre = std::array::from_fn(|i| (a[i] + b[i]) / 2.0);
-    // The first half of the connectors is on half 0 (ATRON 0-3 north, M-TRAN 0-2 the north
-    // block), the rest on half 1.
-    let per_half = pose.connectors.len() / 2;
     for (k, c) in pose.connectors.iter_mut().enumerate() {
-        if k / per_half.max(1) == half {
+        if half_of.get(k).is_some_and(|h| usize::from(*h) == half) {
             *c = point(*c);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::turn_poses;
+    use crate::format::{Half, Pose, Turn};
+
+    /// A turn moves the connectors on its half as the recording says they sit, not the first
+    /// or the second half of the numbers (a robot may number its sides' connectors apart).
+    #[test]
+    fn a_turn_moves_the_connectors_of_its_half_whatever_their_numbers() {
+        let half = Half {
+            centre: [0.0; 3],
+            up: [0.0, 0.0, 1.0],
+        };
+        let mut poses = vec![Pose {
+            centre: [0.0; 3],
+            halves: [half, half],
+            connectors: vec![[1.0, 0.0, 0.0]; 4],
+        }];
+        let turn = Turn {
+            pivot: [0.0; 3],
+            axis: [0, 0, 1].map(f64::from),
+            angle_deg: 180.0,
+            moving: Vec::new(),
+            half: 0,
+        };
+        turn_poses(&mut poses, 0, &turn, 1.0, &[1, 0, 1, 0]);
+        let x: Vec<i64> = poses[0]
+            .connectors
+            .iter()
+            .map(|c| c[0].round() as i64)
+            .collect();
+        assert_eq!(x, [1, -1, 1, -1]);
     }
 }

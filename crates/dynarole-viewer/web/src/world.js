@@ -39,6 +39,7 @@ export class World {
       .slice()
       .sort((a, b) => a.end_ms - b.end_ms);
     this.turns = recording.motions.filter((m) => m.outcome === 'done' && m.turn && m.end_ms > m.start_ms);
+    this.halfOf = recording.connectors.map((c) => c.half);
   }
 
   // The settled poses and latches at time t.
@@ -64,14 +65,15 @@ export class World {
     for (const m of this.turns) {
       if (m.start_ms <= t && t < m.end_ms) {
         const fraction = (t - m.start_ms) / (m.end_ms - m.start_ms);
-        turnPoses(state.poses, m.module, m.turn, fraction);
+        turnPoses(state.poses, m.module, m.turn, fraction, this.halfOf);
       }
     }
     return state;
   }
 }
 
-function turnPoses(poses, turner, turn, fraction) {
+// `halfOf[k]`: the half connector k sits on, as the recording says (the robot's own answer).
+function turnPoses(poses, turner, turn, fraction, halfOf) {
   const axis = new THREE.Vector3(...turn.axis).normalize();
   const q = new THREE.Quaternion().setFromAxisAngle(axis, THREE.MathUtils.degToRad(turn.angle_deg * fraction));
   const pivot = new THREE.Vector3(...turn.pivot);
@@ -100,6 +102,5 @@ function turnPoses(poses, turner, turn, fraction) {
   // The centre lies between the halves (an M-TRAN block moves it; ATRON halves share it).
   const [a, b] = [p.halves[0].centre, p.halves[1].centre];
   p.centre = [0, 1, 2].map((i) => (a[i] + b[i]) / 2);
-  const perHalf = p.connectors.length / 2;
-  p.connectors = p.connectors.map((c, k) => (Math.floor(k / perHalf) === turn.half ? point(c) : c));
+  p.connectors = p.connectors.map((c, k) => (halfOf[k] === turn.half ? point(c) : c));
 }
