@@ -19,6 +19,7 @@ mod builtin;
 mod common;
 mod compare;
 mod configuration;
+mod file_format;
 pub mod generated;
 pub mod geometry;
 mod graph;
