@@ -1,5 +1,6 @@
-//! What a campaign's rows are computed from: dynarole's version and a hash of every file a
-//! run reads (the campaign file, the program, its robot plugins, the start and expected
+//! What a campaign's rows are computed from: dynarole's version with a hash of the source it
+//! was built from (`build.rs`: two builds of one version from different code differ), and a
+//! hash of every file a run reads (the campaign file, the program, its robot plugins, the start and expected
 //! configurations). The record is kept beside `runs.csv` and in a split's directory
 //! (`campaign.inputs`) and heads every shard file, so that rows computed from different
 //! inputs (an edited `.dr` file, a shard run elsewhere with another `expect`) are never
@@ -30,7 +31,10 @@ pub struct Fingerprint {
 
 /// The roles, in order, and how a change of each is said.
 const ROLES: [(&str, &str); 6] = [
-    ("version", "another version of dynarole"),
+    (
+        "version",
+        "another build of dynarole (its version or its source)",
+    ),
     ("campaign", "another campaign file"),
     ("program", "another program"),
     ("plugin", "another robot plugin"),
@@ -45,11 +49,11 @@ impl Default for Fingerprint {
 }
 
 impl Fingerprint {
-    /// A record of this dynarole's version and no file yet.
+    /// A record of this build of dynarole and no file yet.
     pub fn new() -> Fingerprint {
         let version = Input {
             role: "version".into(),
-            hash: env!("CARGO_PKG_VERSION").into(),
+            hash: build_identity().into(),
             path: String::new(),
         };
         Fingerprint {
@@ -162,6 +166,12 @@ fn describe(role: &str, words: &str, before: &[Input], after: &[Input]) -> Strin
     }
 }
 
+/// This build: dynarole's version and the hash of the source it was built from
+/// (`0.1.0+5c1e...`).
+pub fn build_identity() -> &'static str {
+    concat!(env!("CARGO_PKG_VERSION"), "+", env!("DYNAROLE_SOURCE"))
+}
+
 /// A 64-bit FNV-1a hash of `text`, in hex (stable across machines and versions of Rust, unlike
 /// the standard library's hasher; a check of what was read, not a defence against forgery).
 pub fn hash_text(text: &str) -> String {
@@ -195,5 +205,27 @@ mod tests {
             vec!["another program: a b.dr changed".to_string()]
         );
         assert_eq!(Fingerprint::parse("run,axis\n"), (None, 0));
+    }
+
+    /// Rows of another build are told apart even at the same version: the source's hash is in
+    /// the record, and a change of it is named.
+    #[test]
+    fn another_build_of_one_version_is_another_input() {
+        let (version, source) = build_identity().split_once('+').expect("version+source");
+        assert_eq!(version, env!("CARGO_PKG_VERSION"));
+        assert!(
+            source.len() == 16 && source.chars().all(|c| c.is_ascii_hexdigit()),
+            "{source}"
+        );
+        let now = record("robot atron;");
+        let text = now.to_text().replace(source, "0123456789abcdef");
+        let (before, _) = Fingerprint::parse(&text);
+        let changes = before.expect("a record").changes(&now);
+        assert_eq!(changes.len(), 1, "{changes:?}");
+        assert!(
+            changes[0].starts_with("another build of dynarole"),
+            "{changes:?}"
+        );
+        assert!(changes[0].contains("0123456789abcdef"), "{changes:?}");
     }
 }
