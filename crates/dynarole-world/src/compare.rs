@@ -2,14 +2,11 @@
 //! plus a translation), with a readable account of the differences under the best-matching
 //! motion.
 
-use crate::atron::lattice::Orientation;
-use crate::common::NamedConnection;
 use crate::configuration::Configuration;
 use crate::geometry::{add, sub, Rotation, Vec3};
 use crate::model::RobotModel;
-use crate::mtran::module::MtranOrientation;
-use crate::structure::{RobotModule, Structure};
-use std::collections::{BTreeMap, BTreeSet};
+use crate::rigid::{Body, Shape};
+use std::collections::BTreeMap;
 use std::fmt;
 
 /// A module whose pose differs under the chosen rigid motion.
@@ -160,74 +157,8 @@ impl fmt::Display for Difference {
 
 impl std::error::Error for Difference {}
 
-/// A module reduced to what a rigid motion acts on.
-struct Body {
-    id: Option<u32>,
-    position: Vec3,
-    frame: Rotation,
-    joints: Vec<i32>,
-}
-
-/// Either robot's configuration reduced to bodies and connections.
-struct Shape {
-    bodies: BTreeMap<String, Body>,
-    connections: BTreeSet<String>,
-    name_frame: fn(Rotation) -> String,
-    /// Internal position units per file unit (1 for ATRON, 2 for M-TRAN quarter pitches).
-    position_scale: i32,
-}
-
-fn connection_names(connections: Vec<NamedConnection>) -> BTreeSet<String> {
-    connections
-        .into_iter()
-        .map(|(a, ca, b, cb)| format!("{a}.C{ca}-{b}.C{cb}"))
-        .collect()
-}
-
 fn shape(config: &Configuration) -> Shape {
-    match config {
-        Configuration::Atron(c) => shape_of(
-            &c.structure,
-            |m| Body {
-                id: m.id,
-                position: m.position,
-                frame: m.orientation.frame(),
-                joints: vec![i32::from(m.joint_units)],
-            },
-            |r| Orientation::from_frame(r).name(),
-            1,
-        ),
-        Configuration::Mtran(c) => shape_of(
-            &c.structure,
-            |m| Body {
-                id: m.id,
-                position: m.centre_quarter_pitch,
-                frame: m.orientation.frame(),
-                joints: m.joints_deg.iter().map(|j| i32::from(*j)).collect(),
-            },
-            |r| MtranOrientation::from_frame(r).name(),
-            2,
-        ),
-    }
-}
-
-/// Either robot's modules reduced by `body`, keyed by name, and its connections.
-fn shape_of<M: RobotModule>(
-    structure: &Structure<M>,
-    body: fn(&M) -> Body,
-    name_frame: fn(Rotation) -> String,
-    position_scale: i32,
-) -> Shape {
-    Shape {
-        bodies: structure
-            .modules()
-            .iter()
-            .map(|m| (m.name().to_string(), body(m)))
-            .collect(),
-        connections: connection_names(structure.named_connections()),
-        name_frame,
-        position_scale,
-    }
+    config.rigid_shape()
 }
 
 /// [`compare`] of the configuration a run reached against the one it was expected to reach,

@@ -60,6 +60,14 @@ impl Configuration {
         }
     }
 
+    /// The configuration as rigid bodies, as its robot reduces it (`compare.rs`).
+    pub(crate) fn rigid_shape(&self) -> crate::rigid::Shape {
+        match self {
+            Configuration::Atron(c) => c.rigid_shape(),
+            Configuration::Mtran(c) => c.rigid_shape(),
+        }
+    }
+
     /// The latches as names, male first, in latch order.
     pub fn named_connections(&self) -> Vec<crate::common::NamedConnection> {
         match self {

@@ -28,6 +28,7 @@ mod model;
 mod motion;
 pub mod mtran;
 mod ops;
+mod rigid;
 mod structure;
 mod view;
 mod world_common;

@@ -5,6 +5,7 @@ use super::lattice::{
 };
 use crate::common::{check_translation, ConfigError, Metadata, NamedConnection, Port};
 use crate::geometry::{add, sub, within_bounds, Rotation, Vec3, MAX_COORDINATE};
+use crate::rigid::{shape_of, Body, Shape};
 use crate::structure::{configuration_queries, RobotModule, Structure};
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt;
@@ -48,6 +49,22 @@ pub struct AtronConfiguration {
 }
 
 impl AtronConfiguration {
+    /// The configuration as rigid bodies (positions in lattice units, frames named as ATRON
+    /// orientations), for the comparison up to a rigid motion.
+    pub(crate) fn rigid_shape(&self) -> Shape {
+        shape_of(
+            &self.structure,
+            |m| Body {
+                id: m.id,
+                position: m.position,
+                frame: m.orientation.frame(),
+                joints: vec![i32::from(m.joint_units)],
+            },
+            |r| Orientation::from_frame(r).name(),
+            1,
+        )
+    }
+
     /// One line per module, in file order, for a summary: name, lattice position,
     /// orientation and joint angle.
     pub fn module_lines(&self) -> Vec<String> {

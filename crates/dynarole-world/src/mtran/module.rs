@@ -12,6 +12,7 @@
 
 use crate::common::{check_translation, ConfigError, Metadata, NamedConnection, Port};
 use crate::geometry::{add, axis_name, scale, sub, within_bounds, Rotation, Vec3, MAX_COORDINATE};
+use crate::rigid::{shape_of, Body, Shape};
 use crate::structure::{configuration_queries, RobotModule, Structure};
 use std::collections::BTreeMap;
 use std::fmt;
@@ -266,6 +267,22 @@ pub struct MtranConfiguration {
 }
 
 impl MtranConfiguration {
+    /// The configuration as rigid bodies (positions in quarter pitches, written in pitches;
+    /// frames named as M-TRAN orientations), for the comparison up to a rigid motion.
+    pub(crate) fn rigid_shape(&self) -> Shape {
+        shape_of(
+            &self.structure,
+            |m| Body {
+                id: m.id,
+                position: m.centre_quarter_pitch,
+                frame: m.orientation.frame(),
+                joints: m.joints_deg.iter().map(|j| i32::from(*j)).collect(),
+            },
+            |r| MtranOrientation::from_frame(r).name(),
+            2,
+        )
+    }
+
     /// One line per module, in file order, for a summary: name, orientation and the two joint
     /// angles.
     pub fn module_lines(&self) -> Vec<String> {
