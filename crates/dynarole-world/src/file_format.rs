@@ -6,7 +6,48 @@
 
 use crate::common::{ConfigError, Metadata, NamedConnection};
 use serde::de::DeserializeOwned;
+use serde::Deserialize;
 use serde_json::{json, Value};
+
+/// A data file's top level, the same for every robot; `R` is the robot's module record.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct DataFile<R> {
+    name: String,
+    #[allow(dead_code)]
+    robot: String,
+    source: Option<String>,
+    lattice_unit_m: Option<f64>,
+    origin_m: Option<[f64; 3]>,
+    modules: Vec<R>,
+    connections: Vec<(String, i64, String, i64)>,
+    derivation: Option<String>,
+    note: Option<String>,
+}
+
+/// A robot's data file read: its descriptive fields (`lattice_unit_m` checked against
+/// `unit_m`), its modules, each built from its record by `module` (index, record), and its
+/// connections checked against `connector_count`.
+pub(crate) fn read_document<R: DeserializeOwned, M>(
+    text: &str,
+    unit_m: f64,
+    connector_count: u8,
+    module: fn(usize, R) -> Result<M, ConfigError>,
+) -> Result<(Metadata, Vec<M>, Vec<NamedConnection>), ConfigError> {
+    let file: DataFile<R> = deserialize(text)?;
+    let metadata = metadata(
+        file.name,
+        file.source,
+        (file.lattice_unit_m, unit_m),
+        file.origin_m,
+        (file.derivation, file.note),
+    )?;
+    let modules = (file.modules.into_iter().enumerate())
+        .map(|(i, record)| module(i, record))
+        .collect::<Result<Vec<_>, _>>()?;
+    let connections = connections(&file.connections, connector_count)?;
+    Ok((metadata, modules, connections))
+}
 
 /// Tolerance for the floating-point redundant fields (metres, unit normals).
 pub(crate) const FLOAT_TOLERANCE: f64 = 1e-6;
@@ -31,7 +72,7 @@ pub(crate) fn deserialize<T: DeserializeOwned>(text: &str) -> Result<T, ConfigEr
 }
 
 /// Checks the common top-level fields and builds the metadata.
-pub(crate) fn metadata(
+fn metadata(
     name: String,
     source: Option<String>,
     (lattice_unit_m, expected_unit_m): (Option<f64>, f64),
@@ -59,7 +100,7 @@ pub(crate) fn metadata(
 }
 
 /// Converts connector numbers, naming the field of an out-of-range one.
-pub(crate) fn connections(
+fn connections(
     raw: &[(String, i64, String, i64)],
     count: u8,
 ) -> Result<Vec<NamedConnection>, ConfigError> {

@@ -7,29 +7,16 @@ use super::lattice::{
     is_joint_position, Orientation, OrientationBase, CONNECTOR_COUNT, LATTICE_UNIT_M,
 };
 use crate::common::ConfigError;
-use crate::file_format::{check_id, connections, deserialize, metadata, object};
+use crate::file_format::{check_id, object, read_document};
 use crate::geometry::{within_bounds, Vec3, MAX_COORDINATE};
 use serde::Deserialize;
 use serde_json::json;
 
 /// Reads a configuration file of this robot (its `robot` field already checked).
 pub(crate) fn read(text: &str) -> Result<AtronConfiguration, ConfigError> {
-    parse_atron(deserialize::<AtronFile>(text)?)
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct AtronFile {
-    name: String,
-    #[allow(dead_code)]
-    robot: String,
-    source: Option<String>,
-    lattice_unit_m: Option<f64>,
-    origin_m: Option<[f64; 3]>,
-    modules: Vec<AtronRecord>,
-    connections: Vec<(String, i64, String, i64)>,
-    derivation: Option<String>,
-    note: Option<String>,
+    let (metadata, modules, connections) =
+        read_document::<AtronRecord, _>(text, LATTICE_UNIT_M, CONNECTOR_COUNT, atron_module)?;
+    AtronConfiguration::new(metadata, modules, &connections)
 }
 
 #[derive(Deserialize)]
@@ -45,24 +32,6 @@ struct AtronRecord {
     joint: i64,
     axis: Option<[i64; 3]>,
     connector_offsets: Option<Vec<[i64; 3]>>,
-}
-
-fn parse_atron(file: AtronFile) -> Result<AtronConfiguration, ConfigError> {
-    let metadata = metadata(
-        file.name,
-        file.source,
-        (file.lattice_unit_m, LATTICE_UNIT_M),
-        file.origin_m,
-        (file.derivation, file.note),
-    )?;
-    let modules = file
-        .modules
-        .into_iter()
-        .enumerate()
-        .map(|(i, record)| atron_module(i, record))
-        .collect::<Result<Vec<_>, _>>()?;
-    let connections = connections(&file.connections, CONNECTOR_COUNT)?;
-    AtronConfiguration::new(metadata, modules, &connections)
 }
 
 fn atron_module(i: usize, record: AtronRecord) -> Result<AtronModule, ConfigError> {

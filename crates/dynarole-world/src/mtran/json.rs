@@ -6,31 +6,20 @@ use super::module::{
     MtranConfiguration, MtranModule, MtranOrientation, MTRAN_CONNECTOR_COUNT, MTRAN_LATTICE_UNIT_M,
 };
 use crate::common::ConfigError;
-use crate::file_format::{
-    check_float_list, check_float_vector, check_id, connections, deserialize, metadata, object,
-};
+use crate::file_format::{check_float_list, check_float_vector, check_id, object, read_document};
 use crate::geometry::{Vec3, MAX_COORDINATE};
 use serde::Deserialize;
 use serde_json::{json, Value};
 
 /// Reads a configuration file of this robot (its `robot` field already checked).
 pub(crate) fn read(text: &str) -> Result<MtranConfiguration, ConfigError> {
-    parse_mtran(deserialize::<MtranFile>(text)?)
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct MtranFile {
-    name: String,
-    #[allow(dead_code)]
-    robot: String,
-    source: Option<String>,
-    lattice_unit_m: Option<f64>,
-    origin_m: Option<[f64; 3]>,
-    modules: Vec<MtranRecord>,
-    connections: Vec<(String, i64, String, i64)>,
-    derivation: Option<String>,
-    note: Option<String>,
+    let (metadata, modules, connections) = read_document::<MtranRecord, _>(
+        text,
+        MTRAN_LATTICE_UNIT_M,
+        MTRAN_CONNECTOR_COUNT,
+        mtran_module,
+    )?;
+    MtranConfiguration::new(metadata, modules, &connections)
 }
 
 #[derive(Deserialize)]
@@ -45,24 +34,6 @@ struct MtranRecord {
     joint_axis: Option<[f64; 3]>,
     connector_normals: Option<Vec<[f64; 3]>>,
     connector_positions_m: Option<Vec<[f64; 3]>>,
-}
-
-fn parse_mtran(file: MtranFile) -> Result<MtranConfiguration, ConfigError> {
-    let metadata = metadata(
-        file.name,
-        file.source,
-        (file.lattice_unit_m, MTRAN_LATTICE_UNIT_M),
-        file.origin_m,
-        (file.derivation, file.note),
-    )?;
-    let modules = file
-        .modules
-        .into_iter()
-        .enumerate()
-        .map(|(i, record)| mtran_module(i, record))
-        .collect::<Result<Vec<_>, _>>()?;
-    let connections = connections(&file.connections, MTRAN_CONNECTOR_COUNT)?;
-    MtranConfiguration::new(metadata, modules, &connections)
 }
 
 /// Builds one M-TRAN module and checks its redundant fields.
