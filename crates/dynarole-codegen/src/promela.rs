@@ -243,7 +243,7 @@ pub fn generate_compositional(
     if !o.protocol.has_compositional_model() || o.without_nv() {
         return Err(limit(format!(
             "the compositional model is for the {} protocol with NV storage",
-            Protocol::names_where(|p| p.model.is_some_and(|m| m.compositional)).join(" and ")
+            Protocol::with_compositional_model()
         )));
     }
     if o.runs() != 1 {

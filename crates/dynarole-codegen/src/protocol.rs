@@ -282,6 +282,11 @@ impl Protocol {
     pub fn has_compositional_model(self) -> bool {
         self.info().model.is_some_and(|m| m.compositional)
     }
+
+    /// The protocols with a compositional model, in words for messages ("lattice").
+    pub fn with_compositional_model() -> String {
+        Protocol::names_where(|p| p.model.is_some_and(|m| m.compositional)).join(" and ")
+    }
 }
 
 impl Choice for Protocol {

@@ -102,6 +102,7 @@ pub fn settled_at(recording: &Recording, time_ms: f64) -> Option<Keyframe> {
 /// Every module's pose at `time_ms`, turns in progress included.
 pub fn poses_at(recording: &Recording, time_ms: f64) -> Option<Vec<Pose>> {
     let mut frame = settled_at(recording, time_ms)?;
+    let half_of: Vec<u8> = recording.connectors.iter().map(|c| c.half).collect();
     for motion in &recording.motions {
         let Some(turn) = &motion.turn else { continue };
         let running = motion.start_ms <= time_ms && time_ms < motion.end_ms;
@@ -109,7 +110,6 @@ pub fn poses_at(recording: &Recording, time_ms: f64) -> Option<Vec<Pose>> {
             continue;
         }
         let fraction = (time_ms - motion.start_ms) / (motion.end_ms - motion.start_ms);
-        let half_of: Vec<u8> = recording.connectors.iter().map(|c| c.half).collect();
         turn_poses(&mut frame.poses, motion.module, turn, fraction, &half_of);
     }
     Some(frame.poses)

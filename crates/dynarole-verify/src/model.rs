@@ -170,7 +170,7 @@ fn refuse_what_is_not_modelled(options: &BuildOptions) -> Result<(), VerifyError
     {
         return Err(VerifyError::Usage(format!(
             "--method compositional models the {} protocol with NV storage and one run (--epochs 1); use --method full",
-            Protocol::names_where(|p| p.model.is_some_and(|m| m.compositional)).join(" and ")
+            Protocol::with_compositional_model()
         )));
     }
     Ok(())
