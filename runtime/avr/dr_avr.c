@@ -1,4 +1,4 @@
-/* dr_avr.c - the platform of dr_hal.h on an ATRON hemisphere board (ATmega128, 16 MHz), and
+/* dr_avr.c - the platform of dr_hal.h on a hemisphere board (ATmega128, 16 MHz), and
  * the firmware's main loop. README.md describes the board (dr_avr_board.h: pins, registers).
  *
  * - Time: Timer1 counts at 250 kHz (4 us a tick) in periods of exactly 256 ms (CTC mode,

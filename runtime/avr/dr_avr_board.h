@@ -1,4 +1,4 @@
-/* dr_avr_board.h - the ATRON hemisphere board as the ATmega128 firmware sees it: which pins
+/* dr_avr_board.h - the hemisphere board as the ATmega128 firmware sees it: which pins
  * and registers of the board's controller do what (README.md describes it). One definition
  * for both sides: the firmware (dr_avr.c) and the emulated board around the emulated MCU
  * (the simulator's simavr shim) include this file. Plain constants, no AVR headers. */

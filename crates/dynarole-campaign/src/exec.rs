@@ -56,7 +56,7 @@ impl<'a> Worker<'a> {
             .map_err(|e| Error::Sim(format!("run {}: {e}", run.index)))?;
         Ok(Row::new(
             run,
-            scenario.network.preset.name(),
+            inputs.preset.name,
             scenario.timeout_ms,
             &report,
         ))
@@ -88,7 +88,7 @@ pub fn simulator(inputs: &Inputs, protocol: dynarole_codegen::Variant) -> Result
 /// Builds every protocol's C once, before the parallel phase, so that the workers find it in
 /// the cache and a build error is reported once.
 pub fn prepare(inputs: &Inputs) -> Result<(), Error> {
-    let preset = inputs.campaign.scenario.network.preset;
+    let preset = inputs.preset;
     for &protocol in &inputs.campaign.protocols {
         simulator(inputs, protocol)?
             .build_directory(preset)

@@ -135,7 +135,7 @@ fn input_of_line(line: &str) -> Option<Input> {
     })
 }
 
-/// `another program: examples/atron/eight2car.dr changed`, or, when the inputs were read from
+/// `another program: eight2car.dr changed`, or, when the inputs were read from
 /// other paths, `another program: B.dr instead of A.dr`.
 fn describe(role: &str, words: &str, before: &[Input], after: &[Input]) -> String {
     if role == "version" {

@@ -33,6 +33,7 @@ pub use spec::{CampaignFile, ProtocolOptions, Range, SpecError, Sweep};
 pub use stats::{median, summarise, wilson, PointSummary};
 
 use dynarole_core::Diagnostic;
+use dynarole_world::Robots;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -118,18 +119,19 @@ pub struct Done {
 }
 
 /// Runs (or resumes) the campaign described by `options.campaign`, writing into
-/// `options.out_dir`: all of it, or only `options.shard`; `progress` is told how the runs
-/// advance.
-pub fn run(options: &Options, progress: &mut dyn Progress) -> Result<Done, Error> {
+/// `options.out_dir`: all of it, or only `options.shard`, its configurations of one of
+/// `robots`; `progress` is told how the runs advance.
+pub fn run(options: &Options, robots: &Robots, progress: &mut dyn Progress) -> Result<Done, Error> {
     let started = Instant::now();
-    let sources = load::sources(&options.campaign)?;
+    let sources = load::sources(&options.campaign, robots)?;
     let inputs = load::inputs(&sources)?;
     let planned = plan_of(&sources, inputs.campaign)?;
     std::fs::create_dir_all(&options.out_dir).map_err(|e| Error::io(&options.out_dir, e))?;
     let mut done = match options.shard {
         None => {
             let csv_path = options.out_dir.join("runs.csv");
-            let before = recorded(&csv_path, &planned, inputs.campaign, None)?.rows;
+            let campaign = (inputs.campaign, Some(inputs.preset.name));
+            let before = recorded(&csv_path, &planned, campaign, None)?.rows;
             let what = format!("the {} runs of {}", before.len(), csv_path.display());
             let has_results = !before.is_empty();
             shard::keep_inputs(&options.out_dir, &inputs.fingerprint, has_results, &what)?;
@@ -154,8 +156,8 @@ pub fn run(options: &Options, progress: &mut dyn Progress) -> Result<Done, Error
 
 /// The number of runs of the campaign in `path`, after checking it as `run` would (the file,
 /// the program, the configurations, the plan), without running anything.
-pub fn count_runs(path: &Path) -> Result<u64, Error> {
-    let sources = load::sources(path)?;
+pub fn count_runs(path: &Path, robots: &Robots) -> Result<u64, Error> {
+    let sources = load::sources(path, robots)?;
     let inputs = load::inputs(&sources)?;
     Ok(plan_of(&sources, inputs.campaign)?.len())
 }
@@ -164,9 +166,13 @@ pub fn count_runs(path: &Path) -> Result<u64, Error> {
 /// here, not in each of N jobs), keeps its copy and the record of its inputs in `jobs.dir` as
 /// the first shard would (so that `status` works before any shard ran), and writes the job
 /// files. Returns the number of runs and the files written.
-pub fn emit(scheduler: Scheduler, jobs: &Jobs) -> Result<(u64, Vec<PathBuf>), Error> {
+pub fn emit(
+    scheduler: Scheduler,
+    jobs: &Jobs,
+    robots: &Robots,
+) -> Result<(u64, Vec<PathBuf>), Error> {
     emit::check(scheduler, jobs)?;
-    let sources = load::sources(&jobs.campaign)?;
+    let sources = load::sources(&jobs.campaign, robots)?;
     let inputs = load::inputs(&sources)?;
     let runs = plan_of(&sources, inputs.campaign)?.len();
     let dir = &jobs.dir;
@@ -255,7 +261,8 @@ fn resumable(
     inputs: &load::Inputs,
     shard: Shard,
 ) -> Result<Vec<Row>, Error> {
-    let before = recorded(partial, planned, inputs.campaign, Some(shard))?;
+    let campaign = (inputs.campaign, Some(inputs.preset.name));
+    let before = recorded(partial, planned, campaign, Some(shard))?;
     if before.rows.is_empty() {
         match std::fs::remove_file(partial) {
             Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
@@ -369,17 +376,20 @@ fn write_outputs(
 }
 
 /// The rows already in `path`, each checked against the planned run of its index (and, for a
-/// shard's file, against the shard).
+/// shard's file, against the shard), run under the network preset `preset` (`None` where the
+/// robot is not loaded, as in a merge: the campaign's own, else the first row's for all).
 fn recorded(
     path: &Path,
     planned: &plan::Plan,
-    campaign: &CampaignFile,
+    (campaign, preset): (&CampaignFile, Option<&str>),
     shard: Option<Shard>,
 ) -> Result<results::Recorded, Error> {
     let runs = shard.map_or(planned.len(), |s| s.size(planned.len()));
     let read = results::read_existing(path, files::results_bound(runs))?;
     let rows = &read.rows;
-    let preset = campaign.scenario.network.preset.name();
+    let named = campaign.scenario.network.preset.0.as_deref();
+    let first = rows.first().map(|r| r.preset.as_str());
+    let preset = preset.or(named).or(first).unwrap_or_default();
     let timeout = campaign.scenario.timeout_ms;
     let mut seen = std::collections::BTreeSet::new();
     for row in rows {

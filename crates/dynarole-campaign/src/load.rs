@@ -10,7 +10,8 @@ use dynarole_core::driver::{self, SelectError};
 use dynarole_core::expand::Plan;
 use dynarole_core::Program;
 use dynarole_input::program::{self, PluginError};
-use dynarole_world::Configuration;
+use dynarole_sim::Preset;
+use dynarole_world::{Configuration, Robots};
 use std::path::Path;
 
 /// The files a campaign reads, parsed (the program borrows the syntax tree from here).
@@ -26,6 +27,8 @@ pub struct Sources {
     pub expect: Option<Configuration>,
     /// The files read so far (the campaign file, the program, the configurations).
     pub fingerprint: Fingerprint,
+    /// The robot kinds the configurations and the program may be of.
+    pub robots: Robots,
 }
 
 /// Everything the runs share (all `Sync`: each worker builds its own simulators from it).
@@ -36,6 +39,8 @@ pub struct Inputs<'a> {
     pub plans: Vec<Plan>,
     pub start: &'a Configuration,
     pub expect: Option<&'a Configuration>,
+    /// The network preset of every run (the campaign's `preset` among the robot's).
+    pub preset: Preset,
     /// Every file the runs are computed from, the robot plugins included.
     pub fingerprint: Fingerprint,
 }
@@ -84,8 +89,8 @@ fn read_field(
     })
 }
 
-/// Reads the campaign file and everything it names.
-pub fn sources(path: &Path) -> Result<Sources, Error> {
+/// Reads the campaign file and everything it names, its configurations of one of `robots`.
+pub fn sources(path: &Path, robots: &Robots) -> Result<Sources, Error> {
     let text = read(path)?;
     let dir = path.parent().unwrap_or(Path::new("."));
     let campaign = CampaignFile::parse(&text, dir).map_err(|e| Error::Spec {
@@ -100,9 +105,10 @@ pub fn sources(path: &Path) -> Result<Sources, Error> {
     fingerprint.add("program", &campaign.file, &source);
     let parsed = dynarole_core::parse(&source);
     let from = field("from", &campaign.from)?;
-    let start = configuration(&campaign.from, &from, &mut fingerprint, "from")?;
+    let start = configuration(robots, &campaign.from, &from, &mut fingerprint, "from")?;
     let expect = match campaign.expect.as_deref() {
         Some(p) => Some(configuration(
+            robots,
             p,
             &field("expect", p)?,
             &mut fingerprint,
@@ -119,6 +125,7 @@ pub fn sources(path: &Path) -> Result<Sources, Error> {
         parsed,
         start,
         expect,
+        robots: robots.clone(),
     })
 }
 
@@ -138,12 +145,20 @@ pub fn inputs(sources: &Sources) -> Result<Inputs<'_>, Error> {
             diagnostics,
         }
     })?;
+    let presets = sources.start.kind().network_presets();
+    let preset =
+        (campaign.scenario.network.preset.resolve(presets)).map_err(|message| Error::Spec {
+            path: sources.path.clone(),
+            error: Box::new(SpecError::new("preset", message).locate(&sources.text)),
+            text: sources.text.clone(),
+        })?;
     Ok(Inputs {
         campaign,
         source: &sources.source,
         program,
         plans,
         start: &sources.start,
+        preset,
         expect: sources.expect.as_ref(),
         fingerprint,
     })
@@ -171,13 +186,14 @@ fn unknown_sequence(sources: &Sources, e: &SelectError) -> Error {
 
 /// The configuration read from `path` as `text`, recorded in `fingerprint` as `role`.
 fn configuration(
+    robots: &Robots,
     path: &Path,
     text: &str,
     fingerprint: &mut Fingerprint,
     role: &str,
 ) -> Result<Configuration, Error> {
     fingerprint.add(role, path, text);
-    Configuration::from_json_str(text).map_err(|e| Error::Input(format!("{}: {e}", path.display())))
+    (robots.read_configuration(text)).map_err(|e| Error::Input(format!("{}: {e}", path.display())))
 }
 
 /// The checked program; every plugin it loads (through `dynarole_input::program`, the
@@ -193,8 +209,9 @@ fn program<'a>(sources: &'a Sources, fingerprint: &mut Fingerprint) -> Result<Pr
     }
     let robot = driver::robot_name(&sources.parsed.file);
     let mut seen = |path: &Path, text: &str| fingerprint.add("plugin", path, text);
-    let registry =
-        program::registry(&campaign.file, robot, plugins, &mut seen).map_err(plugin_error)?;
+    let built_in = dynarole_robots::plugins_of(&sources.robots).map_err(Error::Input)?;
+    let registry = program::registry(built_in, &campaign.file, robot, plugins, &mut seen)
+        .map_err(plugin_error)?;
     driver::check(&sources.parsed, &registry).map_err(|diagnostics| Error::Diagnostics {
         path: campaign.file.clone(),
         source: sources.source.clone(),

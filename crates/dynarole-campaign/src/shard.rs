@@ -256,7 +256,7 @@ pub fn merged_rows(dir: &Path) -> Result<(Vec<Row>, Fingerprint), Error> {
         let shard = Shard { index, count };
         match found.files.get(&index) {
             Some((Some(file), _)) => {
-                let shard_rows = crate::recorded(file, &plan, &campaign, Some(shard))?;
+                let shard_rows = crate::recorded(file, &plan, (&campaign, None), Some(shard))?;
                 let inputs = shard_rows.inputs.as_ref();
                 if reference.is_none() {
                     reference = inputs.cloned();

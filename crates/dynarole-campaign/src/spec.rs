@@ -4,7 +4,7 @@
 
 use dynarole_codegen::choice;
 use dynarole_codegen::{PaperMerge, Variant};
-use dynarole_sim::{Preset, Scenario};
+use dynarole_sim::{PresetName, Scenario};
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 
@@ -59,7 +59,7 @@ pub struct CampaignFile {
     /// `token-32`, `token-128`, `token-unlimited`.
     #[serde(deserialize_with = "choice::deserialize_list")]
     pub protocols: Vec<Variant>,
-    pub preset: Option<Preset>,
+    pub preset: Option<PresetName>,
     pub timeout_ms: Option<u64>,
     pub seeds: u64,
     #[serde(default)]
@@ -92,7 +92,7 @@ impl CampaignFile {
         reject_overridden(&raw).map_err(|e| e.locate(text))?;
         let mut campaign: CampaignFile =
             toml::from_str(text).map_err(|e| SpecError::from_de(&e))?;
-        if let Some(preset) = campaign.preset {
+        if let Some(preset) = campaign.preset.clone() {
             campaign.scenario.network.preset = preset;
         }
         if let Some(timeout) = campaign.timeout_ms {

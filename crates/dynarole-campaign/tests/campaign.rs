@@ -21,7 +21,11 @@ fn options(out: &Path, max_runs: Option<u64>, plots: bool) -> Options {
 }
 
 fn campaign(out: &Path, max_runs: Option<u64>, plots: bool) -> Done {
-    match run(&options(out, max_runs, plots), &mut Quiet) {
+    match run(
+        &options(out, max_runs, plots),
+        &dynarole_robots::robots(),
+        &mut Quiet,
+    ) {
         Ok(done) => done,
         Err(e) => panic!("campaign failed: {e}"),
     }
@@ -103,7 +107,12 @@ fn rows_of_another_campaign_are_refused() {
     let csv = dir.path().join("runs.csv");
     let text = std::fs::read_to_string(&csv).expect("runs.csv");
     std::fs::write(&csv, text.replacen(",atron,", ",ussr,", 1)).expect("write");
-    let err = run(&options(dir.path(), None, false), &mut Quiet).expect_err("must refuse");
+    let err = run(
+        &options(dir.path(), None, false),
+        &dynarole_robots::robots(),
+        &mut Quiet,
+    )
+    .expect_err("must refuse");
     assert!(err.to_string().contains("other parameters"), "{err}");
 }
 
@@ -236,7 +245,7 @@ fn unresolved_relative_paths_say_what_they_are_relative_to() {
             campaign: file.clone(),
             ..options(&root.path().join("out"), Some(1), false)
         };
-        match run(&options, &mut Quiet) {
+        match run(&options, &dynarole_robots::robots(), &mut Quiet) {
             Err(dynarole_campaign::Error::Spec { error, .. }) => *error,
             Err(other) => panic!("not a field error: {other}"),
             Ok(_) => panic!("ran"),

@@ -359,7 +359,9 @@ fn status_right_after_emit_counts_no_run_done() {
         throttle: 3,
         threads: 1,
     };
-    let (runs, files) = dynarole_campaign::emit(Scheduler::Parallel, &jobs).expect("emitted");
+    let (runs, files) =
+        dynarole_campaign::emit(Scheduler::Parallel, &jobs, &dynarole_robots::robots())
+            .expect("emitted");
     assert_eq!((runs, files.len()), (36, 2));
     let now = dynarole_campaign::status(&jobs.dir).expect("a status");
     assert_eq!((now.total, now.done(), now.shards), (36, 0, None));
@@ -371,12 +373,16 @@ fn status_right_after_emit_counts_no_run_done() {
         plots: false,
         shard: Some("0/3".parse().expect("a shard")),
     };
-    dynarole_campaign::run(&options, &mut dynarole_campaign::Quiet)
-        .expect("the first shard starts");
+    dynarole_campaign::run(
+        &options,
+        &dynarole_robots::robots(),
+        &mut dynarole_campaign::Quiet,
+    )
+    .expect("the first shard starts");
     let now = dynarole_campaign::status(&jobs.dir).expect("a status");
     assert_eq!((now.total, now.done(), now.shards), (36, 2, Some(3)));
     let other = Jobs { shards: 4, ..jobs };
-    let err = dynarole_campaign::emit(Scheduler::Parallel, &other)
+    let err = dynarole_campaign::emit(Scheduler::Parallel, &other, &dynarole_robots::robots())
         .expect_err("another split")
         .to_string();
     assert!(

@@ -23,6 +23,7 @@ fn options(out: &Path, shard: Option<&str>, max_runs: Option<u64>) -> Options {
 fn shard(out: &Path, k: u64, n: u64, max_runs: Option<u64>) -> Done {
     match run(
         &options(out, Some(&format!("{k}/{n}")), max_runs),
+        &dynarole_robots::robots(),
         &mut Quiet,
     ) {
         Ok(done) => done,
@@ -61,7 +62,12 @@ fn outputs(dir: &Path) -> Vec<(String, Vec<u8>)> {
 fn merging_any_number_of_shards_gives_the_one_machine_bytes() {
     let root = tempfile::tempdir().expect("temp dir");
     let one = root.path().join("one");
-    run(&options(&one, None, None), &mut Quiet).expect("the one-machine run");
+    run(
+        &options(&one, None, None),
+        &dynarole_robots::robots(),
+        &mut Quiet,
+    )
+    .expect("the one-machine run");
     let expected = outputs(&one);
     let names: Vec<&str> = expected.iter().map(|(n, _)| n.as_str()).collect();
     for name in ["runs.csv", "summary.csv", "summary.md", "success-loss.svg"] {
@@ -153,9 +159,13 @@ fn missing_runs_and_mixed_splits_are_named() {
             && err.contains("runs missing: 5, 7, 9, 11, 13, 15, 17, 19, 21, 23 and 6 more"),
         "{err}"
     );
-    let other = run(&options(&dir, Some("0/3"), None), &mut Quiet)
-        .expect_err("another split in the same directory")
-        .to_string();
+    let other = run(
+        &options(&dir, Some("0/3"), None),
+        &dynarole_robots::robots(),
+        &mut Quiet,
+    )
+    .expect_err("another split in the same directory")
+    .to_string();
     assert!(
         other.contains("holds shards of a split into 2, not 3"),
         "{other}"
@@ -194,6 +204,7 @@ fn run_from(
             campaign: campaign.to_path_buf(),
             ..options(out, shard, max_runs)
         },
+        &dynarole_robots::robots(),
         &mut Quiet,
     )
 }
@@ -287,7 +298,11 @@ fn unreadable_or_strange_shard_files_are_named() {
     assert!(fifo.success());
     both("shard-1-of-2.csv: not a regular file (a FIFO)");
     // The shard run again names it too, and leaves it where it is.
-    let again = error_of(run(&options(&dir, Some("1/2"), None), &mut Quiet));
+    let again = error_of(run(
+        &options(&dir, Some("1/2"), None),
+        &dynarole_robots::robots(),
+        &mut Quiet,
+    ));
     assert!(again.contains("not a regular file (a FIFO)"), "{again}");
     assert!(!dir.join("shard-1-of-2.csv.partial").exists());
     std::fs::remove_file(&file).expect("remove");

@@ -5,12 +5,12 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use dynarole_codegen::{CompileOptions, Protocol};
-use dynarole_core::{analyze, parse, RobotRegistry};
+use dynarole_core::{analyze, parse};
 use dynarole_replay::{assign_modules, parallelise, Parallelised, Request, RobotWorld};
+use dynarole_robot_atron::generated::atron_chain_json;
+use dynarole_robot_atron::World;
 use dynarole_sim::{form_makespan, makespan};
 use dynarole_sim::{Run, Scenario, Simulator};
-use dynarole_world::generated::atron_chain_json;
-use dynarole_world::{Configuration, World};
 use std::time::{Duration, Instant};
 
 const EIGHT2CAR: &str = include_str!("../../../examples/atron/eight2car.dr");
@@ -52,7 +52,7 @@ struct Row {
 /// Completion time (ms) of `sequence` run by the simulator from `config`, fault-free.
 fn simulated(source: &str, sequence: &str, config: &str) -> Result<f64, String> {
     let parsed = parse(source);
-    let (program, _) = analyze(&parsed.file, &RobotRegistry::builtin());
+    let (program, _) = analyze(&parsed.file, &dynarole_robots::plugins());
     let program = program.ok_or("does not check")?;
     let plan = program.expand(sequence).ok_or("no sequence")?;
     let options = CompileOptions {
@@ -60,7 +60,7 @@ fn simulated(source: &str, sequence: &str, config: &str) -> Result<f64, String> 
         ..CompileOptions::default()
     };
     let simulator = Simulator::new(&program, &[plan], &options).map_err(|e| e.to_string())?;
-    let start = Configuration::from_json_str(config).map_err(|e| e.to_string())?;
+    let start = dynarole_robots::read_configuration(config).map_err(|e| e.to_string())?;
     // The default scenario stops a run at 300 s; a chain of statements on a 100-module robot
     // takes longer (each hand-over travels the chain hop by hop, about one broadcast period
     // per hop), so the time limit is raised and nothing else changed.
@@ -94,9 +94,9 @@ fn run(
     window: Option<usize>,
 ) -> (Parallelised, Vec<Result<u64, String>>) {
     let parsed = parse(source);
-    let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
+    let (program, diagnostics) = analyze(&parsed.file, &dynarole_robots::plugins());
     let program = program.unwrap_or_else(|| panic!("{diagnostics:?}"));
-    let config = Configuration::from_json_str(config).expect("configuration");
+    let config = dynarole_robots::read_configuration(config).expect("configuration");
     let plan = program.expand(sequence).expect("sequence");
     let assignment = assign_modules(&program, &[plan], &config).expect("labels");
     let world = RobotWorld::new(config, &program.robot).expect("world");
@@ -121,7 +121,7 @@ fn run(
 
 fn critical_path(source: &str, sequence: &str) -> Result<u64, String> {
     let parsed = parse(source);
-    let (program, _) = analyze(&parsed.file, &RobotRegistry::builtin());
+    let (program, _) = analyze(&parsed.file, &dynarole_robots::plugins());
     let program = program.ok_or("does not check")?;
     let plan = program.expand(sequence).ok_or("no sequence")?;
     makespan(&program, &[plan], Protocol::Lattice)
@@ -173,10 +173,10 @@ fn sim_seconds(ms: &Result<f64, String>) -> String {
 /// `count` moves a planner might list: random operations (a fixed xorshift stream) tried on
 /// the model, the accepted ones kept, all joined by `;`.
 fn random_moves(config: &str, n: usize, count: usize) -> String {
-    let Ok(Configuration::Atron(c)) = Configuration::from_json_str(config) else {
-        panic!("atron configuration");
-    };
-    let mut world = World::new(c);
+    let config = dynarole_robots::read_configuration(config).expect("a configuration");
+    let c = (config.downcast_ref::<dynarole_robot_atron::AtronConfiguration>())
+        .expect("an atron configuration");
+    let mut world = World::new(c.clone());
     let mut state: u64 = 0x9e37_79b9_7f4a_7c15;
     let mut next = move || {
         state ^= state << 13;

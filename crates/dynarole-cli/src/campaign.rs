@@ -125,7 +125,11 @@ fn run_file(args: &CampaignArgs, file: &Path) -> Result<ExitCode, Failure> {
         shard: args.shard,
     };
     let mut progress = CampaignProgress::new(ProgressMode::for_stderr().map_err(Failure::Usage)?);
-    finish(dynarole_campaign::run(&options, &mut progress))
+    finish(dynarole_campaign::run(
+        &options,
+        crate::robots::robots(),
+        &mut progress,
+    ))
 }
 
 /// Prints what a campaign, a shard or a merge did, or its error.
@@ -210,7 +214,7 @@ fn emit_jobs(
         threads: args.jobs.unwrap_or(1),
     };
     // A campaign that cannot run is refused here, not in each of N jobs.
-    let (runs, files) = match dynarole_campaign::emit(scheduler, &jobs) {
+    let (runs, files) = match dynarole_campaign::emit(scheduler, &jobs, crate::robots::robots()) {
         Ok(done) => done,
         Err(e) => return refused(e),
     };

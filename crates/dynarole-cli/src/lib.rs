@@ -15,6 +15,7 @@ mod progress;
 pub mod render;
 mod replay;
 mod reverse;
+pub mod robots;
 pub mod show;
 mod simulate;
 mod verify;
@@ -116,8 +117,16 @@ enum Command {
     Parallelise(parallelise::ParalleliseArgs),
 }
 
-/// Runs the command line; the exit code follows the README (0 ok, 1 bad input, 2 usage).
+/// Runs the command line with the registry's robot kinds; the exit code follows the README
+/// (0 ok, 1 bad input, 2 usage).
 pub fn main() -> ExitCode {
+    main_with(dynarole_robots::robots())
+}
+
+/// Runs the command line knowing the robot kinds `robots` (the registry's, with robots of
+/// the embedding program's own): every command takes each of them.
+pub fn main_with(robots: dynarole_world::Robots) -> ExitCode {
+    robots::install(robots);
     let cli = Cli::parse();
     let outcome = match &cli.command {
         Command::Check(args) => check::run(args),

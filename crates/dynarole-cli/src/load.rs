@@ -23,7 +23,7 @@ pub fn read_source(path: &Path) -> Result<String, Failure> {
     dynarole_input::read_input(path).map_err(|e| Failure::Input(e.to_string()))
 }
 
-/// Built-in robots, then `--plugin` files, then a `NAME.robot.toml` beside `source_path`
+/// This run's robot kinds (`robots.rs`), then `--plugin` files, then a `NAME.robot.toml` beside `source_path`
 /// for a `robot NAME;` that is still unknown (`dynarole_input::program`, the loader campaigns
 /// use too).
 pub fn registry(
@@ -37,7 +37,14 @@ pub fn registry(
         .map(|path| program::read_plugin(path, &mut |_, _| {}))
         .collect::<Result<Vec<_>, _>>()
         .map_err(plugin_failure)?;
-    program::registry(source_path, robot_name, plugins, &mut |_, _| {}).map_err(plugin_failure)
+    program::registry(
+        crate::robots::plugins()?,
+        source_path,
+        robot_name,
+        plugins,
+        &mut |_, _| {},
+    )
+    .map_err(plugin_failure)
 }
 
 /// A plugin that cannot be read is bad input, as any unreadable file; one that is not a

@@ -62,7 +62,8 @@ pub struct SimulateArgs {
 /// `--firmware`: the microcontroller every module's firmware runs on, emulated.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum FirmwareArg {
-    /// The ATRON's ATmega128 at 16 MHz (simavr), running the image of runtime/avr
+    /// An ATmega128 at 16 MHz (simavr) on the hemisphere board of runtime/avr, running its
+    /// image
     Avr,
     /// The same MCU running the nesC component (`--target nesc`) compiled by nesC 1.4.0
     /// against runtime/nesc, with runtime/avr's platform (scripts/ensure-nesc builds nescc)
@@ -76,6 +77,7 @@ pub fn run(args: &SimulateArgs) -> Result<ExitCode, Failure> {
         let plans = crate::world::plans(program, &display, &names)?;
         let (scenario, scenario_text) = scenario(args)?;
         let start = read_configuration(&args.run.from)?;
+        firmware_target(args, &start)?;
         let expect = args
             .run
             .expect
@@ -163,6 +165,33 @@ pub fn run(args: &SimulateArgs) -> Result<ExitCode, Failure> {
         }
         Ok(ExitCode::from(if failed == 0 { 0 } else { 3 }))
     })
+}
+
+/// `--firmware` runs on a board the robot's folder names as its firmware target
+/// (`RobotKind::firmware_boards`: `avr` is runtime/avr's hemisphere board).
+fn firmware_target(
+    args: &SimulateArgs,
+    start: &dynarole_world::Configuration,
+) -> Result<(), Failure> {
+    if args.firmware.is_none() {
+        return Ok(());
+    }
+    let kind = start.kind();
+    let boards = kind.firmware_boards();
+    if boards.contains(&"avr") {
+        return Ok(());
+    }
+    let has = if boards.is_empty() {
+        "none".to_string()
+    } else {
+        boards.join(", ")
+    };
+    Err(Failure::Input(format!(
+        "{}: robot `{}` has no firmware on the emulated hemisphere board (`avr`): its firmware \
+         targets: {has}; run without --firmware",
+        args.run.from.display(),
+        kind.name()
+    )))
 }
 
 /// Run `k` (seed `run.seed`) on the host or the emulated firmware, its trace streamed to

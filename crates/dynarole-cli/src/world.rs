@@ -27,7 +27,8 @@ pub struct RunArgs {
 /// Reads a configuration in the data-file JSON format; errors name the file and the field.
 pub fn read_configuration(path: &Path) -> Result<Configuration, Failure> {
     let text = load::read_source(path)?;
-    Configuration::from_json_str(&text)
+    crate::robots::robots()
+        .read_configuration(&text)
         .map_err(|e| Failure::Input(format!("{}: {e}", path.display())))
 }
 

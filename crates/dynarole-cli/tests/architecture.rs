@@ -378,19 +378,23 @@ fn circle_problems(
     problems
 }
 
+/// Every crate of the tree and its folder: `crates/NAME/`, and each robot's `robots/NAME/`
+/// (the crate `dynarole-robot-NAME`).
 fn crate_dirs() -> Vec<(String, PathBuf)> {
-    let mut out: Vec<(String, PathBuf)> = std::fs::read_dir(workspace().join("crates"))
-        .expect("crates/")
-        .flatten()
-        .map(|e| e.path())
-        .filter(|p| p.join("src").is_dir())
-        .map(|p| {
-            (
-                p.file_name().expect("name").to_string_lossy().into_owned(),
-                p,
-            )
-        })
-        .collect();
+    let mut out = Vec::new();
+    for (folder, prefix) in [("crates", ""), ("robots", "dynarole-robot-")] {
+        let dirs = std::fs::read_dir(workspace().join(folder)).expect("the crates' folder");
+        for path in dirs.flatten().map(|e| e.path()) {
+            if path.join("src").is_dir() {
+                let name = path
+                    .file_name()
+                    .expect("name")
+                    .to_string_lossy()
+                    .into_owned();
+                out.push((format!("{prefix}{name}"), path));
+            }
+        }
+    }
     out.sort();
     out
 }

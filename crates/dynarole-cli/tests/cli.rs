@@ -470,7 +470,7 @@ fn check_from_reports_the_order_dependent_group_of_fig5() {
 /// The picture of a shipped configuration.
 fn show_svg(file: &str) -> String {
     let text_json = std::fs::read_to_string(repo_root().join(file)).expect("configuration");
-    let config = dynarole_world::Configuration::from_json_str(&text_json).expect("valid");
+    let config = dynarole_robots::read_configuration(&text_json).expect("valid");
     dynarole_cli::show::render_svg(&config).expect("drawn")
 }
 

@@ -256,7 +256,7 @@ spin: trail ends after 12 steps
 fn ab_c() -> (String, dynarole_core::lower::Ir) {
     let source = std::fs::read_to_string(repo_root().join(AB_C)).expect("source");
     let parsed = dynarole_core::parse(&source);
-    let registry = dynarole_core::RobotRegistry::builtin();
+    let registry = dynarole_robots::plugins();
     let (program, diagnostics) = dynarole_core::driver::analyze_all(&parsed, &registry);
     assert!(diagnostics.is_empty(), "{diagnostics:?}");
     let program = program.expect("checked");

@@ -1,5 +1,5 @@
 //! The nesC back-end: the same runtime and state machine as the C back-end, wrapped in a
-//! TinyOS 2 component (a module and its configuration) as the paper's ATRON code was.
+//! TinyOS 2 component (a module and its configuration) as the paper's code was.
 
 use crate::options::CompileOptions;
 

@@ -5,7 +5,7 @@
 use dynarole_codegen::{
     generate_c, CompileOptions, Dissemination, Generated, Protocol, TokenRetries, TokenRoutes,
 };
-use dynarole_core::{analyze, parse, RobotRegistry};
+use dynarole_core::{analyze, parse};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -21,7 +21,7 @@ fn options(protocol: Protocol) -> CompileOptions {
 
 fn compile(source: &str, sequence: &str, options: &CompileOptions) -> Generated {
     let parsed = parse(source);
-    let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
+    let (program, diagnostics) = analyze(&parsed.file, &dynarole_robots::plugins());
     let program = program.unwrap_or_else(|| panic!("{diagnostics:?}"));
     let plan = program.expand(sequence).expect("sequence exists");
     let ir = program.lower(&[plan]).expect("fits");
@@ -253,7 +253,7 @@ fn token_tables_carry_holders_and_routes() {
     builds_alone(&dir);
     // Without routes the token protocol is refused, naming what is missing.
     let parsed = parse(source);
-    let (program, _) = analyze(&parsed.file, &RobotRegistry::builtin());
+    let (program, _) = analyze(&parsed.file, &dynarole_robots::plugins());
     let program = program.expect("checks");
     let ir = program
         .lower(&[program.expand("s").expect("exists")])
@@ -269,7 +269,7 @@ fn options_without_routes() -> CompileOptions {
 #[test]
 fn nesc_component_wraps_the_same_c() {
     let parsed = parse(FIG5);
-    let (program, _) = analyze(&parsed.file, &RobotRegistry::builtin());
+    let (program, _) = analyze(&parsed.file, &dynarole_robots::plugins());
     let program = program.expect("checks");
     let ir = program
         .lower(&[program.expand("eight2car").expect("exists")])

@@ -1,7 +1,7 @@
 //! Benchmark: parse and check a generated 10,000-statement sequence (goal: under 50 ms).
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion};
-use dynarole_core::{analyze, parse, RobotRegistry};
+use dynarole_core::{analyze, parse};
 
 /// A sequence of `n` ATRON statements, every fourth one closing a parallel group.
 fn generated_source(n: usize) -> String {
@@ -24,7 +24,7 @@ fn generated_source(n: usize) -> String {
 
 fn bench(c: &mut Criterion) {
     let source = generated_source(10_000);
-    let registry = RobotRegistry::builtin();
+    let registry = dynarole_robots::plugins();
     c.bench_function("parse 10k statements", |b| {
         b.iter(|| parse(black_box(&source)))
     });

@@ -32,7 +32,7 @@ impl Eq for NameIndex {}
 
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Item {
-    /// `robot atron;`
+    /// `robot NAME;`
     Robot(RobotDecl),
     /// `role Wheel requires connected($CONNECTOR_0) && id != 3;`
     Role(RoleDecl),

@@ -165,7 +165,8 @@ impl<'f> Checker<'f> {
             })
             .collect();
         let Some(first) = decls.first() else {
-            self.report(K::MissingRobot, Span::new(0, 0));
+            let known = registry.names();
+            self.report(K::MissingRobot { known }, Span::new(0, 0));
             return None;
         };
         for extra in &decls[1..] {

@@ -101,7 +101,9 @@ pub enum DiagnosticKind {
         more: usize,
     },
     // ---- names ----
-    MissingRobot,
+    MissingRobot {
+        known: Vec<String>,
+    },
     DuplicateRobot {
         first: Span,
     },
@@ -342,10 +344,10 @@ impl Diagnostic {
                 .title(format!("{more} more diagnostic{} not shown", plural(*more)))
                 .label("the next one is here")
                 .hint("fix the errors above and run again"),
-            K::MissingRobot => d
+            K::MissingRobot { known } => d
                 .title("the file does not say which robot it is for")
                 .label("expected a `robot` declaration")
-                .hint("start the file with `robot atron;` or `robot mtran;`"),
+                .hint(start_with_a_robot(known)),
             K::DuplicateRobot { first } => d
                 .title("more than one `robot` declaration")
                 .label("second declaration")
@@ -494,6 +496,16 @@ impl Diagnostic {
                 .label(reason.clone())
                 .hint("use the `lattice` protocol, which runs nested blocks"),
         }
+    }
+}
+
+/// `start the file with `robot a;` or `robot b;``: the declarations the known robots allow.
+fn start_with_a_robot(known: &[String]) -> String {
+    let declarations: Vec<String> = known.iter().map(|n| format!("`robot {n};`")).collect();
+    match declarations.split_last() {
+        None => "start the file with `robot NAME;`, NAME a robot plugin".to_string(),
+        Some((last, [])) => format!("start the file with {last}"),
+        Some((last, rest)) => format!("start the file with {} or {last}", rest.join(", ")),
     }
 }
 

@@ -42,15 +42,17 @@ pub fn plugin_file_name(robot: &str) -> String {
     format!("{robot}.robot.toml")
 }
 
-/// The robots a file whose `robot NAME;` is `robot` ([`robot_name`]) can name: the built-in
-/// ones, then `plugins` in order, then, for a `robot` still unknown, what `beside` finds for
-/// [`plugin_file_name`] (`Ok(None)` when there is no such file).
+/// The robots a file whose `robot NAME;` is `robot` ([`robot_name`]) can name: those of
+/// `built_in` (the robot kinds the program was built with), then `plugins` in order, then, for
+/// a `robot` still unknown, what `beside` finds for [`plugin_file_name`] (`Ok(None)` when
+/// there is no such file).
 pub fn registry<E>(
+    built_in: RobotRegistry,
     robot: Option<&str>,
     plugins: impl IntoIterator<Item = RobotApi>,
     beside: impl FnOnce(&str) -> Result<Option<RobotApi>, E>,
 ) -> Result<RobotRegistry, E> {
-    let mut registry = RobotRegistry::builtin();
+    let mut registry = built_in;
     for plugin in plugins {
         registry.add(plugin);
     }
@@ -91,7 +93,7 @@ pub fn check<'f>(
 /// Checks text written for `robot`, a robot already loaded (a sequence the tools rewrote,
 /// checked again before it is handed out).
 pub fn check_for<'f>(parsed: &'f Parsed, robot: &RobotApi) -> Result<Program<'f>, Vec<Diagnostic>> {
-    let mut registry = RobotRegistry::builtin();
+    let mut registry = RobotRegistry::default();
     registry.add(robot.clone());
     check(parsed, &registry)
 }

@@ -212,7 +212,7 @@ impl Parser {
 
     fn robot(&mut self) -> Parse<RobotDecl> {
         let start = self.bump().1;
-        let name = self.ident("the robot's name, such as `atron`")?;
+        let name = self.ident("the robot's name (its plugin's `name`)")?;
         let end = self.expect(&Token::Semi, "`;`")?;
         Ok(RobotDecl {
             name,

@@ -20,26 +20,36 @@ fn the_plugin_beside_the_source_is_asked_for_an_unknown_robot_only() {
     let parsed =
         parse("robot snakebot;\nsequence s { M2.Hinge.bend(45); M2.Gripper[$FRONT].close(); }\n");
     let mut asked = Vec::new();
-    let registry = driver::registry(driver::robot_name(&parsed.file), [], |file| {
-        asked.push(file.to_string());
-        Ok::<_, ()>(Some(snakebot()))
-    })
+    let registry = driver::registry(
+        dynarole_robots::plugins(),
+        driver::robot_name(&parsed.file),
+        [],
+        |file| {
+            asked.push(file.to_string());
+            Ok::<_, ()>(Some(snakebot()))
+        },
+    )
     .expect("the lookup does not fail");
     assert_eq!(asked, ["snakebot.robot.toml"]);
     let checked = driver::check(&parsed, &registry);
     assert!(checked.is_ok(), "{:?}", checked.err());
 
-    let registry = driver::registry(Some("snakebot"), [snakebot()], |_| {
-        Err("a robot given as a plugin is not looked up again")
-    });
+    let registry = driver::registry(
+        dynarole_robots::plugins(),
+        Some("snakebot"),
+        [snakebot()],
+        |_| Err("a robot given as a plugin is not looked up again"),
+    );
     assert!(registry.is_ok());
-    let registry = driver::registry(Some("atron"), [], |_| Err("a built-in robot is known"));
+    let registry = driver::registry(dynarole_robots::plugins(), Some("atron"), [], |_| {
+        Err("a built-in robot is known")
+    });
     assert!(registry.is_ok());
 }
 
 #[test]
 fn a_failing_lookup_is_the_callers_error() {
-    let failed = driver::registry(Some("nosuchbot"), [], |file| {
+    let failed = driver::registry(dynarole_robots::plugins(), Some("nosuchbot"), [], |file| {
         Err(format!("cannot read {file}"))
     });
     assert_eq!(
@@ -53,7 +63,8 @@ fn check_returns_syntax_and_checking_errors_in_source_order() {
     let parsed = parse(
         "robot atron;\nsequence s { M0.Nope[0].x(); }\nsequence t { M0.Connector[0].retract() }\n",
     );
-    let registry = driver::registry(None, [], |_| Ok::<_, ()>(None)).expect("no lookup");
+    let registry = driver::registry(dynarole_robots::plugins(), None, [], |_| Ok::<_, ()>(None))
+        .expect("no lookup");
     let errors = driver::check(&parsed, &registry).expect_err("the file has errors");
     assert!(errors.len() >= 2, "{errors:?}");
     assert!(
@@ -65,7 +76,7 @@ fn check_returns_syntax_and_checking_errors_in_source_order() {
 #[test]
 fn the_first_sequence_is_the_default_and_an_unknown_one_gets_a_suggestion() {
     let parsed = parse(TWO);
-    let program = driver::check_for(&parsed, &snakebot()).expect("TWO checks");
+    let program = driver::check(&parsed, &dynarole_robots::plugins()).expect("TWO checks");
     assert_eq!(
         driver::select_sequences(&program, &[]),
         Ok(vec!["first".to_string()])
@@ -87,7 +98,8 @@ fn the_first_sequence_is_the_default_and_an_unknown_one_gets_a_suggestion() {
 #[test]
 fn a_file_without_sequences_has_nothing_to_run() {
     let parsed = parse("robot atron;\n");
-    let program = driver::check_for(&parsed, &snakebot()).expect("an empty program checks");
+    let program =
+        driver::check(&parsed, &dynarole_robots::plugins()).expect("an empty program checks");
     let error = driver::select_sequences(&program, &[]).expect_err("nothing to run");
     assert_eq!(error, SelectError::NoSequence);
     assert!(error
@@ -98,7 +110,7 @@ fn a_file_without_sequences_has_nothing_to_run() {
 #[test]
 fn a_flat_protocol_refuses_nested_blocks_that_a_nested_one_lowers() {
     let parsed = parse(TWO);
-    let program = driver::check_for(&parsed, &snakebot()).expect("TWO checks");
+    let program = driver::check(&parsed, &dynarole_robots::plugins()).expect("TWO checks");
     let plans = driver::plans(&program, &["second".to_string()]).expect("second expands");
     assert!(driver::lower(&program, &plans, Shape::Nested).is_ok());
     let refused = driver::lower(&program, &plans, Shape::Flat).expect_err("nested block");

@@ -6,7 +6,7 @@ use dynarole_core::expand::{Plan, PlanKind};
 use dynarole_core::format::{format_file, format_items};
 use dynarole_core::lexer::lex;
 use dynarole_core::span::line_col;
-use dynarole_core::{analyze, parse, Diagnostic, RobotRegistry};
+use dynarole_core::{analyze, parse, Diagnostic};
 
 const FIG5: &str = include_str!("../../../examples/atron/fig5.dr");
 
@@ -170,7 +170,7 @@ fn parser_recovers_and_reports_every_error() {
 fn check_pass() {
     let source = "robot atron;\nrole Wheel requires connected(9) || id;\nsequence s {\n  M0.Connector[$CONNECTOR_1].extend() &\n  Whel.Joint.rotateFromToBy(0, 100, true, 150);\n  M3.Joint.rotateToBy(108, true, 150);\n  t;\n}\nsequence back = reverse s;\n";
     let parsed = parse(source);
-    let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
+    let (program, diagnostics) = analyze(&parsed.file, &dynarole_robots::plugins());
     assert!(program.is_none());
     insta::assert_snapshot!(snapshot(
         source,
@@ -193,7 +193,7 @@ fn format_pass() {
 #[test]
 fn reverse_pass_fig5() {
     let parsed = parse(FIG5);
-    let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
+    let (program, diagnostics) = analyze(&parsed.file, &dynarole_robots::plugins());
     assert!(diagnostics.is_empty(), "{diagnostics:?}");
     let program = program.expect("Fig. 5 checks");
     let name = program.reverse_name("eight2car");
@@ -214,7 +214,7 @@ fn reverse_pass_fig5() {
 fn reverse_of_fig5_equals_expected_text() {
     let expected = include_str!("car2eight.expected.dr");
     let parsed = parse(FIG5);
-    let (program, _) = analyze(&parsed.file, &RobotRegistry::builtin());
+    let (program, _) = analyze(&parsed.file, &dynarole_robots::plugins());
     let program = program.expect("Fig. 5 checks");
     let reversed = program
         .reverse_sequence("eight2car", "car2eight")
@@ -261,7 +261,7 @@ fn plan_tree(plan: &Plan, robot: &dynarole_core::RobotApi, depth: usize, out: &m
 #[test]
 fn expand_pass() {
     let parsed = parse(SMALL);
-    let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
+    let (program, diagnostics) = analyze(&parsed.file, &dynarole_robots::plugins());
     assert!(diagnostics.is_empty(), "{diagnostics:?}");
     let program = program.expect("checks");
     let mut out = String::new();
@@ -309,7 +309,7 @@ fn ir_text(ir: &dynarole_core::lower::Ir) -> String {
 #[test]
 fn lower_pass_fig5() {
     let parsed = parse(FIG5);
-    let (program, _) = analyze(&parsed.file, &RobotRegistry::builtin());
+    let (program, _) = analyze(&parsed.file, &dynarole_robots::plugins());
     let program = program.expect("checks");
     let plan = program.expand("eight2car").expect("exists");
     let ir = program.lower(&[plan]).expect("fits");
@@ -332,7 +332,7 @@ fn lower_pass_fig5() {
 fn lower_pass_nested_blocks() {
     let source = "robot atron;\nsequence s {\n    { M0.Connector[0].retract(); M0.Joint.rotateFromToBy(0, 108, true, 150); } &\n    { M3.Connector[4].retract(); M1.Joint.rotateFromToBy(0, 324, false, 150); };\n    M0.Connector[0].extend();\n}\n";
     let parsed = parse(source);
-    let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
+    let (program, diagnostics) = analyze(&parsed.file, &dynarole_robots::plugins());
     assert!(diagnostics.is_empty(), "{diagnostics:?}");
     let program = program.expect("checks");
     let ir = program

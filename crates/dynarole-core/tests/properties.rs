@@ -3,7 +3,7 @@
 
 use dynarole_core::ast::{ElementKind, Item, SeparatorKind, SequenceDef};
 use dynarole_core::format::{format_file, format_items};
-use dynarole_core::{analyze, parse, RobotRegistry};
+use dynarole_core::{analyze, parse};
 use proptest::prelude::*;
 
 /// A generated element: an ATRON statement or a block of elements.
@@ -60,7 +60,7 @@ proptest! {
         let text = source(&elements);
         let parsed = parse(&text);
         prop_assert!(parsed.diagnostics.is_empty(), "{:?}", parsed.diagnostics);
-        let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
+        let (program, diagnostics) = analyze(&parsed.file, &dynarole_robots::plugins());
         prop_assert!(diagnostics.is_empty(), "{:?}", diagnostics);
         let program = program.expect("checked");
         let Some(SequenceDef::Body(body)) = parsed.file.sequence("s").map(|d| d.definition.clone()) else {
@@ -74,7 +74,7 @@ proptest! {
     fn reversal_inverts_every_operation_in_reverse_order(elements in elements()) {
         let text = format!("{}sequence r = reverse s;\n", source(&elements));
         let parsed = parse(&text);
-        let (program, _) = analyze(&parsed.file, &RobotRegistry::builtin());
+        let (program, _) = analyze(&parsed.file, &dynarole_robots::plugins());
         let program = program.expect("checked");
         let forward = program.expand("s").expect("s");
         let backward = program.expand("r").expect("r");
@@ -95,7 +95,7 @@ proptest! {
         let elements: Vec<(Gen, bool)> = statements.into_iter().map(|(s, p)| (Gen::Statement(s), p)).collect();
         let text = source(&elements);
         let parsed = parse(&text);
-        let (program, _) = analyze(&parsed.file, &RobotRegistry::builtin());
+        let (program, _) = analyze(&parsed.file, &dynarole_robots::plugins());
         let program = program.expect("checked");
         let Some(SequenceDef::Body(body)) = parsed.file.sequence("s").map(|d| d.definition.clone()) else {
             panic!("generated a body");

@@ -5,9 +5,9 @@ use dynarole_core::diagnostic::MAX_SHOWN;
 use dynarole_core::format::format_file;
 use dynarole_core::{analyze, driver, parse, Diagnostic, RobotApi, RobotRegistry};
 use dynarole_sim::Scenario;
-use dynarole_world::Configuration;
 use std::convert::Infallible;
 use std::path::Path;
+use std::sync::OnceLock;
 
 /// Error text allowed on top of what is proportional to the input (a loader may quote the
 /// offending line or name; a diagnostic may quote a token).
@@ -57,7 +57,8 @@ impl Context {
         let loaded = plugins
             .iter()
             .filter_map(|text| RobotApi::from_toml(text).ok());
-        let registry = driver::registry(None, loaded, |_| Ok::<_, Infallible>(None));
+        let built_in = dynarole_robots::plugins();
+        let registry = driver::registry(built_in, None, loaded, |_| Ok::<_, Infallible>(None));
         match registry {
             Ok(registry) => Context { registry },
             Err(never) => match never {},
@@ -97,11 +98,10 @@ pub const EXTREMES: &[&str] = &[
     "1e999",
 ];
 
-/// Words of the language (and near misses) that mutations insert and token soup is made of.
+/// Words of the language (and near misses) that mutations insert and token soup is made of;
+/// the robots' names come after the first (`source_words`).
 pub const SOURCE_WORDS: &[&str] = &[
     "robot",
-    "atron",
-    "mtran",
     "role",
     "requires",
     "sequence",
@@ -208,6 +208,53 @@ const TOML_WORDS: &[&str] = &[
     "\u{e9}",
 ];
 
+/// [`SOURCE_WORDS`] with every built-in robot's name after `robot`.
+fn source_words() -> &'static [&'static str] {
+    static WORDS: OnceLock<Vec<&'static str>> = OnceLock::new();
+    WORDS.get_or_init(|| {
+        let names = dynarole_robots::BUILT_IN.iter().map(|k| k.name());
+        with_after_first(SOURCE_WORDS, names)
+    })
+}
+
+/// [`JSON_WORDS`] with every built-in robot's `robot` field value (quoted) after `"robot"`.
+fn json_words() -> &'static [&'static str] {
+    static TAGS: OnceLock<Vec<String>> = OnceLock::new();
+    static WORDS: OnceLock<Vec<&'static str>> = OnceLock::new();
+    WORDS.get_or_init(|| {
+        let tags = TAGS.get_or_init(|| {
+            (dynarole_robots::BUILT_IN.iter())
+                .map(|k| format!("\"{}\"", k.file_tag()))
+                .collect()
+        });
+        let at = JSON_WORDS
+            .iter()
+            .position(|w| *w == "\"robot\"")
+            .map_or(0, |i| i + 1);
+        let (before, after) = JSON_WORDS.split_at(at);
+        before
+            .iter()
+            .copied()
+            .chain(tags.iter().map(String::as_str))
+            .chain(after.iter().copied())
+            .collect()
+    })
+}
+
+/// `words` with `inserted` after its first word.
+fn with_after_first(
+    words: &'static [&'static str],
+    inserted: impl Iterator<Item = &'static str>,
+) -> Vec<&'static str> {
+    let (first, rest) = words.split_at(words.len().min(1));
+    first
+        .iter()
+        .copied()
+        .chain(inserted)
+        .chain(rest.iter().copied())
+        .collect()
+}
+
 const JSON_WORDS: &[&str] = &[
     "{",
     "}",
@@ -229,8 +276,6 @@ const JSON_WORDS: &[&str] = &[
     "\"modules\"",
     "\"connections\"",
     "\"robot\"",
-    "\"ATRON\"",
-    "\"MTRAN\"",
     "\"joint\"",
     "\"spin\"",
     "\"axis\"",
@@ -265,8 +310,8 @@ impl Target {
     /// Tokens that token insertions pick from.
     pub fn vocabulary(self) -> &'static [&'static str] {
         match self {
-            Target::Parse | Target::Check | Target::Format => SOURCE_WORDS,
-            Target::Configuration => JSON_WORDS,
+            Target::Parse | Target::Check | Target::Format => source_words(),
+            Target::Configuration => json_words(),
             Target::Scenario | Target::Campaign | Target::Plugin => TOML_WORDS,
         }
     }
@@ -352,12 +397,12 @@ fn format(text: &str) -> Result<Outcome, String> {
 }
 
 fn configuration(text: &str) -> Result<Outcome, String> {
-    let config = match Configuration::from_json_str(text) {
+    let config = match dynarole_robots::read_configuration(text) {
         Ok(config) => config,
         Err(e) => return loader(text, Err(format!("{}: {}", e.path, e.message))),
     };
     let written = config.to_json_string();
-    match Configuration::from_json_str(&written) {
+    match dynarole_robots::read_configuration(&written) {
         Ok(back) if back == config => Ok(Outcome::Accepted),
         Ok(_) => Err(format!(
             "written back, the configuration differs:\n{written}"

@@ -4,13 +4,13 @@
 //! `fuzz_targets.rs`.)
 
 use dynarole_core::format::format_file;
-use dynarole_core::{analyze, parse, RobotApi, RobotRegistry};
-use dynarole_fuzz::SOURCE_WORDS;
+use dynarole_core::{analyze, parse, RobotApi};
+use dynarole_fuzz::Target;
 use proptest::prelude::*;
 
 fn run_front_end(text: &str) {
     let parsed = parse(text);
-    let registry = RobotRegistry::builtin();
+    let registry = dynarole_robots::plugins();
     let (program, _) = analyze(&parsed.file, &registry);
     if let Some(program) = program {
         for decl in parsed.file.sequences() {
@@ -40,7 +40,7 @@ proptest! {
     }
 
     #[test]
-    fn token_soup_never_panics(words in prop::collection::vec(prop::sample::select(SOURCE_WORDS), 0..80)) {
+    fn token_soup_never_panics(words in prop::collection::vec(prop::sample::select(Target::Parse.vocabulary()), 0..80)) {
         run_front_end(&words.join(" "));
     }
 

@@ -42,16 +42,17 @@ pub fn read_plugin(
     plugin(path, text)
 }
 
-/// The robots the source at `source_path`, whose `robot NAME;` is `robot`, can name: the
-/// built-in ones, then `plugins`, then, for a `robot` still unknown, the `NAME.robot.toml`
+/// The robots the source at `source_path`, whose `robot NAME;` is `robot`, can name: those of
+/// `built_in` (the robot kinds' plugins), then `plugins`, then, for a `robot` still unknown, the `NAME.robot.toml`
 /// beside the source when there is one (read by [`read_plugin`] with `seen`).
 pub fn registry(
+    built_in: RobotRegistry,
     source_path: &Path,
     robot: Option<&str>,
     plugins: Vec<RobotApi>,
     seen: &mut dyn FnMut(&Path, &str),
 ) -> Result<RobotRegistry, PluginError> {
-    driver::registry(robot, plugins, |file| {
+    driver::registry(built_in, robot, plugins, |file| {
         let beside = source_path.with_file_name(file);
         beside
             .is_file()

@@ -70,7 +70,8 @@ impl<'r> Builder<'r> {
             format: FORMAT_VERSION,
             kind: kind.into(),
             title: title.into(),
-            robot: start.robot().name().to_lowercase(),
+            robot: start.kind().name().into(),
+            drawing: start.kind().drawing(),
             start: serde_json::from_str(&start.to_json_string())
                 .map_err(|e| format!("the start configuration: {e}"))?,
             modules: (0..view.len())
@@ -82,7 +83,7 @@ impl<'r> Builder<'r> {
             connectors: (0..view.connectors())
                 .map(|c| ConnectorInfo {
                     male: view.is_male(c),
-                    half: u8::from(view.side(c) == 1),
+                    part: u8::try_from(view.side(c)).unwrap_or(u8::MAX),
                 })
                 .collect(),
             statements: statements_info,
@@ -251,8 +252,9 @@ impl<'r> Builder<'r> {
         let name = self.module_name(m);
         let motion = self.world.turn_motion(self.robot, statement, &name)?;
         let view = self.world.view();
-        // The model lists moving blocks (M-TRAN: two per module, and the turner's own moving
-        // block); the recording lists each other module once and the turner's half apart.
+        // The model may list several moving points per module (one per part, the turner's own
+        // moving part among them); the recording lists each other module once and the
+        // turner's moving part apart.
         let mut moving: Vec<usize> = motion
             .moving
             .iter()
@@ -261,20 +263,21 @@ impl<'r> Builder<'r> {
             .collect();
         moving.sort_unstable();
         moving.dedup();
-        let half = self.moving_half(m, statement, &name, &motion)?;
+        let part = self.moving_part(m, statement, &name, &motion)?;
         Some(Turn {
             pivot: motion.pivot,
             axis: to_f64(motion.axis),
             angle_deg: motion.angle_deg,
             moving,
-            half,
+            part,
         })
     }
 
-    /// Which half of the turning module moves: the block the model lists as moving (M-TRAN),
-    /// else the half whose connectors the completed turn (done on a copy of the world)
-    /// carries elsewhere (ATRON, whose hemispheres share a centre).
-    fn moving_half(
+    /// Which part of the turning module moves: the part at the point the model lists as the
+    /// turner's own moving one (the last, where parts share a centre), else the part of the
+    /// first connector the completed turn (done on a copy of the world) carries elsewhere,
+    /// else the last part.
+    fn moving_part(
         &self,
         m: usize,
         statement: &ResolvedStatement,
@@ -283,16 +286,25 @@ impl<'r> Builder<'r> {
     ) -> Option<u8> {
         let before = poses(&self.configuration());
         let own = motion.moving.iter().find(|(n, _)| n == name);
+        let last = before.get(m).map_or(0, |p| p.parts.len().saturating_sub(1));
+        let index = |part: usize| u8::try_from(part).ok();
         if let (Some((_, centre)), Some(pose)) = (own, before.get(m)) {
-            return Some(u8::from(pose.halves[1].centre == *centre));
+            let at = pose.parts.iter().rposition(|p| p.centre == *centre);
+            return index(at.unwrap_or(0));
         }
         let mut after = self.world.clone();
         after.apply(self.robot, statement, name).ok()?;
         let moved = poses(&after.configuration()?);
-        Some(match (before.get(m), moved.get(m)) {
-            (Some(b), Some(a)) if b.connectors.first() != a.connectors.first() => 0,
-            _ => 1,
-        })
+        let (Some(b), Some(a)) = (before.get(m), moved.get(m)) else {
+            return index(last);
+        };
+        let first_moved = (b.connectors.iter().zip(&a.connectors)).position(|(x, y)| x != y);
+        let view = self.world.view();
+        index(
+            first_moved
+                .and_then(|k| u8::try_from(k).ok())
+                .map_or(last, |k| view.side(k)),
+        )
     }
 
     fn op_end(&mut self, time_ms: f64, m: usize, s: usize, outcome: &str) {

@@ -1,10 +1,11 @@
 //! The recording's serde types: the schema documented in `docs/viewer.md`.
 
 use crate::trace_event::{unknown_event, TraceEvent, MARKS};
+use dynarole_world::Drawing;
 use serde::{Deserialize, Serialize};
 
 /// Version of the format; a reader refuses any other.
-pub const FORMAT_VERSION: u32 = 1;
+pub const FORMAT_VERSION: u32 = 2;
 
 /// Everything the viewer shows of one run.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -13,12 +14,15 @@ pub struct Recording {
     /// `simulation`, `replay` or `counterexample`.
     pub kind: String,
     pub title: String,
-    /// `atron` or `mtran`.
+    /// The robot kind's plugin name.
     pub robot: String,
+    /// How the robot's modules look, part by part (`dynarole_world::Drawing`): what the viewer
+    /// draws the poses' parts with.
+    pub drawing: Drawing,
     /// The start configuration, in the data-file JSON format.
     pub start: serde_json::Value,
     pub modules: Vec<ModuleInfo>,
-    /// Per connector number: whether it is male and which half (0 or 1) it sits on.
+    /// Per connector number: whether it is male and which part it sits on.
     pub connectors: Vec<ConnectorInfo>,
     pub statements: Vec<StatementInfo>,
     /// The sequence's source text, for the statement highlight.
@@ -50,7 +54,7 @@ pub struct ModuleInfo {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub struct ConnectorInfo {
     pub male: bool,
-    pub half: u8,
+    pub part: u8,
 }
 
 /// A statement of the sequence and where it is written.
@@ -70,18 +74,19 @@ pub struct SourceText {
     pub text: String,
 }
 
-/// Where a module is: its centre, its two halves (ATRON hemispheres with the direction their
-/// dome points; M-TRAN blocks with their joint axis) and every connector's face, in lattice
-/// units (ATRON) or block pitches (M-TRAN).
+/// Where a module is: its centre (the mean of its parts' centres), its rigid parts in the
+/// robot's part order (each with the direction its up axis points) and every connector's
+/// face, in the robot's drawing unit (`dynarole_world::ModulePose`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Pose {
     pub centre: [f64; 3],
-    pub halves: [Half; 2],
+    pub parts: Vec<Part>,
     pub connectors: Vec<[f64; 3]>,
 }
 
+/// One rigid part of a module, placed.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Half {
+pub struct Part {
     pub centre: [f64; 3],
     pub up: [f64; 3],
 }
@@ -122,7 +127,7 @@ pub struct Motion {
     /// `done`, `refused`, `interrupt` or `running` (the run stopped first).
     pub outcome: String,
     /// For a turn: the joint axis (through `pivot`), the signed angle, the modules that move
-    /// as a whole and the half of the turning module that moves.
+    /// as a whole and the part of the turning module that moves.
     pub turn: Option<Turn>,
     /// Latches made and released when the operation completed.
     pub latched: Vec<LatchLink>,
@@ -137,7 +142,7 @@ pub struct Turn {
     pub axis: [f64; 3],
     pub angle_deg: f64,
     pub moving: Vec<usize>,
-    pub half: u8,
+    pub part: u8,
 }
 
 /// A packet between two connectors: delivered or why not.
@@ -184,13 +189,21 @@ impl Recording {
     fn check(&self) -> Result<(), String> {
         let n = self.modules.len();
         let c = self.connectors.len();
+        let parts = self.drawing.parts.len();
+        if self.connectors.iter().any(|k| usize::from(k.part) >= parts) {
+            return Err(format!(
+                "field `connectors`: a connector on a part the drawing lacks ({parts} parts)"
+            ));
+        }
         if self.keyframes.is_empty() {
             return Err("field `keyframes`: a recording needs at least one keyframe".into());
         }
         for (k, frame) in self.keyframes.iter().enumerate() {
-            if frame.poses.len() != n || frame.poses.iter().any(|p| p.connectors.len() != c) {
+            let fits = |p: &Pose| p.connectors.len() == c && p.parts.len() == parts;
+            if frame.poses.len() != n || !frame.poses.iter().all(fits) {
                 return Err(format!(
-                    "field `keyframes[{k}].poses`: expected {n} modules with {c} connectors each"
+                    "field `keyframes[{k}].poses`: expected {n} modules with {parts} parts and \
+                     {c} connectors each"
                 ));
             }
             check_latches(&frame.latches, n, c, &format!("keyframes[{k}].latches"))?;
@@ -199,15 +212,15 @@ impl Recording {
             let bad_turn = m
                 .turn
                 .as_ref()
-                .is_some_and(|t| t.half > 1 || t.moving.iter().any(|i| *i >= n));
+                .is_some_and(|t| usize::from(t.part) >= parts || t.moving.iter().any(|i| *i >= n));
             if m.module >= n
                 || bad_turn
                 || m.after
                     .iter()
-                    .any(|(i, p)| *i >= n || p.connectors.len() != c)
+                    .any(|(i, p)| *i >= n || p.connectors.len() != c || p.parts.len() != parts)
             {
                 return Err(format!(
-                    "field `motions[{k}]`: a module or half out of range"
+                    "field `motions[{k}]`: a module or part out of range"
                 ));
             }
             check_latches(&m.latched, n, c, &format!("motions[{k}].latched"))?;

@@ -3,9 +3,8 @@
 //! `TurnMotion::position_at`), the round trip through the format, and the reader's checks of
 //! the fields it follows.
 
-use dynarole_core::{analyze, parse, RobotRegistry};
+use dynarole_core::{analyze, parse};
 use dynarole_recording::{poses_at, Builder, Recording, TraceEvent};
-use dynarole_world::Configuration;
 
 const SOURCE: &str = "robot atron;\nsequence s {\n    M0.Connector[0].retract();\n    M3.Connector[4].retract();\n    M3.Joint.rotateFromToBy(0, 324, false, 150);\n}\n";
 const EIGHT: &str = include_str!("../../../examples/atron/eight.json");
@@ -34,7 +33,7 @@ fn built(
     end_ms: f64,
 ) -> Recording {
     let parsed = parse(source);
-    let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
+    let (program, diagnostics) = analyze(&parsed.file, &dynarole_robots::plugins());
     assert!(diagnostics.is_empty(), "{diagnostics:?}");
     let program = program.expect("a program");
     let plan = program.expand(sequence).expect("the sequence");
@@ -43,7 +42,7 @@ fn built(
         .iter()
         .map(|s| s.describe(&program.robot))
         .collect();
-    let start = Configuration::from_json_str(start).expect("the start");
+    let start = dynarole_robots::read_configuration(start).expect("the start");
     let mut builder = Builder::new(
         "replay",
         "t",
@@ -171,9 +170,9 @@ fn mtran_turns_move_their_blocks_and_end_where_the_world_does() {
         for (m, (a, b)) in near_end.iter().zip(&after).enumerate() {
             let mut points = vec![(a.centre, b.centre)];
             points.extend(
-                a.halves
+                a.parts
                     .iter()
-                    .zip(&b.halves)
+                    .zip(&b.parts)
                     .map(|(x, y)| (x.centre, y.centre)),
             );
             points.extend(

@@ -2,10 +2,9 @@
 //! 10,000-module ATRON chain.
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use dynarole_core::{analyze, parse, RobotRegistry};
+use dynarole_core::{analyze, parse};
 use dynarole_replay::{assign_modules, replay, RobotWorld};
-use dynarole_world::generated::atron_chain_json;
-use dynarole_world::Configuration;
+use dynarole_robot_atron::generated::atron_chain_json;
 
 const FIG5: &str = include_str!("../../../examples/atron/eight2car.dr");
 const EIGHT: &str = include_str!("../../../examples/atron/eight.json");
@@ -26,11 +25,12 @@ fn chain_sequence(n: usize) -> String {
 }
 
 fn bench_replay(c: &mut Criterion, name: &str, source: &str, config: &str, sequence: &str) {
-    let registry = RobotRegistry::builtin();
+    let registry = dynarole_robots::plugins();
     let parsed = parse(source);
     let (program, diagnostics) = analyze(&parsed.file, &registry);
     let program = program.unwrap_or_else(|| panic!("{name}: {diagnostics:?}"));
-    let config = Configuration::from_json_str(config).unwrap_or_else(|e| panic!("{name}: {e}"));
+    let config =
+        dynarole_robots::read_configuration(config).unwrap_or_else(|e| panic!("{name}: {e}"));
     let plans = vec![program
         .expand(sequence)
         .unwrap_or_else(|| panic!("{name}: no {sequence}"))];
@@ -60,7 +60,7 @@ fn benches(c: &mut Criterion) {
     let n = 10_000;
     let config = atron_chain_json(n);
     let started = std::time::Instant::now();
-    let loaded = Configuration::from_json_str(&config);
+    let loaded = dynarole_robots::read_configuration(&config);
     assert!(loaded.is_ok());
     println!("load a {n}-module configuration: {:?}", started.elapsed());
     bench_replay(

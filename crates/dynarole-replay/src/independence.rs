@@ -13,7 +13,7 @@ use dynarole_core::{Program, RobotApi};
 use dynarole_world::{TurnMotion, Warning};
 
 /// Warnings for every pair of elements of a parallel group that are not independent, walking
-/// the plans from the world's configuration. Pairs of ATRON turns that their motions prove
+/// the plans from the world's configuration. Pairs of whole-module turns that their motions prove
 /// independent (`motion.rs`) are not run both ways; every other pair is.
 pub fn check_independence(
     program: &Program,
@@ -328,7 +328,7 @@ impl Checker<'_> {
         }
     }
 
-    /// Two ATRON turns at once: they must move disjoint sets of modules, which must stay apart
+    /// Two whole-module turns at once: they must move disjoint sets of modules, which must stay apart
     /// whatever their relative timing.
     fn simultaneous_turns(
         &self,

@@ -1,13 +1,11 @@
 //! The bridge from checked statements to the robot models: which [`Action`] each plugin
-//! operation is, done on any robot through the [`RobotModel`] trait (the built-in ATRON and
-//! M-TRAN, or a robot defined elsewhere).
+//! operation is, done on any robot through the [`RobotModel`] trait (a robot kind of the
+//! registry, or a model made elsewhere).
 
 use dynarole_core::check::ResolvedStatement;
 use dynarole_core::robot::{OperationKind, Value};
 use dynarole_core::RobotApi;
-use dynarole_world::{
-    Action, Configuration, Outcome, RobotModel, TurnMotion, View, BUILTIN_ROBOTS,
-};
+use dynarole_world::{Action, Configuration, Outcome, RobotModel, TurnMotion, View};
 
 /// A robot being reconfigured, of any kind.
 #[derive(Clone, Debug)]
@@ -21,21 +19,14 @@ pub type StepOutcome = Outcome;
 impl RobotWorld {
     /// Starts from `config`; fails when the configuration is not of the plugin's robot.
     pub fn new(config: Configuration, robot: &RobotApi) -> Result<RobotWorld, String> {
-        let file_robot = config.robot().name();
+        let file_robot = config.kind().file_tag();
         let model = config.into_model();
         if model.robot() == robot.name {
             return Ok(RobotWorld { model });
         }
-        if BUILTIN_ROBOTS.contains(&robot.name.as_str()) {
-            return Err(format!(
-                "the sequence is for robot `{}` but the configuration is an {file_robot} robot",
-                robot.name
-            ));
-        }
         Err(format!(
-            "robot `{}` has no kinematic model (only {} have one)",
-            robot.name,
-            BUILTIN_ROBOTS.join(" and ")
+            "the sequence is for robot `{}` but the configuration is an {file_robot} robot",
+            robot.name
         ))
     }
 
@@ -51,6 +42,11 @@ impl RobotWorld {
                 model.robot()
             ))
         }
+    }
+
+    /// The network presets of the robot's kind, the default first.
+    pub fn network_presets(&self) -> &'static [dynarole_world::NetworkPreset] {
+        self.model.network_presets()
     }
 
     /// The robot-neutral view of the current configuration.

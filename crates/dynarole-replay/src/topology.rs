@@ -1,6 +1,6 @@
 //! Who can hear whom during a reconfiguration: the communication graph that the model
 //! checker's links are made of (`dynarole verify`), by the simulator's own link rule
-//! (`dynarole_world::View::link_target`, atron.md a.8) on every configuration a replay of the plans visits.
+//! (`dynarole_world::View::link_target`, the robot's own topology) on every configuration a replay of the plans visits.
 
 use crate::{Assignment, RobotWorld};
 use dynarole_core::expand::Plan;

@@ -2,13 +2,15 @@
 //! the output replays to the input's end, and every `&` it writes passes the independence
 //! check, forwards and in the reverse.
 
-use dynarole_core::{analyze, parse, RobotRegistry};
+use dynarole_core::{analyze, parse};
 use dynarole_replay::{
     assign_modules, check_independence, check_independence_exhaustive, dependency_graph,
     group_checked_graph, parallelise, replay, FormKind, Layout, Parallelised, Request, RobotWorld,
 };
-use dynarole_world::generated::atron_chain_json;
-use dynarole_world::{compare, Configuration, MtranJoint, MtranWorld, World};
+use dynarole_robot_atron::generated::atron_chain_json;
+use dynarole_robot_atron::World;
+use dynarole_robot_mtran::{MtranJoint, MtranWorld};
+use dynarole_world::{compare, Configuration};
 use proptest::prelude::*;
 
 const EIGHT2CAR: &str = include_str!("../../../examples/atron/eight2car.dr");
@@ -50,9 +52,9 @@ fn with_request_for<T>(
     f: impl Fn(&Request) -> T,
 ) -> T {
     let parsed = parse(source);
-    let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
+    let (program, diagnostics) = analyze(&parsed.file, &dynarole_robots::plugins());
     let program = program.unwrap_or_else(|| panic!("{diagnostics:?}"));
-    let config = Configuration::from_json_str(config).expect("configuration");
+    let config = dynarole_robots::read_configuration(config).expect("configuration");
     let plan = program.expand(sequence).expect("sequence");
     let assignment = assign_modules(&program, &[plan], &config).expect("labels");
     let world = RobotWorld::new(config, &program.robot).expect("world");
@@ -74,9 +76,9 @@ fn with_request_for<T>(
 fn check_written(found: &Parallelised, text: &str, config: &str) -> Configuration {
     let source = format!("{}\n{text}\nsequence back = reverse out;\n", found.header);
     let parsed = parse(&source);
-    let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
+    let (program, diagnostics) = analyze(&parsed.file, &dynarole_robots::plugins());
     let program = program.unwrap_or_else(|| panic!("{source}\n{diagnostics:?}"));
-    let config = Configuration::from_json_str(config).expect("configuration");
+    let config = dynarole_robots::read_configuration(config).expect("configuration");
     let forward = vec![program.expand("out").expect("out")];
     let assignment = assign_modules(&program, &forward, &config).expect("labels");
     let world = RobotWorld::new(config, &program.robot).expect("world");
@@ -98,9 +100,9 @@ fn check_written(found: &Parallelised, text: &str, config: &str) -> Configuratio
 /// The final configuration of `sequence` replayed as written.
 fn replayed(source: &str, sequence: &str, config: &str) -> Configuration {
     let parsed = parse(source);
-    let (program, _) = analyze(&parsed.file, &RobotRegistry::builtin());
+    let (program, _) = analyze(&parsed.file, &dynarole_robots::plugins());
     let program = program.expect("program");
-    let config = Configuration::from_json_str(config).expect("configuration");
+    let config = dynarole_robots::read_configuration(config).expect("configuration");
     let plans = vec![program.expand(sequence).expect("sequence")];
     let assignment = assign_modules(&program, &plans, &config).expect("labels");
     let world = RobotWorld::new(config, &program.robot).expect("world");
@@ -202,9 +204,13 @@ fn mtran_snake(n: usize) -> String {
 /// Random operations tried on the ATRON model; the accepted ones (without warnings), as
 /// statements. A pick is (module, operation, connector or direction).
 fn atron_moves(config: &str, n: usize, picks: &[(usize, u8, u8)]) -> Vec<String> {
-    let Ok(Configuration::Atron(c)) = Configuration::from_json_str(config) else {
-        panic!("atron configuration");
-    };
+    let c = (dynarole_robots::read_configuration(config))
+        .ok()
+        .and_then(|c| {
+            c.downcast_ref::<dynarole_robot_atron::AtronConfiguration>()
+                .cloned()
+        })
+        .expect("atron configuration");
     let mut world = World::new(c);
     let mut out = Vec::new();
     for &(m, op, arg) in picks {
@@ -245,9 +251,13 @@ fn atron_moves(config: &str, n: usize, picks: &[(usize, u8, u8)]) -> Vec<String>
 
 /// The same for the M-TRAN model (joints turn between -90, 0 and 90 degrees).
 fn mtran_moves(config: &str, n: usize, picks: &[(usize, u8, u8)]) -> Vec<String> {
-    let Ok(Configuration::Mtran(c)) = Configuration::from_json_str(config) else {
-        panic!("mtran configuration");
-    };
+    let c = (dynarole_robots::read_configuration(config))
+        .ok()
+        .and_then(|c| {
+            c.downcast_ref::<dynarole_robot_mtran::MtranConfiguration>()
+                .cloned()
+        })
+        .expect("mtran configuration");
     let mut world = MtranWorld::new(c);
     let mut out = Vec::new();
     for &(m, op, arg) in picks {
@@ -348,9 +358,9 @@ fn same_warnings(
     }
     let source = format!("robot {robot};\nsequence s {{\n{body}}}\n");
     let parsed = parse(&source);
-    let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
+    let (program, diagnostics) = analyze(&parsed.file, &dynarole_robots::plugins());
     let program = program.unwrap_or_else(|| panic!("{source}\n{diagnostics:?}"));
-    let config = Configuration::from_json_str(config).expect("configuration");
+    let config = dynarole_robots::read_configuration(config).expect("configuration");
     let plans = vec![program.expand("s").expect("s")];
     let assignment = assign_modules(&program, &plans, &config).expect("labels");
     let world = RobotWorld::new(config, &program.robot).expect("world");
@@ -626,9 +636,9 @@ fn an_extend_and_a_retract_it_makes_safe_are_not_independent() {
     for (first, second) in [(EXTEND, RETRACT), (RETRACT, EXTEND)] {
         let source = extend_and_retract(first, second, true);
         let parsed = parse(&source);
-        let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
+        let (program, diagnostics) = analyze(&parsed.file, &dynarole_robots::plugins());
         let program = program.unwrap_or_else(|| panic!("{diagnostics:?}"));
-        let config = Configuration::from_json_str(EIGHT).expect("configuration");
+        let config = dynarole_robots::read_configuration(EIGHT).expect("configuration");
         let plans = vec![program.expand("eight2car").expect("sequence")];
         let assignment = assign_modules(&program, &plans, &config).expect("labels");
         let world = RobotWorld::new(config, &program.robot).expect("world");

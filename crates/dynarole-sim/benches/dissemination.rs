@@ -12,7 +12,7 @@
 //! columns against fixed then compare adaptive with itself)
 
 use dynarole_codegen::{CompileOptions, Dissemination, Protocol};
-use dynarole_core::{analyze, parse, RobotRegistry};
+use dynarole_core::{analyze, parse};
 use dynarole_sim::{Report, Run, Scenario, Simulator};
 use dynarole_world::Configuration;
 
@@ -58,7 +58,7 @@ struct Point {
 
 fn simulator(sequence: &str, dissemination: Dissemination) -> Simulator {
     let parsed = parse(EIGHT2CAR);
-    let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
+    let (program, diagnostics) = analyze(&parsed.file, &dynarole_robots::plugins());
     let program = program.unwrap_or_else(|| panic!("{diagnostics:?}"));
     let plans = vec![program.expand(sequence).expect("sequence exists")];
     let options = CompileOptions {
@@ -71,7 +71,7 @@ fn simulator(sequence: &str, dissemination: Dissemination) -> Simulator {
 }
 
 fn config(text: &str) -> Configuration {
-    Configuration::from_json_str(text).expect("valid configuration")
+    dynarole_robots::read_configuration(text).expect("valid configuration")
 }
 
 fn scenario(loss: f64) -> Scenario {

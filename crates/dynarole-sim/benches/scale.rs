@@ -28,10 +28,10 @@ mod grid;
 use counting::Counting;
 use dynarole_codegen::{CompileOptions, Protocol};
 use dynarole_core::expand::Plan;
-use dynarole_core::{analyze, parse, Program, RobotRegistry};
+use dynarole_core::{analyze, parse, Program};
 use dynarole_replay::RobotWorld;
 use dynarole_sim::{Preset, Run, Scenario, Simulator, Stepping};
-use dynarole_world::{compare, Configuration};
+use dynarole_world::compare;
 use grid::{square, structure_json, Site, SOURCE};
 use std::collections::BTreeSet;
 use std::time::Instant;
@@ -47,8 +47,8 @@ const EIGHT: &str = include_str!("../../../examples/atron/eight.json");
 /// 5 minutes on its own (random power-on phases make every step touch another module's
 /// memory), so it runs only when asked (`DYNAROLE_SCALE_PRESETS=atron ... -- 100000`).
 const SIZES: [(Preset, &[usize]); 2] = [
-    (Preset::Ussr, &[1_000, 10_000, 100_000]),
-    (Preset::Atron, &[1_000, 10_000]),
+    (dynarole_sim::USSR, &[1_000, 10_000, 100_000]),
+    (dynarole_robot_atron::NETWORK_PRESETS[0], &[1_000, 10_000]),
 ];
 
 /// A connection without its direction: the two (module, connector) ends, sorted.
@@ -91,8 +91,8 @@ fn check_against_eight() {
         connections(EIGHT),
         "the generator does not rebuild eight.json's connections"
     );
-    let a = Configuration::from_json_str(&generated).expect("generated eight");
-    let b = Configuration::from_json_str(EIGHT).expect("eight.json");
+    let a = dynarole_robots::read_configuration(&generated).expect("generated eight");
+    let b = dynarole_robots::read_configuration(EIGHT).expect("eight.json");
     compare(&a, &b).expect("the generated eight is eight.json");
 }
 
@@ -108,7 +108,8 @@ fn simulator(program: &Program, plan: &Plan) -> Simulator {
 /// The statement is valid on the structure: the replay crate's world does it without refusal
 /// or warning.
 fn check_with_replay(program: &Program, plan: &Plan) {
-    let config = Configuration::from_json_str(&structure_json("check", &square(200))).expect("ok");
+    let config =
+        dynarole_robots::read_configuration(&structure_json("check", &square(200))).expect("ok");
     let mut world = RobotWorld::new(config, &program.robot).expect("world");
     for statement in plan.statements() {
         let outcome = world
@@ -164,8 +165,8 @@ fn rows() -> Vec<(Preset, usize)> {
     let presets: Vec<Preset> = text
         .split(',')
         .filter_map(|p| match p.trim() {
-            "ussr" => Some(Preset::Ussr),
-            "atron" => Some(Preset::Atron),
+            "ussr" => Some(dynarole_sim::USSR),
+            "atron" => Some(dynarole_robot_atron::NETWORK_PRESETS[0]),
             "" => None,
             other => panic!("unknown preset {other}"),
         })
@@ -237,14 +238,14 @@ fn with_progress<T>(what: &str, work: impl FnOnce() -> T) -> T {
 fn row(sim: &Simulator, preset: Preset, n: usize) {
     let context = sim.module_context_bytes(preset).expect("builds");
     let started = Instant::now();
-    let what = format!("{} {n}", preset.name());
+    let what = format!("{} {n}", preset.name);
     let start = with_progress(&format!("{what}, structure"), || {
         let json = structure_json(&format!("flat-{n}"), &square(n));
-        Configuration::from_json_str(&json).expect("valid configuration")
+        dynarole_robots::read_configuration(&json).expect("valid configuration")
     });
     let built = started.elapsed().as_secs_f64();
     let mut scenario = Scenario::default();
-    scenario.network.preset = preset;
+    scenario.network.preset = dynarole_sim::PresetName::named(preset.name);
     scenario.network.loss = 0.0;
     scenario.timeout_ms = 600_000;
     scenario.stepping = stepping();
@@ -283,7 +284,7 @@ fn row(sim: &Simulator, preset: Preset, n: usize) {
         .expect("every module declared the end");
     println!(
         "| {} | {n} | {wall:.2} | {cpu} | {built:.2} | {:.3} / {:.3} | {} | {:.2} M | {} | {context} | {heap} | {rss} |",
-        preset.name(),
+        preset.name,
         report.completion_ms.unwrap_or(f64::NAN) / 1000.0,
         all / 1000.0,
         report.counters.events,
@@ -294,7 +295,7 @@ fn row(sim: &Simulator, preset: Preset, n: usize) {
 
 fn main() {
     let parsed = parse(SOURCE);
-    let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
+    let (program, diagnostics) = analyze(&parsed.file, &dynarole_robots::plugins());
     let program = program.unwrap_or_else(|| panic!("{diagnostics:?}"));
     let plan = program.expand("spread").expect("spread");
     let sim = simulator(&program, &plan);
@@ -302,8 +303,8 @@ fn main() {
     let args: Vec<String> = std::env::args().collect();
     if let Some(k) = args.iter().position(|a| a == "--row") {
         let preset = match args.get(k + 1).map(String::as_str) {
-            Some("atron") => Preset::Atron,
-            _ => Preset::Ussr,
+            Some("atron") => dynarole_robot_atron::NETWORK_PRESETS[0],
+            _ => dynarole_sim::USSR,
         };
         let n = args.get(k + 2).and_then(|n| n.parse().ok()).expect("N");
         row(&sim, preset, n);
@@ -324,9 +325,9 @@ fn main() {
     for (preset, n) in rows() {
         sim.module_context_bytes(preset).expect("builds"); // into the cache, once
         let status = std::process::Command::new(&exe)
-            .args(["--row", preset.name(), &n.to_string()])
+            .args(["--row", preset.name, &n.to_string()])
             .status()
             .expect("runs a row");
-        assert!(status.success(), "{} {n}: {status}", preset.name());
+        assert!(status.success(), "{} {n}: {status}", preset.name);
     }
 }

@@ -11,7 +11,7 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use dynarole_codegen::{CompileOptions, Protocol};
-use dynarole_core::{analyze, parse, RobotRegistry};
+use dynarole_core::{analyze, parse};
 use dynarole_sim::{Preset, Run, Scenario, Simulator, Stepping};
 use dynarole_world::Configuration;
 use std::time::Instant;
@@ -27,7 +27,7 @@ const SEEDS: u64 = 50;
 
 fn simulator(protocol: Protocol) -> Simulator {
     let parsed = parse(EIGHT2CAR);
-    let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
+    let (program, diagnostics) = analyze(&parsed.file, &dynarole_robots::plugins());
     let program = program.unwrap_or_else(|| panic!("{diagnostics:?}"));
     let plans = vec![program.expand("eight2car").expect("eight2car")];
     let options = CompileOptions {
@@ -39,12 +39,12 @@ fn simulator(protocol: Protocol) -> Simulator {
 }
 
 fn config(text: &str) -> Configuration {
-    Configuration::from_json_str(text).expect("valid configuration")
+    dynarole_robots::read_configuration(text).expect("valid configuration")
 }
 
 fn scenario(preset: Preset, loss: f64, stepping: Stepping) -> Scenario {
     let mut s = Scenario::default();
-    s.network.preset = preset;
+    s.network.preset = dynarole_sim::PresetName::named(preset.name);
     s.network.loss = loss;
     s.stepping = stepping;
     s
@@ -101,7 +101,7 @@ fn figures(
         "{} {:<8} {:<7} loss {:>3.0} %: {successes}/{SEEDS} ok; {:>7.0} simulated s / wall s ({:>7.0} / CPU s); {:>9.0} events/s ({:.0} events/run); \
          completion {:.3} s ({:.3}-{:.3}); critical path {:.3} s ({} statements, {} hand-overs) -> x{:.3}; \
          + {BROADCAST_MS} ms per hand-over {:.3} s -> x{:.3}",
-        preset.name(),
+        preset.name,
         format!("{stepping:?}").to_lowercase(),
         name(protocol),
         loss * 100.0,
@@ -128,7 +128,7 @@ fn benches(c: &mut Criterion) {
         .into_iter()
         .map(|p| (p, simulator(p)))
         .collect();
-    for preset in [Preset::Atron, Preset::Ussr] {
+    for preset in [dynarole_robot_atron::NETWORK_PRESETS[0], dynarole_sim::USSR] {
         for (protocol, sim) in &sims {
             for loss in [0.0, 0.3] {
                 for stepping in [Stepping::Fixed, Stepping::Tickless] {
@@ -140,7 +140,7 @@ fn benches(c: &mut Criterion) {
     for (protocol, sim) in &sims {
         for loss in [0.0, 0.3] {
             for stepping in [Stepping::Fixed, Stepping::Tickless] {
-                let scenario = scenario(Preset::Atron, loss, stepping);
+                let scenario = scenario(dynarole_robot_atron::NETWORK_PRESETS[0], loss, stepping);
                 let run = Run {
                     start: &start,
                     expect: Some(&car),

@@ -127,11 +127,11 @@ fn durations<'a>(seq: &'a Sequence, timing: &'a Timing) -> impl Fn(usize) -> u64
 mod tests {
     use crate::{Simulator, Timing};
     use dynarole_codegen::{CompileOptions, Protocol};
-    use dynarole_core::{analyze, parse, RobotRegistry};
+    use dynarole_core::{analyze, parse};
 
     fn simulator(source: &str) -> Simulator {
         let parsed = parse(source);
-        let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
+        let (program, diagnostics) = analyze(&parsed.file, &dynarole_robots::plugins());
         let program = program.unwrap_or_else(|| panic!("{diagnostics:?}"));
         let plans = vec![program.expand("s").expect("sequence s")];
         let options = CompileOptions {

@@ -41,8 +41,8 @@ pub use model_recording::{replay_steps, ModelRecording, ModelRecordingError};
 pub use recorded::{Recorded, MAX_RECORDED, RECORDED_PACKETS};
 pub use report::{Counters, ModuleReport, Refusal, Report, Violation};
 pub use scenario::{
-    Block, Foreign, JointModel, Network, Power, Preset, RandomResets, Reset, Scenario,
-    ScenarioError, Stepping, Timing, MAX_TIMEOUT_MS,
+    Block, Foreign, JointModel, Network, Power, Preset, PresetName, RandomResets, Reset, Scenario,
+    ScenarioError, Stepping, Timing, MAX_TIMEOUT_MS, USSR,
 };
 pub use trace::Outputs;
 
@@ -122,6 +122,11 @@ enum Expected<'a> {
     Model(&'a dyn RobotModel),
 }
 
+/// The network preset `scenario` names for the robot of `world` (`PresetName::resolve`).
+pub fn preset_of(world: &RobotWorld, scenario: &Scenario) -> Result<Preset, String> {
+    scenario.network.preset.resolve(world.network_presets())
+}
+
 /// A compiled sequence, ready to run any number of times (builds are cached per preset).
 pub struct Simulator {
     sequence: Arc<Sequence>,
@@ -189,7 +194,7 @@ impl Simulator {
         }
         let defines = vec![format!(
             "-DDR_CONF_BROADCAST_JITTER_MS={}",
-            preset.jitter_ms()
+            preset.jitter_ms
         )];
         let loaded =
             Rc::new(build::build_and_load(&self.files, &defines).map_err(SimError::Build)?);
@@ -223,6 +228,7 @@ impl Simulator {
     }
 
     fn check_scenario_on(world: &RobotWorld, scenario: &Scenario) -> Result<(), ScenarioError> {
+        preset_of(world, scenario).map_err(|e| ScenarioError::new("network.preset", e))?;
         let view = world.view();
         scenario.check_modules(|name| view.index(name).is_some(), view.connectors())
     }
@@ -266,16 +272,16 @@ impl Simulator {
         seed: u64,
         traced: Traced,
     ) -> Result<Report, SimError> {
-        let preset = scenario.network.preset;
+        let preset = preset_of(&world, scenario).map_err(SimError::Input)?;
         let library = self.library(preset)?;
         let foreign_frames = if scenario.foreign.is_empty() {
             Vec::new()
         } else {
-            self.other_robots_frames(world.clone(), scenario, seed, library.entry)?
+            self.other_robots_frames(world.clone(), (scenario, preset), seed, library.entry)?
         };
         let mut state = State::new(
             Arc::clone(&self.sequence),
-            world,
+            (world, preset),
             scenario.clone(),
             seed,
             traced.keep,
@@ -321,19 +327,20 @@ impl Simulator {
     fn other_robots_frames(
         &self,
         world: RobotWorld,
-        scenario: &Scenario,
+        (scenario, preset): (&Scenario, Preset),
         seed: u64,
         entry: build::Entry,
     ) -> Result<Vec<Option<Vec<u8>>>, SimError> {
         let scenario = Scenario {
             timeout_ms: scenario.timeout_ms,
             network: Network {
-                preset: scenario.network.preset,
+                preset: scenario.network.preset.clone(),
                 ..Network::default()
             },
             timing: scenario.timing.clone(),
             ..Scenario::default()
         };
+        let world = (world, preset);
         let mut state = State::new(Arc::clone(&self.sequence), world, scenario, seed, false);
         state.last_frames = Some(vec![None; state.n_modules()]);
         let finished = engine::run(entry, state).map_err(SimError::Build)?;
@@ -408,7 +415,7 @@ impl Simulator {
             failures: Vec::new(),
             seed,
             protocol: self.protocol.name().into(),
-            preset: state.preset.name().into(),
+            preset: state.preset.name.into(),
             completion_ms: state.first_finished.map(ms),
             all_finished_ms,
             never_ended,

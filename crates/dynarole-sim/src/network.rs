@@ -1,11 +1,10 @@
-//! The infrared network (atron.md a.8): who can send to whom, the finite bit rate with a send
+//! The network (docs/simulator.md): who can send to whom, the finite bit rate with a send
 //! queue per channel (per hemisphere when half duplex), and what can happen to a packet on
 //! the way: a link broken by a turn, a blocked link, a collision, loss, a dead link.
 
 use crate::event::Event;
 use crate::packet::{Air, Arrivals, Packet, Target, QUEUES};
 use crate::queue::Key;
-use crate::scenario::Preset;
 use crate::state::{uniform, State};
 use dynarole_recording::TraceEvent;
 use dynarole_world::Port;
@@ -266,11 +265,12 @@ impl State {
         out
     }
 
-    /// Full duplex: one queue per channel; half duplex: one UART per hemisphere.
+    /// Full duplex: one queue per channel; half duplex: one transceiver per side.
     fn send_queue(&self, connector: u8) -> usize {
-        match self.preset {
-            Preset::Ussr => usize::from(connector),
-            Preset::Atron => self.view().side(connector),
+        if self.preset.half_duplex_sides {
+            self.view().side(connector)
+        } else {
+            usize::from(connector)
         }
     }
 
@@ -291,7 +291,7 @@ impl State {
         if let Some(slot) = self.modules[m].busy_until.get_mut(queue) {
             *slot = end;
         }
-        if self.preset == Preset::Atron {
+        if self.preset.half_duplex_sides {
             let air = Air::new((start, end), 0, queue.min(1));
             // Its own transmissions are forgotten too (not only when it hears a packet), so
             // that a module that mostly talks keeps a short log.
@@ -327,9 +327,9 @@ impl State {
     fn note_air(&mut self, sends: &Sends, first_id: u64) {
         for (k, send) in (0u64..).zip(sends.list()) {
             self.longest_air_us = self.longest_air_us.max(send.air.1 - send.air.0);
-            if self.preset == Preset::Atron {
-                let hemisphere = self.view().side(send.to.connector);
-                let air = Air::new(send.air, first_id + k, hemisphere);
+            if self.preset.half_duplex_sides {
+                let side = self.view().side(send.to.connector);
+                let air = Air::new(send.air, first_id + k, side);
                 if let Some(log) = self.air.get_mut(send.to.module) {
                     log.push(air);
                 }
@@ -388,7 +388,7 @@ impl State {
         if faults && (self.blocked(p.from()) || self.blocked(p.to())) {
             return Fate::Blocked;
         }
-        if self.preset == Preset::Atron && self.collides(p) {
+        if self.preset.half_duplex_sides && self.collides(p) {
             return Fate::Collision;
         }
         if !faults {

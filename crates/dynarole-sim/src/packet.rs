@@ -79,7 +79,7 @@ impl Air {
     }
 }
 
-/// Send queues per module, at most (one per connector; ATRON and M-TRAN have 8 and 6).
+/// Send queues per module, at most (one per connector).
 pub const QUEUES: usize = 8;
 
 /// The packets of one broadcast that share their time on the air, as one event of the queue

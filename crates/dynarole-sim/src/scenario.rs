@@ -4,33 +4,48 @@
 use dynarole_codegen::choice::{self, Choice};
 use serde::{Deserialize, Serialize};
 
-/// How the infrared network and the modules' clocks behave.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize, Default)]
-#[serde(rename_all = "lowercase")]
-pub enum Preset {
-    /// The physical ATRON: half-duplex, one UART per hemisphere (collisions), modules powered
-    /// on at random times in the first 100 ms and broadcasts jittered by up to 20 ms.
-    #[default]
-    Atron,
-    /// The original simulator (USSR): full duplex per channel, no collisions, every module
-    /// powered on at 0 and broadcasting in the same step every 100 ms.
-    Ussr,
-}
+/// How the network and the modules' clocks behave: one of the robot's presets
+/// (`RobotModel::network_presets`) or [`USSR`].
+pub type Preset = dynarole_world::NetworkPreset;
 
-impl Preset {
-    pub fn name(self) -> &'static str {
-        match self {
-            Preset::Atron => "atron",
-            Preset::Ussr => "ussr",
-        }
+/// The original simulator (USSR), for any robot: full duplex per channel, no collisions, every
+/// module powered on at 0 and broadcasting in the same step every 100 ms.
+pub const USSR: Preset = Preset {
+    name: "ussr",
+    half_duplex_sides: false,
+    power_on_spread_us: 0,
+    jitter_ms: 0,
+};
+
+/// The preset a scenario names (`network.preset`); none: the robot's default (its first
+/// preset, or [`USSR`] for a robot with none).
+#[derive(Clone, Debug, PartialEq, Eq, Deserialize, Serialize, Default)]
+#[serde(transparent)]
+pub struct PresetName(pub Option<String>);
+
+impl PresetName {
+    /// The preset `name`.
+    pub fn named(name: &str) -> PresetName {
+        PresetName(Some(name.to_string()))
     }
 
-    /// Broadcast jitter compiled into the runtime (`DR_CONF_BROADCAST_JITTER_MS`).
-    pub fn jitter_ms(self) -> u32 {
-        match self {
-            Preset::Atron => 20,
-            Preset::Ussr => 0,
-        }
+    /// The preset this names among the robot's `presets` and [`USSR`]; the error says which
+    /// names there are.
+    pub fn resolve(&self, presets: &[Preset]) -> Result<Preset, String> {
+        let Some(name) = &self.0 else {
+            return Ok(presets.first().copied().unwrap_or(USSR));
+        };
+        let known = || presets.iter().chain([&USSR]);
+        known()
+            .find(|p| p.name == name.as_str())
+            .copied()
+            .ok_or_else(|| {
+                let names: Vec<String> = known().map(|p| format!("`{}`", p.name)).collect();
+                format!(
+                    "unknown preset `{name}`; this robot has {}",
+                    names.join(" and ")
+                )
+            })
     }
 }
 
@@ -52,7 +67,7 @@ pub struct Network {
     pub loss: f64,
     pub dead_link_p: f64,
     pub dead_loss: f64,
-    pub preset: Preset,
+    pub preset: PresetName,
 }
 
 impl Default for Network {
@@ -61,7 +76,7 @@ impl Default for Network {
             loss: 0.0,
             dead_link_p: 0.0,
             dead_loss: 0.98,
-            preset: Preset::Atron,
+            preset: PresetName::default(),
         }
     }
 }

@@ -191,7 +191,7 @@ fn reverse_edges(ir: &Ir) -> (Vec<u32>, Vec<u16>) {
 #[cfg(test)]
 mod tests {
     use dynarole_codegen::{CompileOptions, Protocol};
-    use dynarole_core::{analyze, parse, RobotRegistry};
+    use dynarole_core::{analyze, parse};
 
     /// The walk gives what the IR's table of transitive dependents gives, for every
     /// statement of eight2car (groups, a chain, several modules) and its reverse.
@@ -199,7 +199,7 @@ mod tests {
     fn transitive_dependents_are_the_irs() {
         let source = include_str!("../../../examples/atron/eight2car.dr");
         let parsed = parse(source);
-        let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
+        let (program, diagnostics) = analyze(&parsed.file, &dynarole_robots::plugins());
         let program = program.unwrap_or_else(|| panic!("{diagnostics:?}"));
         let plans = ["eight2car", "car2eight"].map(|s| program.expand(s).expect("sequence"));
         let options = CompileOptions {

@@ -25,7 +25,7 @@ use std::fmt::Write;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
 
-/// Controller period of every module (atron.md c).
+/// Controller period of every module (docs/simulator.md).
 pub const STEP_US: u64 = 5_000;
 /// Bytes of non-volatile storage per module (the ATmega128's EEPROM).
 const NV_BYTES: usize = 4096;
@@ -118,7 +118,7 @@ pub struct State {
     /// By module, the statements it started since the last time all were finished (what
     /// op_status reports on); only modules that run operations have an entry.
     pub waiting: BTreeMap<usize, Vec<usize>>,
-    /// Half duplex (`Preset::Atron`), by module: its recent transmissions and receptions
+    /// Half duplex (`Preset::half_duplex_sides`), by module: its recent transmissions and receptions
     /// (`network.rs`); empty otherwise.
     pub air: Vec<Vec<Air>>,
     /// The longest air time of any packet sent so far (µs): how long `air` records matter.
@@ -172,13 +172,12 @@ fn stream(seed: u64, stream: u64) -> ChaCha8Rng {
 impl State {
     pub fn new(
         seq: Arc<Sequence>,
-        world: RobotWorld,
+        (world, preset): (RobotWorld, Preset),
         scenario: Scenario,
         seed: u64,
         trace: bool,
     ) -> State {
         let view = world.view();
-        let preset = scenario.network.preset;
         let mut setup = stream(seed, 0);
         let connectors = view.connectors();
         let modules = (0..view.len())
@@ -205,9 +204,10 @@ impl State {
             .collect();
         let phys = vec![Phys::default(); seq.len()];
         let links = Links::new(view.len(), connectors);
-        let air = match preset {
-            Preset::Atron => vec![Vec::new(); view.len()],
-            Preset::Ussr => Vec::new(),
+        let air = if preset.half_duplex_sides {
+            vec![Vec::new(); view.len()]
+        } else {
+            Vec::new()
         };
         let mut state = State {
             seq,
@@ -270,9 +270,13 @@ impl State {
     /// Power-on of every module, then the scenario's faults, as events.
     fn schedule_start(&mut self, setup: &mut ChaCha8Rng) {
         for m in 0..self.modules.len() {
-            let at = match self.preset {
-                Preset::Ussr => 0,
-                Preset::Atron => setup.next_u64() % 100_000,
+            // No draw for a preset that powers everything at 0, so that its runs' streams are
+            // what they were.
+            let spread = self.preset.power_on_spread_us;
+            let at = if spread == 0 {
+                0
+            } else {
+                setup.next_u64() % spread
             };
             self.schedule(at, Event::PowerOn { module: m });
         }

@@ -19,10 +19,15 @@ fn plugin() -> RobotApi {
 
 /// `source` checked by the program driver, with the plugin found beside it.
 fn check(parsed: &dynarole_core::Parsed) -> Program<'_> {
-    let registry = driver::registry(driver::robot_name(&parsed.file), [], |file| {
-        assert_eq!(file, "cubes.robot.toml");
-        Ok::<_, ()>(Some(plugin()))
-    })
+    let registry = driver::registry(
+        dynarole_robots::plugins(),
+        driver::robot_name(&parsed.file),
+        [],
+        |file| {
+            assert_eq!(file, "cubes.robot.toml");
+            Ok::<_, ()>(Some(plugin()))
+        },
+    )
     .expect("registry");
     driver::check(parsed, &registry).unwrap_or_else(|d| panic!("{d:?}"))
 }
@@ -110,7 +115,7 @@ fn the_model_refuses_what_the_cubes_cannot_do() {
 
 #[test]
 fn a_model_of_another_robot_is_refused() {
-    let atron = dynarole_core::RobotRegistry::builtin()
+    let atron = dynarole_robots::plugins()
         .get("atron")
         .cloned()
         .expect("built in");

@@ -3,8 +3,6 @@
 //! every pair of angles its turn takes, both ways round.
 
 use dynarole_core::robot::JointAngle;
-use dynarole_core::RobotRegistry;
-use dynarole_world::Configuration;
 
 /// A configuration of each built-in robot, by plugin name.
 const STARTS: [(&str, &str); 2] = [
@@ -26,11 +24,11 @@ fn angles(robot: &dynarole_core::RobotApi) -> Vec<i64> {
 
 #[test]
 fn the_plugins_count_of_quarter_turns_is_the_models() {
-    let registry = RobotRegistry::builtin();
+    let registry = dynarole_robots::plugins();
     for (name, path) in STARTS {
         let robot = registry.get(name).expect("a built-in plugin");
         let text = std::fs::read_to_string(path).expect("an example configuration");
-        let model = Configuration::from_json_str(&text)
+        let model = dynarole_robots::read_configuration(&text)
             .expect("a valid configuration")
             .into_model();
         let values = angles(robot);

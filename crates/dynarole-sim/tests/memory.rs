@@ -24,7 +24,7 @@ const BUDGET: usize = 1_024;
 /// before it), after checking that it succeeded.
 fn peak_per_module(sim: &Simulator, start: &Configuration, preset: Preset) -> usize {
     let mut scenario = Scenario::default();
-    scenario.network.preset = preset;
+    scenario.network.preset = dynarole_sim::PresetName::named(preset.name);
     scenario.timeout_ms = 600_000;
     sim.module_context_bytes(preset).expect("builds");
     let base = HEAP.current();
@@ -43,7 +43,7 @@ fn peak_per_module(sim: &Simulator, start: &Configuration, preset: Preset) -> us
     assert!(report.success, "{:?}", report.failures);
     eprintln!(
         "{}: per module, peak {} B, report {} B; events {}",
-        preset.name(),
+        preset.name,
         peak / MODULES,
         kept / MODULES,
         report.counters.events
@@ -55,14 +55,14 @@ fn peak_per_module(sim: &Simulator, start: &Configuration, preset: Preset) -> us
 #[test]
 fn a_run_needs_little_heap_per_module() {
     let sim = common::simulator(SOURCE, &["spread"], Protocol::Lattice);
-    let start = Configuration::from_json_str(&structure_json("grid", &square(MODULES)))
+    let start = dynarole_robots::read_configuration(&structure_json("grid", &square(MODULES)))
         .expect("valid configuration");
-    for preset in [Preset::Ussr, Preset::Atron] {
+    for preset in [dynarole_sim::USSR, dynarole_robot_atron::NETWORK_PRESETS[0]] {
         let peak = peak_per_module(&sim, &start, preset);
         assert!(
             peak < BUDGET,
             "{}: {peak} B per module at the peak",
-            preset.name()
+            preset.name
         );
     }
 }

@@ -8,7 +8,7 @@ mod common;
 
 use common::{config, EIGHT, EIGHT2CAR};
 use dynarole_codegen::{CompileOptions, Protocol};
-use dynarole_core::{driver, parse, RobotRegistry};
+use dynarole_core::{driver, parse};
 use dynarole_sim::{Block, Power, Report, Reset, Run, Scenario, Simulator};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -16,7 +16,7 @@ use rand_chacha::ChaCha8Rng;
 /// eight2car then car2eight (50 statements, back to the eight), compiled with `no_nv`.
 fn there_and_back() -> Simulator {
     let parsed = parse(EIGHT2CAR);
-    let program = driver::check(&parsed, &RobotRegistry::builtin())
+    let program = driver::check(&parsed, &dynarole_robots::plugins())
         .unwrap_or_else(|diagnostics| panic!("{diagnostics:?}"));
     let names = ["eight2car", "car2eight"].map(String::from);
     let plans = driver::plans(&program, &names).expect("sequences exist");

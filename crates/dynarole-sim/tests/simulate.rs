@@ -6,7 +6,7 @@ mod common;
 
 use common::*;
 use dynarole_codegen::Protocol;
-use dynarole_sim::{Block, Power, Preset, Report, Reset, Scenario};
+use dynarole_sim::{Block, Power, Report, Reset, Scenario};
 
 const CHAIN3_DR: &str = include_str!("data/chain3.dr");
 const CHAIN3: &str = include_str!("data/chain3.json");
@@ -14,7 +14,7 @@ const CHAIN3_AFTER: &str = include_str!("data/chain3-after.json");
 
 fn ussr() -> Scenario {
     let mut s = Scenario::default();
-    s.network.preset = Preset::Ussr;
+    s.network.preset = dynarole_sim::PresetName::named(dynarole_sim::USSR.name);
     s
 }
 
@@ -65,9 +65,9 @@ fn start_time(report: &Report, statement: usize) -> u64 {
 
 #[test]
 fn eight2car_lattice_reaches_the_car_without_violations() {
-    for preset in [Preset::Atron, Preset::Ussr] {
+    for preset in [dynarole_robot_atron::NETWORK_PRESETS[0], dynarole_sim::USSR] {
         let mut scenario = Scenario::default();
-        scenario.network.preset = preset;
+        scenario.network.preset = dynarole_sim::PresetName::named(preset.name);
         let report = eight2car(Protocol::Lattice, &scenario, 1);
         assert_success(&report);
         assert!(report.violations.is_empty(), "{}", report.summary());
@@ -82,8 +82,7 @@ fn eight2car_lattice_reaches_the_car_without_violations() {
 #[test]
 fn adaptive_dissemination_sends_fewer_packets_than_the_fixed_period() {
     let parsed = dynarole_core::parse(EIGHT2CAR);
-    let (program, _) =
-        dynarole_core::analyze(&parsed.file, &dynarole_core::RobotRegistry::builtin());
+    let (program, _) = dynarole_core::analyze(&parsed.file, &dynarole_robots::plugins());
     let program = program.expect("eight2car analyses");
     let plans = vec![program.expand("eight2car").expect("eight2car")];
     let sent = |dissemination| {
@@ -108,9 +107,9 @@ fn adaptive_dissemination_sends_fewer_packets_than_the_fixed_period() {
 
 #[test]
 fn eight2car_paper_reaches_the_car() {
-    for preset in [Preset::Atron, Preset::Ussr] {
+    for preset in [dynarole_robot_atron::NETWORK_PRESETS[0], dynarole_sim::USSR] {
         let mut scenario = Scenario::default();
-        scenario.network.preset = preset;
+        scenario.network.preset = dynarole_sim::PresetName::named(preset.name);
         let report = eight2car(Protocol::Paper, &scenario, 1);
         assert_eq!(
             report.configuration_matches,
@@ -397,7 +396,7 @@ fn finished_twin_in_range(robot: u16, execution: Option<u32>) -> Scenario {
 /// eight2car built with a key (`compile --key`) for the launch `execution`.
 fn keyed_eight2car(protocol: Protocol, execution: u32) -> dynarole_sim::Simulator {
     let parsed = dynarole_core::parse(EIGHT2CAR);
-    let program = dynarole_core::driver::check(&parsed, &dynarole_core::RobotRegistry::builtin())
+    let program = dynarole_core::driver::check(&parsed, &dynarole_robots::plugins())
         .unwrap_or_else(|diagnostics| panic!("{diagnostics:?}"));
     let plans = dynarole_core::driver::plans(&program, &["eight2car".to_string()])
         .expect("eight2car exists");

@@ -9,9 +9,9 @@ mod common;
 use common::faults::add_module_faults;
 use common::*;
 use dynarole_codegen::{CompileOptions, Protocol, TokenRetries};
-use dynarole_core::{analyze, parse, RobotRegistry};
+use dynarole_core::{analyze, parse};
 use dynarole_replay::token_routes;
-use dynarole_sim::{Foreign, Preset, RandomResets, Report, Run, Scenario, Simulator, Stepping};
+use dynarole_sim::{Foreign, RandomResets, Report, Run, Scenario, Simulator, Stepping};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -28,7 +28,7 @@ fn compiled(
     no_nv: bool,
 ) -> Simulator {
     let parsed = parse(source);
-    let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
+    let (program, diagnostics) = analyze(&parsed.file, &dynarole_robots::plugins());
     let program = program.unwrap_or_else(|| panic!("{diagnostics:?}"));
     let plans: Vec<_> = sequences
         .iter()
@@ -129,7 +129,7 @@ fn random_faults(rng: &mut ChaCha8Rng, modules: &[&str], span_ms: u64) -> Scenar
         });
     }
     if rng.random_bool(0.2) {
-        scenario.network.preset = Preset::Ussr;
+        scenario.network.preset = dynarole_sim::PresetName::named(dynarole_sim::USSR.name);
     }
     scenario.faults_until_ms = Some(span_ms + 5_000);
     scenario.timeout_ms = span_ms + 60_000;

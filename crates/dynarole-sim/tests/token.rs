@@ -5,20 +5,20 @@ mod common;
 
 use common::*;
 use dynarole_codegen::{CompileOptions, Protocol, TokenRetries, TokenRoutes};
-use dynarole_core::{driver, parse, RobotRegistry};
+use dynarole_core::{driver, parse};
 use dynarole_replay::token_routes;
 use dynarole_sim::{Block, Report, Scenario, Simulator};
 
 fn eight2car_routes() -> TokenRoutes {
     let parsed = parse(EIGHT2CAR);
-    let program = driver::check(&parsed, &RobotRegistry::builtin()).expect("eight2car checks");
+    let program = driver::check(&parsed, &dynarole_robots::plugins()).expect("eight2car checks");
     let plan = program.expand("eight2car").expect("sequence exists");
     token_routes(&program, &[plan], &config(EIGHT)).expect("every hand-over has a route")
 }
 
 fn token_run(retries: TokenRetries, scenario: &Scenario, seed: u64) -> Report {
     let parsed = parse(EIGHT2CAR);
-    let program = driver::check(&parsed, &RobotRegistry::builtin()).expect("eight2car checks");
+    let program = driver::check(&parsed, &dynarole_robots::plugins()).expect("eight2car checks");
     let plans = vec![program.expand("eight2car").expect("sequence exists")];
     let routes = token_routes(&program, &plans, &config(EIGHT)).expect("routes");
     let options = CompileOptions {

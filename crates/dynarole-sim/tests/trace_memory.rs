@@ -26,7 +26,7 @@ fn peak(ms: u64, keep: bool) -> (usize, u64) {
     let mut scenario = Scenario::default();
     scenario.network.loss = 1.0;
     scenario.timeout_ms = ms;
-    sim.module_context_bytes(scenario.network.preset)
+    sim.module_context_bytes(dynarole_robot_atron::NETWORK_PRESETS[0])
         .expect("builds");
     let base = HEAP.current();
     HEAP.reset_peak();

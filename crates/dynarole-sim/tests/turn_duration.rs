@@ -6,7 +6,7 @@ mod common;
 
 use common::{run, simulator, CAR, EIGHT, EIGHT2CAR};
 use dynarole_codegen::Protocol;
-use dynarole_sim::{JointModel, Preset, Report, Reset, Scenario};
+use dynarole_sim::{JointModel, Report, Reset, Scenario};
 
 const CHAIN3: &str = include_str!("data/chain3.json");
 
@@ -62,7 +62,7 @@ fn a_turn_to_the_angle_the_joint_has_takes_no_time() {
 fn a_turn_issued_again_after_it_completed_takes_no_time() {
     let sim = simulator(EIGHT2CAR, &["eight2car"], Protocol::Lattice);
     let mut scenario = Scenario::default();
-    scenario.network.preset = Preset::Ussr;
+    scenario.network.preset = dynarole_sim::PresetName::named(dynarole_sim::USSR.name);
     let plain = run(&sim, EIGHT, Some(CAR), &scenario, 0);
     let (start, done) = start_and_done(&plain, 3)[2];
     assert_eq!((done - start).round(), 550.0);

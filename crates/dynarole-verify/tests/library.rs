@@ -76,14 +76,14 @@ impl Observer for Recorder {
 fn with_inputs<T>(then: impl FnOnce(&Inputs, &str) -> T) -> T {
     let text = std::fs::read_to_string(repo(SOURCE)).expect("source");
     let parsed = dynarole_core::parse(&text);
-    let registry = dynarole_core::RobotRegistry::builtin();
+    let registry = dynarole_robots::plugins();
     let (program, diagnostics) = dynarole_core::driver::analyze_all(&parsed, &registry);
     assert!(diagnostics.is_empty(), "{diagnostics:?}");
     let program = program.expect("checked");
     let names = vec!["ab_c".to_string()];
     let plans = dynarole_core::driver::plans(&program, &names).expect("sequence");
     let json = std::fs::read_to_string(repo(LINE)).expect("configuration");
-    let config = dynarole_world::Configuration::from_json_str(&json).expect("configuration");
+    let config = dynarole_robots::read_configuration(&json).expect("configuration");
     let assignment =
         dynarole_replay::assign_modules(&program, &plans, &config).expect("assignment");
     let world = dynarole_replay::RobotWorld::new(config, &program.robot).expect("world");

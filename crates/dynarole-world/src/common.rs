@@ -50,7 +50,7 @@ pub struct Metadata {
 /// One connector of one module: `module` is the index into the configuration's module list.
 #[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Debug)]
 pub struct Port {
-    /// Index of the module in [`AtronConfiguration::modules`] (or the M-TRAN equivalent).
+    /// Index of the module in its configuration's module order.
     pub module: usize,
     /// Connector number on that module.
     pub connector: u8,
@@ -84,7 +84,7 @@ pub type NamedConnection = (String, u8, String, u8);
 
 /// Rejects a translation outside the coordinate bounds, before it can overflow the arithmetic
 /// of the positions it shifts.
-pub(crate) fn check_translation(translation: Vec3) -> Result<(), ConfigError> {
+pub fn check_translation(translation: Vec3) -> Result<(), ConfigError> {
     if within_bounds(translation) {
         return Ok(());
     }

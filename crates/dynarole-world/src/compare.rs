@@ -2,9 +2,8 @@
 //! plus a translation), with a readable account of the differences under the best-matching
 //! motion.
 
-use crate::configuration::Configuration;
+use crate::api::{Configuration, RobotModel};
 use crate::geometry::{add, sub, Rotation, Vec3};
-use crate::model::RobotModel;
 use crate::rigid::{Body, Shape};
 use std::collections::BTreeMap;
 use std::fmt;
@@ -46,7 +45,7 @@ impl Sides {
 pub struct JointDifference {
     /// The module.
     pub module: String,
-    /// Joint value(s) in the first configuration (ATRON: 1/432 turn; M-TRAN: degrees).
+    /// Joint value(s) in the first configuration, in the unit of its robot's plugin.
     pub first: Vec<i32>,
     /// Joint value(s) in the second configuration.
     pub second: Vec<i32>,
@@ -65,8 +64,7 @@ pub struct Difference {
     pub ids: Vec<(String, Option<u32>, Option<u32>)>,
     /// The rigid motion that matches the most modules (applied to the first configuration).
     pub rotation: Option<Rotation>,
-    /// Its translation, in the configuration's internal position unit (ATRON: lattice units,
-    /// M-TRAN: quarter pitches).
+    /// Its translation, in the configuration's internal position unit (`rigid::Shape`).
     pub translation: Vec3,
     /// How many common modules that motion puts in place.
     pub matched: usize,
@@ -181,9 +179,12 @@ pub fn compare_with_expected(
 // The difference is this function's whole answer, built once per call: its size is no cost.
 #[allow(clippy::result_large_err)]
 pub fn compare(a: &Configuration, b: &Configuration) -> Result<(), Difference> {
-    if a.robot() != b.robot() {
+    if a.kind().file_tag() != b.kind().file_tag() {
         return Err(Difference {
-            robots: Some((a.robot().name().to_string(), b.robot().name().to_string())),
+            robots: Some((
+                a.kind().file_tag().to_string(),
+                b.kind().file_tag().to_string(),
+            )),
             ..Difference::default()
         });
     }
@@ -291,7 +292,7 @@ fn best_motion(common: &[(&String, &Body, &Body)]) -> (Rotation, Vec3, usize) {
 
 /// How a built-in robot's model differs from `other` (`RobotModel::difference`): `None` when
 /// they are equal, compared in place first (no copy), or equal up to rigid motion.
-pub(crate) fn model_difference<W>(model: &W, other: &dyn RobotModel) -> Option<String>
+pub fn model_difference<W>(model: &W, other: &dyn RobotModel) -> Option<String>
 where
     W: RobotModel + PartialEq + 'static,
 {

@@ -1,7 +1,7 @@
 //! What every robot's configuration file shares: reading the whole text with the field path of
 //! any error, the descriptive fields, the connections, module IDs, the check of redundant
 //! floating-point fields, and the writer's layout (one module and one connection per line).
-//! Each robot's own records are in its folder (`atron/json.rs`, `mtran/json.rs`); `json.rs`
+//! Each robot's own records are in its folder (`robots/NAME/`); `robot_set.rs`
 //! picks the robot.
 
 use crate::common::{ConfigError, Metadata, NamedConnection};
@@ -28,7 +28,7 @@ struct DataFile<R> {
 /// A robot's data file read: its descriptive fields (`lattice_unit_m` checked against
 /// `unit_m`), its modules, each built from its record by `module` (index, record), and its
 /// connections checked against `connector_count`.
-pub(crate) fn read_document<R: DeserializeOwned, M>(
+pub fn read_document<R: DeserializeOwned, M>(
     text: &str,
     unit_m: f64,
     connector_count: u8,
@@ -50,11 +50,11 @@ pub(crate) fn read_document<R: DeserializeOwned, M>(
 }
 
 /// Tolerance for the floating-point redundant fields (metres, unit normals).
-pub(crate) const FLOAT_TOLERANCE: f64 = 1e-6;
+pub const FLOAT_TOLERANCE: f64 = 1e-6;
 
 /// Deserializes the whole text, tracking the field path of any error and rejecting trailing
 /// characters.
-pub(crate) fn deserialize<T: DeserializeOwned>(text: &str) -> Result<T, ConfigError> {
+pub fn deserialize<T: DeserializeOwned>(text: &str) -> Result<T, ConfigError> {
     let mut deserializer = serde_json::Deserializer::from_str(text);
     let value: T = serde_path_to_error::deserialize(&mut deserializer).map_err(|e| {
         let path = e.path().to_string();
@@ -123,12 +123,11 @@ fn connections(
         .collect()
 }
 
-/// Builds one ATRON module and checks its redundant fields against the model.
 /// Largest module ID: the runtime's `dr_hal_id` is 16 bits and 65,535 means "no ID".
 pub const MAX_MODULE_ID: u32 = 65_534;
 
 /// A module ID the runtime can hold, or an error naming `modules[i].id`.
-pub(crate) fn check_id(i: usize, id: Option<u32>) -> Result<Option<u32>, ConfigError> {
+pub fn check_id(i: usize, id: Option<u32>) -> Result<Option<u32>, ConfigError> {
     match id {
         Some(id) if id > MAX_MODULE_ID => Err(ConfigError::new(
             format!("modules[{i}].id"),
@@ -138,7 +137,7 @@ pub(crate) fn check_id(i: usize, id: Option<u32>) -> Result<Option<u32>, ConfigE
     }
 }
 
-pub(crate) fn check_float_vector(
+pub fn check_float_vector(
     path: &str,
     given: [f64; 3],
     expected: [f64; 3],
@@ -157,7 +156,7 @@ pub(crate) fn check_float_vector(
     }
 }
 
-pub(crate) fn check_float_list(
+pub fn check_float_list(
     path: &str,
     given: &[[f64; 3]],
     expected: &[[f64; 3]],
@@ -175,7 +174,7 @@ pub(crate) fn check_float_list(
 }
 
 /// A JSON array with one element per line.
-pub(crate) fn list(items: &[String]) -> String {
+pub fn list(items: &[String]) -> String {
     if items.is_empty() {
         return "[]".to_string();
     }
@@ -185,7 +184,7 @@ pub(crate) fn list(items: &[String]) -> String {
 
 /// One-line JSON with a space after each comma and colon, as in the data files (serde_json's
 /// compact form has none).
-pub(crate) fn compact(value: &Value) -> String {
+pub fn compact(value: &Value) -> String {
     match value {
         Value::Array(items) => {
             let parts: Vec<String> = items.iter().map(compact).collect();
@@ -204,7 +203,7 @@ pub(crate) fn compact(value: &Value) -> String {
 
 /// A one-line JSON object with the fields that are present, in the data files' field order
 /// (written by hand because `serde_json::Map` sorts its keys).
-pub(crate) fn object(entries: Vec<(&str, Option<Value>)>) -> String {
+pub fn object(entries: Vec<(&str, Option<Value>)>) -> String {
     let fields: Vec<String> = entries
         .into_iter()
         .filter_map(|(key, value)| value.map(|v| format!("{}: {}", json!(key), compact(&v))))
@@ -215,7 +214,7 @@ pub(crate) fn object(entries: Vec<(&str, Option<Value>)>) -> String {
 /// Writes a configuration file of robot `robot` (its `robot` field): top-level fields one per
 /// line, one module (`modules`, each robot's own one-line objects) and one connection per
 /// line, like the data files.
-pub(crate) fn write_document(
+pub fn write_document(
     robot: &str,
     unit: f64,
     modules: &[String],

@@ -49,7 +49,7 @@ impl Rotation {
 
     /// Builds a rotation from rows known to form a signed permutation with determinant +1; only
     /// for the crate's constant tables (a unit test checks each of them).
-    pub(crate) const fn from_rows_unchecked(rows: [[i8; 3]; 3]) -> Rotation {
+    pub const fn from_rows_unchecked(rows: [[i8; 3]; 3]) -> Rotation {
         Rotation { rows }
     }
 
@@ -220,7 +220,7 @@ pub struct SweepApproach {
 ///
 /// The distance is minimised in closed form rather than by sampling: the squared distance is
 /// `K - 2 (alpha cos t + beta sin t)`, whose extremum is known exactly, so minima that fall
-/// between samples (the ATRON's occur about 27 and 63 degrees into a quarter turn) are never
+/// between samples (a lattice module's occur about 27 and 63 degrees into a quarter turn) are never
 /// missed.
 pub fn sweep_closest_approach(
     pivot: [f64; 3],
@@ -274,7 +274,7 @@ fn circle_lower_bound(pivot: [f64; 3], a: [f64; 3], m: [f64; 3], s: [f64; 3]) ->
 
 /// Minimum distance between point `m` turned by t in [0, total] about unit `a` through `pivot`
 /// and the fixed point `s`; returns (distance, t at the minimum).
-pub(crate) fn arc_point_distance(
+pub fn arc_point_distance(
     pivot: [f64; 3],
     a: [f64; 3],
     total: f64,

@@ -5,7 +5,7 @@ use crate::common::Latch;
 use std::collections::BTreeSet;
 
 /// Modules reachable from `starts` through latches without entering `barrier`.
-pub(crate) fn reachable(
+pub fn reachable(
     latches: &BTreeSet<Latch>,
     starts: &BTreeSet<usize>,
     barrier: Option<usize>,
@@ -72,7 +72,7 @@ fn neighbours_on(
 
 /// The two sides of a joint of `module`: modules attached (transitively) to the connectors
 /// selected by `first_half`, and those attached to the others.
-pub(crate) struct Sides {
+pub struct Sides {
     /// Modules that turn with the first half (north).
     pub first: BTreeSet<usize>,
     /// Modules that turn with the second half (south).
@@ -84,7 +84,7 @@ impl Sides {
     /// turns about the joint axis, and whether it is the first side. The side with fewer
     /// modules moves (tie: the first, north one); the joint angle measures the second side
     /// against the first, so the first side turns the opposite way.
-    pub(crate) fn moving(self, joint_quarters: i32) -> (BTreeSet<usize>, i32, bool) {
+    pub fn moving(self, joint_quarters: i32) -> (BTreeSet<usize>, i32, bool) {
         if self.first.len() <= self.second.len() {
             (self.first, -joint_quarters, true)
         } else {
@@ -95,7 +95,7 @@ impl Sides {
 
 /// Splits the structure at a joint of `module`. `Err(loop modules)` when the two halves are
 /// joined through other modules, in which case the joint cannot turn.
-pub(crate) fn split_at_joint(
+pub fn split_at_joint(
     latches: &BTreeSet<Latch>,
     module: usize,
     first_half: fn(u8) -> bool,
@@ -113,7 +113,7 @@ pub(crate) fn split_at_joint(
 
 /// After a latch between modules `a` and `b` was removed: `None` if they are still connected,
 /// otherwise the two parts (containing `a` and `b`).
-pub(crate) fn split_parts(
+pub fn split_parts(
     latches: &BTreeSet<Latch>,
     a: usize,
     b: usize,

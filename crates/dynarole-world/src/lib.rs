@@ -1,49 +1,45 @@
-//! Kinematic models of modular robots (ATRON, M-TRAN) and their configurations.
+//! The robot API: what every robot kind gives the tree, and the shared machinery robot
+//! folders build on. Nothing here knows a robot by name.
 //!
-//! - [`RobotShape`] / [`RobotModel`]: the one robot API the other crates ask (modules, names,
-//!   ids, connectors, genders, latches, joints; doing an [`Action`]; the motion of a turn).
-//!   Each built-in robot's folder (`atron/`, `mtran/`) holds its lattice, configuration and
-//!   world; `builtin/` implements the API over them (the modules' layering is in
-//!   `builtin/mod.rs`); [`View`] is the borrowed handle callers query.
-//! - [`Configuration::from_json_str`] / [`Configuration::to_json_string`]: the data-file JSON
-//!   format, validated, with field paths in every error.
-//! - [`World`]: the ATRON API (extend, retract, rotateFromToBy) on an exact integer lattice,
-//!   with the acceptance rules of `README.md`.
-//! - [`MtranWorld`]: connect, disconnect and joint turns for M-TRAN modules (`MTRAN.md`).
+//! - [`RobotKind`] / [`Robots`]: a robot kind (its plugin, its data files) and a set of them;
+//!   [`Robots::read_configuration`] picks the kind by a file's `robot` field.
+//! - [`Configuration`]: a validated configuration of any kind, behind [`RobotConfiguration`].
+//! - [`RobotShape`] / [`RobotModel`]: the questions a configuration answers (modules, names,
+//!   ids, connectors, genders, latches, joints, topology) and a robot being reconfigured
+//!   (doing an [`Action`]; the motion of a turn); [`View`] is the borrowed handle callers query.
 //! - [`compare`]: equality up to one of the 24 lattice rotations plus a translation.
+//! - For robot folders: `structure` (modules and latches), `world_common` (latching, turns
+//!   and their sweeps), `graph`, `rigid`, `file_format` (the data-file layout every robot
+//!   shares, errors with field paths) and `geometry`, with the `robot_shape!`,
+//!   `robot_configuration!` and `configuration_queries!` macros.
 //!
 //! The crate does no input/output; it is deterministic (no hash-map iteration anywhere).
 
-pub mod atron;
-mod builtin;
-mod common;
+mod api;
+pub mod common;
 mod compare;
-mod configuration;
-mod file_format;
-pub mod generated;
+mod drawing;
+pub mod file_format;
 pub mod geometry;
-mod graph;
-mod json;
-mod model;
+pub mod graph;
 mod motion;
-pub mod mtran;
 mod ops;
-mod rigid;
-mod structure;
+pub mod rigid;
+mod robot_set;
+mod shape;
+pub mod structure;
 mod view;
-mod world_common;
+pub mod world_common;
 
-pub use atron::{
-    AtronConfiguration, AtronModule, Orientation, OrientationBase, World,
-    MIN_SWEEP_DISTANCE_LATTICE,
-};
-pub use builtin::BUILTIN_ROBOTS;
+pub use api::{Configuration, NetworkPreset, RobotConfiguration, RobotKind, RobotModel};
 pub use common::{ConfigError, Latch, Metadata, NamedConnection, Port};
-pub use compare::{compare, compare_with_expected, Difference, JointDifference, Misplaced, Sides};
-pub use configuration::{Configuration, Robot};
+pub use compare::{
+    compare, compare_with_expected, model_difference, Difference, JointDifference, Misplaced, Sides,
+};
+pub use drawing::{mean_centre, Drawing, ModulePose, PartLook, PartPose, Picture, Ring, Solid};
 pub use geometry::{Rotation, Vec3};
-pub use model::{Action, RobotModel, RobotShape};
 pub use motion::TurnMotion;
-pub use mtran::{MtranConfiguration, MtranJoint, MtranModule, MtranOrientation, MtranWorld};
 pub use ops::{OpError, Outcome, Warning};
+pub use robot_set::Robots;
+pub use shape::{latched_or_male_to_free_female, Action, RobotShape};
 pub use view::View;

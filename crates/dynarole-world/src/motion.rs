@@ -4,14 +4,14 @@
 use crate::geometry::{arc_point_distance, Vec3};
 
 /// The motion of one joint turn: the moving side turns by `angle_deg` (right-handed, signed)
-/// about `axis` through `pivot`. Points are module centres (ATRON, lattice units) or block
-/// centres (M-TRAN, block pitches).
+/// about `axis` through `pivot`. Points are the centres of whole modules or of a module's
+/// parts (a block), in the robot's length unit.
 #[derive(Clone, Debug, PartialEq)]
 pub struct TurnMotion {
     pub pivot: [f64; 3],
     pub axis: Vec3,
     pub angle_deg: f64,
-    /// Name and start position of each moving point (a module, or an M-TRAN block, whose
+    /// Name and start position of each moving point (a module, or a part of one, whose
     /// module's name is repeated for its two blocks).
     pub moving: Vec<(String, [f64; 3])>,
     /// The smallest distance the model allows between a moving point and another one.

@@ -63,7 +63,8 @@ pub struct Outcome {
     /// included when its own frame turned).
     pub moved: Vec<String>,
     /// Closest centre-to-centre approach between a moving and a still module during a turn
-    /// (ATRON: lattice units; M-TRAN: block pitches); `None` when nothing swept past anything.
+    /// (in the robot's length unit, `RobotModel::length_unit`); `None` when nothing swept past
+    /// anything.
     pub closest_approach: Option<f64>,
 }
 
@@ -131,7 +132,7 @@ pub enum OpError {
         moving: String,
         /// The still module it would hit.
         still: String,
-        /// Closest centre distance (ATRON: lattice units; M-TRAN: block pitches).
+        /// Closest centre distance, in the robot's length unit.
         distance: f64,
         /// The limit it violates.
         limit: f64,

@@ -1,4 +1,4 @@
-//! What the ATRON and M-TRAN configurations share: modules in file order, the latches between
+//! What the configurations of robots built of modules and latches share: modules in file order, the latches between
 //! them, their validation, and the compact indices that keep look-ups by name and id
 //! logarithmic and by port constant.
 
@@ -6,8 +6,8 @@ use crate::common::{ConfigError, Latch, NamedConnection, Port};
 use std::collections::{BTreeMap, BTreeSet};
 
 /// What the shared code needs to know about one robot's modules and connector rules.
-pub(crate) trait RobotModule: Sized {
-    /// The robot's name in messages (`ATRON`, `M-TRAN`).
+pub trait RobotModule: Sized {
+    /// The robot's name in messages.
     const ROBOT: &'static str;
     /// Connectors per module, numbered from 0.
     const CONNECTOR_COUNT: u8;
@@ -42,6 +42,7 @@ pub(crate) trait RobotModule: Sized {
 /// The queries every robot's configuration answers alike, from its `metadata` and
 /// `structure` fields. Expanded inside each configuration's own `impl` (with its module
 /// type), so that they stay inherent methods and callers need no trait in scope.
+#[macro_export]
 macro_rules! configuration_queries {
     ($module:ty) => {
         /// The descriptive fields.
@@ -95,14 +96,13 @@ macro_rules! configuration_queries {
         }
     };
 }
-pub(crate) use configuration_queries;
 
 /// Modules and latches, with indices by name, id and port. The indices only follow from the
 /// modules and latches, so comparing them too (derived `PartialEq`) changes no answer. They
 /// are compact (a simulated robot may have a million modules): a name is stored once, in
 /// its module, and a port is one u32.
 #[derive(Clone, PartialEq)]
-pub(crate) struct Structure<M> {
+pub struct Structure<M> {
     modules: Vec<M>,
     latches: BTreeSet<Latch>,
     /// Module indices in name order (names are unique), searched by bisection.
@@ -124,7 +124,7 @@ impl<M: RobotModule> Structure<M> {
 
     /// Modules without latches, after checking that names are non-empty and unique and that
     /// given ids are unique.
-    pub(crate) fn new(modules: Vec<M>) -> Result<Structure<M>, ConfigError> {
+    pub fn new(modules: Vec<M>) -> Result<Structure<M>, ConfigError> {
         if modules.len() > Self::max_modules() {
             return Err(ConfigError::new(
                 "modules",
@@ -195,10 +195,7 @@ impl<M: RobotModule> Structure<M> {
 
     /// Resolves, checks and latches every connection: known modules, connectors in range, one
     /// male and one female end, the two connectors facing each other, no connector used twice.
-    pub(crate) fn connect_all(
-        &mut self,
-        connections: &[NamedConnection],
-    ) -> Result<(), ConfigError> {
+    pub fn connect_all(&mut self, connections: &[NamedConnection]) -> Result<(), ConfigError> {
         let mut used: BTreeMap<Port, usize> = BTreeMap::new();
         for (k, (name_a, conn_a, name_b, conn_b)) in connections.iter().enumerate() {
             let path = format!("connections[{k}]");
@@ -249,23 +246,23 @@ impl<M: RobotModule> Structure<M> {
     }
 
     /// Modules in file order.
-    pub(crate) fn modules(&self) -> &[M] {
+    pub fn modules(&self) -> &[M] {
         &self.modules
     }
 
     /// The module at `index`.
-    pub(crate) fn module(&self, index: usize) -> Option<&M> {
+    pub fn module(&self, index: usize) -> Option<&M> {
         self.modules.get(index)
     }
 
     /// The module at `index`, to change its pose or joints (never its name or id, which the
     /// indices were built from).
-    pub(crate) fn module_mut(&mut self, index: usize) -> Option<&mut M> {
+    pub fn module_mut(&mut self, index: usize) -> Option<&mut M> {
         self.modules.get_mut(index)
     }
 
     /// Index of the module called `name`.
-    pub(crate) fn module_index(&self, name: &str) -> Option<usize> {
+    pub fn module_index(&self, name: &str) -> Option<usize> {
         let name_of = |i: &u32| self.modules.get(*i as usize).map_or("", |m| m.name());
         let k = self
             .by_name
@@ -275,42 +272,42 @@ impl<M: RobotModule> Structure<M> {
     }
 
     /// Index of the module with numeric ID `id`.
-    pub(crate) fn module_index_by_id(&self, id: u32) -> Option<usize> {
+    pub fn module_index_by_id(&self, id: u32) -> Option<usize> {
         self.by_id.get(&id).copied()
     }
 
     /// The label of the module at `index` (empty when there is none).
-    pub(crate) fn module_name(&self, index: usize) -> String {
+    pub fn module_name(&self, index: usize) -> String {
         self.modules
             .get(index)
             .map_or_else(String::new, |m| m.name().to_string())
     }
 
     /// The labels of the modules at `indices`, in index order.
-    pub(crate) fn module_names(&self, indices: &BTreeSet<usize>) -> Vec<String> {
+    pub fn module_names(&self, indices: &BTreeSet<usize>) -> Vec<String> {
         indices.iter().map(|i| self.module_name(*i)).collect()
     }
 
     /// The latches, ordered by male port.
-    pub(crate) fn latches(&self) -> &BTreeSet<Latch> {
+    pub fn latches(&self) -> &BTreeSet<Latch> {
         &self.latches
     }
 
     /// The port latched to `port`, if any.
-    pub(crate) fn latched_to(&self, port: Port) -> Option<Port> {
+    pub fn latched_to(&self, port: Port) -> Option<Port> {
         let value = self.packed(port).and_then(|k| self.partners.get(k))?;
         Self::unpacked(*value)
     }
 
     /// Adds a latch (the caller has checked that both ends are free).
-    pub(crate) fn latch(&mut self, latch: Latch) {
+    pub fn latch(&mut self, latch: Latch) {
         self.latches.insert(latch);
         self.set_partner(latch.male, Some(latch.female));
         self.set_partner(latch.female, Some(latch.male));
     }
 
     /// Removes a latch, if present.
-    pub(crate) fn unlatch(&mut self, latch: Latch) {
+    pub fn unlatch(&mut self, latch: Latch) {
         if self.latches.remove(&latch) {
             self.set_partner(latch.male, None);
             self.set_partner(latch.female, None);
@@ -318,13 +315,13 @@ impl<M: RobotModule> Structure<M> {
     }
 
     /// `M3.C4` for a port (`?` for an unknown module).
-    pub(crate) fn port_name(&self, port: Port) -> String {
+    pub fn port_name(&self, port: Port) -> String {
         let name = self.modules.get(port.module).map_or("?", |m| m.name());
         format!("{name}.C{}", port.connector)
     }
 
     /// The latches as names, male first, in latch order.
-    pub(crate) fn named_connections(&self) -> Vec<NamedConnection> {
+    pub fn named_connections(&self) -> Vec<NamedConnection> {
         let name = |p: Port| self.module_name(p.module);
         self.latches
             .iter()

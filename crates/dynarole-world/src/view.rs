@@ -2,21 +2,18 @@
 //! connectors, male or female, latches, joints), so that no other crate dispatches on the
 //! robot: a thin handle on [`RobotShape`] with the facts derived from it.
 
+use crate::api::Configuration;
 use crate::common::Port;
-use crate::configuration::Configuration;
-use crate::model::RobotShape;
+use crate::shape::RobotShape;
 
 /// A configuration of any robot, borrowed.
 #[derive(Clone, Copy)]
 pub struct View<'c>(&'c dyn RobotShape);
 
 impl<'c> View<'c> {
-    /// The view of a configuration of a built-in robot.
+    /// The view of a configuration of any robot.
     pub fn of(config: &'c Configuration) -> View<'c> {
-        match config {
-            Configuration::Atron(c) => View(c),
-            Configuration::Mtran(c) => View(c),
-        }
+        View(config.shape())
     }
 
     /// The view of any robot's shape.
@@ -34,7 +31,7 @@ impl<'c> View<'c> {
     }
 
     /// Which rigid side of its module a connector is on, as the robot says
-    /// (`RobotShape::side`: an ATRON hemisphere, an M-TRAN block).
+    /// (`RobotShape::side`).
     pub fn side(self, connector: u8) -> usize {
         self.0.side(connector)
     }
@@ -65,7 +62,7 @@ impl<'c> View<'c> {
         self.0.index_by_id(id)
     }
 
-    /// Joint `joint` of module `m`, in the robot's units (ATRON 1/432 turn, M-TRAN degrees).
+    /// Joint `joint` of module `m`, in the unit its robot's plugin uses for angles.
     pub fn joint(self, m: usize, joint: u8) -> Option<i64> {
         self.0.joint(m, joint)
     }
@@ -78,18 +75,10 @@ impl<'c> View<'c> {
         self.0.facing(port)
     }
 
-    /// Where a packet sent on `port` goes (atron.md a.8): the latched partner, or, for an
-    /// unlatched male connector, an unlatched female connector facing it.
+    /// Where a packet sent on `port` goes, as the robot's topology says
+    /// (`RobotShape::link_target`).
     pub fn link_target(self, port: Port) -> Option<Port> {
-        if let Some(p) = self.latched_to(port) {
-            return Some(p);
-        }
-        if !self.is_male(port.connector) {
-            return None;
-        }
-        let other = self.facing(port)?;
-        let free_female = !self.is_male(other.connector) && self.latched_to(other).is_none();
-        free_female.then_some(other)
+        self.0.link_target(port)
     }
 
     pub fn port_name(self, port: Port) -> String {

@@ -1,4 +1,4 @@
-//! What the ATRON and M-TRAN worlds share: looking a module up by name, the latch operations
+//! What the worlds of robots built on `structure.rs` share: looking a module up by name, the latch operations
 //! (extend/connect, retract/disconnect), the checks of a joint turn (its angles, the loop that
 //! locks a joint, its sweep) and its outcome. They differ only in the connector rules
 //! ([`RobotModule`]), in how a facing connector is found and in the geometry of a turn.
@@ -11,7 +11,7 @@ use crate::structure::{RobotModule, Structure};
 use std::collections::BTreeSet;
 
 /// A configuration the latch operations work on.
-pub(crate) trait Latching {
+pub trait Latching {
     /// The robot's module type.
     type Module: RobotModule;
 
@@ -26,7 +26,7 @@ pub(crate) trait Latching {
 }
 
 /// An outcome with one warning.
-pub(crate) fn warn(warning: Warning) -> Outcome {
+pub fn warn(warning: Warning) -> Outcome {
     Outcome {
         warnings: vec![warning],
         ..Outcome::default()
@@ -34,7 +34,7 @@ pub(crate) fn warn(warning: Warning) -> Outcome {
 }
 
 /// Index of the module called `module`, or the error naming it.
-pub(crate) fn known_module<M: RobotModule>(
+pub fn known_module<M: RobotModule>(
     structure: &Structure<M>,
     module: &str,
 ) -> Result<usize, OpError> {
@@ -47,7 +47,7 @@ pub(crate) fn known_module<M: RobotModule>(
 
 /// `extend`/`connect` (`action`): latches a male connector onto the free female connector
 /// facing it. A connector already latched is reported and left as is.
-pub(crate) fn latch<C: Latching>(
+pub fn latch<C: Latching>(
     config: &mut C,
     module: &str,
     connector: u8,
@@ -68,7 +68,7 @@ pub(crate) fn latch<C: Latching>(
 
 /// `retract`/`disconnect` (`action`): releases the latch of a male connector. A connector with
 /// no latch is reported, and so is a release that splits the robot in two.
-pub(crate) fn release<M: RobotModule>(
+pub fn release<M: RobotModule>(
     structure: &mut Structure<M>,
     module: &str,
     connector: u8,
@@ -147,7 +147,7 @@ fn free_female<C: Latching>(config: &C, port: Port) -> Result<Port, OpError> {
 
 /// The two sides of the joints of module `index`, or the loop of latches that joins them and
 /// locks the joint.
-pub(crate) fn joint_sides<M: RobotModule>(
+pub fn joint_sides<M: RobotModule>(
     structure: &Structure<M>,
     index: usize,
 ) -> Result<Sides, OpError> {
@@ -162,7 +162,7 @@ pub(crate) fn joint_sides<M: RobotModule>(
 
 /// Checks that both angles of a turn of `module` are positions the joint can take (`legal`;
 /// `rule` says which they are) and that the joint is at `from` now (`actual`).
-pub(crate) fn check_turn_angles<A: Copy + PartialEq + Into<i32>>(
+pub fn check_turn_angles<A: Copy + PartialEq + Into<i32>>(
     module: String,
     (from, to): (A, A),
     actual: A,
@@ -187,14 +187,14 @@ pub(crate) fn check_turn_angles<A: Copy + PartialEq + Into<i32>>(
 }
 
 /// The outcome of a turn asked to go nowhere.
-pub(crate) fn no_motion(module: &str) -> Outcome {
+pub fn no_motion(module: &str) -> Outcome {
     warn(Warning::NoMotion {
         module: module.to_string(),
     })
 }
 
 /// The outcome of a turn done: the modules `moved` and the closest approach of the sweep.
-pub(crate) fn turned<M: RobotModule>(
+pub fn turned<M: RobotModule>(
     structure: &Structure<M>,
     moved: &BTreeSet<usize>,
     closest_approach: Option<f64>,
@@ -206,30 +206,30 @@ pub(crate) fn turned<M: RobotModule>(
     }
 }
 
-/// A point of the robot during a turn, the centre of a module (ATRON) or of a block
-/// (M-TRAN), with the index of its module.
-pub(crate) struct SweptPoint {
-    pub(crate) module: usize,
-    pub(crate) centre: [f64; 3],
+/// A point of the robot during a turn, the centre of a module or of one of its parts, with
+/// the index of its module.
+pub struct SweptPoint {
+    pub module: usize,
+    pub centre: [f64; 3],
 }
 
 /// A turn as the sweep check sees it: `quarters` signed quarter turns about `axis` through
 /// `pivot`, the points that move and those that stay still, and the smallest distance
 /// allowed between the two (`limit`).
-pub(crate) struct Sweep {
-    pub(crate) pivot: [f64; 3],
-    pub(crate) axis: Vec3,
-    pub(crate) quarters: i32,
-    pub(crate) moving: Vec<SweptPoint>,
-    pub(crate) still: Vec<SweptPoint>,
-    pub(crate) limit: f64,
+pub struct Sweep {
+    pub pivot: [f64; 3],
+    pub axis: Vec3,
+    pub quarters: i32,
+    pub moving: Vec<SweptPoint>,
+    pub still: Vec<SweptPoint>,
+    pub limit: f64,
 }
 
 impl Sweep {
     /// The closest approach of the turn of module `index`, or the collision when it comes
     /// under the limit, naming the turning module and the moving and still ones of the
     /// closest pair.
-    pub(crate) fn verdict<M: RobotModule>(
+    pub fn verdict<M: RobotModule>(
         &self,
         structure: &Structure<M>,
         index: usize,

@@ -1,4 +1,4 @@
-/* dr_avr_emu.c - an emulated ATRON hemisphere board around a simavr ATmega128
+/* dr_avr_emu.c - an emulated hemisphere board around a simavr ATmega128
  * (dr_avr_emu.h says what the host sees; ../README.md and ../dr_avr_board.h describe the
  * board). simavr calls back here when the firmware writes PORTD (the controller's strobes),
  * PORTE (the status pins) or sends a byte on USART0; each becomes a log entry stamped with

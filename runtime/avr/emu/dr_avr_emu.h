@@ -1,4 +1,4 @@
-/* dr_avr_emu.h - one emulated ATRON hemisphere board: an ATmega128 (simavr) running a
+/* dr_avr_emu.h - one emulated hemisphere board: an ATmega128 (simavr) running a
  * firmware image of runtime/avr, and the board around it (dr_avr_board.h): the controller's
  * registers, the infrared receive arbiter, and a log of what the MCU does to the world.
  *

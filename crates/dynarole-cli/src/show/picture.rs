@@ -7,7 +7,7 @@
 //! coordinates. What differs from robot to robot (the bodies, their shapes, the legend's
 //! words) is in `picture/robots.rs`.
 
-mod robots;
+mod bodies;
 
 use dynarole_campaign::bounds;
 use dynarole_world::Configuration;
@@ -42,8 +42,6 @@ const MAX_LABELLED_BODIES: usize = 400;
 const PREFERRED_VIEW_DEG: (f64, f64) = (30.0, 35.0);
 /// How much paler the farthest body is than the nearest.
 const FADE_FAR: f64 = 0.55;
-const NORTH: RGBColor = RGBColor(52, 120, 190);
-const SOUTH: RGBColor = RGBColor(240, 145, 30);
 const LATCH: RGBColor = RGBColor(30, 30, 30);
 const LINK: RGBColor = RGBColor(140, 140, 140);
 const AXES: [(RGBColor, &str); 3] = [
@@ -131,22 +129,23 @@ fn closeness(view: &View) -> f64 {
     turn.min(360.0 - turn) + (view.elevation_deg - PREFERRED_VIEW_DEG.1).abs()
 }
 
-/// Everything that is drawn, in world coordinates (lattice units for ATRON, block pitches for
-/// M-TRAN).
+/// Everything that is drawn, in world coordinates (the robot's drawing unit).
 struct Scene {
     bodies: Vec<Body>,
-    /// M-TRAN links between a module's two blocks.
+    /// Bars between the parts of a module.
     links: Vec<[[f64; 3]; 2]>,
     latches: Vec<LatchBar>,
     /// Half-size of a body.
     radius: f64,
+    /// The colour of each part, by part index.
+    colours: Vec<RGBColor>,
 }
 
-/// One ATRON module or one M-TRAN block.
+/// One module, or one part of a module, as the robot's drawing says.
 struct Body {
     centre: [f64; 3],
     name: String,
-    kind: robots::BodyKind,
+    kind: bodies::BodyKind,
 }
 
 /// A latch between two bodies, with the connector number at each end.
@@ -227,7 +226,7 @@ fn ipx(p: (f64, f64)) -> (i32, i32) {
 
 /// The configuration as an SVG document.
 pub fn render_svg(config: &Configuration) -> Result<String, String> {
-    let scene = robots::scene(config);
+    let scene = bodies::scene(config);
     let centres: Vec<[f64; 3]> = scene.bodies.iter().map(|b| b.centre).collect();
     let view = choose_view(&centres, 2.6 * scene.radius);
     let layout = Layout::new(&scene, view);
@@ -272,8 +271,8 @@ fn draw_picture<'a>(
     let mut title = format!(
         "{} ({}, {} modules)",
         config.metadata().name,
-        config.robot().name(),
-        robots::module_count(config)
+        config.kind().file_tag(),
+        dynarole_world::View::of(config).len()
     );
     if !labelled {
         title.push_str(&format!(
@@ -314,7 +313,7 @@ fn draw_in_depth_order<'a>(root: &Area<'a>, scene: &Scene, layout: &Layout) -> D
     items.sort_by(|a, b| b.0.total_cmp(&a.0));
     for (_, item) in &items {
         match item {
-            Item::Body(body) => robots::draw_body(root, body, scene.radius, layout)?,
+            Item::Body(body) => bodies::draw_body(root, body, scene, layout)?,
             Item::Link(link) => draw_bar(root, layout, **link, scene.radius, LINK, 9)?,
             Item::Latch(latch) => {
                 let ends = latch.ends.map(|(p, _)| p);
@@ -446,10 +445,11 @@ fn draw_legend<'a>(
     layout: &Layout,
     at: (i32, i32),
 ) -> DrawResult<'a> {
-    let (north, south) = robots::legend_words(config);
-    let rows = [
-        (Some(NORTH), north.to_string()),
-        (Some(SOUTH), south.to_string()),
+    let parts = bodies::legend_rows(config);
+    let mut rows: Vec<(Option<RGBColor>, String)> = (parts.into_iter())
+        .map(|(c, words)| (Some(c), words))
+        .collect();
+    rows.extend([
         (
             Some(LATCH),
             "latch; the small numbers are the latched connectors, each at its module".into(),
@@ -461,7 +461,7 @@ fn draw_legend<'a>(
                 layout.view.azimuth_deg, layout.view.elevation_deg
             ),
         ),
-    ];
+    ]);
     for (k, (swatch, text)) in rows.iter().enumerate() {
         let y = at.1 + 22 * i32::try_from(k).unwrap_or(0);
         if let Some(colour) = swatch {

@@ -101,7 +101,6 @@ mod tests {
     use super::super::test_support::{line, lowered, options};
     use super::LATTICE_BATCH;
     use crate::{generate_c, generate_promela, Protocol};
-    use dynarole_core::RobotRegistry;
 
     /// The value of `#define name value` in `text`, if it has that line.
     fn defined<'t>(text: &'t str, name: &str) -> Option<&'t str> {
@@ -116,7 +115,7 @@ mod tests {
     #[test]
     fn the_model_and_the_image_share_the_batch() {
         let ir = lowered(include_str!("../../../../examples/verify/ab_c.dr"), "ab_c");
-        let registry = RobotRegistry::builtin();
+        let registry = dynarole_robots::plugins();
         let robot = registry.get(&ir.robot).expect("a built-in robot");
         let conf = |protocol| {
             let generated = generate_c(&ir, robot, &options("ab_c", protocol, 0).compile);

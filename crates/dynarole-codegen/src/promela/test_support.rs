@@ -4,12 +4,12 @@
 //! above, the `promela` module or the test crate, which both have them in scope.
 
 use super::{CompileOptions, Ir, ModelOptions, Protocol, Topology, TopologyLink, TopologyModule};
-use dynarole_core::{analyze, parse, RobotRegistry};
+use dynarole_core::{analyze, parse};
 
 /// The IR of `sequence` in `source`, an example that checks and fits.
 pub fn lowered(source: &str, sequence: &str) -> Ir {
     let parsed = parse(source);
-    let (program, diagnostics) = analyze(&parsed.file, &RobotRegistry::builtin());
+    let (program, diagnostics) = analyze(&parsed.file, &dynarole_robots::plugins());
     let program = program.unwrap_or_else(|| panic!("{diagnostics:?}"));
     let plan = program.expand(sequence).expect("the sequence exists");
     program.lower(&[plan]).expect("it fits")

@@ -1,8 +1,8 @@
 //! Robot API plugins: which parts a robot has, their operations, and how each one reverses.
 //!
-//! A plugin is data: a TOML text (see `atron.robot.toml`) loaded by [`RobotApi::from_toml`].
-//! The built-in ATRON and M-TRAN plugins are such texts compiled into the binary, so users'
-//! plugins go through exactly the same loader and checks.
+//! A plugin is data: a TOML text (each robot folder's `NAME.robot.toml`, docs/robots.md)
+//! loaded by [`RobotApi::from_toml`]. The registry's robots give theirs as such texts compiled
+//! into the binary, so users' plugins go through exactly the same loader and checks.
 
 mod plugin;
 
@@ -29,7 +29,7 @@ pub struct RobotApi {
 /// ends of its range. What the critical path counts a turn's quarters with, for any robot.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct JointAngle {
-    /// Units of a quarter turn (ATRON 108, M-TRAN 90).
+    /// Units of a quarter turn (108 for a plugin counting 1/432 turn, 90 for degrees).
     pub quarter: i64,
     /// The joint turns round: an angle and the same plus four quarters are one position.
     pub wraps: bool,
@@ -309,25 +309,7 @@ pub struct RobotRegistry {
     robots: Vec<RobotApi>,
 }
 
-/// The built-in plugins' texts, by file name.
-pub const BUILTIN_PLUGINS: [(&str, &str); 2] = [
-    ("atron.robot.toml", include_str!("atron.robot.toml")),
-    ("mtran.robot.toml", include_str!("mtran.robot.toml")),
-];
-
 impl RobotRegistry {
-    /// ATRON and M-TRAN.
-    pub fn builtin() -> RobotRegistry {
-        let mut registry = RobotRegistry::default();
-        for (_, text) in BUILTIN_PLUGINS {
-            // The built-in texts are tested to load; a failure here is a build defect.
-            if let Ok(api) = RobotApi::from_toml(text) {
-                registry.add(api);
-            }
-        }
-        registry
-    }
-
     /// Adds a robot, replacing one of the same name.
     pub fn add(&mut self, api: RobotApi) {
         self.robots.retain(|r| r.name != api.name);

@@ -631,51 +631,6 @@ mod tests {
     }
 
     #[test]
-    fn builtin_plugins_load() {
-        for (file, text) in BUILTIN_PLUGINS {
-            assert!(
-                RobotApi::from_toml(text).is_ok(),
-                "{file}: {:?}",
-                RobotApi::from_toml(text)
-            );
-        }
-        assert_eq!(RobotRegistry::builtin().names(), vec!["atron", "mtran"]);
-    }
-
-    #[test]
-    fn atron_rotation_inverse_swaps_angles_and_direction() {
-        let atron = RobotRegistry::builtin()
-            .get("atron")
-            .cloned()
-            .expect("atron");
-        let (part, _) = atron.part("Joint").expect("joint");
-        let args = [
-            Value::Int(0),
-            Value::Int(324),
-            Value::Bool(false),
-            Value::Int(150),
-        ];
-        let inverted = atron.invert(part, 0, &args).expect("invertible");
-        assert_eq!(
-            inverted,
-            (
-                0,
-                vec![
-                    Value::Int(324),
-                    Value::Int(0),
-                    Value::Bool(true),
-                    Value::Int(150)
-                ]
-            )
-        );
-        assert_eq!(
-            atron.invert(part, 1, &args[1..]),
-            None,
-            "rotateToBy has no inverse"
-        );
-    }
-
-    #[test]
     fn an_inverse_that_does_not_undo_itself_is_refused() {
         let ops = "[[part.operation]]\nname = \"a\"\nparams = [{ name = \"x\", type = \"int\", min = 0, max = 9 }]\ninverse = \"b(x)\"\n\
                    [[part.operation]]\nname = \"b\"\nparams = [{ name = \"y\", type = \"int\", min = 0, max = 9 }]\ninverse = \"a(0)\"\n";
@@ -721,39 +676,6 @@ mod tests {
         .expect_err("count");
         assert_eq!(huge.field, "part[0].count");
         assert!(huge.message.contains("expected 1 to 255"), "{huge}");
-    }
-
-    #[test]
-    fn builtin_operations_declare_their_kinds() {
-        let registry = RobotRegistry::builtin();
-        let kinds = |robot: &str| -> Vec<(String, OperationKind)> {
-            let api = registry.get(robot).expect("built in");
-            api.parts
-                .iter()
-                .flat_map(|p| p.operations.iter().map(|o| (o.name.clone(), o.kind)))
-                .collect()
-        };
-        use OperationKind::*;
-        let named = |list: &[(&str, OperationKind)]| -> Vec<(String, OperationKind)> {
-            list.iter().map(|(n, k)| (n.to_string(), *k)).collect()
-        };
-        assert_eq!(
-            kinds("atron"),
-            named(&[
-                ("extend", Extend),
-                ("retract", Retract),
-                ("rotateFromToBy", Turn),
-                ("rotateToBy", TurnTo)
-            ])
-        );
-        assert_eq!(
-            kinds("mtran"),
-            named(&[
-                ("extend", Extend),
-                ("retract", Retract),
-                ("rotateFromToBy", Turn)
-            ])
-        );
     }
 
     #[test]

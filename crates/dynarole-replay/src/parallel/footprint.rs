@@ -3,7 +3,7 @@
 //!
 //! Two turns `a` (statement `i`) and `b` (a later one), on the state `W` before `a`:
 //! - moving sides that share a module: ordered (the full check says "both turns move ...");
-//! - on a robot whose turns move whole modules (`RobotModel::rigid_module_centres`: ATRON),
+//! - on a robot whose turns move whole modules (`RobotModel::rigid_module_centres`),
 //!   disjoint sides, neither pivot moved by the other turn (or the one moved
 //!   turns no module, as at a free end of a chain): the two orders give
 //!   the same configuration (each module is turned by at most one of them, about an axis the

@@ -1,4 +1,4 @@
-//! The emulated ATRON board (`runtime/avr/emu/dr_avr_emu.c` over simavr), loaded as a shared
+//! The emulated hemisphere board (`runtime/avr/emu/dr_avr_emu.c` over simavr), loaded as a shared
 //! library: a safe [`Core`] per module over the shim's tiny C functions.
 
 use std::ffi::{c_char, c_void, CString};

@@ -1,5 +1,5 @@
 //! `dynarole simulate --firmware avr`: every module runs the ATmega128 image that
-//! `dynarole compile --target c` and `runtime/avr` make, on an emulated ATRON board (simavr);
+//! `dynarole compile --target c` and `runtime/avr` make, on an emulated hemisphere board (runtime/avr, simavr);
 //! the simulator's network, world, faults, checks and traces stay as they are (docs/simulator.md).
 
 mod emu;
@@ -62,9 +62,10 @@ impl Simulator {
         }
         image::check_tools(source).map_err(SimError::Build)?;
         let world = self.world_for(run)?;
+        let preset = crate::preset_of(&world, run.scenario).map_err(SimError::Input)?;
         let mut defines = vec![format!(
             "-DDR_CONF_BROADCAST_JITTER_MS={}",
-            run.scenario.network.preset.jitter_ms()
+            preset.jitter_ms
         )];
         if run.trace || outputs.trace.is_some() || outputs.record {
             // The trace's state column: the firmware describes its state in RAM.
@@ -79,7 +80,7 @@ impl Simulator {
             .map_err(SimError::Build)?;
         let mut state = State::new(
             Arc::clone(&self.sequence),
-            world,
+            (world, preset),
             run.scenario.clone(),
             run.seed,
             run.trace,

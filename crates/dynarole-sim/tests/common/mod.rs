@@ -6,7 +6,7 @@ pub mod faults;
 pub mod grid;
 
 use dynarole_codegen::{CompileOptions, Protocol};
-use dynarole_core::{driver, parse, RobotRegistry};
+use dynarole_core::{driver, parse};
 use dynarole_sim::{Report, Run, Scenario, Simulator};
 use dynarole_world::Configuration;
 
@@ -23,12 +23,12 @@ pub fn options(protocol: Protocol) -> CompileOptions {
 }
 
 pub fn config(text: &str) -> Configuration {
-    Configuration::from_json_str(text).expect("valid configuration")
+    dynarole_robots::read_configuration(text).expect("valid configuration")
 }
 
 pub fn simulator(source: &str, sequences: &[&str], protocol: Protocol) -> Simulator {
     let parsed = parse(source);
-    let program = driver::check(&parsed, &RobotRegistry::builtin())
+    let program = driver::check(&parsed, &dynarole_robots::plugins())
         .unwrap_or_else(|diagnostics| panic!("{diagnostics:?}"));
     let names: Vec<String> = sequences.iter().map(|s| s.to_string()).collect();
     let plans = driver::plans(&program, &names).expect("sequences exist");

@@ -1,10 +1,10 @@
 // For the end-to-end tests: with `#probe=T1,T2,...` in the address, the page seeks to each
 // time as the scrubber does, reads back what it shows (module positions, highlight, state
-// panel, markers, colour pixels of the canvas) and what it loaded, and writes it as JSON
-// into <pre id="probe">, where a headless browser's DOM dump finds it.
-import { NORTH, SOUTH } from './scene.js';
+// panel, markers, pixels of each part's colour on the canvas) and what it loaded, and writes
+// it as JSON into <pre id="probe">, where a headless browser's DOM dump finds it.
 
-function colourCounts(canvas) {
+// Pixels of each of `colours` ([r, g, b], by part), shaded or not.
+function colourCounts(canvas, colours) {
   const copy = document.createElement('canvas');
   copy.width = canvas.width;
   copy.height = canvas.height;
@@ -12,19 +12,18 @@ function colourCounts(canvas) {
   g.drawImage(canvas, 0, 0);
   const data = g.getImageData(0, 0, copy.width, copy.height).data;
   const near = (r, g2, b, c) => {
-    const [cr, cg, cb] = [(c >> 16) & 255, (c >> 8) & 255, c & 255];
+    const [cr, cg, cb] = c;
     // Shading scales a colour: compare the direction of the colour vectors.
     const dot = r * cr + g2 * cg + b * cb;
     const n = Math.hypot(r, g2, b) * Math.hypot(cr, cg, cb);
     return n > 0 && dot / n > 0.985 && Math.hypot(r, g2, b) > 60;
   };
-  let north = 0;
-  let south = 0;
+  const parts = colours.map(() => 0);
   for (let i = 0; i < data.length; i += 4) {
-    if (near(data[i], data[i + 1], data[i + 2], NORTH)) north++;
-    else if (near(data[i], data[i + 1], data[i + 2], SOUTH)) south++;
+    const k = colours.findIndex((c) => near(data[i], data[i + 1], data[i + 2], c));
+    if (k >= 0) parts[k]++;
   }
-  return { north, south, pixels: data.length / 4 };
+  return { parts, pixels: data.length / 4 };
 }
 
 // `#bench=K`: the cost of K frames (seek through the run, draw, wait for the GPU) in ms.
@@ -53,7 +52,10 @@ export function runProbe(viewer, readyMs) {
     });
   const result = {
     samples,
-    colours: colourCounts(viewer.scene.renderer.domElement),
+    colours: colourCounts(
+      viewer.scene.renderer.domElement,
+      viewer.rec.drawing.parts.map((p) => p.colour),
+    ),
     resources: performance.getEntriesByType('resource').map((r) => r.name),
     violations,
     legend: viewer.legend.shown(),

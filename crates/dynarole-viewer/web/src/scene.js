@@ -1,11 +1,10 @@
-// The 3D scene: ATRON modules as two hemispheres (north blue, south orange, the colours of
-// `dynarole show`) with the joint line, male connectors extended when latched, latches drawn
-// between connectors; M-TRAN modules as two blocks; packets as short arcs. Parts are instanced.
+// The 3D scene, drawn from the recording's `drawing` (the robot's own description, the one
+// `dynarole show` paints from): every module's rigid parts as their solids in their colours,
+// a joint ring where the robot has one, male connectors extended when latched, latches drawn
+// between connectors, packets as short arcs. Parts are instanced; nothing here knows a robot.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 
-export const NORTH = 0x3478be;
-export const SOUTH = 0xf0911e;
 const LATCH = 0x1e1e1e;
 const DELIVERED = 0x22aa44;
 const DROPPED = 0xdd2222;
@@ -27,7 +26,6 @@ export class Scene {
     this.scene.add(sun);
     this.camera = new THREE.PerspectiveCamera(45, 1, 0.05, 2000);
     this.controls = new OrbitControls(this.camera, this.renderer.domElement);
-    this.atron = recording.robot === 'atron';
     this.buildModules();
     this.latchGroup = new THREE.Group();
     this.packetGroup = new THREE.Group();
@@ -36,17 +34,18 @@ export class Scene {
     this.resetCamera(recording.keyframes[0].poses);
   }
 
-  // One instanced mesh per kind of part (north halves, south halves, joint rings, male and
-  // female connectors): a handful of draw calls whatever the robot's size.
+  // One instanced mesh per part of a module (each the solid the drawing gives it), the joint
+  // rings, male and female connectors: a handful of draw calls whatever the robot's size.
   buildModules() {
     const rec = this.rec;
     const n = rec.modules.length;
     const many = n > 200;
     const segments = many ? 10 : 28;
-    const dome = this.atron
-      ? new THREE.SphereGeometry(0.48, segments, segments / 2, 0, Math.PI * 2, 0, Math.PI / 2)
-      : new THREE.BoxGeometry(0.9, 0.9, 0.9);
-    const ring = new THREE.TorusGeometry(0.485, 0.025, 6, segments);
+    const drawing = rec.drawing;
+    const solid = (s) =>
+      s.kind === 'dome'
+        ? new THREE.SphereGeometry(s.radius, segments, segments / 2, 0, Math.PI * 2, 0, Math.PI / 2)
+        : new THREE.BoxGeometry(s.edge, s.edge, s.edge);
     const prong = new THREE.CylinderGeometry(0.05, 0.05, 1, 8);
     prong.translate(0, 0.5, 0);
     const socket = new THREE.CylinderGeometry(0.07, 0.07, 0.02, 10);
@@ -57,11 +56,14 @@ export class Scene {
       this.scene.add(mesh);
       return mesh;
     };
-    // Halves take their colour per instance (white material), so that a module can flash.
-    this.halves = [NORTH, SOUTH].map(() => instanced(dome, 0xffffff, n));
-    this.halfColours = [new THREE.Color(NORTH), new THREE.Color(SOUTH)];
+    // Parts take their colour per instance (white material), so that a module can flash.
+    this.parts = drawing.parts.map((part) => instanced(solid(part.solid), 0xffffff, n));
+    // A hex colour is read as sRGB, as the colours of `dynarole show` are.
+    const hex = ([r, g, b]) => (r << 16) | (g << 8) | b;
+    this.partColours = drawing.parts.map((part) => new THREE.Color(hex(part.colour)));
     this.flashColour = new THREE.Color(0xff3030);
-    this.joints = this.atron ? instanced(ring, 0x222222, n) : null;
+    const ring = drawing.joint_ring;
+    this.joints = ring ? instanced(new THREE.TorusGeometry(ring.radius, ring.tube, 6, segments), 0x222222, n) : null;
     const perModule = many ? [] : rec.connectors.map((c, k) => k);
     const males = perModule.filter((k) => rec.connectors[k].male);
     const females = perModule.filter((k) => !rec.connectors[k].male);
@@ -102,17 +104,17 @@ export class Scene {
     this.centres.forEach((centre, i) => {
       const pose = state.poses[i];
       centre.set(...pose.centre);
-      this.halves.forEach((mesh, h) => {
-        const half = pose.halves[h];
-        part.position.set(...half.centre);
-        part.quaternion.setFromUnitVectors(Y, this.atron ? v.set(...half.up).normalize() : Y);
+      this.parts.forEach((mesh, h) => {
+        const placed = pose.parts[h];
+        part.position.set(...placed.centre);
+        part.quaternion.setFromUnitVectors(Y, v.set(...placed.up).normalize());
         part.scale.setScalar(1);
         place(mesh, i);
-        mesh.setColorAt(i, flashing.has(i) ? this.flashColour : this.halfColours[h]);
+        mesh.setColorAt(i, flashing.has(i) ? this.flashColour : this.partColours[h]);
       });
       if (this.joints) {
         part.position.copy(centre);
-        part.quaternion.setFromUnitVectors(Z, v.set(...pose.halves[0].up).normalize());
+        part.quaternion.setFromUnitVectors(Z, v.set(...pose.parts[0].up).normalize());
         part.scale.setScalar(1);
         place(this.joints, i);
       }
@@ -123,7 +125,7 @@ export class Scene {
         });
       }
     });
-    const meshes = [...this.halves, ...this.connectorParts.map((p) => p.mesh)];
+    const meshes = [...this.parts, ...this.connectorParts.map((p) => p.mesh)];
     if (this.joints) meshes.push(this.joints);
     for (const mesh of meshes) {
       mesh.instanceMatrix.needsUpdate = true;
@@ -136,7 +138,7 @@ export class Scene {
   placeConnector(part, pose, k, extended) {
     const info = this.rec.connectors[k];
     const at = new THREE.Vector3(...pose.connectors[k]);
-    const from = new THREE.Vector3(...pose.halves[info.half].centre);
+    const from = new THREE.Vector3(...pose.parts[info.part].centre);
     const out = at.clone().sub(from).normalize();
     part.quaternion.setFromUnitVectors(Y, out);
     if (info.male) {
@@ -195,7 +197,7 @@ export class Scene {
     const w = this.container.clientWidth;
     const h = this.container.clientHeight;
     ray.setFromCamera(new THREE.Vector2((x / w) * 2 - 1, 1 - (y / h) * 2), this.camera);
-    const hit = ray.intersectObjects(this.halves, false)[0];
+    const hit = ray.intersectObjects(this.parts, false)[0];
     return hit ? hit.instanceId : null;
   }
 }

@@ -5,7 +5,7 @@ import * as THREE from 'three';
 export function clonePose(p) {
   return {
     centre: p.centre.slice(),
-    halves: p.halves.map((h) => ({ centre: h.centre.slice(), up: h.up.slice() })),
+    parts: p.parts.map((h) => ({ centre: h.centre.slice(), up: h.up.slice() })),
     connectors: p.connectors.map((c) => c.slice()),
   };
 }
@@ -39,7 +39,7 @@ export class World {
       .slice()
       .sort((a, b) => a.end_ms - b.end_ms);
     this.turns = recording.motions.filter((m) => m.outcome === 'done' && m.turn && m.end_ms > m.start_ms);
-    this.halfOf = recording.connectors.map((c) => c.half);
+    this.partOf = recording.connectors.map((c) => c.part);
   }
 
   // The settled poses and latches at time t.
@@ -65,15 +65,15 @@ export class World {
     for (const m of this.turns) {
       if (m.start_ms <= t && t < m.end_ms) {
         const fraction = (t - m.start_ms) / (m.end_ms - m.start_ms);
-        turnPoses(state.poses, m.module, m.turn, fraction, this.halfOf);
+        turnPoses(state.poses, m.module, m.turn, fraction, this.partOf);
       }
     }
     return state;
   }
 }
 
-// `halfOf[k]`: the half connector k sits on, as the recording says (the robot's own answer).
-function turnPoses(poses, turner, turn, fraction, halfOf) {
+// `partOf[k]`: the part connector k sits on, as the recording says (the robot's own answer).
+function turnPoses(poses, turner, turn, fraction, partOf) {
   const axis = new THREE.Vector3(...turn.axis).normalize();
   const q = new THREE.Quaternion().setFromAxisAngle(axis, THREE.MathUtils.degToRad(turn.angle_deg * fraction));
   const pivot = new THREE.Vector3(...turn.pivot);
@@ -89,18 +89,17 @@ function turnPoses(poses, turner, turn, fraction, halfOf) {
   for (const i of turn.moving) {
     const p = poses[i];
     p.centre = point(p.centre);
-    for (const h of p.halves) {
+    for (const h of p.parts) {
       h.centre = point(h.centre);
       h.up = direction(h.up);
     }
     p.connectors = p.connectors.map(point);
   }
   const p = poses[turner];
-  const h = p.halves[turn.half];
+  const h = p.parts[turn.part];
   h.centre = point(h.centre);
   h.up = direction(h.up);
-  // The centre lies between the halves (an M-TRAN block moves it; ATRON halves share it).
-  const [a, b] = [p.halves[0].centre, p.halves[1].centre];
-  p.centre = [0, 1, 2].map((i) => (a[i] + b[i]) / 2);
-  p.connectors = p.connectors.map((c, k) => (halfOf[k] === turn.half ? point(c) : c));
+  // A module's centre is the mean of its parts' centres.
+  p.centre = [0, 1, 2].map((i) => p.parts.reduce((sum, part) => sum + part.centre[i], 0) / p.parts.length);
+  p.connectors = p.connectors.map((c, k) => (partOf[k] === turn.part ? point(c) : c));
 }

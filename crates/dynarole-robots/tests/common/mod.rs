@@ -1,0 +1,124 @@
+//! Shared helpers for the integration tests: the data files (embedded at compile time, so the
+//! tests need nothing outside the crate) and a tiny statement type for replaying sequences.
+#![allow(dead_code)]
+
+use dynarole_robot_atron::{AtronConfiguration, World};
+use dynarole_world::{Configuration, OpError, Outcome};
+
+/// Every data file, by name.
+pub const FILES: [(&str, &str); 14] = [
+    (
+        "eight",
+        include_str!("../../../../examples/atron/eight.json"),
+    ),
+    ("car", include_str!("../../../../examples/atron/car.json")),
+    (
+        "snake",
+        include_str!("../../../../examples/atron/snake.json"),
+    ),
+    (
+        "car-xml",
+        include_str!("../../../../examples/atron/car-xml.json"),
+    ),
+    (
+        "car-builder4",
+        include_str!("../../../../examples/atron/car-builder4.json"),
+    ),
+    (
+        "snake-builder4",
+        include_str!("../../../../examples/atron/snake-builder4.json"),
+    ),
+    (
+        "rotation-chain-1",
+        include_str!("../../../../examples/atron/rotation-chain-1.json"),
+    ),
+    (
+        "rotation-chain-5",
+        include_str!("../../../../examples/atron/rotation-chain-5.json"),
+    ),
+    (
+        "rotation-chain-10",
+        include_str!("../../../../examples/atron/rotation-chain-10.json"),
+    ),
+    (
+        "rotation-chain-15",
+        include_str!("../../../../examples/atron/rotation-chain-15.json"),
+    ),
+    (
+        "rotation-chain-20",
+        include_str!("../../../../examples/atron/rotation-chain-20.json"),
+    ),
+    (
+        "mtran-snake4",
+        include_str!("../../../../examples/mtran/mtran-snake4.json"),
+    ),
+    (
+        "mtran-snake5",
+        include_str!("../../../../examples/mtran/mtran-snake5.json"),
+    ),
+    (
+        "mtran-snake8",
+        include_str!("../../../../examples/mtran/mtran-snake8.json"),
+    ),
+];
+
+/// The text of a data file.
+pub fn text(name: &str) -> Result<&'static str, String> {
+    FILES
+        .iter()
+        .find(|(n, _)| *n == name)
+        .map(|(_, t)| *t)
+        .ok_or_else(|| format!("no data file {name}"))
+}
+
+/// A data file, parsed.
+pub fn load(name: &str) -> Result<Configuration, String> {
+    dynarole_robots::read_configuration(text(name)?).map_err(|e| format!("{name}: {e}"))
+}
+
+/// An ATRON data file, parsed.
+pub fn load_atron(name: &str) -> Result<AtronConfiguration, String> {
+    load(name)?
+        .downcast_ref::<dynarole_robot_atron::AtronConfiguration>()
+        .cloned()
+        .ok_or_else(|| format!("{name} is not ATRON"))
+}
+
+/// One ATRON API call of a DynaRole sequence.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Statement {
+    Extend(&'static str, u8),
+    Retract(&'static str, u8),
+    /// module, from, to, direction (true = increasing)
+    Rotate(&'static str, u16, u16, bool),
+}
+
+impl Statement {
+    /// The reverse operation (DynaRole's reversal rules).
+    pub fn reversed(self) -> Statement {
+        match self {
+            Statement::Extend(m, c) => Statement::Retract(m, c),
+            Statement::Retract(m, c) => Statement::Extend(m, c),
+            Statement::Rotate(m, f, t, d) => Statement::Rotate(m, t, f, !d),
+        }
+    }
+
+    /// Runs the statement on `world`.
+    pub fn run(self, world: &mut World) -> Result<Outcome, OpError> {
+        match self {
+            Statement::Extend(m, c) => world.extend(m, c),
+            Statement::Retract(m, c) => world.retract(m, c),
+            Statement::Rotate(m, f, t, d) => world.rotate(m, f, t, d),
+        }
+    }
+}
+
+/// Reverses a sequence of parallel groups: groups in reverse order, members in reverse order,
+/// each statement reversed.
+pub fn reverse(groups: &[Vec<Statement>]) -> Vec<Vec<Statement>> {
+    groups
+        .iter()
+        .rev()
+        .map(|g| g.iter().rev().map(|s| s.reversed()).collect())
+        .collect()
+}

@@ -1,0 +1,299 @@
+//! The robot API: the traits a robot's folder (`robots/NAME/`) implements, and nothing outside
+//! it needs more. [`RobotKind`] is the kind (its name, plugin, data files, drawing);
+//! [`RobotConfiguration`] one of its validated configurations, held opaque by
+//! [`Configuration`]; [`RobotModel`] the robot being reconfigured (doing an `Action`, the
+//! motion of a turn). Reading a file is [`crate::Robots::read_configuration`].
+
+use crate::common::{ConfigError, Metadata, NamedConnection};
+use crate::drawing::Drawing;
+use crate::drawing::ModulePose;
+use crate::geometry::{Rotation, Vec3};
+use crate::motion::TurnMotion;
+use crate::ops::{OpError, Outcome};
+use crate::rigid::Shape;
+use crate::shape::{Action, RobotShape};
+use std::any::Any;
+use std::fmt;
+
+/// Everything the tree asks of a robot kind that is not about one configuration.
+pub trait RobotKind: Send + Sync + 'static {
+    /// The plugin name a program gives in `robot NAME;`.
+    fn name(&self) -> &'static str;
+    /// The value of the `robot` field of its data files.
+    fn file_tag(&self) -> &'static str;
+    /// Its API plugin: the file name and the TOML text (operations, arguments, reversal).
+    fn plugin(&self) -> (&'static str, &'static str);
+    /// Reads and validates one of its data files (the `robot` field already matched).
+    fn read_configuration(&self, text: &str) -> Result<Configuration, ConfigError>;
+    /// How its modules look (the parts of [`crate::ModulePose`]).
+    fn drawing(&self) -> Drawing;
+    /// The emulated boards its modules' firmware runs on (`simulate --firmware`): `avr` is the
+    /// hemisphere board of `runtime/avr`. None by default.
+    fn firmware_boards(&self) -> &'static [&'static str] {
+        &[]
+    }
+    /// Its network presets, the default first (none: the simulator's own default).
+    fn network_presets(&self) -> &'static [NetworkPreset] {
+        &[]
+    }
+}
+
+/// How a robot's transceivers and clocks behave in the simulator, under a name a scenario
+/// gives as `network.preset`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct NetworkPreset {
+    pub name: &'static str,
+    /// One half-duplex transceiver per side of a module (`RobotShape::side`), shared by the
+    /// side's connectors, so that packets heard at once collide; otherwise a full-duplex
+    /// channel per connector.
+    pub half_duplex_sides: bool,
+    /// Modules power on at uniformly random instants in the first this many microseconds
+    /// (0: all at once).
+    pub power_on_spread_us: u64,
+    /// Broadcast jitter compiled into the runtime (`DR_CONF_BROADCAST_JITTER_MS`).
+    pub jitter_ms: u32,
+}
+
+/// What a robot's validated configuration answers, whatever the robot. Each robot kind
+/// implements it for its configuration type (the `robot_configuration!` macro does it from
+/// the type's inherent methods).
+pub trait RobotConfiguration: fmt::Debug + Send + Sync + Any {
+    /// The robot kind this is a configuration of.
+    fn kind(&self) -> &'static dyn RobotKind;
+    /// The descriptive fields.
+    fn metadata(&self) -> &Metadata;
+    /// The questions every command asks of a configuration.
+    fn shape(&self) -> &dyn RobotShape;
+    /// One line per module, in file order (a command's printed final configuration).
+    fn module_lines(&self) -> Vec<String>;
+    /// The configuration as rigid bodies (`compare.rs`).
+    fn rigid_shape(&self) -> Shape;
+    /// The latches as names, male first, in latch order.
+    fn named_connections(&self) -> Vec<NamedConnection>;
+    /// Every module's parts and connectors placed, by module index (what is drawn).
+    fn poses(&self) -> Vec<ModulePose>;
+    /// The whole configuration turned by `rotation` and shifted by `translation` (in the
+    /// file's position unit). Fails when the result leaves the robot's lattice.
+    fn transformed(
+        &self,
+        rotation: Rotation,
+        translation: Vec3,
+    ) -> Result<Configuration, ConfigError>;
+    /// The configuration in its robot's data-file format, redundant fields included.
+    fn to_json_string(&self) -> String;
+    /// The robot model that starts from this configuration.
+    fn into_model(self: Box<Self>) -> Box<dyn RobotModel>;
+    /// A copy.
+    fn clone_box(&self) -> Box<dyn RobotConfiguration>;
+    /// Whether `other` is the same configuration of the same robot.
+    fn same_as(&self, other: &dyn RobotConfiguration) -> bool;
+    /// This configuration as `Any`, for the robot's own code to recover its type.
+    fn as_any(&self) -> &dyn Any;
+}
+
+/// A validated configuration of some robot kind.
+pub struct Configuration(Box<dyn RobotConfiguration>);
+
+impl Configuration {
+    /// Wraps a robot's own configuration.
+    pub fn new(config: impl RobotConfiguration) -> Configuration {
+        Configuration(Box::new(config))
+    }
+
+    /// The robot kind.
+    pub fn kind(&self) -> &'static dyn RobotKind {
+        self.0.kind()
+    }
+
+    /// The robot's own configuration, if it is a `T` (for the robot's folder and its tests).
+    pub fn downcast_ref<T: RobotConfiguration>(&self) -> Option<&T> {
+        self.0.as_any().downcast_ref::<T>()
+    }
+
+    /// The descriptive fields.
+    pub fn metadata(&self) -> &Metadata {
+        self.0.metadata()
+    }
+
+    /// The questions every command asks of a configuration.
+    pub fn shape(&self) -> &dyn RobotShape {
+        self.0.shape()
+    }
+
+    /// One line per module, in file order, as the robot summarises its modules.
+    pub fn module_lines(&self) -> Vec<String> {
+        self.0.module_lines()
+    }
+
+    /// The configuration as rigid bodies, as its robot reduces it (`compare.rs`).
+    pub(crate) fn rigid_shape(&self) -> Shape {
+        self.0.rigid_shape()
+    }
+
+    /// The latches as names, male first, in latch order.
+    pub fn named_connections(&self) -> Vec<NamedConnection> {
+        self.0.named_connections()
+    }
+
+    /// Every module's parts and connectors placed, by module index.
+    pub fn poses(&self) -> Vec<ModulePose> {
+        self.0.poses()
+    }
+
+    /// The whole configuration turned by `rotation` and shifted by `translation` (in the file's
+    /// position unit). Fails when the result leaves the robot's lattice.
+    pub fn transformed(
+        &self,
+        rotation: Rotation,
+        translation: Vec3,
+    ) -> Result<Configuration, ConfigError> {
+        self.0.transformed(rotation, translation)
+    }
+
+    /// Writes the configuration in its robot's data-file format, redundant fields included.
+    pub fn to_json_string(&self) -> String {
+        self.0.to_json_string()
+    }
+
+    /// The robot model that starts from this configuration.
+    pub fn into_model(self) -> Box<dyn RobotModel> {
+        self.0.into_model()
+    }
+}
+
+impl Clone for Configuration {
+    fn clone(&self) -> Configuration {
+        Configuration(self.0.clone_box())
+    }
+}
+
+impl PartialEq for Configuration {
+    fn eq(&self, other: &Configuration) -> bool {
+        self.0.same_as(other.0.as_ref())
+    }
+}
+
+impl fmt::Debug for Configuration {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.0.fmt(f)
+    }
+}
+
+/// A robot being reconfigured: the configuration it has now, and what an action does to it.
+/// Every action either succeeds (possibly with warnings) and leaves a valid configuration, or
+/// fails and changes nothing.
+pub trait RobotModel: fmt::Debug + Send + Sync {
+    /// The name of the robot plugin this model is for: a sequence written for
+    /// another robot is refused.
+    fn robot(&self) -> &str;
+    /// The current configuration's answers.
+    fn shape(&self) -> &dyn RobotShape;
+    /// Does `action` on `module` (a name); the error is why the robot cannot.
+    fn apply(&mut self, module: &str, action: &Action) -> Result<Outcome, OpError>;
+    /// The motion a turn would make, without doing it; `None` for an action that is not a
+    /// turn, or a turn refused before anything moves (a wrong angle, a locked joint).
+    fn turn_motion(&self, module: &str, action: &Action) -> Option<TurnMotion>;
+    /// Quarter turns (rounded up) a joint passes through from `from` to `to` in the given
+    /// direction: what a turn's duration is counted in.
+    fn quarter_turns(&self, from: i64, to: i64, increasing: bool) -> u64;
+    /// The unit of the positions and distances of its turn motions, for messages
+    /// (`lattice units`).
+    fn length_unit(&self) -> &str;
+    /// Module centres, when a turn always moves whole modules about their joints, so that two
+    /// turns with disjoint moving sides commute; `None` when it moves parts of modules or
+    /// the robot does not say.
+    fn rigid_module_centres(&self) -> Option<Vec<[f64; 3]>> {
+        None
+    }
+    /// The configuration in the data-file format, for a robot that has one.
+    fn configuration(&self) -> Option<Configuration>;
+    /// The configuration moved out of the model at its end (no copy: a large robot's
+    /// simulation ends with this).
+    fn into_configuration(self: Box<Self>) -> Option<Configuration> {
+        self.configuration()
+    }
+    /// How the configuration differs from `other`'s (equal up to rigid motion: `None`); the
+    /// first line of the answer is a summary.
+    fn difference(&self, other: &dyn RobotModel) -> Option<String>;
+    /// A copy, to try actions on.
+    fn clone_model(&self) -> Box<dyn RobotModel>;
+    /// The network presets of its robot kind, the default first (`RobotKind::network_presets`).
+    fn network_presets(&self) -> &'static [NetworkPreset] {
+        &[]
+    }
+    /// This model as `Any`, so that an implementation can recognise another of its kind.
+    fn as_any(&self) -> &dyn Any;
+}
+
+impl Clone for Box<dyn RobotModel> {
+    fn clone(&self) -> Self {
+        self.clone_model()
+    }
+}
+
+/// `impl RobotConfiguration` for a robot's configuration type `$config` of kind `$kind` (a
+/// static), from the inherent methods every robot's configuration has (`metadata`,
+/// `module_lines`, `rigid_shape`, `named_connections`, `transformed` returning `$config`,
+/// `to_json_string`, `poses`) and `$model(config)`, the model that starts from it.
+#[macro_export]
+macro_rules! robot_configuration {
+    ($config:ty, $kind:path, $model:path) => {
+        impl $crate::RobotConfiguration for $config {
+            fn kind(&self) -> &'static dyn $crate::RobotKind {
+                &$kind
+            }
+
+            fn metadata(&self) -> &$crate::Metadata {
+                <$config>::metadata(self)
+            }
+
+            fn shape(&self) -> &dyn $crate::RobotShape {
+                self
+            }
+
+            fn module_lines(&self) -> Vec<String> {
+                <$config>::module_lines(self)
+            }
+
+            fn rigid_shape(&self) -> $crate::rigid::Shape {
+                <$config>::rigid_shape(self)
+            }
+
+            fn named_connections(&self) -> Vec<$crate::NamedConnection> {
+                <$config>::named_connections(self)
+            }
+
+            fn poses(&self) -> Vec<$crate::ModulePose> {
+                <$config>::poses(self)
+            }
+
+            fn transformed(
+                &self,
+                rotation: $crate::Rotation,
+                translation: $crate::Vec3,
+            ) -> Result<$crate::Configuration, $crate::ConfigError> {
+                <$config>::transformed(self, rotation, translation).map($crate::Configuration::new)
+            }
+
+            fn to_json_string(&self) -> String {
+                <$config>::to_json_string(self)
+            }
+
+            fn into_model(self: Box<Self>) -> Box<dyn $crate::RobotModel> {
+                Box::new($model(*self))
+            }
+
+            fn clone_box(&self) -> Box<dyn $crate::RobotConfiguration> {
+                Box::new(self.clone())
+            }
+
+            fn same_as(&self, other: &dyn $crate::RobotConfiguration) -> bool {
+                other.as_any().downcast_ref::<$config>() == Some(self)
+            }
+
+            fn as_any(&self) -> &dyn std::any::Any {
+                self
+            }
+        }
+    };
+}
