@@ -234,7 +234,7 @@ fn a_plan_gives_each_run_from_its_index() {
 #[test]
 fn unresolved_relative_paths_say_what_they_are_relative_to() {
     let root = tempfile::tempdir().expect("temp dir");
-    let examples = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples");
+    let examples = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../robots/atron/examples");
     let text = std::fs::read_to_string(smoke()).expect("smoke.toml");
     let dir = root.path().join("campaigns");
     std::fs::create_dir(&dir).expect("a folder");
@@ -251,18 +251,19 @@ fn unresolved_relative_paths_say_what_they_are_relative_to() {
             Ok(_) => panic!("ran"),
         }
     };
-    // Moved away from examples/: "../atron/eight2car.dr" now points into the temp dir.
+    // Moved away from examples/: "../../robots/atron/examples/eight2car.dr" now points into
+    // the temp dir.
     let error = refused(&text);
     assert_eq!(error.field, "file");
     assert!(
         error
             .message
-            .starts_with("cannot read \"../atron/eight2car.dr\": No such file"),
+            .starts_with("cannot read \"../../robots/atron/examples/eight2car.dr\": No such file"),
         "{}",
         error.message
     );
     let hint = error.hint.expect("a hint");
-    let resolved = dir.join("../atron/eight2car.dr");
+    let resolved = dir.join("../../robots/atron/examples/eight2car.dr");
     assert!(
         hint.contains("relative to the campaign file's directory")
             && hint.contains(&format!("resolved to {}", resolved.display())),
@@ -270,21 +271,23 @@ fn unresolved_relative_paths_say_what_they_are_relative_to() {
     );
     assert!(error.span.is_some(), "the field is located in the text");
     // The program found again (absolute), the expected configuration not.
-    let program = examples.join("atron/eight2car.dr");
-    let from = examples.join("atron/eight.json");
+    let program = examples.join("eight2car.dr");
+    let from = examples.join("eight.json");
     let text = text
         .replace(
-            "\"../atron/eight2car.dr\"",
+            "\"../../robots/atron/examples/eight2car.dr\"",
             &format!("{:?}", program.display().to_string()),
         )
         .replace(
-            "\"../atron/eight.json\"",
+            "\"../../robots/atron/examples/eight.json\"",
             &format!("{:?}", from.display().to_string()),
         );
     let error = refused(&text);
     assert_eq!(error.field, "expect");
     assert!(
-        error.message.contains("\"../atron/car.json\""),
+        error
+            .message
+            .contains("\"../../robots/atron/examples/car.json\""),
         "{}",
         error.message
     );

@@ -176,21 +176,22 @@ fn missing_runs_and_mixed_splits_are_named() {
     assert!(none.contains("campaign.toml"), "{none}");
 }
 
-/// A copy of the smoke campaign and its files in `root` (`campaigns/smoke.toml`, `atron/`),
-/// to edit; returns the campaign file's path.
+/// A copy of the smoke campaign and its files in `root`, laid out as in the repository
+/// (`examples/campaigns/smoke.toml`, the robot's `robots/atron/examples/`), to edit; returns
+/// the campaign file's path.
 fn copy_of_smoke(root: &Path) -> PathBuf {
-    let examples = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples");
-    for (from, to) in [
-        ("campaigns/smoke.toml", "campaigns/smoke.toml"),
-        ("atron/eight2car.dr", "atron/eight2car.dr"),
-        ("atron/eight.json", "atron/eight.json"),
-        ("atron/car.json", "atron/car.json"),
+    let repository = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    for file in [
+        "examples/campaigns/smoke.toml",
+        "robots/atron/examples/eight2car.dr",
+        "robots/atron/examples/eight.json",
+        "robots/atron/examples/car.json",
     ] {
-        let to = root.join(to);
+        let to = root.join(file);
         std::fs::create_dir_all(to.parent().expect("a folder")).expect("a folder");
-        std::fs::copy(examples.join(from), to).expect("a copy");
+        std::fs::copy(repository.join(file), to).expect("a copy");
     }
-    root.join("campaigns/smoke.toml")
+    root.join("examples/campaigns/smoke.toml")
 }
 
 fn run_from(
@@ -223,8 +224,8 @@ fn shards_and_resumes_of_other_inputs_are_refused() {
     let b = copy_of_smoke(&root.path().join("b"));
     // Copy b expects another configuration: the same campaign text, other results.
     std::fs::copy(
-        root.path().join("b/atron/eight.json"),
-        root.path().join("b/atron/car.json"),
+        root.path().join("b/robots/atron/examples/eight.json"),
+        root.path().join("b/robots/atron/examples/car.json"),
     )
     .expect("another expect");
     let dir = root.path().join("shards");
@@ -239,7 +240,8 @@ fn shards_and_resumes_of_other_inputs_are_refused() {
     assert!(
         direct.contains(
             "were computed from other inputs than now: another expected configuration (expect): "
-        ) && direct.contains("b/campaigns/../atron/car.json instead of "),
+        ) && direct
+            .contains("b/examples/campaigns/../../robots/atron/examples/car.json instead of "),
         "{direct}"
     );
     // Copied in, the merge names it.
@@ -253,21 +255,23 @@ fn shards_and_resumes_of_other_inputs_are_refused() {
         merge_err.contains("cannot merge, the shards' runs were computed from different inputs")
             && merge_err
                 .contains("shard 1/2 was run with another expected configuration (expect): ")
-            && merge_err.contains("b/campaigns/../atron/car.json instead of ")
-            && merge_err.contains("a/campaigns/../atron/car.json"),
+            && merge_err
+                .contains("b/examples/campaigns/../../robots/atron/examples/car.json instead of ")
+            && merge_err.contains("a/examples/campaigns/../../robots/atron/examples/car.json"),
         "{merge_err}"
     );
 
     // An edit of the program after some runs: a resumed one-machine campaign is refused.
     let one = root.path().join("one");
     run_from(&a, &one, None, Some(3)).expect("three runs");
-    append(&root.path().join("a/atron/eight2car.dr"), "// edited\n");
+    append(&root.path().join("a/robots/atron/examples/eight2car.dr"), "// edited\n");
     let resumed = error_of(run_from(&a, &one, None, None));
     assert!(
         resumed.contains("the 3 runs of ")
             && resumed
                 .contains("runs.csv were computed from other inputs than now: another program: ")
-            && resumed.contains("a/campaigns/../atron/eight2car.dr changed"),
+            && resumed
+                .contains("a/examples/campaigns/../../robots/atron/examples/eight2car.dr changed"),
         "{resumed}"
     );
 }

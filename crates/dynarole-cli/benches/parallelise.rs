@@ -13,14 +13,14 @@ use dynarole_sim::{form_makespan, makespan};
 use dynarole_sim::{Run, Scenario, Simulator};
 use std::time::{Duration, Instant};
 
-const EIGHT2CAR: &str = include_str!("../../../examples/atron/eight2car.dr");
-const FIG5: &str = include_str!("../../../examples/atron/fig5.dr");
-const MTRAN: &str = include_str!("../../../examples/mtran/move_module.dr");
-const EIGHT: &str = include_str!("../../../examples/atron/eight.json");
-const CAR: &str = include_str!("../../../examples/atron/car.json");
-const SNAKE: &str = include_str!("../../../examples/atron/snake.json");
-const SNAKE4: &str = include_str!("../../../examples/mtran/mtran-snake4.json");
-const SNAKE4_MOVED: &str = include_str!("../../../examples/mtran/mtran-snake4-moved.json");
+const EIGHT2CAR: &str = include_str!("../../../robots/atron/examples/eight2car.dr");
+const FIG5: &str = include_str!("../../../robots/atron/examples/fig5.dr");
+const MTRAN: &str = include_str!("../../../robots/mtran/examples/move_module.dr");
+const EIGHT: &str = include_str!("../../../robots/atron/examples/eight.json");
+const CAR: &str = include_str!("../../../robots/atron/examples/car.json");
+const SNAKE: &str = include_str!("../../../robots/atron/examples/snake.json");
+const SNAKE4: &str = include_str!("../../../robots/mtran/examples/mtran-snake4.json");
+const SNAKE4_MOVED: &str = include_str!("../../../robots/mtran/examples/mtran-snake4-moved.json");
 
 /// Simulated time after which a run counts as not finished (ms): 10,000 s.
 const SIMULATION_LIMIT_MS: u64 = 10_000_000;

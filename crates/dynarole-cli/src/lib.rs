@@ -8,6 +8,7 @@ pub mod check;
 mod compile;
 mod failure;
 mod fmt;
+mod help;
 pub mod load;
 mod model;
 mod parallelise;
@@ -29,7 +30,7 @@ use std::process::ExitCode;
 
 /// dynarole: robust and reversible self-reconfiguration of modular robots.
 #[derive(Parser)]
-#[command(name = "dynarole", version, about, long_about = LONG_ABOUT, after_help = AFTER_HELP)]
+#[command(name = "dynarole", version, about, long_about = LONG_ABOUT, after_help = help::after_help())]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -46,53 +47,43 @@ module, simulates that C under lost packets, dead links and resets, sweeps fault
 campaigns, model-checks the protocol with spin, and shows runs in 3D.";
 
 /// Where to go next, for `dynarole --help`.
-const AFTER_HELP: &str = "Start with:
-  dynarole check examples/atron/eight2car.dr
-  dynarole simulate examples/atron/eight2car.dr --sequence eight2car \\
-      --from examples/atron/eight.json --expect examples/atron/car.json
-
-`dynarole help COMMAND` shows a command's options and an example. Documentation: the
-repository's README.md, and docs/ (language.md: the language; simulator.md, cluster.md,
-verification.md, viewer.md, runtime.md, limits.md).
-Exit codes: 0 success, 1 bad input or a failed check, 2 bad usage, 3 a simulation that did
-not reach its goal or a search that could not finish, 4 internal error.";
 
 #[derive(Subcommand)]
 enum Command {
     /// Check `.dr` files: syntax, names, types, reversibility. Exit 1 on any error.
     #[command(
-        after_help = "Example:\n  dynarole check examples/atron/eight2car.dr --from examples/atron/eight.json"
+        after_help = help::example("check")
     )]
     Check(check::CheckArgs),
     /// Compile sequences to a self-contained directory of C: runtime, state machine, Makefile.
     #[command(
-        after_help = "Example:\n  dynarole compile examples/atron/eight2car.dr --sequence eight2car -o out/eight2car && make -C out/eight2car"
+        after_help = help::example("compile")
     )]
     Compile(compile::CompileArgs),
     /// Model-check a compiled sequence on a configuration with spin: S1, S2, S3 and L under
     /// the stated bounds (exit 0 verified, 1 violated, 3 inconclusive, 4 internal error).
     #[command(
-        after_help = "Example:\n  dynarole verify examples/verify/ab_c.dr --from examples/verify/line3.json --resets 1"
+        after_help = help::example("verify")
     )]
     Verify(verify::VerifyArgs),
     /// Draw a configuration (JSON) as an SVG or PNG picture.
-    #[command(after_help = "Example:\n  dynarole show examples/atron/car.json -o out/car.svg")]
+    #[command(after_help = help::example("show"))]
     Show(show::ShowArgs),
     /// Run sequences on the kinematic model of the robot (no network) and report the result.
     #[command(
-        after_help = "Example:\n  dynarole replay examples/atron/eight2car.dr --sequence eight2car --from examples/atron/eight.json --expect examples/atron/car.json"
+        after_help = help::example("replay")
     )]
     Replay(replay::ReplayArgs),
     /// Run the generated C on every module over lossy infrared links, with faults (exit 3
     /// when the goal is not reached).
     #[command(
-        after_help = "Example:\n  dynarole simulate examples/atron/eight2car.dr --sequence eight2car --from examples/atron/eight.json --expect examples/atron/car.json --scenario examples/scenarios/lossy.toml --seed 1"
+        after_help = help::example("simulate")
     )]
     Simulate(simulate::SimulateArgs),
     /// Replay a recording in the browser: write one self-contained HTML page (or print
     /// poses at given times).
     #[command(
-        after_help = "Example:\n  dynarole view out/run.json -o out/run.html   (a recording written by simulate --record out/run.json)"
+        after_help = help::example("view")
     )]
     View(view::ViewArgs),
     /// Run a sweep of simulations described by a TOML file, in parallel: DIR/runs.csv (one
@@ -100,19 +91,19 @@ enum Command {
     /// On a cluster: --shard K/N per job, or --emit the job files; then `campaign merge`.
     #[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
     #[command(
-        after_help = "Example:\n  dynarole campaign examples/campaigns/smoke.toml   (then: dynarole campaign status out/smoke)"
+        after_help = help::example("campaign")
     )]
     Campaign(campaign::CampaignArgs),
     /// Rewrite `.dr` files in the canonical layout (comments kept).
-    #[command(after_help = "Example:\n  dynarole fmt --check examples/atron/eight2car.dr")]
+    #[command(after_help = help::example("fmt"))]
     Fmt(fmt::FmtArgs),
     /// Print the reverse of SEQUENCE as a complete `.dr` file that `check` accepts.
-    #[command(after_help = "Example:\n  dynarole reverse examples/atron/eight2car.dr eight2car")]
+    #[command(after_help = help::example("reverse"))]
     Reverse(reverse::ReverseArgs),
     /// Rewrite a sequence written in order with the most parallelism that is provably safe
     /// on the model; prints a complete `.dr` file and the makespan before and after.
     #[command(
-        after_help = "Example:\n  dynarole parallelise examples/atron/eight2car.dr --sequence eight2car --from examples/atron/eight.json -o out/parallel.dr"
+        after_help = help::example("parallelise")
     )]
     Parallelise(parallelise::ParalleliseArgs),
 }

@@ -84,6 +84,9 @@ pub fn run(args: &SimulateArgs) -> Result<ExitCode, Failure> {
             .as_ref()
             .map(|p| read_configuration(p))
             .transpose()?;
+        // A configuration of another robot is refused first, as `replay` refuses it: its
+        // modules' labels would only give a misleading message.
+        dynarole_replay::RobotWorld::new(start.clone(), &program.robot).map_err(Failure::Input)?;
         // A module the program names but the configuration lacks would never act: the run
         // would only time out. Refused here as `replay` refuses it, with the same message.
         if let Err(diagnostics) = dynarole_replay::assign_modules(program, &plans, &start) {

@@ -27,10 +27,10 @@ fn scratch(name: &str, contents: &str) -> PathBuf {
 fn a_mismatch_names_the_expected_and_the_reached_side() {
     // Once swapped: M0 is at [0, 0, 0] in eight.json, and was printed as "found" there.
     let out = replay(
-        "examples/atron/eight2car.dr",
+        "robots/atron/examples/eight2car.dr",
         &["eight2car"],
-        "examples/atron/eight.json",
-        "examples/atron/eight.json",
+        "robots/atron/examples/eight.json",
+        "robots/atron/examples/eight.json",
     );
     let stdout = text(&out.stdout);
     assert_eq!(out.status.code(), Some(1), "{stdout}");
@@ -58,7 +58,7 @@ fn a_success_says_which_modules_never_declared_the_end_and_why() {
         "simulate",
         program.to_str().expect("path"),
         "--from",
-        "examples/verify/line3.json",
+        "robots/atron/examples/verify/line3.json",
         "--scenario",
         scenario.to_str().expect("path"),
     ]);
@@ -93,9 +93,9 @@ fn messages_quoting_huge_user_text_stay_small() {
     );
     let out = dynarole(&[
         "simulate",
-        "examples/atron/eight2car.dr",
+        "robots/atron/examples/eight2car.dr",
         "--from",
-        "examples/atron/eight.json",
+        "robots/atron/examples/eight.json",
         "--scenario",
         scenario.to_str().expect("path"),
     ]);
@@ -142,10 +142,10 @@ fn replay_reports_the_warnings_check_from_reports() {
     // eight2car's extend and retract joined by `&` split the robot if the retract ends first:
     // `check --from` warns, and `replay` once said "0 warnings" of the same sequence.
     let out = replay(
-        "examples/atron/eight2car.dr",
+        "robots/atron/examples/eight2car.dr",
         &["eight2car"],
-        "examples/atron/eight.json",
-        "examples/atron/car.json",
+        "robots/atron/examples/eight.json",
+        "robots/atron/examples/car.json",
     );
     assert_eq!(out.status.code(), Some(0), "{}", text(&out.stdout));
     let stderr = text(&out.stderr);
@@ -188,9 +188,9 @@ fn the_commands_emit_prints_are_quoted_for_a_shell() {
 
 #[test]
 fn check_accepts_the_examples() {
-    let out = dynarole(&["check", "examples/atron/eight2car.dr"]);
+    let out = dynarole(&["check", "robots/atron/examples/eight2car.dr"]);
     assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
-    assert!(text(&out.stdout).contains("ok: examples/atron/eight2car.dr"));
+    assert!(text(&out.stdout).contains("ok: robots/atron/examples/eight2car.dr"));
 }
 
 #[test]
@@ -228,7 +228,7 @@ fn missing_file_is_bad_input() {
 
 #[test]
 fn reverse_prints_a_file_that_checks_and_reverses_back() {
-    let out = dynarole(&["reverse", "examples/atron/eight2car.dr", "eight2car"]);
+    let out = dynarole(&["reverse", "robots/atron/examples/eight2car.dr", "eight2car"]);
     assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
     let reversed = text(&out.stdout);
     assert!(reversed.starts_with(
@@ -238,15 +238,15 @@ fn reverse_prints_a_file_that_checks_and_reverses_back() {
     let path = path.to_str().expect("utf-8 path");
     assert_eq!(dynarole(&["check", path]).status.code(), Some(0));
     let back = dynarole(&["reverse", path, "car2eight", "--name", "eight2car"]);
-    let original = dynarole(&["reverse", "examples/atron/eight2car.dr", "car2eight"]);
+    let original = dynarole(&["reverse", "robots/atron/examples/eight2car.dr", "car2eight"]);
     assert_eq!(text(&back.stdout), text(&original.stdout));
 }
 
 #[test]
 fn reverse_of_an_unknown_sequence_is_bad_input() {
-    let out = dynarole(&["reverse", "examples/atron/eight2car.dr", "nope"]);
+    let out = dynarole(&["reverse", "robots/atron/examples/eight2car.dr", "nope"]);
     assert_eq!(out.status.code(), Some(1));
-    assert!(text(&out.stderr).contains("no sequence `nope` in examples/atron/eight2car.dr; sequences in examples/atron/eight2car.dr: eight2car, car2eight"));
+    assert!(text(&out.stderr).contains("no sequence `nope` in robots/atron/examples/eight2car.dr; sequences in robots/atron/examples/eight2car.dr: eight2car, car2eight"));
 }
 
 #[test]
@@ -267,7 +267,7 @@ fn fmt_check_then_fmt_then_check_again() {
 
 #[test]
 fn examples_are_formatted() {
-    let out = dynarole(&["fmt", "--check", "examples/atron/eight2car.dr"]);
+    let out = dynarole(&["fmt", "--check", "robots/atron/examples/eight2car.dr"]);
     assert_eq!(out.status.code(), Some(0), "{}", text(&out.stdout));
 }
 
@@ -311,10 +311,10 @@ fn paper_protocol_reports_nested_blocks() {
 #[test]
 fn replay_of_fig5_gives_exactly_the_car_and_its_reverse_the_eight() {
     let forward = replay(
-        "examples/atron/eight2car.dr",
+        "robots/atron/examples/eight2car.dr",
         &["eight2car"],
-        "examples/atron/eight.json",
-        "examples/atron/car.json",
+        "robots/atron/examples/eight.json",
+        "robots/atron/examples/car.json",
     );
     assert_eq!(
         forward.status.code(),
@@ -326,17 +326,17 @@ fn replay_of_fig5_gives_exactly_the_car_and_its_reverse_the_eight() {
     // One warning, as `check --from` gives: the extend and the retract joined by `&`.
     assert!(text(&forward.stdout).contains("25 statements, 0 rejected, 1 warning\n"));
     let back = replay(
-        "examples/atron/eight2car.dr",
+        "robots/atron/examples/eight2car.dr",
         &["car2eight"],
-        "examples/atron/car.json",
-        "examples/atron/eight.json",
+        "robots/atron/examples/car.json",
+        "robots/atron/examples/eight.json",
     );
     assert_eq!(back.status.code(), Some(0), "{}", text(&back.stdout));
     let both = replay(
-        "examples/atron/eight2car.dr",
+        "robots/atron/examples/eight2car.dr",
         &["eight2car", "car2eight"],
-        "examples/atron/eight.json",
-        "examples/atron/eight.json",
+        "robots/atron/examples/eight.json",
+        "robots/atron/examples/eight.json",
     );
     assert_eq!(both.status.code(), Some(0), "{}", text(&both.stdout));
 }
@@ -344,17 +344,17 @@ fn replay_of_fig5_gives_exactly_the_car_and_its_reverse_the_eight() {
 #[test]
 fn replay_of_the_tour_and_the_snake() {
     let snake = replay(
-        "examples/atron/eight2car.dr",
+        "robots/atron/examples/eight2car.dr",
         &["eight2snake"],
-        "examples/atron/eight.json",
-        "examples/atron/snake.json",
+        "robots/atron/examples/eight.json",
+        "robots/atron/examples/snake.json",
     );
     assert_eq!(snake.status.code(), Some(0), "{}", text(&snake.stdout));
     let tour = replay(
-        "examples/atron/eight2car.dr",
+        "robots/atron/examples/eight2car.dr",
         &["tour"],
-        "examples/atron/car.json",
-        "examples/atron/car.json",
+        "robots/atron/examples/car.json",
+        "robots/atron/examples/car.json",
     );
     assert_eq!(tour.status.code(), Some(0), "{}", text(&tour.stdout));
     assert!(text(&tour.stdout).contains("62 statements, 0 rejected"));
@@ -366,13 +366,13 @@ fn replay_of_the_mtran_experiment_and_its_derived_reverse() {
     let out = out.to_str().expect("utf-8 path");
     let forward = dynarole(&[
         "replay",
-        "examples/mtran/move_module.dr",
+        "robots/mtran/examples/move_module.dr",
         "--sequence",
         "left2right",
         "--from",
-        "examples/mtran/mtran-snake4.json",
+        "robots/mtran/examples/mtran-snake4.json",
         "--expect",
-        "examples/mtran/mtran-snake4-moved.json",
+        "robots/mtran/examples/mtran-snake4-moved.json",
         "--out",
         out,
     ]);
@@ -389,13 +389,13 @@ fn replay_of_the_mtran_experiment_and_its_derived_reverse() {
     );
     let back = dynarole(&[
         "replay",
-        "examples/mtran/move_module.dr",
+        "robots/mtran/examples/move_module.dr",
         "--sequence",
         "right2left",
         "--from",
         out,
         "--expect",
-        "examples/mtran/mtran-snake4.json",
+        "robots/mtran/examples/mtran-snake4.json",
     ]);
     assert_eq!(back.status.code(), Some(0), "{}", text(&back.stdout));
 }
@@ -403,15 +403,15 @@ fn replay_of_the_mtran_experiment_and_its_derived_reverse() {
 #[test]
 fn replay_reports_a_mismatch_with_the_difference_and_exit_1() {
     let out = replay(
-        "examples/atron/eight2car.dr",
+        "robots/atron/examples/eight2car.dr",
         &["eight2car"],
-        "examples/atron/eight.json",
-        "examples/atron/eight.json",
+        "robots/atron/examples/eight.json",
+        "robots/atron/examples/eight.json",
     );
     assert_eq!(out.status.code(), Some(1));
     let stdout = text(&out.stdout);
     assert!(
-        stdout.contains("does NOT match examples/atron/eight.json"),
+        stdout.contains("does NOT match robots/atron/examples/eight.json"),
         "{stdout}"
     );
     assert!(
@@ -424,11 +424,11 @@ fn replay_reports_a_mismatch_with_the_difference_and_exit_1() {
 fn replay_rejects_a_configuration_of_another_robot_or_a_bad_field() {
     let other = dynarole(&[
         "replay",
-        "examples/atron/eight2car.dr",
+        "robots/atron/examples/eight2car.dr",
         "--sequence",
         "eight2car",
         "--from",
-        "examples/mtran/mtran-snake4.json",
+        "robots/mtran/examples/mtran-snake4.json",
     ]);
     assert_eq!(other.status.code(), Some(1));
     assert!(
@@ -439,7 +439,7 @@ fn replay_rejects_a_configuration_of_another_robot_or_a_bad_field() {
     let bad = scratch("bad.json", "{\"name\": \"x\", \"robot\": \"ATRON\", \"modules\": [{\"name\": \"M0\", \"id\": 0, \"position\": [0, 0, 0], \"orientation\": \"NX\", \"joint\": 0}], \"connections\": []}");
     let bad_out = dynarole(&[
         "replay",
-        "examples/atron/eight2car.dr",
+        "robots/atron/examples/eight2car.dr",
         "--sequence",
         "eight2car",
         "--from",
@@ -457,9 +457,9 @@ fn replay_rejects_a_configuration_of_another_robot_or_a_bad_field() {
 fn check_from_reports_the_order_dependent_group_of_fig5() {
     let out = dynarole(&[
         "check",
-        "examples/atron/fig5.dr",
+        "robots/atron/examples/fig5.dr",
         "--from",
-        "examples/atron/eight.json",
+        "robots/atron/examples/eight.json",
     ]);
     assert_eq!(out.status.code(), Some(0), "warnings do not fail a check");
     let stderr = text(&out.stderr);
@@ -492,7 +492,7 @@ fn module_outlines(svg: &str) -> Vec<(f64, f64, f64)> {
 
 #[test]
 fn show_draws_every_module_and_latch_of_the_eight() {
-    let svg = show_svg("examples/atron/eight.json");
+    let svg = show_svg("robots/atron/examples/eight.json");
     assert_eq!(module_outlines(&svg).len(), 7, "one disc per module");
     assert_eq!(
         svg.matches("<polygon").count(),
@@ -507,16 +507,20 @@ fn show_draws_every_module_and_latch_of_the_eight() {
             "{name} is labelled"
         );
     }
-    assert_eq!(svg, show_svg("examples/atron/eight.json"), "deterministic");
+    assert_eq!(
+        svg,
+        show_svg("robots/atron/examples/eight.json"),
+        "deterministic"
+    );
     insta::assert_snapshot!("eight_svg", svg);
 }
 
 #[test]
 fn show_chooses_a_view_where_no_module_hides_another() {
     for file in [
-        "examples/atron/car.json",
-        "examples/atron/eight.json",
-        "examples/atron/snake.json",
+        "robots/atron/examples/car.json",
+        "robots/atron/examples/eight.json",
+        "robots/atron/examples/snake.json",
     ] {
         let discs = module_outlines(&show_svg(file));
         assert_eq!(discs.len(), 7, "{file}");
@@ -564,7 +568,7 @@ fn show_writes_png_and_svg_and_refuses_other_formats() {
     let png = scratch("car.png", "");
     let out = dynarole(&[
         "show",
-        "examples/atron/car.json",
+        "robots/atron/examples/car.json",
         "-o",
         png.to_str().expect("path"),
     ]);
@@ -574,7 +578,7 @@ fn show_writes_png_and_svg_and_refuses_other_formats() {
     let svg = scratch("snake.svg", "");
     let out = dynarole(&[
         "show",
-        "examples/mtran/mtran-snake4.json",
+        "robots/mtran/examples/mtran-snake4.json",
         "-o",
         svg.to_str().expect("path"),
     ]);
@@ -583,7 +587,7 @@ fn show_writes_png_and_svg_and_refuses_other_formats() {
         .expect("svg")
         .contains("\nT12\n</text>"));
     assert_eq!(
-        dynarole(&["show", "examples/atron/car.json", "-o", "car.gif"])
+        dynarole(&["show", "robots/atron/examples/car.json", "-o", "car.gif"])
             .status
             .code(),
         Some(2)
@@ -597,7 +601,7 @@ fn show_makes_the_folder_it_writes_into() {
     let svg = dir.join("pictures").join("car.svg");
     let out = dynarole(&[
         "show",
-        "examples/atron/car.json",
+        "robots/atron/examples/car.json",
         "-o",
         svg.to_str().expect("path"),
     ]);
@@ -614,7 +618,7 @@ fn compile_writes_a_self_contained_directory_for_each_protocol() {
         let _ = std::fs::remove_dir_all(&dir);
         let out = dynarole(&[
             "compile",
-            "examples/atron/eight2car.dr",
+            "robots/atron/examples/eight2car.dr",
             "--sequence",
             "eight2car",
             "--protocol",
@@ -654,7 +658,7 @@ fn compile_token_needs_a_configuration_and_names_unroutable_statements() {
     let dir_arg = dir.to_str().expect("path");
     let args = [
         "compile",
-        "examples/atron/eight2car.dr",
+        "robots/atron/examples/eight2car.dr",
         "--protocol",
         "token",
         "-o",
@@ -672,7 +676,7 @@ fn compile_token_needs_a_configuration_and_names_unroutable_statements() {
         .copied()
         .chain([
             "--from",
-            "examples/atron/eight.json",
+            "robots/atron/examples/eight.json",
             "--token-retries",
             "plain",
         ])
@@ -698,7 +702,7 @@ fn compile_token_needs_a_configuration_and_names_unroutable_statements() {
         "--protocol",
         "token",
         "--from",
-        "examples/atron/eight.json",
+        "robots/atron/examples/eight.json",
         "-o",
         dir_arg,
     ]);
@@ -711,7 +715,7 @@ fn compile_token_needs_a_configuration_and_names_unroutable_statements() {
     );
     let bad = dynarole(&[
         "compile",
-        "examples/atron/eight2car.dr",
+        "robots/atron/examples/eight2car.dr",
         "--protocol",
         "token",
         "--token-retries",
@@ -751,45 +755,45 @@ fn compile_refuses_what_the_paper_protocol_cannot_run() {
 /// start, expected end, scenario.
 const SCENARIOS: [(&str, &[&str], &str, &str, &str); 6] = [
     (
-        "examples/atron/eight2car.dr",
+        "robots/atron/examples/eight2car.dr",
         &["eight2car", "car2eight", "eight2car", "car2eight"],
-        "examples/atron/eight.json",
-        "examples/atron/eight.json",
+        "robots/atron/examples/eight.json",
+        "robots/atron/examples/eight.json",
         "long-running",
     ),
     (
-        "examples/atron/eight2car.dr",
+        "robots/atron/examples/eight2car.dr",
         &["eight2car"],
-        "examples/atron/eight.json",
-        "examples/atron/car.json",
+        "robots/atron/examples/eight.json",
+        "robots/atron/examples/car.json",
         "fig7-power-off",
     ),
     (
-        "examples/atron/eight2car.dr",
+        "robots/atron/examples/eight2car.dr",
         &["eight2car"],
-        "examples/atron/eight.json",
-        "examples/atron/car.json",
+        "robots/atron/examples/eight.json",
+        "robots/atron/examples/car.json",
         "fig8-reset-connecting",
     ),
     (
-        "examples/atron/eight2car.dr",
+        "robots/atron/examples/eight2car.dr",
         &["eight2car"],
-        "examples/atron/eight.json",
-        "examples/atron/car.json",
+        "robots/atron/examples/eight.json",
+        "robots/atron/examples/car.json",
         "fig8-blocked-paths",
     ),
     (
-        "examples/atron/eight2car.dr",
+        "robots/atron/examples/eight2car.dr",
         &["tour"],
-        "examples/atron/car.json",
-        "examples/atron/car.json",
+        "robots/atron/examples/car.json",
+        "robots/atron/examples/car.json",
         "lossy",
     ),
     (
-        "examples/mtran/move_module.dr",
+        "robots/mtran/examples/move_module.dr",
         &["left2right", "right2left"],
-        "examples/mtran/mtran-snake4.json",
-        "examples/mtran/mtran-snake4.json",
+        "robots/mtran/examples/mtran-snake4.json",
+        "robots/mtran/examples/mtran-snake4.json",
         "lossy",
     ),
 ];
@@ -945,9 +949,9 @@ fn simulate_defaults_to_the_first_sequence_like_the_other_commands() {
     let run = |extra: &[&str]| {
         let mut args = vec![
             "simulate",
-            "examples/verify/ab_c.dr",
+            "robots/atron/examples/verify/ab_c.dr",
             "--from",
-            "examples/verify/line3.json",
+            "robots/atron/examples/verify/line3.json",
         ];
         args.extend(extra);
         let out = dynarole(&args);
@@ -1022,13 +1026,13 @@ fn simulate_explains_the_checks_once_and_heads_the_trace_with_its_columns() {
     let trace_arg = trace.to_str().expect("path");
     let out = dynarole(&[
         "simulate",
-        "examples/atron/eight2car.dr",
+        "robots/atron/examples/eight2car.dr",
         "--sequence",
         "eight2car",
         "--from",
-        "examples/atron/eight.json",
+        "robots/atron/examples/eight.json",
         "--expect",
-        "examples/atron/car.json",
+        "robots/atron/examples/car.json",
         "--seed",
         "1",
         "--repeat",
@@ -1071,7 +1075,7 @@ fn retract(m: u32) -> String {
 fn reverse_names_are_names() {
     let bad = dynarole(&[
         "reverse",
-        "examples/atron/eight2car.dr",
+        "robots/atron/examples/eight2car.dr",
         "eight2car",
         "--name",
         "a b",
@@ -1084,7 +1088,7 @@ fn reverse_names_are_names() {
     );
     let injected = dynarole(&[
         "reverse",
-        "examples/atron/eight2car.dr",
+        "robots/atron/examples/eight2car.dr",
         "eight2car",
         "--name",
         "x { M0.Connector[$CONNECTOR_0].extend(); } sequence y",
@@ -1201,7 +1205,7 @@ fn endless_or_huge_inputs_are_refused_with_the_limit() {
         vec!["check", "/dev/zero"],
         vec![
             "check",
-            "examples/atron/eight2car.dr",
+            "robots/atron/examples/eight2car.dr",
             "--from",
             "/dev/zero",
         ],
@@ -1279,7 +1283,7 @@ fn dissemination_selects_the_lattice_mode_and_is_refused_elsewhere() {
         let out_text = out_dir.display().to_string();
         let out = dynarole(&[
             "compile",
-            "examples/atron/eight2car.dr",
+            "robots/atron/examples/eight2car.dr",
             "--dissemination",
             mode,
             "-o",
@@ -1296,7 +1300,7 @@ fn dissemination_selects_the_lattice_mode_and_is_refused_elsewhere() {
     }
     let out = dynarole(&[
         "compile",
-        "examples/atron/eight2car.dr",
+        "robots/atron/examples/eight2car.dr",
         "--dissemination",
         "trickle",
     ]);
@@ -1304,9 +1308,9 @@ fn dissemination_selects_the_lattice_mode_and_is_refused_elsewhere() {
     assert!(text(&out.stderr).contains("[possible values: adaptive, fixed]"));
     let out = dynarole(&[
         "simulate",
-        "examples/atron/eight2car.dr",
+        "robots/atron/examples/eight2car.dr",
         "--from",
-        "examples/atron/eight.json",
+        "robots/atron/examples/eight.json",
         "--protocol",
         "paper",
         "--dissemination",
@@ -1350,9 +1354,9 @@ fn an_option_of_another_protocol_is_refused() {
     for (flags, expected) in cases {
         let mut args = vec![
             "compile",
-            "examples/atron/eight2car.dr",
+            "robots/atron/examples/eight2car.dr",
             "--from",
-            "examples/atron/eight.json",
+            "robots/atron/examples/eight.json",
             "-o",
             never_written.to_str().expect("path"),
         ];

@@ -213,7 +213,7 @@ fn a_short_sequence_runs_on_emulated_atmega128s_in_the_host_runs_order() {
     let args = [
         file.as_str(),
         "--from",
-        "examples/atron/eight.json",
+        "robots/atron/examples/eight.json",
         "--seed",
         "1",
     ];
@@ -240,9 +240,9 @@ fn a_short_sequence_runs_on_emulated_atmega128s_in_the_host_runs_order() {
 fn firmware_refuses_an_unknown_mcu_and_foreign_packets() {
     let out = dynarole(&[
         "simulate",
-        "examples/atron/eight2car.dr",
+        "robots/atron/examples/eight2car.dr",
         "--from",
-        "examples/atron/eight.json",
+        "robots/atron/examples/eight.json",
         "--firmware",
         "pic",
     ]);
@@ -260,9 +260,9 @@ fn firmware_refuses_an_unknown_mcu_and_foreign_packets() {
     .expect("write");
     let out = dynarole(&[
         "simulate",
-        "examples/atron/eight2car.dr",
+        "robots/atron/examples/eight2car.dr",
         "--from",
-        "examples/atron/eight.json",
+        "robots/atron/examples/eight.json",
         "--scenario",
         scenario.to_str().expect("utf-8 path"),
         "--firmware",
@@ -288,7 +288,7 @@ fn the_nesc_component_runs_on_emulated_atmega128s() {
     let args = [
         file.as_str(),
         "--from",
-        "examples/atron/eight.json",
+        "robots/atron/examples/eight.json",
         "--seed",
         "1",
     ];
@@ -304,9 +304,9 @@ fn avr_nesc_without_nescc_says_how_to_get_it() {
     let out = Command::new(env!("CARGO_BIN_EXE_dynarole"))
         .args([
             "simulate",
-            "examples/atron/eight2car.dr",
+            "robots/atron/examples/eight2car.dr",
             "--from",
-            "examples/atron/eight.json",
+            "robots/atron/examples/eight.json",
             "--firmware",
             "avr-nesc",
         ])
@@ -337,7 +337,7 @@ fn the_paper_and_token_protocols_run_on_emulated_atmega128s() {
         let args = [
             file.as_str(),
             "--from",
-            "examples/atron/eight.json",
+            "robots/atron/examples/eight.json",
             "--protocol",
             protocol,
             "--seed",
@@ -357,7 +357,7 @@ fn the_papers_runs_on_emulated_atmega128s_in_the_host_runs_order() {
     if !avr_tools() {
         return;
     }
-    let e = "examples/atron";
+    let e = "robots/atron/examples";
     let late = compare_with_host(
         &[
             &format!("{e}/eight2car.dr"),
@@ -419,7 +419,7 @@ fn the_papers_reset_and_power_off_runs_on_the_nesc_component() {
         return;
     }
     let Some(nescc) = nescc_dir() else { return };
-    let e = "examples/atron";
+    let e = "robots/atron/examples";
     for scenario in ["fig8-reset-connecting", "fig7-power-off"] {
         let late = compare_with_host_on(
             &[
@@ -494,7 +494,7 @@ fn reset_run(reset: &SingleReset, firmware: Option<&Firmware>) -> Result<(), Str
         ),
     )
     .expect("write");
-    let e = "examples/atron";
+    let e = "robots/atron/examples";
     let seed = reset.seed.to_string();
     let mut args = vec![
         "simulate".to_string(),

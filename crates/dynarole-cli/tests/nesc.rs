@@ -126,7 +126,7 @@ const LATTICE_TABLES: &[&str] = &["dr_program_statements", "dr_program_deps"];
 const CASES: [Case; 5] = [
     Case {
         name: "eight2car-lattice",
-        file: "examples/atron/eight2car.dr",
+        file: "robots/atron/examples/eight2car.dr",
         sequence: "eight2car",
         extra: &[],
         ids: Some("0 1 2 3 4 5 6"),
@@ -134,7 +134,7 @@ const CASES: [Case; 5] = [
     },
     Case {
         name: "eight2car-lattice-no-nv",
-        file: "examples/atron/eight2car.dr",
+        file: "robots/atron/examples/eight2car.dr",
         sequence: "eight2car",
         extra: &["--no-nv"],
         ids: Some("0 1 2 3 4 5 6"),
@@ -142,7 +142,7 @@ const CASES: [Case; 5] = [
     },
     Case {
         name: "eight2car-paper",
-        file: "examples/atron/eight2car.dr",
+        file: "robots/atron/examples/eight2car.dr",
         sequence: "eight2car",
         extra: &["--protocol", "paper"],
         ids: Some("0 1 2 3 4 5 6"),
@@ -150,15 +150,20 @@ const CASES: [Case; 5] = [
     },
     Case {
         name: "eight2car-token",
-        file: "examples/atron/eight2car.dr",
+        file: "robots/atron/examples/eight2car.dr",
         sequence: "eight2car",
-        extra: &["--protocol", "token", "--from", "examples/atron/eight.json"],
+        extra: &[
+            "--protocol",
+            "token",
+            "--from",
+            "robots/atron/examples/eight.json",
+        ],
         ids: None,
         tables: &["dr_program_statements", "dr_program_hops"],
     },
     Case {
         name: "mtran-left2right-lattice",
-        file: "examples/mtran/move_module.dr",
+        file: "robots/mtran/examples/move_module.dr",
         sequence: "left2right",
         extra: &[],
         ids: Some("10 11 12 13"),

@@ -17,8 +17,9 @@ fn scratch(name: &str, contents: &str) -> PathBuf {
 
 /// eight2car.dr with every `&` made `;`.
 fn sequential_eight2car() -> PathBuf {
-    let shipped = std::fs::read_to_string(common::repo_root().join("examples/atron/eight2car.dr"))
-        .expect("example");
+    let shipped =
+        std::fs::read_to_string(common::repo_root().join("robots/atron/examples/eight2car.dr"))
+            .expect("example");
     let sequential = shipped.replace(" &\n", ";\n");
     assert!(!sequential.contains(" &"));
     scratch("eight2car_in_order.dr", &sequential)
@@ -48,7 +49,7 @@ fn parallelise(file: &str, extra: &[&str]) -> std::process::Output {
         "--sequence",
         "eight2car",
         "--from",
-        "examples/atron/eight.json",
+        "robots/atron/examples/eight.json",
     ];
     args.extend(extra);
     dynarole(&args)
@@ -64,7 +65,7 @@ fn eight2car_in_order_comes_back_parallel_and_the_hand_parallel_groups_do_not_ve
     assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
     let (before, after) = critical_paths(&text(&out.stderr));
     assert!(after < before, "{after} ms, in order {before} ms");
-    let shipped = parallelise("examples/atron/eight2car.dr", &[]);
+    let shipped = parallelise("robots/atron/examples/eight2car.dr", &[]);
     assert_eq!(shipped.status.code(), Some(0), "{}", text(&shipped.stderr));
     let (hand, _) = critical_paths(&text(&shipped.stderr));
     assert!(after <= hand, "{after} ms, the shipped file {hand} ms");
@@ -101,16 +102,21 @@ fn the_output_checks_clean_forwards_and_its_reverse_from_the_end() {
     );
     assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
     let output_path = output.display().to_string();
-    assert_checks_clean(&["check", &output_path, "--from", "examples/atron/eight.json"]);
+    assert_checks_clean(&[
+        "check",
+        &output_path,
+        "--from",
+        "robots/atron/examples/eight.json",
+    ]);
     let replay = dynarole(&[
         "replay",
         &output_path,
         "--sequence",
         "fast",
         "--from",
-        "examples/atron/eight.json",
+        "robots/atron/examples/eight.json",
         "--expect",
-        "examples/atron/car.json",
+        "robots/atron/examples/car.json",
     ]);
     assert_eq!(replay.status.code(), Some(0), "{}", text(&replay.stdout));
     let reversed = dynarole(&["reverse", &output_path, "fast", "--name", "back"]);
@@ -125,7 +131,7 @@ fn the_output_checks_clean_forwards_and_its_reverse_from_the_end() {
         "check",
         &back.display().to_string(),
         "--from",
-        "examples/atron/car.json",
+        "robots/atron/examples/car.json",
     ]);
 }
 
@@ -133,7 +139,7 @@ fn the_output_checks_clean_forwards_and_its_reverse_from_the_end() {
 fn the_paper_protocol_gets_flat_groups_and_fig5_keeps_its_turns_in_order() {
     let output = scratch("fig5_paper.dr", "");
     let out = parallelise(
-        "examples/atron/fig5.dr",
+        "robots/atron/examples/fig5.dr",
         &["--protocol", "paper", "-o", &output.display().to_string()],
     );
     assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
@@ -153,7 +159,7 @@ fn the_paper_protocol_gets_flat_groups_and_fig5_keeps_its_turns_in_order() {
         "paper",
         &output_path,
         "--from",
-        "examples/atron/eight.json",
+        "robots/atron/examples/eight.json",
     ]);
 }
 
@@ -162,12 +168,12 @@ fn bad_inputs_get_a_clear_error_and_the_usual_exit_codes() {
     // Usage: a missing option, an option value that is not a name.
     let out = dynarole(&[
         "parallelise",
-        "examples/atron/eight2car.dr",
+        "robots/atron/examples/eight2car.dr",
         "--sequence",
         "x",
     ]);
     assert_eq!(out.status.code(), Some(2));
-    let out = parallelise("examples/atron/eight2car.dr", &["--name", "2fast"]);
+    let out = parallelise("robots/atron/examples/eight2car.dr", &["--name", "2fast"]);
     assert_eq!(out.status.code(), Some(2));
     assert!(
         text(&out.stderr).contains("`2fast`"),
@@ -177,15 +183,15 @@ fn bad_inputs_get_a_clear_error_and_the_usual_exit_codes() {
     // Bad input: no such sequence, a missing file.
     let out = dynarole(&[
         "parallelise",
-        "examples/atron/eight2car.dr",
+        "robots/atron/examples/eight2car.dr",
         "--sequence",
         "nope",
         "--from",
-        "examples/atron/eight.json",
+        "robots/atron/examples/eight.json",
     ]);
     assert_eq!(out.status.code(), Some(1));
-    assert!(text(&out.stderr).contains("no sequence `nope` in examples/atron/eight2car.dr"));
-    let out = parallelise("examples/atron/missing.dr", &[]);
+    assert!(text(&out.stderr).contains("no sequence `nope` in robots/atron/examples/eight2car.dr"));
+    let out = parallelise("robots/atron/examples/missing.dr", &[]);
     assert_eq!(out.status.code(), Some(1));
     // Nothing to do, a configuration of another robot.
     let empty = scratch("empty.dr", "robot atron;\nsequence e {\n}\n");
@@ -196,7 +202,7 @@ fn bad_inputs_get_a_clear_error_and_the_usual_exit_codes() {
         "--sequence",
         "e",
         "--from",
-        "examples/atron/eight.json",
+        "robots/atron/examples/eight.json",
     ]);
     assert_eq!(out.status.code(), Some(1));
     assert!(text(&out.stderr).contains("nothing to parallelise"));
@@ -206,18 +212,18 @@ fn bad_inputs_get_a_clear_error_and_the_usual_exit_codes() {
         "--sequence",
         "e",
         "--from",
-        "examples/mtran/mtran-snake4.json",
+        "robots/mtran/examples/mtran-snake4.json",
     ]);
     assert_eq!(out.status.code(), Some(1));
     assert!(text(&out.stderr).contains("MTRAN"), "{}", text(&out.stderr));
     // A sequence that does not replay from the configuration: its refused step, located.
     let out = dynarole(&[
         "parallelise",
-        "examples/atron/eight2car.dr",
+        "robots/atron/examples/eight2car.dr",
         "--sequence",
         "eight2car",
         "--from",
-        "examples/atron/car.json",
+        "robots/atron/examples/car.json",
     ]);
     assert_eq!(out.status.code(), Some(1));
     let stderr = text(&out.stderr);

@@ -22,11 +22,11 @@ fn simulate(scenario: &Path, progress: &str, extra: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_dynarole"))
         .args([
             "simulate",
-            "examples/atron/eight2car.dr",
+            "robots/atron/examples/eight2car.dr",
             "--sequence",
             "eight2car",
         ])
-        .args(["--from", "examples/atron/eight.json", "--scenario"])
+        .args(["--from", "robots/atron/examples/eight.json", "--scenario"])
         .arg(scenario)
         .args(extra)
         .env("DYNAROLE_PROGRESS_SECONDS", progress)

@@ -7,7 +7,7 @@ mod common;
 use common::{dynarole, repo_root, text};
 use std::path::Path;
 
-const LINE: &str = "examples/verify/line3.json";
+const LINE: &str = "robots/atron/examples/verify/line3.json";
 
 fn verify(file: &str, extra: &[&str]) -> (Option<i32>, String) {
     let mut args = vec!["verify", file, "--from", LINE];
@@ -19,7 +19,10 @@ fn verify(file: &str, extra: &[&str]) -> (Option<i32>, String) {
 
 #[test]
 fn the_lattice_protocol_is_proved_on_a_line_with_a_reset_and_a_late_packet() {
-    let (code, out) = verify("examples/verify/ab_c.dr", &["--resets", "1", "--late", "1"]);
+    let (code, out) = verify(
+        "robots/atron/examples/verify/ab_c.dr",
+        &["--resets", "1", "--late", "1"],
+    );
     assert_eq!(code, Some(0), "{out}");
     assert!(
         out.contains("S1, S2, S3 (safety): verified — exhaustive"),
@@ -43,7 +46,7 @@ fn a_batch_of_one_modules_statements_is_proved() {
         &["--method", "compositional", "--resets", "1"],
     ];
     for extra in runs {
-        let (code, out) = verify("examples/verify/ab_same_c.dr", extra);
+        let (code, out) = verify("robots/atron/examples/verify/ab_same_c.dr", extra);
         assert_eq!(code, Some(0), "{extra:?}: {out}");
         assert!(
             out.contains("L (finishes, weak fairness): verified"),
@@ -57,7 +60,7 @@ fn a_batch_of_one_modules_statements_is_proved() {
 fn every_paper_merge_variant_starts_a_statement_too_early_without_any_loss() {
     for merge in ["printed", "java", "c-port"] {
         let (code, out) = verify(
-            "examples/verify/ab_c.dr",
+            "robots/atron/examples/verify/ab_c.dr",
             &["--protocol", "paper", "--merge", merge, "--late", "0"],
         );
         assert_eq!(code, Some(1), "{merge}: {out}");
@@ -66,7 +69,7 @@ fn every_paper_merge_variant_starts_a_statement_too_early_without_any_loss() {
         // pending state between S and S+1, and nothing is lost or late.
         assert!(!out.contains("earlier packet"), "{merge}: {out}");
         assert!(
-            out.contains("examples/verify/ab_c.dr:8:5"),
+            out.contains("robots/atron/examples/verify/ab_c.dr:8:5"),
             "{merge}: {out}"
         );
     }
@@ -80,9 +83,9 @@ fn the_paper_protocols_race_is_found_on_the_papers_own_robot() {
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_dynarole"))
         .args([
             "verify",
-            "examples/verify/eight2car_start.dr",
+            "robots/atron/examples/verify/eight2car_start.dr",
             "--from",
-            "examples/atron/eight.json",
+            "robots/atron/examples/eight.json",
             "--protocol",
             "paper",
             "--merge",
@@ -99,7 +102,7 @@ fn the_paper_protocols_race_is_found_on_the_papers_own_robot() {
         "{stdout}"
     );
     assert!(
-        stdout.contains("S1 violated: M3 started #2 `M3.Joint.rotateFromToBy(0, 324, false, 150)` (examples/verify/eight2car_start.dr:9:5) before #0 was done"),
+        stdout.contains("S1 violated: M3 started #2 `M3.Joint.rotateFromToBy(0, 324, false, 150)` (robots/atron/examples/verify/eight2car_start.dr:9:5) before #0 was done"),
         "{stdout}"
     );
     // The race: M0 starts #0 (pending {1}), and a neighbour's copy at state 0 erases it.
@@ -122,7 +125,12 @@ fn a_missing_spin_is_an_internal_failure_not_a_verdict() {
     let empty = std::env::temp_dir().join(format!("dynarole-no-tools-{}", std::process::id()));
     std::fs::create_dir_all(&empty).expect("a scratch directory");
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_dynarole"))
-        .args(["verify", "examples/verify/ab_c.dr", "--from", LINE])
+        .args([
+            "verify",
+            "robots/atron/examples/verify/ab_c.dr",
+            "--from",
+            LINE,
+        ])
         .env("PATH", &empty)
         .current_dir(repo_root())
         .output()
@@ -144,12 +152,12 @@ fn the_single_step_handover_repairs_the_c_port_but_not_the_java_merge() {
         "0",
     ];
     let (code, out) = verify(
-        "examples/verify/abc_d_first.dr",
+        "robots/atron/examples/verify/abc_d_first.dr",
         &[&args[..], &["--merge", "c-port"]].concat(),
     );
     assert_eq!(code, Some(0), "{out}");
     let (code, out) = verify(
-        "examples/verify/abc_d_first.dr",
+        "robots/atron/examples/verify/abc_d_first.dr",
         &[&args[..], &["--merge", "java", "--safety-only"]].concat(),
     );
     assert_eq!(code, Some(1), "{out}");
@@ -159,7 +167,7 @@ fn the_single_step_handover_repairs_the_c_port_but_not_the_java_merge() {
 #[test]
 fn a_broken_lattice_join_is_caught() {
     let (code, out) = verify(
-        "examples/verify/ab_c.dr",
+        "robots/atron/examples/verify/ab_c.dr",
         &["--fault", "join-no-rebase", "--late", "0", "--safety-only"],
     );
     assert_eq!(code, Some(1), "{out}");
@@ -170,7 +178,7 @@ fn a_broken_lattice_join_is_caught() {
 #[test]
 fn resetting_the_paper_protocols_first_module_re_issues_its_first_operation() {
     let (code, out) = verify(
-        "examples/verify/abc_d_first.dr",
+        "robots/atron/examples/verify/abc_d_first.dr",
         &[
             "--protocol",
             "paper",
@@ -193,7 +201,7 @@ fn compile_to_promela_writes_the_model_and_needs_a_configuration() {
     let dir_text = dir.to_str().expect("utf-8 path");
     let out = dynarole(&[
         "compile",
-        "examples/verify/a_bc_d.dr",
+        "robots/atron/examples/verify/a_bc_d.dr",
         "--target",
         "promela",
         "--from",
@@ -216,7 +224,7 @@ fn compile_to_promela_writes_the_model_and_needs_a_configuration() {
     }
     let out = dynarole(&[
         "compile",
-        "examples/verify/a_bc_d.dr",
+        "robots/atron/examples/verify/a_bc_d.dr",
         "--target",
         "promela",
         "-o",
@@ -266,7 +274,7 @@ fn ab_c() -> (String, dynarole_core::lower::Ir) {
     (source, ir)
 }
 
-const AB_C: &str = "examples/verify/ab_c.dr";
+const AB_C: &str = "robots/atron/examples/verify/ab_c.dr";
 
 #[test]
 fn a_counterexample_is_told_in_the_sources_terms() {
@@ -380,11 +388,11 @@ fn the_compositional_model_catches_a_broken_join() {
 fn eight2car_is_proved_safe_with_a_reset_module_by_module() {
     let out = dynarole(&[
         "verify",
-        "examples/atron/eight2car.dr",
+        "robots/atron/examples/eight2car.dr",
         "--sequence",
         "eight2car",
         "--from",
-        "examples/atron/eight.json",
+        "robots/atron/examples/eight.json",
         "--resets",
         "1",
         "--safety-only",

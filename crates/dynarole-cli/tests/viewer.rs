@@ -13,7 +13,7 @@ use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-const PROGRAM: &str = "examples/atron/eight2car.dr";
+const PROGRAM: &str = "robots/atron/examples/eight2car.dr";
 /// A reset of M4 at 4.5 s while it connects (the paper's Fig. 8 left).
 const SCENARIO: &str = "examples/scenarios/fig8-reset-connecting.toml";
 const RESET_MS: f64 = 4500.0;
@@ -142,9 +142,9 @@ fn simulate(dir: &Path, times: &[f64]) -> Simulated {
         "--sequence",
         "eight2car",
         "--from",
-        "examples/atron/eight.json",
+        "robots/atron/examples/eight.json",
         "--expect",
-        "examples/atron/car.json",
+        "robots/atron/examples/car.json",
         "--scenario",
         SCENARIO,
         "--seed",
@@ -388,9 +388,9 @@ fn a_replay_on_the_model_plays_in_the_page() {
         "--sequence",
         "eight2car",
         "--from",
-        "examples/atron/eight.json",
+        "robots/atron/examples/eight.json",
         "--expect",
-        "examples/atron/car.json",
+        "robots/atron/examples/car.json",
     ];
     let (run, times) = recorded_at_samples("replay", &command, 0);
     assert_eq!(run.recording["kind"], "replay");
@@ -402,16 +402,16 @@ fn a_replay_on_the_model_plays_in_the_page() {
 #[test]
 fn an_mtran_simulation_turns_smoothly_in_the_page() {
     let Some(browser) = chromium() else { return };
-    let program = "examples/mtran/move_module.dr";
+    let program = "robots/mtran/examples/move_module.dr";
     let command = [
         "simulate",
         program,
         "--sequence",
         "left2right",
         "--from",
-        "examples/mtran/mtran-snake4.json",
+        "robots/mtran/examples/mtran-snake4.json",
         "--expect",
-        "examples/mtran/mtran-snake4-moved.json",
+        "robots/mtran/examples/mtran-snake4-moved.json",
     ];
     let (run, times) = recorded_at_samples("mtran", &command, 0);
     assert_eq!(run.recording["robot"], "mtran");
@@ -433,12 +433,12 @@ fn a_counterexample_plays_in_the_page_with_the_broken_property() {
     if !installed("spin", &[], "spin") {
         return;
     }
-    let program = "examples/verify/ab_c.dr";
+    let program = "robots/atron/examples/verify/ab_c.dr";
     let command = [
         "verify",
         program,
         "--from",
-        "examples/verify/line3.json",
+        "robots/atron/examples/verify/line3.json",
         "--protocol",
         "paper",
     ];
@@ -519,7 +519,7 @@ fn a_recording_becomes_a_video() {
         "--sequence",
         "eight2car",
         "--from",
-        "examples/atron/eight.json",
+        "robots/atron/examples/eight.json",
     ];
     let run = recorded(&dir, &command, &[], 0);
     let video = dir.join("run.mp4");

@@ -683,7 +683,10 @@ mod tests {
 
     /// protocol.md's `A; B & C; D;` (a sequential and a parallel unit for the paper switch).
     fn ir() -> Ir {
-        lowered(include_str!("../../../examples/verify/a_bc_d.dr"), "a_bc_d")
+        lowered(
+            include_str!("../../../robots/atron/examples/verify/a_bc_d.dr"),
+            "a_bc_d",
+        )
     }
 
     /// Every part of every template file is written by some model (none is dead text).

@@ -9,7 +9,7 @@ use dynarole_core::{analyze, parse};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-const FIG5: &str = include_str!("../../../examples/atron/fig5.dr");
+const FIG5: &str = include_str!("../../../robots/atron/examples/fig5.dr");
 
 fn options(protocol: Protocol) -> CompileOptions {
     CompileOptions {

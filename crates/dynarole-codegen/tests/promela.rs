@@ -13,7 +13,7 @@ use dynarole_core::lower::Ir;
 mod test_support;
 use test_support::{line, lowered};
 
-const AB_C: &str = include_str!("../../../examples/verify/ab_c.dr");
+const AB_C: &str = include_str!("../../../robots/atron/examples/verify/ab_c.dr");
 
 fn ir() -> Ir {
     lowered(AB_C, "ab_c")

@@ -8,7 +8,7 @@ use dynarole_core::lexer::lex;
 use dynarole_core::span::line_col;
 use dynarole_core::{analyze, parse, Diagnostic};
 
-const FIG5: &str = include_str!("../../../examples/atron/fig5.dr");
+const FIG5: &str = include_str!("../../../robots/atron/examples/fig5.dr");
 
 const SMALL: &str = "robot atron;
 role Wheel requires connected($CONNECTOR_1) && id != 0;
@@ -322,7 +322,7 @@ fn lower_pass_fig5() {
         ));
     }
     insta::assert_snapshot!(snapshot(
-        "(examples/atron/fig5.dr, sequence eight2car)",
+        "(robots/atron/examples/fig5.dr, sequence eight2car)",
         "lower",
         &out
     ));

@@ -7,9 +7,9 @@ use dynarole_core::{analyze, parse};
 use dynarole_recording::{poses_at, Builder, Recording, TraceEvent};
 
 const SOURCE: &str = "robot atron;\nsequence s {\n    M0.Connector[0].retract();\n    M3.Connector[4].retract();\n    M3.Joint.rotateFromToBy(0, 324, false, 150);\n}\n";
-const EIGHT: &str = include_str!("../../../examples/atron/eight.json");
-const MOVE_MODULE: &str = include_str!("../../../examples/mtran/move_module.dr");
-const SNAKE4: &str = include_str!("../../../examples/mtran/mtran-snake4.json");
+const EIGHT: &str = include_str!("../../../robots/atron/examples/eight.json");
+const MOVE_MODULE: &str = include_str!("../../../robots/mtran/examples/move_module.dr");
+const SNAKE4: &str = include_str!("../../../robots/mtran/examples/mtran-snake4.json");
 
 fn recording() -> Recording {
     let events = [

@@ -6,8 +6,8 @@ use dynarole_core::{analyze, parse};
 use dynarole_replay::{assign_modules, replay, RobotWorld};
 use dynarole_robot_atron::generated::atron_chain_json;
 
-const FIG5: &str = include_str!("../../../examples/atron/eight2car.dr");
-const EIGHT: &str = include_str!("../../../examples/atron/eight.json");
+const FIG5: &str = include_str!("../../../robots/atron/examples/eight2car.dr");
+const EIGHT: &str = include_str!("../../../robots/atron/examples/eight.json");
 
 /// 1,000 statements: latches in the middle released and re-made, and the last joints turned
 /// back and forth (each turn moves the short end, checked against all 10,000 modules).

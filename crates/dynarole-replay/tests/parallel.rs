@@ -13,11 +13,11 @@ use dynarole_robot_mtran::{MtranJoint, MtranWorld};
 use dynarole_world::{compare, Configuration};
 use proptest::prelude::*;
 
-const EIGHT2CAR: &str = include_str!("../../../examples/atron/eight2car.dr");
-const FIG5: &str = include_str!("../../../examples/atron/fig5.dr");
-const EIGHT: &str = include_str!("../../../examples/atron/eight.json");
-const CAR: &str = include_str!("../../../examples/atron/car.json");
-const SNAKE: &str = include_str!("../../../examples/atron/snake.json");
+const EIGHT2CAR: &str = include_str!("../../../robots/atron/examples/eight2car.dr");
+const FIG5: &str = include_str!("../../../robots/atron/examples/fig5.dr");
+const EIGHT: &str = include_str!("../../../robots/atron/examples/eight.json");
+const CAR: &str = include_str!("../../../robots/atron/examples/car.json");
+const SNAKE: &str = include_str!("../../../robots/atron/examples/snake.json");
 
 /// An ATRON structure to draw moves on: a chain of 3 to 7 modules, or one of the paper's
 /// seven-module shapes (which have loops, so latches can be made and released).

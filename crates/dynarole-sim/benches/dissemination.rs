@@ -16,9 +16,9 @@ use dynarole_core::{analyze, parse};
 use dynarole_sim::{Report, Run, Scenario, Simulator};
 use dynarole_world::Configuration;
 
-const EIGHT2CAR: &str = include_str!("../../../examples/atron/eight2car.dr");
-const EIGHT: &str = include_str!("../../../examples/atron/eight.json");
-const CAR: &str = include_str!("../../../examples/atron/car.json");
+const EIGHT2CAR: &str = include_str!("../../../robots/atron/examples/eight2car.dr");
+const EIGHT: &str = include_str!("../../../robots/atron/examples/eight.json");
+const CAR: &str = include_str!("../../../robots/atron/examples/car.json");
 /// One broadcast period of the fixed dissemination per hand-over (`DR_CONF_BROADCAST_MS`).
 const PERIOD_MS: u64 = 100;
 const LOSSES: [f64; 3] = [0.0, 0.3, 0.6];

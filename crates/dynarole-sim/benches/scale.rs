@@ -16,7 +16,7 @@
 //! (lattice phase (0,0,1)), taken row by row (z, then x) from (0, 0) in a square of side
 //! ceil(sqrt(2N)); NS_BROKEN modules at even-even sites, EW modules at odd-odd ones, every
 //! NS_BROKEN module latched to its EW neighbours exactly as in the paper's "eight"
-//! (`examples/atron/eight.json`, checked first; the generator is `tests/common/grid.rs`,
+//! (`robots/atron/examples/eight.json`, checked first; the generator is `tests/common/grid.rs`,
 //! shared with the memory test). Only the corner module (0, 0) has an ID (0,
 //! named `M0`): the others have none, so `dr_hal_id` answers 0xFFFF for them.
 
@@ -41,7 +41,7 @@ use std::time::Instant;
 #[global_allocator]
 static HEAP: Counting = Counting::new();
 
-const EIGHT: &str = include_str!("../../../examples/atron/eight.json");
+const EIGHT: &str = include_str!("../../../robots/atron/examples/eight.json");
 
 /// Sizes run by default, per preset: 100,000 modules with the `atron` preset takes about
 /// 5 minutes on its own (random power-on phases make every step touch another module's

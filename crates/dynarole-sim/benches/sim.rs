@@ -16,9 +16,9 @@ use dynarole_sim::{Preset, Run, Scenario, Simulator, Stepping};
 use dynarole_world::Configuration;
 use std::time::Instant;
 
-const EIGHT2CAR: &str = include_str!("../../../examples/atron/eight2car.dr");
-const EIGHT: &str = include_str!("../../../examples/atron/eight.json");
-const CAR: &str = include_str!("../../../examples/atron/car.json");
+const EIGHT2CAR: &str = include_str!("../../../robots/atron/examples/eight2car.dr");
+const EIGHT: &str = include_str!("../../../robots/atron/examples/eight.json");
+const CAR: &str = include_str!("../../../robots/atron/examples/car.json");
 /// The runtime's broadcast period (`DR_CONF_BROADCAST_MS`): what a hand-over costs at most
 /// when no packet is lost.
 const BROADCAST_MS: u64 = 100;

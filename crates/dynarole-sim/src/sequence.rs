@@ -197,7 +197,7 @@ mod tests {
     /// statement of eight2car (groups, a chain, several modules) and its reverse.
     #[test]
     fn transitive_dependents_are_the_irs() {
-        let source = include_str!("../../../examples/atron/eight2car.dr");
+        let source = include_str!("../../../robots/atron/examples/eight2car.dr");
         let parsed = parse(source);
         let (program, diagnostics) = analyze(&parsed.file, &dynarole_robots::plugins());
         let program = program.unwrap_or_else(|| panic!("{diagnostics:?}"));

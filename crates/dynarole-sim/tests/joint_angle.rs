@@ -6,8 +6,11 @@ use dynarole_core::robot::JointAngle;
 
 /// A configuration of each built-in robot, by plugin name.
 const STARTS: [(&str, &str); 2] = [
-    ("atron", "../../examples/atron/eight.json"),
-    ("mtran", "../../examples/mtran/mtran-snake4-moved.json"),
+    ("atron", "../../robots/atron/examples/eight.json"),
+    (
+        "mtran",
+        "../../robots/mtran/examples/mtran-snake4-moved.json",
+    ),
 ];
 
 /// Angles a turn may take on `robot`: its plugin's listed values, or its range in steps.

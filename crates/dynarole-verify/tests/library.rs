@@ -15,8 +15,8 @@ fn repo(path: &str) -> PathBuf {
         .join(path)
 }
 
-const SOURCE: &str = "examples/verify/ab_c.dr";
-const LINE: &str = "examples/verify/line3.json";
+const SOURCE: &str = "robots/atron/examples/verify/ab_c.dr";
+const LINE: &str = "robots/atron/examples/verify/line3.json";
 
 fn options(protocol: Protocol, merge: PaperMerge) -> BuildOptions {
     BuildOptions {

@@ -114,7 +114,10 @@ mod tests {
     /// the model carry the one value (the paper protocol's image has no batch).
     #[test]
     fn the_model_and_the_image_share_the_batch() {
-        let ir = lowered(include_str!("../../../../examples/verify/ab_c.dr"), "ab_c");
+        let ir = lowered(
+            include_str!("../../../../robots/atron/examples/verify/ab_c.dr"),
+            "ab_c",
+        );
         let registry = dynarole_robots::plugins();
         let robot = registry.get(&ir.robot).expect("a built-in robot");
         let conf = |protocol| {

@@ -9,56 +9,59 @@ use dynarole_world::{Configuration, OpError, Outcome};
 pub const FILES: [(&str, &str); 14] = [
     (
         "eight",
-        include_str!("../../../../examples/atron/eight.json"),
+        include_str!("../../../../robots/atron/examples/eight.json"),
     ),
-    ("car", include_str!("../../../../examples/atron/car.json")),
+    (
+        "car",
+        include_str!("../../../../robots/atron/examples/car.json"),
+    ),
     (
         "snake",
-        include_str!("../../../../examples/atron/snake.json"),
+        include_str!("../../../../robots/atron/examples/snake.json"),
     ),
     (
         "car-xml",
-        include_str!("../../../../examples/atron/car-xml.json"),
+        include_str!("../../../../robots/atron/examples/car-xml.json"),
     ),
     (
         "car-builder4",
-        include_str!("../../../../examples/atron/car-builder4.json"),
+        include_str!("../../../../robots/atron/examples/car-builder4.json"),
     ),
     (
         "snake-builder4",
-        include_str!("../../../../examples/atron/snake-builder4.json"),
+        include_str!("../../../../robots/atron/examples/snake-builder4.json"),
     ),
     (
         "rotation-chain-1",
-        include_str!("../../../../examples/atron/rotation-chain-1.json"),
+        include_str!("../../../../robots/atron/examples/rotation-chain-1.json"),
     ),
     (
         "rotation-chain-5",
-        include_str!("../../../../examples/atron/rotation-chain-5.json"),
+        include_str!("../../../../robots/atron/examples/rotation-chain-5.json"),
     ),
     (
         "rotation-chain-10",
-        include_str!("../../../../examples/atron/rotation-chain-10.json"),
+        include_str!("../../../../robots/atron/examples/rotation-chain-10.json"),
     ),
     (
         "rotation-chain-15",
-        include_str!("../../../../examples/atron/rotation-chain-15.json"),
+        include_str!("../../../../robots/atron/examples/rotation-chain-15.json"),
     ),
     (
         "rotation-chain-20",
-        include_str!("../../../../examples/atron/rotation-chain-20.json"),
+        include_str!("../../../../robots/atron/examples/rotation-chain-20.json"),
     ),
     (
         "mtran-snake4",
-        include_str!("../../../../examples/mtran/mtran-snake4.json"),
+        include_str!("../../../../robots/mtran/examples/mtran-snake4.json"),
     ),
     (
         "mtran-snake5",
-        include_str!("../../../../examples/mtran/mtran-snake5.json"),
+        include_str!("../../../../robots/mtran/examples/mtran-snake5.json"),
     ),
     (
         "mtran-snake8",
-        include_str!("../../../../examples/mtran/mtran-snake8.json"),
+        include_str!("../../../../robots/mtran/examples/mtran-snake8.json"),
     ),
 ];
 

@@ -10,9 +10,9 @@ use dynarole_core::{driver, parse};
 use dynarole_sim::{Report, Run, Scenario, Simulator};
 use dynarole_world::Configuration;
 
-pub const EIGHT2CAR: &str = include_str!("../../../../examples/atron/eight2car.dr");
-pub const EIGHT: &str = include_str!("../../../../examples/atron/eight.json");
-pub const CAR: &str = include_str!("../../../../examples/atron/car.json");
+pub const EIGHT2CAR: &str = include_str!("../../../../robots/atron/examples/eight2car.dr");
+pub const EIGHT: &str = include_str!("../../../../robots/atron/examples/eight.json");
+pub const CAR: &str = include_str!("../../../../robots/atron/examples/car.json");
 
 pub fn options(protocol: Protocol) -> CompileOptions {
     CompileOptions {
