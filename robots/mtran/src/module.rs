@@ -1,4 +1,4 @@
-//! The M-TRAN module model (see `MTRAN.md`): two blocks joined by a link through two joints,
+//! The M-TRAN module model (see `README.md`): two blocks joined by a link through two joints,
 //! on an idealised cubic block lattice, and the validated M-TRAN configuration.
 //!
 //! Units: positions are kept in *quarter pitches* (0.035 m), half the file's unit, so that

@@ -1,5 +1,5 @@
 //! The M-TRAN world: an M-TRAN configuration mutated by connect, disconnect and joint turns,
-//! with the same acceptance rules as the ATRON world (see `MTRAN.md`).
+//! with the same acceptance rules as the ATRON world (see `README.md`).
 
 use crate::module::{
     MtranConfiguration, MtranJoint, MtranModule, MtranOrientation, MTRAN_JOINT_LIMIT_DEG,
