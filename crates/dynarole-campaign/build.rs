@@ -1,5 +1,6 @@
 //! The source a build of dynarole was made from, as one hash (`DYNAROLE_SOURCE`): every
-//! crate's `src/`, manifest and build script, the C runtime and `Cargo.lock`, read in path
+//! crate's and robot folder's `src/`, manifest and build script (and a robot's plugin), the C
+//! runtime and `Cargo.lock`, read in path
 //! order (tests, examples and docs change no result and are left out). A campaign records it with the version (`inputs.rs`), so that rows computed by two
 //! builds of one version from different code are never merged or resumed together. Debug and
 //! release builds of one source, on any machine, give the same hash.
@@ -20,6 +21,18 @@ fn main() {
         .flatten();
     for krate in crates.map(|e| e.path()).filter(|p| p.is_dir()) {
         watched.extend(["src", "Cargo.toml", "build.rs"].map(|part| krate.join(part)));
+    }
+    // Each robot folder is a crate too, with its plugin (`NAME.robot.toml`) beside the manifest.
+    let robots = std::fs::read_dir(root.join("robots"))
+        .into_iter()
+        .flatten()
+        .flatten();
+    for robot in robots.map(|e| e.path()).filter(|p| p.is_dir()) {
+        watched.extend(["src", "Cargo.toml", "build.rs"].map(|part| robot.join(part)));
+        let plugins = std::fs::read_dir(&robot).into_iter().flatten().flatten();
+        watched.extend(
+            (plugins.map(|e| e.path())).filter(|p| p.to_string_lossy().ends_with(".robot.toml")),
+        );
     }
     for path in &watched {
         println!("cargo:rerun-if-changed={}", path.display());
