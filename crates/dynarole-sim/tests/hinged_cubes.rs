@@ -1,20 +1,44 @@
-//! A robot defined only here (`fixtures/hinged_cubes/`: its plugin and its model of a chain
-//! of hinged cubes) goes through the whole tool without any change to the tool's crates: the
-//! checker with its plugin, the replay and independence check on its model, and the simulator
-//! running the generated C on every cube, each reaching the expected ring.
+//! A robot defined outside the tool's crates (the hinged cubes of the `dynarole-cli` crate's
+//! `hinged_cubes` example, its one copy) goes through the tool's libraries: the checker with
+//! its plugin, the replay and independence check on its model, and the simulator running the
+//! generated C on every cube, each reaching the expected ring.
 
-#[path = "fixtures/hinged_cubes/mod.rs"]
+// Parts of the robot only its program uses (the kind's drawing, say) are unused here.
+#[allow(dead_code)]
+#[path = "../../dynarole-cli/examples/hinged_cubes/robot/mod.rs"]
 mod hinged_cubes;
 
 use dynarole_codegen::{CompileOptions, Protocol};
 use dynarole_core::{driver, parse, Program, RobotApi};
 use dynarole_replay::{assign_modules_on, check_independence, replay, RobotWorld};
 use dynarole_sim::{ModelRun, Scenario, Simulator};
-use dynarole_world::RobotModel;
-use hinged_cubes::{Cubes, PLUGIN, RING};
+use dynarole_world::{RobotKind, RobotModel};
+
+/// A program for it: fold a line of four cubes into a closed ring, and back.
+const RING: &str = include_str!("../../dynarole-cli/examples/hinged_cubes/ring.dr");
 
 fn plugin() -> RobotApi {
-    RobotApi::from_toml(PLUGIN).expect("the fixture's plugin loads")
+    RobotApi::from_toml(hinged_cubes::KIND.plugin().1).expect("the robot's plugin loads")
+}
+
+/// The model that starts from one of the robot's data files.
+fn model(json: &str) -> Box<dyn RobotModel> {
+    let config = hinged_cubes::KIND.read_configuration(json);
+    config.expect("a cubes data file").into_model()
+}
+
+/// The line of four cubes, each latched to the next.
+fn line4() -> Box<dyn RobotModel> {
+    model(include_str!(
+        "../../dynarole-cli/examples/hinged_cubes/line4.json"
+    ))
+}
+
+/// The line folded into a closed ring.
+fn ring4() -> Box<dyn RobotModel> {
+    model(include_str!(
+        "../../dynarole-cli/examples/hinged_cubes/ring4.json"
+    ))
 }
 
 /// `source` checked by the program driver, with the plugin found beside it.
@@ -34,9 +58,13 @@ fn check(parsed: &dynarole_core::Parsed) -> Program<'_> {
 
 /// `sequence` replayed on `start`; the end, and every diagnostic of the replay and of the
 /// independence check.
-fn replayed(program: &Program, sequence: &str, start: Cubes) -> (RobotWorld, Vec<String>) {
+fn replayed(
+    program: &Program,
+    sequence: &str,
+    start: Box<dyn RobotModel>,
+) -> (RobotWorld, Vec<String>) {
     let plans = driver::plans(program, &[sequence.to_string()]).expect("sequence");
-    let world = RobotWorld::from_model(Box::new(start), &program.robot).expect("a cubes model");
+    let world = RobotWorld::from_model(start, &program.robot).expect("a cubes model");
     let assignment = assign_modules_on(program, &plans, world.view()).expect("labels");
     let done = replay(program, &plans, world.clone(), &assignment);
     let mut problems: Vec<String> = done
@@ -72,9 +100,9 @@ fn the_plugin_declares_what_each_operation_does() {
 fn the_ring_replays_on_the_model_and_reverses() {
     let parsed = parse(RING);
     let program = check(&parsed);
-    let (end, problems) = replayed(&program, "ring", Cubes::line(4));
+    let (end, problems) = replayed(&program, "ring", line4());
     assert!(problems.is_empty(), "{problems:?}");
-    assert_eq!(end.model().difference(&Cubes::ring()), None);
+    assert_eq!(end.model().difference(ring4().as_ref()), None);
     assert_eq!(
         end.view()
             .latched_to(dynarole_world::Port {
@@ -84,9 +112,9 @@ fn the_ring_replays_on_the_model_and_reverses() {
             .map(|p| p.module),
         Some(0)
     );
-    let (back, problems) = replayed(&program, "open", Cubes::ring());
+    let (back, problems) = replayed(&program, "open", ring4());
     assert!(problems.is_empty(), "{problems:?}");
-    assert_eq!(back.model().difference(&Cubes::line(4)), None);
+    assert_eq!(back.model().difference(line4().as_ref()), None);
 }
 
 #[test]
@@ -97,19 +125,19 @@ fn the_model_refuses_what_the_cubes_cannot_do() {
     );
     let parsed = parse(&source);
     let program = check(&parsed);
-    let (end, problems) = replayed(&program, "ring", Cubes::line(4));
+    let (end, problems) = replayed(&program, "ring", line4());
     assert!(
         problems.iter().any(|p| p.contains("nothing to latch onto")),
         "latching before the ring is closed: {problems:?}"
     );
-    assert!(end.model().difference(&Cubes::ring()).is_some());
+    assert!(end.model().difference(ring4().as_ref()).is_some());
     let locked = RING.replace(
         "sequence open = reverse ring;",
         "sequence more {\n    M0.Hinge.bend(90, 0, false, 100);\n}",
     );
     let parsed = parse(&locked);
     let program = check(&parsed);
-    let (_, problems) = replayed(&program, "more", Cubes::ring());
+    let (_, problems) = replayed(&program, "more", ring4());
     assert!(problems.iter().any(|p| p.contains("loop")), "{problems:?}");
 }
 
@@ -119,7 +147,7 @@ fn a_model_of_another_robot_is_refused() {
         .get("atron")
         .cloned()
         .expect("built in");
-    let refused = RobotWorld::from_model(Box::new(Cubes::line(2)), &atron).expect_err("not atron");
+    let refused = RobotWorld::from_model(line4(), &atron).expect_err("not atron");
     assert!(refused.contains("robot `cubes`"), "{refused}");
 }
 
@@ -134,13 +162,14 @@ fn the_generated_c_folds_the_ring_on_every_cube() {
         ..CompileOptions::default()
     };
     let sim = Simulator::new(&program, &plans, &options).expect("compiles");
-    let (start, ring) = (Cubes::line(4), Cubes::ring());
+    let (start, ring) = (line4(), ring4());
+    let (start, ring) = (start.as_ref(), ring.as_ref());
     let scenario = Scenario::default();
     for seed in [1, 2] {
         let report = sim
             .run_model(&ModelRun {
-                start: &start,
-                expect: Some(&ring as &dyn RobotModel),
+                start,
+                expect: Some(ring),
                 scenario: &scenario,
                 seed,
                 trace: false,
@@ -152,8 +181,8 @@ fn the_generated_c_folds_the_ring_on_every_cube() {
     }
     let unfolded = sim
         .run_model(&ModelRun {
-            start: &start,
-            expect: Some(&start as &dyn RobotModel),
+            start,
+            expect: Some(start),
             scenario: &scenario,
             seed: 1,
             trace: false,
