@@ -264,7 +264,10 @@ fn shards_and_resumes_of_other_inputs_are_refused() {
     // An edit of the program after some runs: a resumed one-machine campaign is refused.
     let one = root.path().join("one");
     run_from(&a, &one, None, Some(3)).expect("three runs");
-    append(&root.path().join("a/robots/atron/examples/eight2car.dr"), "// edited\n");
+    append(
+        &root.path().join("a/robots/atron/examples/eight2car.dr"),
+        "// edited\n",
+    );
     let resumed = error_of(run_from(&a, &one, None, None));
     assert!(
         resumed.contains("the 3 runs of ")

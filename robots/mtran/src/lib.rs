@@ -16,13 +16,8 @@ use dynarole_world::{ConfigError, Configuration, Drawing, NetworkPreset, RobotKi
 
 /// M-TRAN's network is not modelled on its own: its runs use the ATRON board's model (one
 /// half-duplex transceiver per block, random power-on in the first 100 ms, 20 ms broadcast
-/// jitter), under that preset's name, as they always have.
-pub const NETWORK_PRESETS: [NetworkPreset; 1] = [NetworkPreset {
-    name: "atron",
-    half_duplex_sides: true,
-    power_on_spread_us: 100_000,
-    jitter_ms: 20,
-}];
+/// jitter), that robot's own preset under its name, as they always have.
+pub const NETWORK_PRESETS: [NetworkPreset; 1] = dynarole_robot_atron::NETWORK_PRESETS;
 
 /// The M-TRAN robot kind.
 pub struct Mtran;
