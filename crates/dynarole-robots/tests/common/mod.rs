@@ -1,9 +1,9 @@
-//! Shared helpers for the integration tests: the data files (embedded at compile time, so the
-//! tests need nothing outside the crate) and a tiny statement type for replaying sequences.
+//! Shared by the registry's cross-robot tests: every robot's data files (embedded at compile
+//! time), read by the registry.
 #![allow(dead_code)]
 
-use dynarole_robot_atron::{AtronConfiguration, World};
-use dynarole_world::{Configuration, OpError, Outcome};
+use dynarole_robot_atron::AtronConfiguration;
+use dynarole_world::Configuration;
 
 /// Every data file, by name.
 pub const FILES: [(&str, &str); 14] = [
@@ -85,43 +85,4 @@ pub fn load_atron(name: &str) -> Result<AtronConfiguration, String> {
         .downcast_ref::<dynarole_robot_atron::AtronConfiguration>()
         .cloned()
         .ok_or_else(|| format!("{name} is not ATRON"))
-}
-
-/// One ATRON API call of a DynaRole sequence.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Statement {
-    Extend(&'static str, u8),
-    Retract(&'static str, u8),
-    /// module, from, to, direction (true = increasing)
-    Rotate(&'static str, u16, u16, bool),
-}
-
-impl Statement {
-    /// The reverse operation (DynaRole's reversal rules).
-    pub fn reversed(self) -> Statement {
-        match self {
-            Statement::Extend(m, c) => Statement::Retract(m, c),
-            Statement::Retract(m, c) => Statement::Extend(m, c),
-            Statement::Rotate(m, f, t, d) => Statement::Rotate(m, t, f, !d),
-        }
-    }
-
-    /// Runs the statement on `world`.
-    pub fn run(self, world: &mut World) -> Result<Outcome, OpError> {
-        match self {
-            Statement::Extend(m, c) => world.extend(m, c),
-            Statement::Retract(m, c) => world.retract(m, c),
-            Statement::Rotate(m, f, t, d) => world.rotate(m, f, t, d),
-        }
-    }
-}
-
-/// Reverses a sequence of parallel groups: groups in reverse order, members in reverse order,
-/// each statement reversed.
-pub fn reverse(groups: &[Vec<Statement>]) -> Vec<Vec<Statement>> {
-    groups
-        .iter()
-        .rev()
-        .map(|g| g.iter().rev().map(|s| s.reversed()).collect())
-        .collect()
 }

@@ -3,11 +3,8 @@
 //! connectors and 90-degree joint moves within -90..90, and the automatically reversed
 //! sequence moves it back.
 
-mod common;
-
-use common::{load, text};
 use dynarole_robot_mtran::{MtranJoint, MtranWorld};
-use dynarole_world::{compare, Configuration, OpError, Warning};
+use dynarole_world::{compare, Configuration, OpError, RobotKind, Warning};
 use serde_json::{json, Value};
 use MtranJoint::North;
 
@@ -71,7 +68,8 @@ fn replay(world: &mut MtranWorld, sequence: &[Statement]) -> Result<(), String> 
             return Err(format!("step {i} {statement:?}: {warnings:?}"));
         }
         let text = Configuration::new(world.configuration().clone()).to_json_string();
-        dynarole_robots::read_configuration(&text)
+        dynarole_robot_mtran::KIND
+            .read_configuration(&text)
             .map_err(|e| format!("step {i}: invalid: {e}"))?;
     }
     Ok(())
@@ -89,7 +87,9 @@ fn expected_result() -> Result<Configuration, String> {
         ["T13", 0, "T12", 3],
         ["T10", 0, "T13", 3]
     ]);
-    dynarole_robots::read_configuration(&value.to_string()).map_err(|e| e.to_string())
+    dynarole_robot_mtran::KIND
+        .read_configuration(&value.to_string())
+        .map_err(|e| e.to_string())
 }
 
 fn start() -> Result<MtranWorld, String> {
@@ -231,4 +231,18 @@ fn a_closed_ring_cannot_turn() -> Result<(), String> {
     let err = world.rotate("T12", North, 90, 0, false);
     assert!(matches!(err, Err(OpError::JointLocked { .. })), "{err:?}");
     Ok(())
+}
+
+/// The text of one of this robot's examples.
+fn text(name: &str) -> Result<&'static str, String> {
+    match name {
+        "mtran-snake4" => Ok(include_str!("../examples/mtran-snake4.json")),
+        "mtran-snake4-moved" => Ok(include_str!("../examples/mtran-snake4-moved.json")),
+        other => Err(format!("no data file {other}")),
+    }
+}
+
+/// One of this robot's examples, read by its own kind.
+fn load(name: &str) -> Result<Configuration, String> {
+    (dynarole_robot_mtran::KIND.read_configuration(text(name)?)).map_err(|e| format!("{name}: {e}"))
 }

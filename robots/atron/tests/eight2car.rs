@@ -4,8 +4,8 @@
 mod common;
 
 use common::{load, load_atron, reverse, Statement};
-use dynarole_robot_atron::{World, MIN_SWEEP_DISTANCE_LATTICE};
-use dynarole_world::{compare, Configuration};
+use dynarole_robot_atron::{World, KIND, MIN_SWEEP_DISTANCE_LATTICE};
+use dynarole_world::{compare, Configuration, RobotKind};
 use Statement::{Extend, Retract, Rotate};
 
 /// Fig. 5, corrected for OCR (MO = M0, `$CONNECTOR 4` = `$CONNECTOR_4`), as parallel groups.
@@ -52,7 +52,7 @@ fn replay(start: World, groups: &[Vec<Statement>]) -> Result<(World, f64), Strin
                 closest = closest.min(d);
             }
             let text = Configuration::new(world.configuration().clone()).to_json_string();
-            dynarole_robots::read_configuration(&text)
+            KIND.read_configuration(&text)
                 .map_err(|e| format!("group {g}: {statement:?} left an invalid world: {e}"))?;
         }
     }
