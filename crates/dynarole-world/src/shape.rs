@@ -65,7 +65,13 @@ pub enum Action {
 /// Where a packet sent on `port` goes on a robot whose connectors talk through a latch or,
 /// unlatched, from a male connector to the free female connector facing it: the rule a robot
 /// may give as its `link_target`.
-pub fn latched_or_male_to_free_female(shape: &dyn RobotShape, port: Port) -> Option<Port> {
+///
+/// Generic, so that a robot's own `link_target` calls its queries directly (the simulator asks
+/// this for every connector whenever the topology changes).
+pub fn latched_or_male_to_free_female<S: RobotShape + ?Sized>(
+    shape: &S,
+    port: Port,
+) -> Option<Port> {
     if let Some(p) = shape.latched_to(port) {
         return Some(p);
     }
