@@ -196,12 +196,12 @@ mod tests {
 
     #[test]
     fn records_read_back_and_name_what_changed() {
-        let before = record("robot atron;");
+        let before = record("robot snakebot;");
         let text = before.to_text();
         assert_eq!(Fingerprint::parse(&text), (Some(before.clone()), 4));
-        assert!(before.changes(&record("robot atron;")).is_empty());
+        assert!(before.changes(&record("robot snakebot;")).is_empty());
         assert_eq!(
-            before.changes(&record("robot atron; // edited")),
+            before.changes(&record("robot snakebot; // edited")),
             vec!["another program: a b.dr changed".to_string()]
         );
         assert_eq!(Fingerprint::parse("run,axis\n"), (None, 0));
@@ -217,7 +217,7 @@ mod tests {
             source.len() == 16 && source.chars().all(|c| c.is_ascii_hexdigit()),
             "{source}"
         );
-        let now = record("robot atron;");
+        let now = record("robot snakebot;");
         let text = now.to_text().replace(source, "0123456789abcdef");
         let (before, _) = Fingerprint::parse(&text);
         let changes = before.expect("a record").changes(&now);

@@ -257,7 +257,7 @@ mod dissemination_tests {
     #[test]
     fn lattice_fixed_selects_the_fixed_dissemination() {
         let campaign: CampaignFile = toml::from_str(
-            "file = \"a.dr\"\nsequences = [\"s\"]\nfrom = \"a.json\"\nprotocols = [\"lattice\", \"lattice-fixed\"]\npreset = \"atron\"\nseeds = 1\n",
+            "file = \"a.dr\"\nsequences = [\"s\"]\nfrom = \"a.json\"\nprotocols = [\"lattice\", \"lattice-fixed\"]\nseeds = 1\n",
         )
         .expect("parses");
         let fixed = compile_options(&campaign, Variant::LatticeFixed);

@@ -66,7 +66,7 @@ mod tests {
     use crate::ast::Item;
     use crate::parse;
 
-    const FILE: &str = "robot atron;\nrole M0 requires id == 0;\n\
+    const FILE: &str = "robot snakebot;\nrole M0 requires id == 0;\n\
         sequence a { M0.Connector[0].retract(); }\n\
         sequence b { a(); }\n\
         sequence c { M0.Connector[0].extend(); }\n\

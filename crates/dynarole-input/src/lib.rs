@@ -110,8 +110,8 @@ mod tests {
 
     #[test]
     fn reads_text() {
-        let path = scratch("ok.dr", b"robot atron;\n");
-        assert_eq!(read_input(&path).expect("read"), "robot atron;\n");
+        let path = scratch("ok.dr", b"robot snakebot;\n");
+        assert_eq!(read_input(&path).expect("read"), "robot snakebot;\n");
     }
 
     #[test]
