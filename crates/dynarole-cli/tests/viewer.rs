@@ -164,7 +164,7 @@ fn interesting_times() -> Vec<f64> {
         .as_array()
         .expect("motions")
         .iter()
-        .filter(|m| !m["turn"].is_null() && m["outcome"] == "done")
+        .filter(|m| !m["path"].is_null() && m["outcome"] == "done")
         .take(3);
     for m in turns {
         let (a, b) = (m["start_ms"].as_f64(), m["end_ms"].as_f64());
@@ -364,7 +364,7 @@ fn sample_times(recording: &Value) -> Vec<f64> {
     let end = recording["end_ms"].as_f64().expect("end");
     let mut times: Vec<f64> = (0..8).map(|k| end * f64::from(k) / 8.0).collect();
     for m in recording["motions"].as_array().expect("motions") {
-        if !m["turn"].is_null() && m["outcome"] == "done" {
+        if !m["path"].is_null() && m["outcome"] == "done" {
             let (a, b) = (m["start_ms"].as_f64(), m["end_ms"].as_f64());
             if let (Some(a), Some(b)) = (a, b) {
                 times.push(a + (b - a) * 0.61);
@@ -419,10 +419,80 @@ fn an_mtran_simulation_turns_smoothly_in_the_page() {
         .as_array()
         .expect("motions")
         .iter()
-        .filter(|m| !m["turn"].is_null())
+        .filter(|m| !m["path"].is_null())
         .count();
     assert_eq!(turns, 8, "every joint turn of left2right has a motion");
     check_page(&browser, &run, &times, program);
+}
+
+/// Legs of every kind: a recording whose first two turns are rewritten as a slide then the
+/// turn, and as a corner slide (two translations), is shown by the page where `view
+/// --poses-at` (the Rust reader, `dynarole_world::Motion`) puts every module mid-motion.
+#[test]
+fn the_page_moves_what_a_path_carries_along_legs_of_every_kind() {
+    let Some(browser) = chromium() else { return };
+    let dir = scratch("legs");
+    let mut recording = simulate(&dir, &[]).recording;
+    let motions = recording["motions"].as_array_mut().expect("motions");
+    let moving: Vec<usize> = (0..motions.len())
+        .filter(|&k| !motions[k]["path"].is_null() && motions[k]["outcome"] == "done")
+        .filter(|&k| motions[k]["end_ms"].as_f64() > motions[k]["start_ms"].as_f64())
+        .take(2)
+        .collect();
+    assert_eq!(moving.len(), 2, "two turns to rewrite");
+    let turn = motions[moving[0]]["path"]["legs"][0].clone();
+    motions[moving[0]]["path"]["legs"] =
+        serde_json::json!([{"translate": {"by": [0.5, 0.0, 0.25]}}, turn]);
+    motions[moving[1]]["path"]["legs"] = serde_json::json!([
+        {"translate": {"by": [0.0, 1.0, 0.0]}},
+        {"translate": {"by": [0.0, 0.0, -1.0]}}
+    ]);
+    let mut times = Vec::new();
+    for k in &moving {
+        let (a, b) = (
+            motions[*k]["start_ms"].as_f64(),
+            motions[*k]["end_ms"].as_f64(),
+        );
+        let (a, b) = (a.expect("start"), b.expect("end"));
+        // Whole microseconds, so that the page's times compare exactly.
+        let at = |f: f64| ((a + (b - a) * f) * 1000.0).round() / 1000.0;
+        times.extend([at(0.2), at(0.5), at(0.8)]);
+    }
+    let file = dir.join("legs.json");
+    let written = serde_json::to_string(&recording).expect("serialises");
+    std::fs::write(&file, written).expect("written");
+    let page = dir.join("legs.html");
+    let (file_arg, page_arg) = (file.to_str().expect("utf-8"), page.to_str().expect("utf-8"));
+    let joined = time_list(&times);
+    let out = dynarole(&["view", file_arg, "-o", page_arg, "--poses-at", &joined]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let expected: Vec<Value> = text(&out.stdout)
+        .lines()
+        .filter(|l| l.starts_with("{\"modules\""))
+        .map(|l| serde_json::from_str(l).expect("a pose line"))
+        .collect();
+    assert_eq!(expected.len(), times.len());
+    let shown = probe(&browser, &page, &times);
+    let samples = shown["samples"].as_array().expect("samples");
+    let mut off_lattice = false;
+    for ((sample, expected), t) in samples.iter().zip(&expected).zip(&times) {
+        let modules = expected["modules"].as_array().expect("modules");
+        let positions = sample["positions"].as_array().expect("positions");
+        for (p, m) in positions.iter().zip(modules) {
+            let (page, reader) = (numbers(p), numbers(&m["centre"]));
+            let apart = page.iter().zip(&reader).any(|(a, b)| (a - b).abs() > 1e-6);
+            assert!(
+                !apart,
+                "at {t} ms {}: page {page:?}, reader {reader:?}",
+                m["name"]
+            );
+            off_lattice |= reader.iter().any(|x| (x * 4.0).fract().abs() > 1e-3);
+        }
+    }
+    assert!(
+        off_lattice,
+        "no sample caught a module part-way along a leg"
+    );
 }
 
 /// The paper protocol's race on `A & B; C;`: the trail's steps on the robot, and S1 named

@@ -1,18 +1,17 @@
 //! Builds a recording from a run's events, replaying its operations on the world model: a
-//! turn's motion is what `RobotWorld::turn_motion` says when it starts, an operation's effect
+//! motion is what `RobotWorld::motion` says when it starts, an operation's effect
 //! what `RobotWorld::apply` does when it completes, exactly as the simulator does them.
 
 use crate::format::{
-    ConnectorInfo, Event, Keyframe, LatchLink, Marker, ModuleInfo, Motion, PacketArc, Pose,
-    Recording, SourceText, StatementInfo, Turn, FORMAT_VERSION,
+    ConnectorInfo, Event, Keyframe, LatchLink, Marker, ModuleInfo, Motion, PacketArc, Path, Pose,
+    Recording, SourceText, StatementInfo, FORMAT_VERSION,
 };
 use crate::pose::{latches, poses};
 use crate::trace_event::{Mark, Operation, TraceEvent};
 use dynarole_core::check::ResolvedStatement;
 use dynarole_core::robot::RobotApi;
 use dynarole_replay::RobotWorld;
-use dynarole_world::geometry::to_f64;
-use dynarole_world::{Configuration, TurnMotion, View};
+use dynarole_world::{Configuration, View};
 
 /// Keyframes every second of run time in which the world changed: a seek replays at most a
 /// second of motions (a keyframe is left out while nothing moves; the last one still holds).
@@ -164,12 +163,12 @@ impl<'r> Builder<'r> {
         start_ms: f64,
         m: usize,
         s: usize,
-        duration: &dyn Fn(usize, Option<&Turn>) -> f64,
+        duration: &dyn Fn(usize, Option<&Path>) -> f64,
     ) -> (f64, Option<String>) {
         let label = format!("#{s} {}", self.statement_text(s));
         self.event(start_ms, Some(m), TraceEvent::Start, "-", &label);
-        let turn = self.recording.motions.last().and_then(|x| x.turn.clone());
-        let end_ms = start_ms + duration(s, turn.as_ref());
+        let path = self.last_path();
+        let end_ms = start_ms + duration(s, path.as_ref());
         let refusal = self.statements.get(s).and_then(|statement| {
             let mut trial = self.world.clone();
             trial
@@ -189,9 +188,9 @@ impl<'r> Builder<'r> {
         (end_ms, refusal)
     }
 
-    /// The turn of the operation started last, if it is one.
-    pub fn last_turn(&self) -> Option<Turn> {
-        self.recording.motions.last().and_then(|x| x.turn.clone())
+    /// The path of the operation started last, if it moves something.
+    pub fn last_path(&self) -> Option<Path> {
+        self.recording.motions.last().and_then(|x| x.path.clone())
     }
 
     fn statement_text(&self, s: usize) -> String {
@@ -232,79 +231,51 @@ impl<'r> Builder<'r> {
     }
 
     fn op_start(&mut self, time_ms: f64, m: usize, s: usize) {
-        let turn = self.turn(m, s);
+        let path = self.path(m, s);
         self.recording.motions.push(Motion {
             statement: s,
             module: m,
             start_ms: time_ms,
             end_ms: time_ms,
             outcome: "running".into(),
-            turn,
+            path,
             latched: Vec::new(),
             released: Vec::new(),
             after: Vec::new(),
         });
     }
 
-    /// The turn a statement starts, as the world model plans it (`None` for other operations).
-    fn turn(&self, m: usize, s: usize) -> Option<Turn> {
+    /// The path of the operation a statement starts, as the world model plans it (`None` for
+    /// one that moves nothing the drawing shows): its legs, and what it carries by index.
+    fn path(&self, m: usize, s: usize) -> Option<Path> {
         let statement = self.statements.get(s)?;
-        let name = self.module_name(m);
-        let motion = self.world.turn_motion(self.robot, statement, &name)?;
-        let view = self.world.view();
-        // The model may list several moving points per module (one per part, the turner's own
-        // moving part among them); the recording lists each other module once and the
-        // turner's moving part apart.
-        let mut moving: Vec<usize> = motion
-            .moving
-            .iter()
-            .filter_map(|(n, _)| view.index(n))
-            .filter(|&i| i != m)
-            .collect();
-        moving.sort_unstable();
-        moving.dedup();
-        let part = self.moving_part(m, statement, &name, &motion)?;
-        Some(Turn {
-            pivot: motion.pivot,
-            axis: to_f64(motion.axis),
-            angle_deg: motion.angle_deg,
-            moving,
-            part,
-        })
-    }
-
-    /// Which part of the turning module moves: the part at the point the model lists as the
-    /// turner's own moving one (the last, where parts share a centre), else the part of the
-    /// first connector the completed turn (done on a copy of the world) carries elsewhere,
-    /// else the last part.
-    fn moving_part(
-        &self,
-        m: usize,
-        statement: &ResolvedStatement,
-        name: &str,
-        motion: &TurnMotion,
-    ) -> Option<u8> {
-        let before = poses(&self.configuration());
-        let own = motion.moving.iter().find(|(n, _)| n == name);
-        let last = before.get(m).map_or(0, |p| p.parts.len().saturating_sub(1));
-        let index = |part: usize| u8::try_from(part).ok();
-        if let (Some((_, centre)), Some(pose)) = (own, before.get(m)) {
-            let at = pose.parts.iter().rposition(|p| p.centre == *centre);
-            return index(at.unwrap_or(0));
+        let motion = self
+            .world
+            .motion(self.robot, statement, &self.module_name(m))?;
+        if !motion.moves() {
+            return None;
         }
-        let mut after = self.world.clone();
-        after.apply(self.robot, statement, name).ok()?;
-        let moved = poses(&after.configuration()?);
-        let (Some(b), Some(a)) = (before.get(m), moved.get(m)) else {
-            return index(last);
-        };
-        let first_moved = (b.connectors.iter().zip(&a.connectors)).position(|(x, y)| x != y);
         let view = self.world.view();
-        index(
-            first_moved
-                .and_then(|k| u8::try_from(k).ok())
-                .map_or(last, |k| view.side(k)),
-        )
+        let mut modules = Vec::new();
+        let mut parts = Vec::new();
+        for carried in &motion.carried {
+            let Some(i) = view.index(&carried.module) else {
+                continue;
+            };
+            match carried.part {
+                None => modules.push(i),
+                Some(part) => parts.push([i, part]),
+            }
+        }
+        modules.sort_unstable();
+        modules.dedup();
+        parts.sort_unstable();
+        parts.dedup();
+        Some(Path {
+            legs: motion.legs,
+            modules,
+            parts,
+        })
     }
 
     fn op_end(&mut self, time_ms: f64, m: usize, s: usize, outcome: &str) {

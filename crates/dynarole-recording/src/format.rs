@@ -1,11 +1,11 @@
 //! The recording's serde types: the schema documented in `docs/viewer.md`.
 
 use crate::trace_event::{unknown_event, TraceEvent, MARKS};
-use dynarole_world::Drawing;
+use dynarole_world::{Drawing, Leg};
 use serde::{Deserialize, Serialize};
 
 /// Version of the format; a reader refuses any other.
-pub const FORMAT_VERSION: u32 = 2;
+pub const FORMAT_VERSION: u32 = 3;
 
 /// Everything the viewer shows of one run.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -126,9 +126,9 @@ pub struct Motion {
     pub end_ms: f64,
     /// `done`, `refused`, `interrupt` or `running` (the run stopped first).
     pub outcome: String,
-    /// For a turn: the joint axis (through `pivot`), the signed angle, the modules that move
-    /// as a whole and the part of the turning module that moves.
-    pub turn: Option<Turn>,
+    /// How the operation moves what it carries, as the world model planned it when it
+    /// started (`None`: it moves nothing the drawing shows, a latch).
+    pub path: Option<Path>,
     /// Latches made and released when the operation completed.
     pub latched: Vec<LatchLink>,
     pub released: Vec<LatchLink>,
@@ -136,13 +136,27 @@ pub struct Motion {
     pub after: Vec<(usize, Pose)>,
 }
 
+/// A running operation's motion (`dynarole_world::Motion`): its legs, done one after another
+/// over equal shares of the operation's time, the modules it carries whole, and the single
+/// parts (`[module, part]`) it carries while the rest of their module stays.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Turn {
-    pub pivot: [f64; 3],
-    pub axis: [f64; 3],
-    pub angle_deg: f64,
-    pub moving: Vec<usize>,
-    pub part: u8,
+pub struct Path {
+    pub legs: Vec<Leg>,
+    pub modules: Vec<usize>,
+    pub parts: Vec<[usize; 2]>,
+}
+
+impl Path {
+    /// The angle its rotations turn through in all, in degrees (unsigned).
+    pub fn turned_deg(&self) -> f64 {
+        self.legs
+            .iter()
+            .map(|leg| match leg {
+                Leg::Rotate { angle_deg, .. } => angle_deg.abs(),
+                Leg::Translate { .. } => 0.0,
+            })
+            .sum()
+    }
 }
 
 /// A packet between two connectors: delivered or why not.
@@ -209,12 +223,12 @@ impl Recording {
             check_latches(&frame.latches, n, c, &format!("keyframes[{k}].latches"))?;
         }
         for (k, m) in self.motions.iter().enumerate() {
-            let bad_turn = m
-                .turn
-                .as_ref()
-                .is_some_and(|t| usize::from(t.part) >= parts || t.moving.iter().any(|i| *i >= n));
+            let bad_path = m.path.as_ref().is_some_and(|path| {
+                path.modules.iter().any(|i| *i >= n)
+                    || path.parts.iter().any(|[i, part]| *i >= n || *part >= parts)
+            });
             if m.module >= n
-                || bad_turn
+                || bad_path
                 || m.after
                     .iter()
                     .any(|(i, p)| *i >= n || p.connectors.len() != c || p.parts.len() != parts)

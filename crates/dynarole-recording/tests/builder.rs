@@ -1,10 +1,11 @@
 //! The recording of the first turn of eight2car (paper Fig. 5) on the eight: the latch the
 //! retract releases, the motion the world model plans, the poses mid-turn (from
-//! `TurnMotion::position_at`), the round trip through the format, and the reader's checks of
+//! `Motion::position_at`), the round trip through the format, and the reader's checks of
 //! the fields it follows.
 
 use dynarole_core::{analyze, parse};
-use dynarole_recording::{poses_at, Builder, Recording, TraceEvent};
+use dynarole_recording::{poses_at, Builder, Path, Recording, TraceEvent};
+use dynarole_world::Leg;
 
 const SOURCE: &str = "robot atron;\nsequence s {\n    M0.Connector[0].retract();\n    M3.Connector[4].retract();\n    M3.Joint.rotateFromToBy(0, 324, false, 150);\n}\n";
 const EIGHT: &str = include_str!("../../../robots/atron/examples/eight.json");
@@ -59,30 +60,43 @@ fn built(
     builder.finish(end_ms, Vec::new())
 }
 
+/// The pivot and angle of a path of one rotation.
+fn rotation(path: &Path) -> ([f64; 3], f64) {
+    match path.legs.as_slice() {
+        [Leg::Rotate {
+            pivot, angle_deg, ..
+        }] => (*pivot, *angle_deg),
+        other => panic!("not one rotation: {other:?}"),
+    }
+}
+
 #[test]
 fn a_turn_moves_the_smaller_side_smoothly_and_ends_where_the_world_does() {
     let r = recording();
     let motion = &r.motions[2];
-    let turn = motion.turn.as_ref().expect("a turn");
+    let turn = motion.path.as_ref().expect("a turn");
+    let (pivot, angle_deg) = rotation(turn);
     assert_eq!(motion.outcome, "done");
-    assert_eq!(turn.angle_deg.abs(), 90.0);
-    assert_eq!(turn.moving, vec![0, 1], "M0 and M1 on the moving side");
+    assert_eq!(angle_deg.abs(), 90.0);
+    assert_eq!(turn.modules, vec![0, 1], "M0 and M1 on the moving side");
+    assert_eq!(
+        turn.parts,
+        vec![[motion.module, 1]],
+        "the turner's south half"
+    );
     assert_eq!(
         r.motions[0].released.len(),
         1,
         "the retract released a latch"
     );
-    let moving = turn.moving[0];
+    let moving = turn.modules[0];
     let before = poses_at(&r, 100.0).expect("poses")[moving].centre;
     let middle = poses_at(&r, 375.0).expect("poses")[moving].centre;
     let after = poses_at(&r, 650.0).expect("poses")[moving].centre;
     assert_ne!(before, after);
     // Half way through a quarter turn about the pivot: as far from it, between the two.
     let distance = |p: [f64; 3]| {
-        ((p[0] - turn.pivot[0]).powi(2)
-            + (p[1] - turn.pivot[1]).powi(2)
-            + (p[2] - turn.pivot[2]).powi(2))
-        .sqrt()
+        ((p[0] - pivot[0]).powi(2) + (p[1] - pivot[1]).powi(2) + (p[2] - pivot[2]).powi(2)).sqrt()
     };
     assert!((distance(middle) - distance(before)).abs() < 1e-9);
     assert!(middle != before && middle != after);
@@ -157,12 +171,13 @@ fn mtran_turns_move_their_blocks_and_end_where_the_world_does() {
     let r = built(MOVE_MODULE, "left2right", SNAKE4, &events, 5000.0);
     for motion in &r.motions {
         let turn = motion
-            .turn
+            .path
             .as_ref()
             .expect("an M-TRAN joint turn has a motion");
-        assert_eq!(turn.angle_deg.abs(), 90.0);
-        assert!(!turn.moving.contains(&motion.module), "{turn:?}");
-        assert!(turn.moving.windows(2).all(|w| w[0] < w[1]), "{turn:?}");
+        assert_eq!(rotation(turn).1.abs(), 90.0);
+        assert!(!turn.modules.contains(&motion.module), "{turn:?}");
+        assert!(turn.modules.windows(2).all(|w| w[0] < w[1]), "{turn:?}");
+        assert_eq!(turn.parts.len(), 1, "the turner's moving block: {turn:?}");
         let near_end = poses_at(&r, motion.end_ms - 1e-9).expect("poses");
         let after = poses_at(&r, motion.end_ms).expect("poses");
         let before = poses_at(&r, motion.start_ms).expect("poses");

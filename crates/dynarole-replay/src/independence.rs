@@ -10,7 +10,7 @@ use dynarole_core::check::ResolvedStatement;
 use dynarole_core::diagnostic::{Diagnostic, DiagnosticKind};
 use dynarole_core::expand::{Plan, PlanElement, PlanKind};
 use dynarole_core::{Program, RobotApi};
-use dynarole_world::{TurnMotion, Warning};
+use dynarole_world::{Motion, Warning};
 
 /// Warnings for every pair of elements of a parallel group that are not independent, walking
 /// the plans from the world's configuration. Pairs of whole-module turns that their motions prove
@@ -69,9 +69,9 @@ pub(crate) fn simultaneous_turns(
     };
     let motion = |s: &ResolvedStatement| {
         let module = assignment.get(&s.label)?;
-        world.turn_motion(&program.robot, s, module)
+        world.motion(&program.robot, s, module)
     };
-    checker.turns_apart(motion(a)?, motion(b)?, world)
+    checker.motions_apart(motion(a)?, motion(b)?, world)
 }
 
 /// Why statements `a` and `b`, joined by `&` in a group that starts from `world`, are not
@@ -336,12 +336,21 @@ impl Checker<'_> {
         b: &PlanElement,
         world: &RobotWorld,
     ) -> Option<String> {
-        self.turns_apart(self.motion(a, world)?, self.motion(b, world)?, world)
+        self.motions_apart(self.motion(a, world)?, self.motion(b, world)?, world)
     }
 
-    /// Two turns done at the same time: a shared moving module, or a closest approach below
-    /// the limit for some relative timing.
-    fn turns_apart(&self, ma: TurnMotion, mb: TurnMotion, world: &RobotWorld) -> Option<String> {
+    /// Two motions done at the same time: a shared moving module, or a closest approach below
+    /// the limit for some relative timing. Motions in place (latches) are the orders' to
+    /// decide.
+    fn motions_apart(&self, ma: Motion, mb: Motion, world: &RobotWorld) -> Option<String> {
+        if !ma.moves() || !mb.moves() {
+            return None;
+        }
+        let what = if ma.is_turn() && mb.is_turn() {
+            "turns"
+        } else {
+            "motions"
+        };
         let shared: Vec<&str> = ma
             .moving
             .iter()
@@ -350,23 +359,23 @@ impl Checker<'_> {
             .collect();
         if !shared.is_empty() {
             return Some(format!(
-                "both turns move {}; where they end depends on their timing",
+                "both {what} move {}; where they end depends on their timing",
                 shared.join(", ")
             ));
         }
         let limit = ma.limit.max(mb.limit);
         let unit = world.model().length_unit();
         closest_approach(&ma, &mb).map(|closest| {
-            format!("done at the same time, the turns bring modules within {closest:.3} {unit} of each other (limit {limit})")
+            format!("done at the same time, the {what} bring modules within {closest:.3} {unit} of each other (limit {limit})")
         })
     }
 
-    fn motion(&self, element: &PlanElement, world: &RobotWorld) -> Option<TurnMotion> {
+    fn motion(&self, element: &PlanElement, world: &RobotWorld) -> Option<Motion> {
         let PlanKind::Op(statement) = &element.kind else {
             return None;
         };
         let module = self.assignment.get(&statement.label)?;
-        world.turn_motion(&self.program.robot, statement, module)
+        world.motion(&self.program.robot, statement, module)
     }
 
     /// Applies an element (a block: all of it, in order), adding the model's warnings to

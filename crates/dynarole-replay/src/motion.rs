@@ -1,18 +1,20 @@
-//! A turn's moving side on one state and what two turns' motions decide about each other:
-//! the pair rule that `parallel/footprint.rs` explains, and the exact closest approach of two
-//! turns done at the same time. Shared by the independence check and `parallelise`, below both.
+//! A motion's moving side on one state and what two motions decide about each other: the
+//! pair rule that `parallel/footprint.rs` explains, and the exact closest approach of two
+//! motions done at the same time. Shared by the independence check and `parallelise`, below
+//! both.
 
 use crate::bitset::BitSet;
 use crate::robot_world::RobotWorld;
 use dynarole_core::check::ResolvedStatement;
 use dynarole_core::RobotApi;
-use dynarole_world::geometry::sweep_closest_approach;
-use dynarole_world::TurnMotion;
+use dynarole_world::Motion;
 use std::cell::Cell;
 
-/// A turn's motion on one state, with the modules it moves and its own module (by index).
+/// A motion on one state, with the modules it moves and its own module (by index). Only a
+/// motion with legs has one: one that moves in place (a latch) makes or breaks connections,
+/// which only running both orders decides.
 pub(crate) struct MovingSide {
-    motion: TurnMotion,
+    motion: Motion,
     pub(crate) modules: BitSet,
     pub(crate) pivot: usize,
 }
@@ -25,7 +27,10 @@ impl MovingSide {
         world: &RobotWorld,
     ) -> Option<MovingSide> {
         let module = module?;
-        let motion = world.turn_motion(robot, statement, module)?;
+        let motion = world.motion(robot, statement, module)?;
+        if !motion.moves() {
+            return None;
+        }
         let view = world.view();
         let mut modules = BitSet::new(view.len());
         for (name, _) in &motion.moving {
@@ -85,14 +90,8 @@ impl MovingSide {
             .map(|k| positions[k])
             .collect();
         let moving: Vec<[f64; 3]> = b.motion.moving.iter().map(|(_, p)| *p).collect();
-        let approach = sweep_closest_approach(
-            b.motion.pivot,
-            b.motion.axis,
-            b.motion.angle_deg,
-            &moving,
-            &still,
-        );
-        let collides = approach.is_some_and(|a| a.distance < b.motion.limit);
+        let approach = b.motion.sweep_approach(&moving, &still);
+        let collides = approach.is_some_and(|distance| distance < b.motion.limit);
         if !collides {
             clear.set(Some(i));
         }
@@ -112,12 +111,12 @@ const MAX_DESCENTS: usize = 64;
 ///
 /// Exact, not sampled. For one point of each side, the distance between the moving point of
 /// `a` at one moment and the whole path of the point of `b` is known in closed form
-/// ([`TurnMotion::distance_to_path`]); a piece of `a`'s path whose middle is at distance `d`
+/// ([`Motion::distance_to_path`]); a piece of `a`'s path whose middle is at distance `d`
 /// from `b`'s path keeps every point within half the piece's length of that middle, so the
 /// whole piece stays at least `d - length / 2` away. Pieces that cannot be decided that way
 /// are halved; a pair of points whose paths' exact bounding boxes are already apart by the
 /// limit is not looked at.
-pub(crate) fn closest_approach(a: &TurnMotion, b: &TurnMotion) -> Option<f64> {
+pub(crate) fn closest_approach(a: &Motion, b: &Motion) -> Option<f64> {
     // Once a conflict is found, the bar drops to it, so what is reported is the closest
     // approach of all pairs (to the precision of the halvings), not the first one found.
     let mut bar = a.limit.max(b.limit);
@@ -146,13 +145,7 @@ pub(crate) fn closest_approach(a: &TurnMotion, b: &TurnMotion) -> Option<f64> {
 /// Branch and bound over the path of `pa` (fractions of `a`'s turn) against the whole path of
 /// `pb`: the distance found below `limit`, or the lower bound of a piece that could not be
 /// decided after [`MAX_HALVINGS`] halvings; `None` when every piece stays at least `limit` away.
-fn path_approach(
-    a: &TurnMotion,
-    pa: [f64; 3],
-    b: &TurnMotion,
-    pb: [f64; 3],
-    limit: f64,
-) -> Option<f64> {
+fn path_approach(a: &Motion, pa: [f64; 3], b: &Motion, pb: [f64; 3], limit: f64) -> Option<f64> {
     let length = a.path_length(pa);
     // Pieces still to decide: (start, end, halvings). A stack: at most one piece per level
     // waits, so it never holds more than MAX_HALVINGS + 1 pieces.

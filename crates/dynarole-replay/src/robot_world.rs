@@ -5,7 +5,7 @@
 use dynarole_core::check::ResolvedStatement;
 use dynarole_core::robot::{OperationKind, Value};
 use dynarole_core::RobotApi;
-use dynarole_world::{Action, Configuration, Outcome, RobotModel, TurnMotion, View};
+use dynarole_world::{Action, Configuration, Motion, Outcome, RobotModel, View};
 
 /// A robot being reconfigured, of any kind.
 #[derive(Clone, Debug)]
@@ -85,15 +85,16 @@ impl RobotWorld {
         self.model.apply(module, &action).map_err(|e| e.to_string())
     }
 
-    /// The motion of a joint turn, without doing it; `None` for anything else, or a turn the
-    /// model refuses before moving (a wrong angle, a locked joint).
-    pub fn turn_motion(
+    /// The motion `statement` would make on `module`, without doing it
+    /// (`RobotModel::motion`); `None` for an operation of kind `none`, or one the model
+    /// refuses before moving (a wrong angle, a locked joint).
+    pub fn motion(
         &self,
         robot: &RobotApi,
         statement: &ResolvedStatement,
         module: &str,
-    ) -> Option<TurnMotion> {
-        self.model.turn_motion(module, &action(robot, statement)?)
+    ) -> Option<Motion> {
+        self.model.motion(module, &action(robot, statement)?)
     }
 
     /// How the configuration differs from `other`'s (`None`: the same up to rigid motion).

@@ -61,8 +61,8 @@ impl ModelRecording<'_> {
         let kinds: Vec<OpKind> = (self.statements.iter())
             .map(|s| OpKind::of_statement(self.robot, s))
             .collect();
-        let duration = |s: usize, turn: Option<&dynarole_recording::Turn>| -> f64 {
-            nominal_ms(kinds.get(s).copied().unwrap_or(OpKind::Other), turn)
+        let duration = |s: usize, path: Option<&dynarole_recording::Path>| -> f64 {
+            nominal_ms(kinds.get(s).copied().unwrap_or(OpKind::Other), path)
         };
         let view = dynarole_world::View::of(self.start);
         let index = |name: &str| {
@@ -85,9 +85,9 @@ impl ModelRecording<'_> {
                     let label = format!("#{s} {}", texts.get(*s).map_or("", String::as_str));
                     let m = index(module)?;
                     builder.event(now, Some(m), TraceEvent::Start, &states[m], &label);
-                    let turn = builder.last_turn();
+                    let path = builder.last_path();
                     issued.retain(|(x, _, _)| x != s);
-                    issued.push((*s, now, duration(*s, turn.as_ref())));
+                    issued.push((*s, now, duration(*s, path.as_ref())));
                     now += MODEL_GAP_MS;
                 }
                 ModelStep::Done(s, module) => {
@@ -122,8 +122,8 @@ impl ModelRecording<'_> {
 
 /// The simulator's default duration of an operation (`dynarole_sim::Timing`), a turn's
 /// quarter turns read from the motion the world gave it.
-fn nominal_ms(kind: OpKind, turn: Option<&dynarole_recording::Turn>) -> f64 {
-    let quarters = turn.map_or(0, |t| (t.angle_deg.abs() / 90.0).round() as u64);
+fn nominal_ms(kind: OpKind, path: Option<&dynarole_recording::Path>) -> f64 {
+    let quarters = path.map_or(0, |p| (p.turned_deg() / 90.0).round() as u64);
     kind.nominal_ms(&Timing::default(), quarters) as f64
 }
 

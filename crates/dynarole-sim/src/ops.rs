@@ -259,12 +259,13 @@ impl State {
         kind.nominal_ms(&self.scenario.timing, quarters)
     }
 
-    /// Which modules move during a turn, so that their links break while it lasts.
+    /// Which modules move during a turn (the modules of its sweep's points), so that their
+    /// links break while it lasts.
     fn note_turn(&mut self, id: u64, m: usize, s: usize) {
         let name = self.view().name(m);
         let Some(motion) = self
             .world
-            .turn_motion(&self.seq.robot, &self.seq.resolved[s], &name)
+            .motion(&self.seq.robot, &self.seq.resolved[s], &name)
         else {
             self.turns.insert(id, (m, vec![false; self.modules.len()]));
             return;

@@ -2,13 +2,13 @@
 //! it needs more. [`RobotKind`] is the kind (its name, plugin, data files, drawing);
 //! [`RobotConfiguration`] one of its validated configurations, held opaque by
 //! [`Configuration`]; [`RobotModel`] the robot being reconfigured (doing an `Action`, the
-//! motion of a turn). Reading a file is [`crate::Robots::read_configuration`].
+//! [`Motion`] of an action). Reading a file is [`crate::Robots::read_configuration`].
 
 use crate::common::{ConfigError, Metadata, NamedConnection};
 use crate::drawing::Drawing;
 use crate::drawing::ModulePose;
 use crate::geometry::{Rotation, Vec3};
-use crate::motion::TurnMotion;
+use crate::motion::Motion;
 use crate::ops::{OpError, Outcome};
 use crate::rigid::Shape;
 use crate::shape::{Action, RobotShape};
@@ -190,9 +190,11 @@ pub trait RobotModel: fmt::Debug + Send + Sync {
     fn shape(&self) -> &dyn RobotShape;
     /// Does `action` on `module` (a name); the error is why the robot cannot.
     fn apply(&mut self, module: &str, action: &Action) -> Result<Outcome, OpError>;
-    /// The motion a turn would make, without doing it; `None` for an action that is not a
-    /// turn, or a turn refused before anything moves (a wrong angle, a locked joint).
-    fn turn_motion(&self, module: &str, action: &Action) -> Option<TurnMotion>;
+    /// The motion `action` would make, without doing it: a turn's legs, what it carries and
+    /// its sweep's points; a connector's extend or retract moves in place
+    /// ([`Motion::in_place`]). `None` for an action refused before anything moves (a wrong
+    /// angle, a locked joint, an unknown module).
+    fn motion(&self, module: &str, action: &Action) -> Option<Motion>;
     /// Quarter turns (rounded up) a joint passes through from `from` to `to` in the given
     /// direction: what a turn's duration is counted in.
     fn quarter_turns(&self, from: i64, to: i64, increasing: bool) -> u64;

@@ -216,7 +216,7 @@ pub struct SweepApproach {
 }
 
 /// Closest approach between `moving` points turned continuously by `angle_deg` (signed,
-/// right-handed about the unit lattice `axis` through `pivot`) and `still` points.
+/// right-handed about the unit `axis` through `pivot`) and `still` points.
 ///
 /// The distance is minimised in closed form rather than by sampling: the squared distance is
 /// `K - 2 (alpha cos t + beta sin t)`, whose extremum is known exactly, so minima that fall
@@ -224,12 +224,12 @@ pub struct SweepApproach {
 /// missed.
 pub fn sweep_closest_approach(
     pivot: [f64; 3],
-    axis: Vec3,
+    axis: [f64; 3],
     angle_deg: f64,
     moving: &[[f64; 3]],
     still: &[[f64; 3]],
 ) -> Option<SweepApproach> {
-    let a = axis.map(f64::from);
+    let a = axis;
     let total = angle_deg.abs().to_radians();
     // Turning by a negative angle about a is the same as a positive one about -a.
     let a = if angle_deg < 0.0 { a.map(|c| -c) } else { a };
@@ -368,7 +368,7 @@ mod tests {
         let moving = [[2.0, 0.0, 1.0], [0.0, 1.0, -1.0]];
         let still = [[1.0, 2.0, 0.5], [-2.0, 0.0, 1.0]];
         for angle in [90.0, -90.0, 180.0, -270.0] {
-            let found = sweep_closest_approach(pivot, [0, 0, 1], angle, &moving, &still);
+            let found = sweep_closest_approach(pivot, [0.0, 0.0, 1.0], angle, &moving, &still);
             let mut sampled = f64::INFINITY;
             for step in 0..=20_000 {
                 let t = (angle * f64::from(step) / 20_000.0).to_radians();

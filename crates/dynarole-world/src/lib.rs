@@ -6,7 +6,7 @@
 //! - [`Configuration`]: a validated configuration of any kind, behind [`RobotConfiguration`].
 //! - [`RobotShape`] / [`RobotModel`]: the questions a configuration answers (modules, names,
 //!   ids, connectors, genders, latches, joints, topology) and a robot being reconfigured
-//!   (doing an [`Action`]; the motion of a turn); [`View`] is the borrowed handle callers query.
+//!   (doing an [`Action`]; the [`Motion`] it makes); [`View`] is the borrowed handle callers query.
 //! - [`compare`]: equality up to one of the 24 lattice rotations plus a translation.
 //! - For robot folders: `structure` (modules and latches), `world_common` (latching, turns
 //!   and their sweeps), `graph`, `rigid`, `file_format` (the data-file layout every robot
@@ -38,7 +38,7 @@ pub use compare::{
 };
 pub use drawing::{mean_centre, Drawing, ModulePose, PartLook, PartPose, Picture, Ring, Solid};
 pub use geometry::{Rotation, Vec3};
-pub use motion::TurnMotion;
+pub use motion::{Carried, Leg, Motion};
 pub use ops::{OpError, Outcome, Warning};
 pub use robot_set::Robots;
 pub use shape::{latched_or_male_to_free_female, Action, RobotShape};

@@ -237,7 +237,7 @@ impl Sweep {
         let centres = |points: &[SweptPoint]| points.iter().map(|p| p.centre).collect::<Vec<_>>();
         let Some(approach) = sweep_closest_approach(
             self.pivot,
-            self.axis,
+            self.axis.map(f64::from),
             90.0 * f64::from(self.quarters),
             &centres(&self.moving),
             &centres(&self.still),

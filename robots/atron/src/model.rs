@@ -7,7 +7,7 @@ use crate::world::World;
 use dynarole_world::geometry::to_f64;
 use dynarole_world::model_difference;
 use dynarole_world::Configuration;
-use dynarole_world::TurnMotion;
+use dynarole_world::Motion;
 use dynarole_world::{Action, RobotKind, RobotModel, RobotShape};
 use dynarole_world::{OpError, Outcome};
 use std::any::Any;
@@ -44,18 +44,22 @@ impl RobotModel for World {
         }
     }
 
-    fn turn_motion(&self, module: &str, action: &Action) -> Option<TurnMotion> {
-        let Action::Turn {
-            from,
-            to,
-            increasing,
-            ..
-        } = *action
-        else {
-            return None;
-        };
-        let from = self.joint_from(module, from);
-        World::turn_motion(self, module, from, units(to), increasing).ok()
+    fn motion(&self, module: &str, action: &Action) -> Option<Motion> {
+        match *action {
+            // The hooks move inside the module: nothing the sweep or the drawing sees.
+            Action::Extend { .. } | Action::Retract { .. } => {
+                self.shape().index(module).map(|_| Motion::in_place())
+            }
+            Action::Turn {
+                from,
+                to,
+                increasing,
+                ..
+            } => {
+                let from = self.joint_from(module, from);
+                World::turn_motion(self, module, from, units(to), increasing).ok()
+            }
+        }
     }
 
     fn quarter_turns(&self, from: i64, to: i64, increasing: bool) -> u64 {

@@ -12,7 +12,7 @@ use dynarole_world::world_common::{
     check_turn_angles, joint_sides, known_module, latch, no_motion, release, turned, Latching,
     Sweep, SweptPoint,
 };
-use dynarole_world::TurnMotion;
+use dynarole_world::{Carried, Motion};
 use dynarole_world::{OpError, Outcome};
 use std::collections::BTreeSet;
 
@@ -97,38 +97,47 @@ impl World {
         Ok(turned(&self.config.structure, &moved, closest))
     }
 
-    /// How a turn would move the robot, without doing it or checking its sweep: the pivot,
-    /// the axis, the signed angle of the moving side and the modules on it. Fails like
-    /// [`World::rotate`] for a wrong angle or a locked joint. Used to check that two turns
-    /// done at the same time do not collide with each other.
+    /// How a turn would move the robot, without doing it or checking its sweep: a rotation
+    /// about the joint's axis through the module's centre, carrying the modules on the
+    /// moving side whole and the turning module's moving hemisphere (part 0 north, 1 south),
+    /// swept with the module centres. Fails like [`World::rotate`] for a wrong angle or a
+    /// locked joint. Used to check that two turns done at the same time do not collide.
     pub fn turn_motion(
         &self,
         module: &str,
         from_units: u16,
         to_units: u16,
         increasing: bool,
-    ) -> Result<TurnMotion, OpError> {
+    ) -> Result<Motion, OpError> {
         let index = known_module(&self.config.structure, module)?;
         let PlannedTurn {
             moving,
             turn_quarters,
+            north_moves,
             ..
         } = self.plan_turn(index, from_units, to_units, increasing)?;
         let pivot_module = self.config.module(index);
-        Ok(TurnMotion {
-            pivot: pivot_module.map_or([0.0; 3], |m| to_f64(m.position)),
-            axis: pivot_module.map_or([0, 0, 1], |m| m.orientation.axis()),
-            angle_deg: 90.0 * f64::from(turn_quarters),
-            moving: moving
-                .iter()
-                .filter_map(|i| {
-                    self.config
-                        .module(*i)
-                        .map(|m| (m.name.clone(), to_f64(m.position)))
-                })
-                .collect(),
-            limit: MIN_SWEEP_DISTANCE_LATTICE,
-        })
+        let mut motion = Motion::turn(
+            pivot_module.map_or([0.0; 3], |m| to_f64(m.position)),
+            pivot_module.map_or([0, 0, 1], |m| m.orientation.axis()),
+            90.0 * f64::from(turn_quarters),
+            MIN_SWEEP_DISTANCE_LATTICE,
+        );
+        let modules = moving.iter().filter_map(|i| self.config.module(*i));
+        for m in modules {
+            motion.moving.push((m.name.clone(), to_f64(m.position)));
+            motion.carried.push(Carried {
+                module: m.name.clone(),
+                part: None,
+            });
+        }
+        if turn_quarters != 0 {
+            motion.carried.push(Carried {
+                module: module.to_string(),
+                part: Some(usize::from(!north_moves)),
+            });
+        }
+        Ok(motion)
     }
 
     /// Which side of a turn moves and by how much, after checking the angles and that no

@@ -5,7 +5,7 @@ use crate::module::{MtranConfiguration, MtranJoint, MtranModule};
 use crate::world::MtranWorld;
 use dynarole_world::model_difference;
 use dynarole_world::Configuration;
-use dynarole_world::TurnMotion;
+use dynarole_world::Motion;
 use dynarole_world::{Action, RobotKind, RobotModel, RobotShape};
 use dynarole_world::{OpError, Outcome};
 use std::any::Any;
@@ -48,7 +48,7 @@ impl RobotModel for MtranWorld {
         }
     }
 
-    fn turn_motion(&self, module: &str, action: &Action) -> Option<TurnMotion> {
+    fn motion(&self, module: &str, action: &Action) -> Option<Motion> {
         let Action::Turn {
             joint,
             from,
@@ -56,7 +56,8 @@ impl RobotModel for MtranWorld {
             increasing,
         } = *action
         else {
-            return None;
+            // A connector's latch moves inside its block: nothing the sweep or the drawing sees.
+            return self.shape().index(module).map(|_| Motion::in_place());
         };
         let from = self.joint_from(module, joint, from);
         MtranWorld::turn_motion(

@@ -12,7 +12,7 @@ use dynarole_world::world_common::{
     check_turn_angles, joint_sides, known_module, latch, no_motion, release, turned, Latching,
     Sweep, SweptPoint,
 };
-use dynarole_world::TurnMotion;
+use dynarole_world::{Carried, Motion};
 use dynarole_world::{OpError, Outcome};
 use std::collections::BTreeSet;
 
@@ -96,9 +96,11 @@ impl MtranWorld {
         Ok(turned(&self.config.structure, &moved, closest))
     }
 
-    /// How a turn would move the robot, without doing it or checking its sweep: the pivot and
-    /// the centres of the blocks that turn, in block pitches. Fails like [`MtranWorld::rotate`]
-    /// for a wrong angle or a locked joint. Used to check two turns done at the same time.
+    /// How a turn would move the robot, without doing it or checking its sweep: a rotation
+    /// about the joint's axis, carrying the modules on the moving side whole and the turning
+    /// module's moving block (part 0 north, 1 south), swept with the centres of the blocks
+    /// that turn, in block pitches. Fails like [`MtranWorld::rotate`] for a wrong angle or a
+    /// locked joint. Used to check two turns done at the same time.
     pub fn turn_motion(
         &self,
         module: &str,
@@ -106,26 +108,34 @@ impl MtranWorld {
         from_deg: i16,
         to_deg: i16,
         positive: bool,
-    ) -> Result<TurnMotion, OpError> {
+    ) -> Result<Motion, OpError> {
         let index = known_module(&self.config.structure, module)?;
         self.check_angles(index, joint, from_deg, to_deg, positive)?;
         let (pivot, axis) = self.joint_pivot(index, joint);
-        let mut motion = TurnMotion {
-            pivot: pitches(pivot),
-            axis,
-            angle_deg: 0.0,
-            moving: Vec::new(),
-            limit: MTRAN_MIN_SWEEP_DISTANCE_BLOCKS,
-        };
+        let mut motion = Motion::turn(pitches(pivot), axis, 0.0, MTRAN_MIN_SWEEP_DISTANCE_BLOCKS);
         if from_deg == to_deg {
             return Ok(motion);
         }
         let (moving, turn_quarters, north_moves) = self.plan_turn(index, from_deg, to_deg)?;
         let (blocks, _) = self.partition_blocks(index, north_moves, &moving);
-        motion.angle_deg = 90.0 * f64::from(turn_quarters);
+        motion = Motion::turn(
+            pitches(pivot),
+            axis,
+            90.0 * f64::from(turn_quarters),
+            MTRAN_MIN_SWEEP_DISTANCE_BLOCKS,
+        );
         motion.moving = blocks
             .iter()
             .map(|b| (self.name(b.module), b.centre))
+            .collect();
+        let whole = moving.iter().map(|m| (*m, None));
+        let own_block = [(index, Some(usize::from(!north_moves)))];
+        motion.carried = whole
+            .chain(own_block)
+            .map(|(m, part)| Carried {
+                module: self.name(m),
+                part,
+            })
             .collect();
         Ok(motion)
     }

@@ -1,5 +1,6 @@
 // The recording's world at any time: the last keyframe, the motions completed since, then
-// the turns in progress at their fraction. No kinematics: only the given motions.
+// the paths in progress at their fraction. No kinematics: only the given legs (rotations and
+// translations, done one after another over equal shares of the operation's time).
 import * as THREE from 'three';
 
 export function clonePose(p) {
@@ -38,7 +39,7 @@ export class World {
       .filter((m) => m.outcome === 'done')
       .slice()
       .sort((a, b) => a.end_ms - b.end_ms);
-    this.turns = recording.motions.filter((m) => m.outcome === 'done' && m.turn && m.end_ms > m.start_ms);
+    this.moving = recording.motions.filter((m) => m.outcome === 'done' && m.path && m.end_ms > m.start_ms);
     this.partOf = recording.connectors.map((c) => c.part);
   }
 
@@ -59,34 +60,59 @@ export class World {
     return { poses, latches };
   }
 
-  // Every pose at time t, turns in progress included.
+  // Every pose at time t, operations in progress included.
   at(t) {
     const state = this.settled(t);
-    for (const m of this.turns) {
+    for (const m of this.moving) {
       if (m.start_ms <= t && t < m.end_ms) {
         const fraction = (t - m.start_ms) / (m.end_ms - m.start_ms);
-        turnPoses(state.poses, m.module, m.turn, fraction, this.partOf);
+        pathPoses(state.poses, m.path, fraction, this.partOf);
       }
     }
     return state;
   }
 }
 
-// `partOf[k]`: the part connector k sits on, as the recording says (the robot's own answer).
-function turnPoses(poses, turner, turn, fraction, partOf) {
-  const axis = new THREE.Vector3(...turn.axis).normalize();
-  const q = new THREE.Quaternion().setFromAxisAngle(axis, THREE.MathUtils.degToRad(turn.angle_deg * fraction));
-  const pivot = new THREE.Vector3(...turn.pivot);
+// The motion of `legs` at `fraction` as two functions, of a point and of a direction: the
+// legs before the one reached done fully, that one in part.
+function motionAt(legs, fraction) {
+  const steps = [];
+  const scaled = Math.min(Math.max(fraction, 0), 1) * legs.length;
+  legs.forEach((leg, k) => {
+    const share = legs.length === 1 ? fraction : Math.min(Math.max(scaled - k, 0), 1);
+    if (share <= 0) return;
+    if (leg.rotate) {
+      const r = leg.rotate;
+      const axis = new THREE.Vector3(...r.axis).normalize();
+      const q = new THREE.Quaternion().setFromAxisAngle(axis, THREE.MathUtils.degToRad(r.angle_deg * share));
+      steps.push({ q, pivot: new THREE.Vector3(...r.pivot), by: null });
+    } else if (leg.translate) {
+      const by = new THREE.Vector3(...leg.translate.by).multiplyScalar(share);
+      steps.push({ q: null, pivot: null, by });
+    }
+  });
   const v = new THREE.Vector3();
   const point = (p) => {
-    v.set(p[0], p[1], p[2]).sub(pivot).applyQuaternion(q).add(pivot);
+    v.set(p[0], p[1], p[2]);
+    for (const s of steps) {
+      if (s.q) v.sub(s.pivot).applyQuaternion(s.q).add(s.pivot);
+      else v.add(s.by);
+    }
     return [v.x, v.y, v.z];
   };
   const direction = (d) => {
-    v.set(d[0], d[1], d[2]).applyQuaternion(q);
+    v.set(d[0], d[1], d[2]);
+    for (const s of steps) if (s.q) v.applyQuaternion(s.q);
     return [v.x, v.y, v.z];
   };
-  for (const i of turn.moving) {
+  return { point, direction };
+}
+
+// Moves what `path` carries: whole modules, and single parts with the connectors on them
+// (`partOf[k]`: the part connector k sits on, as the recording says, the robot's own answer).
+function pathPoses(poses, path, fraction, partOf) {
+  const { point, direction } = motionAt(path.legs, fraction);
+  for (const i of path.modules) {
     const p = poses[i];
     p.centre = point(p.centre);
     for (const h of p.parts) {
@@ -95,11 +121,13 @@ function turnPoses(poses, turner, turn, fraction, partOf) {
     }
     p.connectors = p.connectors.map(point);
   }
-  const p = poses[turner];
-  const h = p.parts[turn.part];
-  h.centre = point(h.centre);
-  h.up = direction(h.up);
-  // A module's centre is the mean of its parts' centres.
-  p.centre = [0, 1, 2].map((i) => p.parts.reduce((sum, part) => sum + part.centre[i], 0) / p.parts.length);
-  p.connectors = p.connectors.map((c, k) => (partOf[k] === turn.part ? point(c) : c));
+  for (const [i, part] of path.parts) {
+    const p = poses[i];
+    const h = p.parts[part];
+    h.centre = point(h.centre);
+    h.up = direction(h.up);
+    // A module's centre is the mean of its parts' centres.
+    p.centre = [0, 1, 2].map((k) => p.parts.reduce((sum, x) => sum + x.centre[k], 0) / p.parts.length);
+    p.connectors = p.connectors.map((c, k) => (partOf[k] === part ? point(c) : c));
+  }
 }

@@ -8,8 +8,8 @@
 use super::configuration::{minus, plus, quarters, turned, Cell, CubesConfiguration, BACK, FRONT};
 use dynarole_world::rigid::{Body, Shape};
 use dynarole_world::{
-    model_difference, Action, Configuration, OpError, Outcome, Port, RobotModel, RobotShape,
-    Rotation, TurnMotion, Warning,
+    model_difference, Action, Carried, Configuration, Motion, OpError, Outcome, Port, RobotModel,
+    RobotShape, Rotation, Warning,
 };
 use std::any::Any;
 use std::collections::BTreeSet;
@@ -315,7 +315,8 @@ impl RobotModel for CubesWorld {
         }
     }
 
-    fn turn_motion(&self, module: &str, action: &Action) -> Option<TurnMotion> {
+    fn motion(&self, module: &str, action: &Action) -> Option<Motion> {
+        let m = self.config.module_index(module)?;
         let Action::Turn {
             from,
             to,
@@ -323,23 +324,35 @@ impl RobotModel for CubesWorld {
             ..
         } = *action
         else {
-            return None;
+            // A latch moves inside its face: nothing the sweep or the drawing sees.
+            return Some(Motion::in_place());
         };
-        let m = self.config.module_index(module)?;
         let from = from.unwrap_or(i64::from(self.config.cubes[m].hinge));
         let (carried, turn) = self.plan(m, from, to, increasing).ok()?;
         let point = |c: Cell| [f64::from(c[0]), f64::from(c[1]), 0.0];
-        let moving = carried.iter().map(|i| {
-            let cube = &self.config.cubes[*i];
-            (cube.name.clone(), point(cube.cell))
-        });
-        Some(TurnMotion {
-            pivot: point(self.config.cubes[m].cell),
-            axis: [0, 0, 1],
-            angle_deg: f64::from(turn),
-            moving: moving.collect(),
-            limit: 1.0,
-        })
+        let mut motion = Motion::turn(
+            point(self.config.cubes[m].cell),
+            [0, 0, 1],
+            f64::from(turn),
+            1.0,
+        );
+        for cube in carried.iter().map(|i| &self.config.cubes[*i]) {
+            motion.moving.push((cube.name.clone(), point(cube.cell)));
+            let whole = Carried {
+                module: cube.name.clone(),
+                part: None,
+            };
+            motion.carried.push(whole);
+        }
+        if turn != 0 {
+            // The hinged front face (part 0) turns with what it carries.
+            let face = Carried {
+                module: module.to_string(),
+                part: Some(0),
+            };
+            motion.carried.push(face);
+        }
+        Some(motion)
     }
 
     fn quarter_turns(&self, from: i64, to: i64, _increasing: bool) -> u64 {
