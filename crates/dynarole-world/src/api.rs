@@ -36,6 +36,12 @@ pub trait RobotKind: Send + Sync + 'static {
     fn network_presets(&self) -> &'static [NetworkPreset] {
         &[]
     }
+    /// The JSON Schema (draft 2020-12) of its data files, the text of the schema file in its
+    /// folder: their structure, with the checks a schema cannot express left to
+    /// `read_configuration`. None by default.
+    fn schema(&self) -> Option<&'static str> {
+        None
+    }
 }
 
 /// How a robot's transceivers and clocks behave in the simulator, under a name a scenario

@@ -62,6 +62,11 @@ impl RobotKind for Atron {
     fn firmware_boards(&self) -> &'static [&'static str] {
         &["avr"]
     }
+
+    /// `atron.schema.json`: the structure of its data files (`json.rs` reads them).
+    fn schema(&self) -> Option<&'static str> {
+        Some(include_str!("../atron.schema.json"))
+    }
 }
 
 dynarole_world::robot_configuration!(AtronConfiguration, KIND, World::new);

@@ -49,6 +49,11 @@ impl RobotKind for Mtran {
     fn network_presets(&self) -> &'static [NetworkPreset] {
         &NETWORK_PRESETS
     }
+
+    /// `mtran.schema.json`: the structure of its data files (`json.rs` reads them).
+    fn schema(&self) -> Option<&'static str> {
+        Some(include_str!("../mtran.schema.json"))
+    }
 }
 
 dynarole_world::robot_configuration!(MtranConfiguration, KIND, MtranWorld::new);

@@ -45,6 +45,11 @@ impl RobotKind for HingedCubes {
     fn drawing(&self) -> Drawing {
         drawing::drawing()
     }
+
+    /// `cubes.schema.json`: the structure of its data files (`configuration.rs` reads them).
+    fn schema(&self) -> Option<&'static str> {
+        Some(include_str!("../cubes.schema.json"))
+    }
 }
 
 dynarole_world::robot_configuration!(CubesConfiguration, KIND, CubesWorld::new);
