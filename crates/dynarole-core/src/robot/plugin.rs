@@ -99,48 +99,61 @@ fn timing_presets(raw: &[RawTiming], parts: &[Part]) -> Result<Vec<TimingPreset>
 /// A preset's durations: each one given (at most [`MAX_OPERATION_MS`]), or left out where no
 /// operation of the robot is of its kind (then 0, never used).
 fn durations(raw: &RawTiming, parts: &[Part], field: &str) -> Result<Durations, PluginError> {
-    let duration = |name: &str, value: Option<u64>, kinds: &[OperationKind]| {
-        let Some(ms) = value else {
-            return match operation_of_kind(parts, kinds) {
-                Some((part, op)) => Err(error(
-                    field,
-                    format!(
-                        "timing preset `{}` gives no `{name}`, which operation `{}` of part `{}` \
-                         (kind `{}`) needs",
-                        raw.name,
-                        op.name,
-                        part.name,
-                        op.kind.name()
-                    ),
-                )),
-                None => Ok(0),
-            };
-        };
-        if ms > MAX_OPERATION_MS {
-            return Err(error(
-                format!("{field}.{name}"),
-                format!(
-                    "expected at most {MAX_OPERATION_MS} ms (the simulator's longest run), found {ms}"
-                ),
-            ));
-        }
-        Ok(ms)
+    let given = |name: &'static str, value: Option<u64>, kinds: &[OperationKind]| {
+        duration(Given { name, value, kinds }, raw, parts, field)
     };
     let turns = [OperationKind::Turn, OperationKind::TurnTo];
     Ok(Durations {
-        extend_ms: duration("extend_ms", raw.extend_ms, &[OperationKind::Extend])?,
-        retract_ms: duration("retract_ms", raw.retract_ms, &[OperationKind::Retract])?,
-        turn_first_quarter_ms: duration(
-            "turn_first_quarter_ms",
-            raw.turn_first_quarter_ms,
-            &turns,
-        )?,
-        turn_further_quarter_ms: duration(
+        extend_ms: given("extend_ms", raw.extend_ms, &[OperationKind::Extend])?,
+        retract_ms: given("retract_ms", raw.retract_ms, &[OperationKind::Retract])?,
+        turn_first_quarter_ms: given("turn_first_quarter_ms", raw.turn_first_quarter_ms, &turns)?,
+        turn_further_quarter_ms: given(
             "turn_further_quarter_ms",
             raw.turn_further_quarter_ms,
             &turns,
         )?,
     })
+}
+
+/// One duration field of a preset as written, and the kinds of operation that take it.
+struct Given<'a> {
+    name: &'static str,
+    value: Option<u64>,
+    kinds: &'a [OperationKind],
+}
+
+/// The value of `given` in preset `raw` (at `field`): refused above [`MAX_OPERATION_MS`], or
+/// when left out and an operation of the robot (`parts`) is of its kinds.
+fn duration(
+    given: Given,
+    raw: &RawTiming,
+    parts: &[Part],
+    field: &str,
+) -> Result<u64, PluginError> {
+    let name = given.name;
+    let Some(ms) = given.value else {
+        let Some((part, op)) = operation_of_kind(parts, given.kinds) else {
+            return Ok(0);
+        };
+        let message = format!(
+            "timing preset `{}` gives no `{name}`, which operation `{}` of part `{}` (kind `{}`) \
+             needs",
+            raw.name,
+            op.name,
+            part.name,
+            op.kind.name()
+        );
+        return Err(error(field, message));
+    };
+    if ms > MAX_OPERATION_MS {
+        return Err(error(
+            format!("{field}.{name}"),
+            format!(
+                "expected at most {MAX_OPERATION_MS} ms (the simulator's longest run), found {ms}"
+            ),
+        ));
+    }
+    Ok(ms)
 }
 
 /// The first operation (and its part) of one of `kinds`.
