@@ -145,13 +145,17 @@ pub fn inputs(sources: &Sources) -> Result<Inputs<'_>, Error> {
             diagnostics,
         }
     })?;
+    let spec_error = |error: SpecError| Error::Spec {
+        path: sources.path.clone(),
+        error: Box::new(error.locate(&sources.text)),
+        text: sources.text.clone(),
+    };
     let presets = sources.start.kind().network_presets();
-    let preset =
-        (campaign.scenario.network.preset.resolve(presets)).map_err(|message| Error::Spec {
-            path: sources.path.clone(),
-            error: Box::new(SpecError::new("preset", message).locate(&sources.text)),
-            text: sources.text.clone(),
-        })?;
+    let preset = (campaign.scenario.network.preset.resolve(presets))
+        .map_err(|message| spec_error(SpecError::new("preset", message)))?;
+    // Every run would fail on an unknown timing preset: refused here, at its field.
+    (campaign.scenario.timing.durations(&program.robot))
+        .map_err(|e| spec_error(e.nested_in("scenario")))?;
     Ok(Inputs {
         campaign,
         source: &sources.source,

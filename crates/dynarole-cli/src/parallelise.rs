@@ -1,6 +1,7 @@
 //! `dynarole parallelise`: a sequence written in order becomes the most parallel sequence
 //! that is provably safe on the model, printed as a complete `.dr` file with its makespan
-//! (the critical path with the simulator's timing preset) before and after.
+//! (the critical path with the robot's default timing preset, which the printed line calls
+//! the simulator's, as it always has) before and after.
 
 use crate::load::{self, Failure};
 use crate::render;

@@ -186,8 +186,10 @@ fn main() {
                     (p.p95_ms / fixed.p95_ms - 1.0) * 100.0,
                 );
                 if loss == 0.0 {
-                    let path = path_sim.critical_path(&scenario.timing);
-                    let serial = path_sim.critical_path_one_at_a_time(&scenario.timing);
+                    let durations =
+                        (path_sim.durations(&scenario.timing)).expect("the robot's timing preset");
+                    let path = path_sim.critical_path(&durations);
+                    let serial = path_sim.critical_path_one_at_a_time(&durations);
                     let bound = path.with_handovers(PERIOD_MS) as f64;
                     let serial_bound = serial.with_handovers(PERIOD_MS) as f64;
                     bounds.push(format!(

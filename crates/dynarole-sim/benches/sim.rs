@@ -72,7 +72,8 @@ fn figures(
     car: &Configuration,
 ) {
     let scenario = scenario(preset, loss, stepping);
-    let path = sim.critical_path(&scenario.timing);
+    let durations = (sim.durations(&scenario.timing)).expect("the robot's timing preset");
+    let path = sim.critical_path(&durations);
     let bound_ms = path.with_handovers(BROADCAST_MS);
     let run = |seed| {
         sim.run(&Run {

@@ -4,7 +4,7 @@
 //! modules). No run can complete sooner; a protocol that passes the baton from one module to
 //! the next by broadcast pays about one broadcast period per hand-over on top.
 
-use crate::scenario::Timing;
+use crate::scenario::Durations;
 use crate::sequence::{OpKind, Sequence};
 use dynarole_core::lower::Ir;
 use serde::Serialize;
@@ -63,7 +63,7 @@ fn chain(ir: &Ir, order: Order, duration: impl Fn(usize) -> u64) -> CriticalPath
             }
         }
         let ((finish, handovers), previous) = top;
-        best.push(((finish + duration(s), handovers), previous));
+        best.push(((finish.saturating_add(duration(s)), handovers), previous));
     }
     let mut last = None;
     for (s, (weight, _)) in best.iter().enumerate() {
@@ -86,24 +86,28 @@ fn chain(ir: &Ir, order: Order, duration: impl Fn(usize) -> u64) -> CriticalPath
     }
 }
 
-/// The critical path of `seq` with `timing`'s durations. A turn's duration comes from its
+/// The critical path of `seq` with `durations`. A turn's duration comes from its
 /// arguments: `rotateFromToBy` names where it starts; `rotateToBy` is taken to start where
 /// the same module's previous turn of that joint ended (0 when there is none), an estimate.
-pub fn critical_path(seq: &Sequence, timing: &Timing) -> CriticalPath {
-    chain(&seq.ir, Order::Meaning, durations(seq, timing))
+pub fn critical_path(seq: &Sequence, durations: &Durations) -> CriticalPath {
+    chain(&seq.ir, Order::Meaning, statement_durations(seq, durations))
 }
 
 /// The critical path as the lattice runtime can run it at best: `critical_path` plus the
 /// order of each module's own statements (one operation at a time), so that two `&`
 /// statements of one module weigh the sum of their durations. Still a lower bound of any run.
-pub fn one_at_a_time(seq: &Sequence, timing: &Timing) -> CriticalPath {
-    chain(&seq.ir, Order::OneAtATime, durations(seq, timing))
+pub fn one_at_a_time(seq: &Sequence, durations: &Durations) -> CriticalPath {
+    chain(
+        &seq.ir,
+        Order::OneAtATime,
+        statement_durations(seq, durations),
+    )
 }
 
-/// Each statement's duration with `timing` (see `critical_path`), computed in one pass: the
-/// angle a `rotateToBy` starts from is the last target of the same module's joint so far
+/// Each statement's duration with `durations` (see `critical_path`), computed in one pass:
+/// the angle a `rotateToBy` starts from is the last target of the same module's joint so far
 /// (a backward search per turn was quadratic on long sequences).
-fn durations<'a>(seq: &'a Sequence, timing: &'a Timing) -> impl Fn(usize) -> u64 + 'a {
+fn statement_durations(seq: &Sequence, durations: &Durations) -> impl Fn(usize) -> u64 {
     let mut last_target: BTreeMap<(u8, u8), i64> = BTreeMap::new();
     let mut out = Vec::with_capacity(seq.len());
     for (s, st) in seq.ir.statements.iter().enumerate() {
@@ -118,14 +122,14 @@ fn durations<'a>(seq: &'a Sequence, timing: &'a Timing) -> impl Fn(usize) -> u64
         } else {
             0
         };
-        out.push(kind.nominal_ms(timing, quarters));
+        out.push(kind.nominal_ms(durations, quarters));
     }
     move |s: usize| out.get(s).copied().unwrap_or(0)
 }
 
 #[cfg(test)]
 mod tests {
-    use crate::{Simulator, Timing};
+    use crate::{Simulator, USSR_TIMING};
     use dynarole_codegen::{CompileOptions, Protocol};
     use dynarole_core::{analyze, parse};
 
@@ -151,7 +155,7 @@ mod tests {
              M1.Connector[2].extend() &\n    M0.Joint.rotateFromToBy(0, 216, true, 150);\n    \
              M0.Joint.rotateFromToBy(216, 0, false, 150);\n}\n",
         );
-        let path = sim.critical_path(&Timing::default());
+        let path = sim.critical_path(&USSR_TIMING);
         assert_eq!(path.statements, vec![0, 1, 3]);
         assert_eq!(path.duration_ms, 2000 + 3000 + 860);
         assert_eq!(path.handovers, 1);
@@ -168,7 +172,7 @@ mod tests {
              M0.Joint.rotateToBy(0, false, 150);\n    M1.Connector[2].retract() &\n    \
              M0.Connector[4].retract();\n    M0.Connector[4].extend();\n}\n",
         );
-        let path = sim.critical_path(&Timing::default());
+        let path = sim.critical_path(&USSR_TIMING);
         assert_eq!(path.duration_ms, 550 + 550 + 2000 + 3000);
         assert_eq!(path.statements, vec![0, 1, 2, 4]);
         assert_eq!(path.handovers, 2);
@@ -183,9 +187,9 @@ mod tests {
              M1.Connector[4].retract() &\n    M1.Connector[2].extend();\n    \
              M0.Joint.rotateFromToBy(0, 108, true, 150);\n}\n",
         );
-        let meaning = sim.critical_path(&Timing::default());
+        let meaning = sim.critical_path(&USSR_TIMING);
         assert_eq!(meaning.duration_ms, 2000 + 3000 + 550);
-        let runtime = sim.critical_path_one_at_a_time(&Timing::default());
+        let runtime = sim.critical_path_one_at_a_time(&USSR_TIMING);
         assert_eq!(runtime.duration_ms, 2000 + 2000 + 3000 + 550);
         assert_eq!(runtime.statements, vec![0, 1, 2, 3]);
         assert_eq!(runtime.handovers, 1);

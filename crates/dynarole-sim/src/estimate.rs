@@ -1,17 +1,17 @@
-//! Makespans of sequences as the simulator's timing preset weighs them: the critical path of
+//! Makespans of sequences as the robot's default timing preset weighs them: the critical path of
 //! their dependencies, no network. `dynarole parallelise` compares a sequence with the
 //! parallel forms found for it by these, and keeps the shortest.
 
 use crate::critical::critical_path;
+use crate::scenario::default_durations;
 use crate::sequence::Sequence;
-use crate::Timing;
 use dynarole_codegen::Protocol;
 use dynarole_core::expand::Plan;
 use dynarole_core::{driver, parse, Program, RobotApi};
 use dynarole_replay::{Form, Parallelised};
 
 /// The critical path of `plans` in ms, as `protocol`'s code orders them: lowered for the
-/// shapes it runs and weighed by the timing preset. No C is generated: the critical path is a
+/// shapes it runs and weighed by the robot's default timing preset (`default_durations`). No C is generated: the critical path is a
 /// property of the dependencies and durations alone.
 pub fn makespan(program: &Program, plans: &[Plan], protocol: Protocol) -> Result<u64, String> {
     let ir =
@@ -21,7 +21,8 @@ pub fn makespan(program: &Program, plans: &[Plan], protocol: Protocol) -> Result
         .flat_map(|p| p.statements().into_iter().cloned())
         .collect();
     let sequence = Sequence::new(program.robot.clone(), ir, resolved);
-    Ok(critical_path(&sequence, &Timing::default()).duration_ms)
+    let durations = default_durations(&program.robot);
+    Ok(critical_path(&sequence, &durations).duration_ms)
 }
 
 /// The makespans of a parallelised sequence's written forms and the one to write.

@@ -41,8 +41,8 @@ pub use model_recording::{replay_steps, ModelRecording, ModelRecordingError};
 pub use recorded::{Recorded, MAX_RECORDED, RECORDED_PACKETS};
 pub use report::{Counters, ModuleReport, Refusal, Report, Violation};
 pub use scenario::{
-    Block, Foreign, JointModel, Network, Power, Preset, PresetName, RandomResets, Reset, Scenario,
-    ScenarioError, Stepping, Timing, MAX_TIMEOUT_MS, USSR,
+    default_durations, Block, Durations, Foreign, Network, Power, Preset, PresetName, RandomResets,
+    Reset, Scenario, ScenarioError, Stepping, Timing, MAX_TIMEOUT_MS, USSR, USSR_TIMING,
 };
 pub use trace::Outputs;
 
@@ -174,17 +174,23 @@ impl Simulator {
         self.sequence.len()
     }
 
-    /// The mechanical critical path with `timing`'s durations: the heaviest chain of
-    /// dependencies, a lower bound of any run's completion time (`critical.rs`).
-    pub fn critical_path(&self, timing: &Timing) -> CriticalPath {
-        critical::critical_path(&self.sequence, timing)
+    /// The durations `timing` names for the sequence's robot (`Timing::durations`): an
+    /// unknown preset is an error at `timing.preset`.
+    pub fn durations(&self, timing: &Timing) -> Result<Durations, ScenarioError> {
+        timing.durations(&self.sequence.robot)
+    }
+
+    /// The mechanical critical path with `durations` (`Simulator::durations`): the heaviest
+    /// chain of dependencies, a lower bound of any run's completion time (`critical.rs`).
+    pub fn critical_path(&self, durations: &Durations) -> CriticalPath {
+        critical::critical_path(&self.sequence, durations)
     }
 
     /// `critical_path` with each module's statements run one at a time, in source order
     /// (`critical.rs`): the bound of a runtime that runs one operation per module at a time
     /// (the lattice runtime with `DR_CONF_LATTICE_BATCH` 1, and before batches).
-    pub fn critical_path_one_at_a_time(&self, timing: &Timing) -> CriticalPath {
-        critical::one_at_a_time(&self.sequence, timing)
+    pub fn critical_path_one_at_a_time(&self, durations: &Durations) -> CriticalPath {
+        critical::one_at_a_time(&self.sequence, durations)
     }
 
     /// Builds (or finds in the cache) the C for `preset` and loads it.
@@ -224,11 +230,16 @@ impl Simulator {
     ) -> Result<(), ScenarioError> {
         let world = RobotWorld::new(start.clone(), &self.sequence.robot)
             .map_err(|e| ScenarioError::new("", e))?;
-        Self::check_scenario_on(&world, scenario)
+        self.check_scenario_on(&world, scenario)
     }
 
-    fn check_scenario_on(world: &RobotWorld, scenario: &Scenario) -> Result<(), ScenarioError> {
+    fn check_scenario_on(
+        &self,
+        world: &RobotWorld,
+        scenario: &Scenario,
+    ) -> Result<(), ScenarioError> {
         preset_of(world, scenario).map_err(|e| ScenarioError::new("network.preset", e))?;
+        self.durations(&scenario.timing)?;
         let view = world.view();
         scenario.check_modules(|name| view.index(name).is_some(), view.connectors())
     }
@@ -254,7 +265,7 @@ impl Simulator {
     pub fn run_model(&self, run: &ModelRun) -> Result<Report, SimError> {
         let world = RobotWorld::from_model(run.start.clone_model(), &self.sequence.robot)
             .map_err(SimError::Input)?;
-        let world = Self::checked(world, run.scenario)?;
+        let world = self.checked(world, run.scenario)?;
         let expect = run.expect.map(Expected::Model);
         let traced = Traced {
             keep: run.trace,
@@ -273,15 +284,17 @@ impl Simulator {
         traced: Traced,
     ) -> Result<Report, SimError> {
         let preset = preset_of(&world, scenario).map_err(SimError::Input)?;
+        let durations = self.run_durations(scenario)?;
         let library = self.library(preset)?;
         let foreign_frames = if scenario.foreign.is_empty() {
             Vec::new()
         } else {
-            self.other_robots_frames(world.clone(), (scenario, preset), seed, library.entry)?
+            let how = (scenario, preset, durations);
+            self.other_robots_frames(world.clone(), how, seed, library.entry)?
         };
         let mut state = State::new(
             Arc::clone(&self.sequence),
-            (world, preset),
+            (world, preset, durations),
             scenario.clone(),
             seed,
             traced.keep,
@@ -297,12 +310,17 @@ impl Simulator {
     fn world_for(&self, run: &Run) -> Result<RobotWorld, SimError> {
         let world =
             RobotWorld::new(run.start.clone(), &self.sequence.robot).map_err(SimError::Input)?;
-        Self::checked(world, run.scenario)
+        self.checked(world, run.scenario)
+    }
+
+    /// The durations of a run of `scenario` (checked with the scenario before any run).
+    fn run_durations(&self, scenario: &Scenario) -> Result<Durations, SimError> {
+        (self.durations(&scenario.timing)).map_err(|e| SimError::Input(format!("scenario: {e}")))
     }
 
     /// `world` once it is within the simulator's limits and the scenario is checked against
     /// it.
-    fn checked(world: RobotWorld, scenario: &Scenario) -> Result<RobotWorld, SimError> {
+    fn checked(&self, world: RobotWorld, scenario: &Scenario) -> Result<RobotWorld, SimError> {
         let view = world.view();
         if view.len() > links::MAX_MODULES || usize::from(view.connectors()) > packet::QUEUES {
             return Err(SimError::Input(format!(
@@ -316,7 +334,7 @@ impl Simulator {
         scenario
             .check()
             .map_err(|e| SimError::Input(e.to_string()))?;
-        Self::check_scenario_on(&world, scenario)
+        self.check_scenario_on(&world, scenario)
             .map_err(|e| SimError::Input(format!("scenario: {e}")))?;
         Ok(world)
     }
@@ -327,7 +345,7 @@ impl Simulator {
     fn other_robots_frames(
         &self,
         world: RobotWorld,
-        (scenario, preset): (&Scenario, Preset),
+        (scenario, preset, durations): (&Scenario, Preset, Durations),
         seed: u64,
         entry: build::Entry,
     ) -> Result<Vec<Option<Vec<u8>>>, SimError> {
@@ -340,7 +358,7 @@ impl Simulator {
             timing: scenario.timing.clone(),
             ..Scenario::default()
         };
-        let world = (world, preset);
+        let world = (world, preset, durations);
         let mut state = State::new(Arc::clone(&self.sequence), world, scenario, seed, false);
         state.last_frames = Some(vec![None; state.n_modules()]);
         let finished = engine::run(entry, state).map_err(SimError::Build)?;

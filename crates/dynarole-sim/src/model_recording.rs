@@ -1,9 +1,10 @@
 //! The recording of a run on the model, with no network (`dynarole replay`, and `verify`'s
-//! counterexamples): its steps in order, each operation taking the simulator's default
-//! duration ([`Timing`]), so that the viewer plays it like a simulation.
+//! counterexamples): its steps in order, each operation taking its duration in the robot's
+//! default timing preset ([`default_durations`]), so that the viewer plays it like a
+//! simulation.
 
+use crate::scenario::{default_durations, Durations};
 use crate::sequence::OpKind;
-use crate::Timing;
 use dynarole_core::check::ResolvedStatement;
 use dynarole_recording::{Builder, ModelStep, Recording, TraceEvent};
 use dynarole_replay::Assignment;
@@ -26,7 +27,8 @@ impl std::fmt::Display for ModelRecordingError {
 }
 
 /// The recording of a run on the model (no network): the steps in order, each operation
-/// taking the simulator's default duration, so the page plays like a simulation.
+/// taking its duration in the robot's default timing preset, so the page plays like a
+/// simulation.
 pub struct ModelRecording<'a> {
     pub kind: &'a str,
     pub title: &'a str,
@@ -61,8 +63,10 @@ impl ModelRecording<'_> {
         let kinds: Vec<OpKind> = (self.statements.iter())
             .map(|s| OpKind::of_statement(self.robot, s))
             .collect();
+        let durations = default_durations(self.robot);
         let duration = |s: usize, path: Option<&dynarole_recording::Path>| -> f64 {
-            nominal_ms(kinds.get(s).copied().unwrap_or(OpKind::Other), path)
+            let kind = kinds.get(s).copied().unwrap_or(OpKind::Other);
+            nominal_ms(kind, &durations, path)
         };
         let view = dynarole_world::View::of(self.start);
         let index = |name: &str| {
@@ -120,11 +124,11 @@ impl ModelRecording<'_> {
     }
 }
 
-/// The simulator's default duration of an operation (`dynarole_sim::Timing`), a turn's
-/// quarter turns read from the motion the world gave it.
-fn nominal_ms(kind: OpKind, path: Option<&dynarole_recording::Path>) -> f64 {
+/// The duration of an operation with `durations`, a turn's quarter turns read from the motion
+/// the world gave it.
+fn nominal_ms(kind: OpKind, durations: &Durations, path: Option<&dynarole_recording::Path>) -> f64 {
     let quarters = path.map_or(0, |p| (p.turned_deg() / 90.0).round() as u64);
-    kind.nominal_ms(&Timing::default(), quarters) as f64
+    kind.nominal_ms(durations, quarters) as f64
 }
 
 /// A replay's steps: each statement (numbered in `statements`' order) done by the module of
@@ -140,15 +144,15 @@ pub fn replay_steps(statements: &[ResolvedStatement], assignment: &Assignment) -
 #[cfg(test)]
 mod tests {
     use super::{nominal_ms, OpKind};
-    use crate::Timing;
+    use crate::USSR_TIMING;
 
     /// An operation's duration comes from the kind its plugin declares, as in a run: once a
     /// retract was told from an extend by the word `.retract(` in its text, so a plugin that
     /// names it otherwise, or an operation of kind `none`, played for the extend's 3 s.
     #[test]
     fn an_operation_lasts_as_its_kind_does_in_a_run() {
-        let timing = Timing::default();
-        let ms = |kind| nominal_ms(kind, None);
+        let timing = USSR_TIMING;
+        let ms = |kind| nominal_ms(kind, &timing, None);
         assert_eq!(ms(OpKind::Retract), timing.retract_ms as f64);
         assert_eq!(ms(OpKind::Extend), timing.extend_ms as f64);
         assert_eq!(ms(OpKind::Other), 0.0);

@@ -233,7 +233,8 @@ impl State {
         if self.seq.kinds[s] == OpKind::Turn {
             self.note_turn(id, m, s);
         }
-        let at = self.now + self.duration_ms(m, s) * 1000;
+        // Saturating: a plugin's absurd turn (a huge count of quarters) is never reached.
+        let at = (self.now).saturating_add(self.duration_ms(m, s).saturating_mul(1000));
         self.schedule(at, Event::OpDone { attempt: id });
     }
 
@@ -256,7 +257,7 @@ impl State {
             OpKind::Turn if !self.already_there(m, s) => self.quarter_turns(m, s),
             _ => 0,
         };
-        kind.nominal_ms(&self.scenario.timing, quarters)
+        kind.nominal_ms(&self.durations, quarters)
     }
 
     /// Which modules move during a turn (the modules of its sweep's points), so that their

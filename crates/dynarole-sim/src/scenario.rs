@@ -2,6 +2,9 @@
 //! links, the faults-on phase and the timeout). Every field is documented in `SCENARIO.md`.
 
 use dynarole_codegen::choice::{self, Choice};
+use dynarole_core::robot::MAX_OPERATION_MS;
+use dynarole_core::suggest::did_you_mean;
+use dynarole_core::RobotApi;
 use serde::{Deserialize, Serialize};
 
 /// How the network and the modules' clocks behave: one of the robot's presets
@@ -17,8 +20,8 @@ pub const USSR: Preset = Preset {
     jitter_ms: 0,
 };
 
-/// The preset a scenario names (`network.preset`); none: the robot's default (its first
-/// preset, or [`USSR`] for a robot with none).
+/// The preset a scenario names (`network.preset`, and `timing.preset`: [`Timing`]); none: the
+/// robot's default (its first preset, or [`USSR`] for a robot with no network presets).
 #[derive(Clone, Debug, PartialEq, Eq, Deserialize, Serialize, Default)]
 #[serde(transparent)]
 pub struct PresetName(pub Option<String>);
@@ -49,18 +52,6 @@ impl PresetName {
     }
 }
 
-/// Joint speed model.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Serialize, Default)]
-#[serde(rename_all = "lowercase")]
-pub enum JointModel {
-    /// The original simulator's joint: 0.55 s a quarter turn, 0.86 s a half turn, +0.31 s
-    /// per further quarter.
-    #[default]
-    Ussr,
-    /// The "realistic" variant: 6 s per revolution plus 0.6 s to settle (2.1 s a quarter).
-    Realistic,
-}
-
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct Network {
@@ -81,39 +72,116 @@ impl Default for Network {
     }
 }
 
-#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+/// How long each kind of operation takes, in ms: a timing preset's durations with the
+/// scenario's overrides ([`Timing::durations`]).
+pub type Durations = dynarole_core::robot::Durations;
+
+/// The simulator's built-in timing preset `ussr`, for a robot whose plugin declares none (as
+/// [`USSR`] is for a robot with no network presets): the original simulator's durations,
+/// extend 3 s, retract 2 s, a quarter turn 0.55 s and 0.31 s per further quarter.
+pub const USSR_TIMING: Durations = Durations {
+    extend_ms: 3000,
+    retract_ms: 2000,
+    turn_first_quarter_ms: 550,
+    turn_further_quarter_ms: 310,
+};
+
+/// The name of [`USSR_TIMING`] in scenarios.
+const USSR_TIMING_NAME: &str = "ussr";
+
+/// The timing presets a scenario may name for `robot`, the default first: its plugin's
+/// `[[timing]]` alone (a robot that declares its durations gets no other robot's), or
+/// [`USSR_TIMING`] for a plugin that declares none.
+fn timing_presets(robot: &RobotApi) -> Vec<(&str, Durations)> {
+    if robot.timing.is_empty() {
+        return vec![(USSR_TIMING_NAME, USSR_TIMING)];
+    }
+    (robot.timing.iter())
+        .map(|p| (p.name.as_str(), p.durations))
+        .collect()
+}
+
+/// The durations of `robot`'s default timing preset (its first, or [`USSR_TIMING`]): what a
+/// scenario without `timing.preset` runs with, and what model recordings and makespan
+/// estimates weigh operations by.
+pub fn default_durations(robot: &RobotApi) -> Durations {
+    timing_presets(robot).first().map_or(USSR_TIMING, |p| p.1)
+}
+
+/// How long operations take in a run (`[timing]`): one of the robot's timing presets, two of
+/// its durations replaced if the scenario says, and a random variation.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize, Default)]
 #[serde(deny_unknown_fields, default)]
 pub struct Timing {
-    pub extend_ms: u64,
-    pub retract_ms: u64,
-    pub joint: JointModel,
+    /// Replaces the preset's extend duration.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub extend_ms: Option<u64>,
+    /// Replaces the preset's retract duration.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub retract_ms: Option<u64>,
+    /// One of the robot's timing presets (`RobotApi::timing`); none: its default
+    /// ([`default_durations`]). `joint` is its name in older scenarios, from when the
+    /// simulator had two joint models (`ussr`, `realistic`) for every robot.
+    #[serde(alias = "joint")]
+    pub preset: PresetName,
     /// Random variation of every operation's duration: each takes its nominal time times a
     /// factor drawn uniformly from [1 - variation, 1 + variation] (0: exact durations).
     pub variation: f64,
 }
 
-impl Default for Timing {
-    fn default() -> Timing {
-        Timing {
-            extend_ms: 3000,
-            retract_ms: 2000,
-            joint: JointModel::Ussr,
-            variation: 0.0,
+impl Timing {
+    /// The durations this names for `robot`: its preset `preset` (or its default), with
+    /// `extend_ms` and `retract_ms` in place of the preset's where given. An unknown preset is
+    /// an error at `timing.preset` naming the robot's presets, with the closest one as a hint.
+    pub fn durations(&self, robot: &RobotApi) -> Result<Durations, ScenarioError> {
+        let preset = match &self.preset.0 {
+            None => default_durations(robot),
+            Some(name) => named_durations(robot, name)?,
+        };
+        Ok(Durations {
+            extend_ms: self.extend_ms.unwrap_or(preset.extend_ms),
+            retract_ms: self.retract_ms.unwrap_or(preset.retract_ms),
+            ..preset
+        })
+    }
+
+    /// `extend_ms` and `retract_ms` are at most [`MAX_OPERATION_MS`], as a preset's are.
+    fn check_overrides(&self) -> Result<(), ScenarioError> {
+        let overrides = [
+            ("timing.extend_ms", self.extend_ms),
+            ("timing.retract_ms", self.retract_ms),
+        ];
+        for (field, ms) in overrides {
+            if let Some(ms) = ms.filter(|ms| *ms > MAX_OPERATION_MS) {
+                let message = format!(
+                    "{ms} ms is more than {MAX_OPERATION_MS} ms, the longest an operation may take"
+                );
+                return Err(error(field, message));
+            }
         }
+        Ok(())
     }
 }
 
-impl Timing {
-    /// Duration of a joint turn of `quarters` quarter turns, in ms (0 for no motion).
-    pub fn turn_ms(&self, quarters: u64) -> u64 {
-        if quarters == 0 {
-            return 0;
-        }
-        match self.joint {
-            JointModel::Ussr => 550 + 310 * (quarters - 1),
-            JointModel::Realistic => 1500 * quarters + 600,
-        }
+/// The durations of `robot`'s timing preset `name`.
+fn named_durations(robot: &RobotApi, name: &str) -> Result<Durations, ScenarioError> {
+    let presets = timing_presets(robot);
+    if let Some((_, durations)) = presets.iter().find(|(n, _)| *n == name) {
+        return Ok(*durations);
     }
+    let mut names: Vec<String> = presets.iter().map(|(n, _)| format!("`{n}`")).collect();
+    let last = names.pop().unwrap_or_default();
+    let listed = match names.is_empty() {
+        true => last,
+        false => format!("{} and {last}", names.join(", ")),
+    };
+    let message = format!(
+        "unknown timing preset `{name}`; robot `{}` has {listed}",
+        robot.name
+    );
+    let mut error = error("timing.preset", message);
+    error.hint = did_you_mean(name, presets.iter().map(|(n, _)| *n));
+    Err(error)
 }
 
 #[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
@@ -298,6 +366,7 @@ impl Scenario {
                 ),
             ));
         }
+        self.timing.check_overrides()?;
         if self.timeout_ms == 0 {
             return Err(error("timeout_ms", "must be above 0"));
         }
@@ -484,5 +553,79 @@ mod tests {
         );
         assert_eq!(error.span, Some(11..17));
         assert_eq!(error.hint.as_deref(), Some("did you mean `tickless`?"));
+    }
+
+    fn built_in(name: &str) -> RobotApi {
+        dynarole_robots::plugins()
+            .get(name)
+            .cloned()
+            .expect("a built-in robot")
+    }
+
+    /// ATRON's presets (and M-TRAN's, for now the same) are the simulator's two joint models
+    /// of before, number for number: `ussr` (550 ms + 310 ms per further quarter) and
+    /// `realistic` (1500 ms per quarter + 600 ms to settle), extend 3 s and retract 2 s.
+    #[test]
+    fn atrons_timing_presets_are_the_former_joint_models() {
+        for robot in ["atron", "mtran"] {
+            let api = built_in(robot);
+            let named = |name: &str| {
+                let timing = Timing {
+                    preset: PresetName::named(name),
+                    ..Timing::default()
+                };
+                timing.durations(&api).expect("a preset of the robot")
+            };
+            assert_eq!(named("ussr"), USSR_TIMING, "{robot}");
+            assert_eq!(default_durations(&api), USSR_TIMING, "{robot}: ussr first");
+            let realistic = named("realistic");
+            assert_eq!((realistic.extend_ms, realistic.retract_ms), (3000, 2000));
+            for quarters in 0..=4 {
+                let before = if quarters == 0 {
+                    0
+                } else {
+                    1500 * quarters + 600
+                };
+                assert_eq!(realistic.turn_ms(quarters), before, "{robot}: {quarters}");
+                let before = if quarters == 0 {
+                    0
+                } else {
+                    550 + 310 * (quarters - 1)
+                };
+                assert_eq!(USSR_TIMING.turn_ms(quarters), before, "{quarters}");
+            }
+        }
+    }
+
+    /// A plugin without `[[timing]]` runs the built-in `ussr`, the only name it has.
+    #[test]
+    fn a_robot_without_timing_presets_runs_the_built_in_ussr() {
+        let api = RobotApi::from_toml("name = \"bare\"\n").expect("a plugin");
+        assert_eq!(Timing::default().durations(&api), Ok(USSR_TIMING));
+        let ussr = Scenario::from_toml_str("[timing]\npreset = \"ussr\"\n").expect("reads");
+        assert_eq!(ussr.timing.durations(&api), Ok(USSR_TIMING));
+        let other = Scenario::from_toml_str("[timing]\npreset = \"realistic\"\n").expect("reads");
+        let error = other.timing.durations(&api).expect_err("not this robot's");
+        assert_eq!(error.field, "timing.preset");
+        assert_eq!(
+            error.message,
+            "unknown timing preset `realistic`; robot `bare` has `ussr`"
+        );
+    }
+
+    /// `joint`, the field's former name, still reads; the overrides are optional and written
+    /// only when given.
+    #[test]
+    fn the_former_joint_field_reads_as_the_preset() {
+        let old = Scenario::from_toml_str("[timing]\njoint = \"realistic\"\n").expect("reads");
+        assert_eq!(old.timing.preset, PresetName::named("realistic"));
+        assert_eq!(old.timing.extend_ms, None);
+        let written = serde_json::to_value(&old.timing).expect("serialises");
+        assert_eq!(
+            written,
+            serde_json::json!({ "preset": "realistic", "variation": 0.0 })
+        );
+        let long = Scenario::from_toml_str("[timing]\nretract_ms = 1000000001\n");
+        assert_eq!(long.expect_err("too long").field, "timing.retract_ms");
     }
 }

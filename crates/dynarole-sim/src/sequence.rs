@@ -5,7 +5,7 @@
 //! statements and their dependency edges: a table of every statement's transitive dependents
 //! was quadratic (1 GB at 10,000 statements; `tests/sequence_memory.rs` keeps it linear).
 
-use crate::scenario::Timing;
+use crate::scenario::Durations;
 use dynarole_core::check::ResolvedStatement;
 use dynarole_core::lower::Ir;
 use dynarole_core::RobotApi;
@@ -27,14 +27,14 @@ impl OpKind {
         OpKind::of(dynarole_replay::action(robot, statement))
     }
 
-    /// The nominal duration of an operation of this kind with `timing`, a turn passing
+    /// The nominal duration of an operation of this kind with `durations`, a turn passing
     /// `quarters` quarter turns (0 for a turn that moves nothing): the one rule the run, the
     /// critical path and the model recordings share.
-    pub fn nominal_ms(self, timing: &Timing, quarters: u64) -> u64 {
+    pub fn nominal_ms(self, durations: &Durations, quarters: u64) -> u64 {
         match self {
-            OpKind::Extend => timing.extend_ms,
-            OpKind::Retract => timing.retract_ms,
-            OpKind::Turn => timing.turn_ms(quarters),
+            OpKind::Extend => durations.extend_ms,
+            OpKind::Retract => durations.retract_ms,
+            OpKind::Turn => durations.turn_ms(quarters),
             OpKind::Other => 0,
         }
     }

@@ -12,7 +12,7 @@ use crate::links::Links;
 use crate::packet::{Air, Packet, QUEUES};
 use crate::queue::{Key, Queue};
 use crate::report::{Counters, Refusal, Violation, STATE_COLUMN};
-use crate::scenario::{Preset, Scenario, Stepping};
+use crate::scenario::{Durations, Preset, Scenario, Stepping};
 use crate::sequence::Sequence;
 use crate::trace::{Outputs, Trace};
 use dynarole_recording::TraceEvent;
@@ -100,6 +100,9 @@ pub struct State {
     pub seq: Arc<Sequence>,
     pub scenario: Scenario,
     pub preset: Preset,
+    /// The operations' durations: the scenario's `[timing]` resolved for the robot
+    /// (`Timing::durations`).
+    pub durations: Durations,
     pub now: u64,
     queue: Queue,
     pub(crate) next_seq: u64,
@@ -172,7 +175,7 @@ fn stream(seed: u64, stream: u64) -> ChaCha8Rng {
 impl State {
     pub fn new(
         seq: Arc<Sequence>,
-        (world, preset): (RobotWorld, Preset),
+        (world, preset, durations): (RobotWorld, Preset, Durations),
         scenario: Scenario,
         seed: u64,
         trace: bool,
@@ -213,6 +216,7 @@ impl State {
             seq,
             scenario,
             preset,
+            durations,
             now: 0,
             queue: Queue::new(),
             next_seq: 0,

@@ -194,3 +194,62 @@ fn the_generated_c_folds_the_ring_on_every_cube() {
         "the ring is not the line"
     );
 }
+
+/// How long statement `s` took in a run of the ring on the cubes under `timing` (a scenario's
+/// `[timing]` table), in ms; `Err` for a scenario the run refuses.
+fn ring_statement_ms(timing: &str, s: usize) -> Result<f64, String> {
+    let parsed = parse(RING);
+    let program = check(&parsed);
+    let plans = driver::plans(&program, &["ring".to_string()]).expect("ring");
+    let options = CompileOptions {
+        protocol: Protocol::Lattice,
+        name: "cubes".into(),
+        ..CompileOptions::default()
+    };
+    let sim = Simulator::new(&program, &plans, &options).expect("compiles");
+    let scenario = Scenario::from_toml_str(timing).map_err(|e| e.to_string())?;
+    let start = line4();
+    let report = sim
+        .run_model(&ModelRun {
+            start: start.as_ref(),
+            expect: None,
+            scenario: &scenario,
+            seed: 1,
+            trace: true,
+        })
+        .map_err(|e| e.to_string())?;
+    let trace = report.trace.unwrap_or_default();
+    let when = |event: &str| {
+        let tag = format!("#{s} ");
+        (trace.lines())
+            .find(|line| line.split_whitespace().nth(2) == Some(event) && line.contains(&tag))
+            .and_then(|line| line.split_whitespace().next()?.parse::<f64>().ok())
+            .unwrap_or_else(|| panic!("no {event} of #{s}:\n{trace}"))
+    };
+    Ok((when("done") - when("start")).round())
+}
+
+/// The cubes declare their own timing presets (`cubes.robot.toml`): a bend of a quarter turn
+/// takes the first one's 0.8 s, the `geared` one's 2.5 s, and ATRON's `ussr` is not theirs.
+#[test]
+fn the_cubes_own_timing_presets_time_their_bends() {
+    assert_eq!(ring_statement_ms("", 0), Ok(800.0));
+    assert_eq!(
+        ring_statement_ms("[timing]\npreset = \"servo\"\n", 0),
+        Ok(800.0)
+    );
+    assert_eq!(
+        ring_statement_ms("[timing]\npreset = \"geared\"\n", 0),
+        Ok(2_500.0)
+    );
+    assert_eq!(
+        ring_statement_ms("[timing]\npreset = \"geared\"\nextend_ms = 700\n", 4),
+        Ok(700.0),
+        "the latch, with the scenario's extend_ms"
+    );
+    let refused = ring_statement_ms("[timing]\npreset = \"ussr\"\n", 0).expect_err("not theirs");
+    assert!(
+        refused.contains("robot `cubes` has `servo` and `geared`"),
+        "{refused}"
+    );
+}

@@ -39,8 +39,8 @@ fn peak_bytes(n: usize) -> usize {
     let source = pairs(n);
     let start = config(EIGHT);
     let mut scenario = Scenario::default();
-    scenario.timing.extend_ms = 10;
-    scenario.timing.retract_ms = 10;
+    scenario.timing.extend_ms = Some(10);
+    scenario.timing.retract_ms = Some(10);
     scenario.timeout_ms = 500;
     let base = HEAP.current();
     HEAP.reset_peak();

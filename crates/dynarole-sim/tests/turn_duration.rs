@@ -1,14 +1,17 @@
-//! How long a joint turn takes (crates/dynarole-sim/SCENARIO.md, `[timing]`): by the number of
-//! quarter turns it makes, and no time at all when the joint is already at the target, as
-//! when a turn is issued again after it completed.
+//! How long an operation takes (crates/dynarole-sim/SCENARIO.md, `[timing]`): as the robot's
+//! timing preset the scenario names says (ATRON's `ussr` and `realistic`), the scenario's
+//! `extend_ms` and `retract_ms` in place of the preset's; a turn by the number of quarter turns
+//! it makes, and no time at all when the joint is already at the target, as when a turn is
+//! issued again after it completed.
 
 mod common;
 
-use common::{run, simulator, CAR, EIGHT, EIGHT2CAR};
+use common::{config, run, simulator, CAR, EIGHT, EIGHT2CAR};
 use dynarole_codegen::Protocol;
-use dynarole_sim::{JointModel, Report, Reset, Scenario};
+use dynarole_sim::{Report, Reset, Run, Scenario, SimError};
 
 const CHAIN3: &str = include_str!("data/chain3.json");
+const CHAIN3_DR: &str = include_str!("data/chain3.dr");
 
 /// M0 of the chain starts at angle 0. #0 says it turns from 108 to 0 (the joint is at 0
 /// already), #1 makes a quarter turn to 108, #2 turns to 108 (there already), #3 a half turn
@@ -34,25 +37,86 @@ fn start_and_done(report: &Report, statements: usize) -> Vec<(f64, f64)> {
         .collect()
 }
 
+/// How long each statement took, in ms.
+fn took(report: &Report, statements: usize) -> Vec<f64> {
+    (start_and_done(report, statements).iter())
+        .map(|(start, done)| (done - start).round())
+        .collect()
+}
+
+/// A scenario read from its text, as `--scenario` reads it.
+fn scenario(text: &str) -> Scenario {
+    Scenario::from_toml_str(text).unwrap_or_else(|e| panic!("{e}"))
+}
+
 #[test]
 fn a_turn_to_the_angle_the_joint_has_takes_no_time() {
     let sim = simulator(TURNS, &["turns"], Protocol::Lattice);
-    for (joint, quarter, half) in [
-        (JointModel::Ussr, 550.0, 860.0),
-        (JointModel::Realistic, 2_100.0, 3_600.0),
+    // ATRON's presets by name, its first without one, and the older field name `joint`.
+    for (timing, quarter, half) in [
+        ("", 550.0, 860.0),
+        ("[timing]\npreset = \"ussr\"\n", 550.0, 860.0),
+        ("[timing]\npreset = \"realistic\"\n", 2_100.0, 3_600.0),
+        ("[timing]\njoint = \"realistic\"\n", 2_100.0, 3_600.0),
     ] {
-        let mut scenario = Scenario::default();
-        scenario.timing.joint = joint;
+        let scenario = scenario(timing);
         let report = run(&sim, CHAIN3, None, &scenario, 1);
         assert!(report.success, "{}", report.summary());
         assert!(report.violations.is_empty(), "{}", report.summary());
-        let times = start_and_done(&report, 4);
-        let took: Vec<f64> = times
-            .iter()
-            .map(|(start, done)| (done - start).round())
-            .collect();
-        assert_eq!(took, vec![0.0, quarter, 0.0, half], "{times:?}");
+        assert_eq!(took(&report, 4), vec![0.0, quarter, 0.0, half], "{timing}");
     }
+}
+
+/// chain3's `short`: #0 a retract, #1 an extend, #2 a half turn. The scenario's `extend_ms`
+/// and `retract_ms` replace the preset's; the preset's turn stays.
+#[test]
+fn extend_ms_and_retract_ms_replace_the_presets() {
+    let sim = simulator(CHAIN3_DR, &["short"], Protocol::Lattice);
+    let plain = run(&sim, CHAIN3, None, &Scenario::default(), 0);
+    assert_eq!(took(&plain, 3), vec![2_000.0, 3_000.0, 860.0]);
+    let text = "[timing]\npreset = \"realistic\"\nextend_ms = 1234\nretract_ms = 567\n";
+    let report = run(&sim, CHAIN3, None, &scenario(text), 0);
+    assert!(report.success, "{}", report.summary());
+    assert_eq!(took(&report, 3), vec![567.0, 1_234.0, 3_600.0]);
+    let durations = sim.durations(&scenario(text).timing).expect("known");
+    assert_eq!(
+        (durations.extend_ms, durations.retract_ms),
+        (1234, 567),
+        "the critical path weighs the same"
+    );
+    let path = sim.critical_path(&durations);
+    assert_eq!(path.duration_ms, 567 + 3_600);
+}
+
+/// A preset the robot does not have is refused at `timing.preset`, naming the robot's, before
+/// any run; a run asked for anyway is bad input, never one with some other durations.
+#[test]
+fn an_unknown_timing_preset_is_refused_at_its_field() {
+    let sim = simulator(CHAIN3_DR, &["short"], Protocol::Lattice);
+    let text = "[timing]\npreset = \"realistc\"\n";
+    let scenario = scenario(text);
+    let start = config(CHAIN3);
+    let error = sim.check_scenario(&scenario, &start).expect_err("unknown");
+    assert_eq!(error.field, "timing.preset");
+    assert_eq!(
+        error.message,
+        "unknown timing preset `realistc`; robot `atron` has `ussr` and `realistic`"
+    );
+    assert_eq!(error.hint.as_deref(), Some("did you mean `realistic`?"));
+    let located = error.locate(text);
+    assert_eq!(located.span.and_then(|s| text.get(s)), Some("\"realistc\""));
+    let refused = sim.run(&Run {
+        start: &start,
+        expect: None,
+        scenario: &scenario,
+        seed: 0,
+        trace: false,
+    });
+    match refused {
+        Err(SimError::Input(message)) => assert!(message.contains("`timing.preset`"), "{message}"),
+        other => panic!("not refused as bad input: {:?}", other.map(|r| r.summary())),
+    }
+    assert!(sim.durations(&scenario.timing).is_err());
 }
 
 /// M3 is reset 5 ms before its first turn (statement 2, a quarter turn: 550 ms) ends. The turn

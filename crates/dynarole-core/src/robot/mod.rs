@@ -22,6 +22,48 @@ pub struct RobotApi {
     pub joint_part: Option<usize>,
     /// How its joints' angles are counted (`[joint_angle]`).
     pub joint_angle: JointAngle,
+    /// How long its operations take in the simulator (`[[timing]]`), the default first; empty
+    /// for a plugin that declares none (the simulator then takes its built-in `ussr`).
+    pub timing: Vec<TimingPreset>,
+}
+
+/// The longest an operation may take in a timing preset: 10^9 ms, the simulator's longest run
+/// (an operation any longer could never complete in one).
+pub const MAX_OPERATION_MS: u64 = 1_000_000_000;
+
+/// A named set of operation durations (one `[[timing]]` table of a plugin), which a scenario
+/// picks by its name (`timing.preset`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct TimingPreset {
+    pub name: String,
+    /// What it models, for people reading the plugin.
+    pub doc: String,
+    pub durations: Durations,
+}
+
+/// How long each kind of operation takes, in ms. A duration of a kind the robot has no
+/// operation of may be left out of its plugin: it is 0, and never used.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Durations {
+    pub extend_ms: u64,
+    pub retract_ms: u64,
+    /// A turn's first quarter turn (a turn of one quarter takes this long).
+    pub turn_first_quarter_ms: u64,
+    /// Each further quarter turn of the same turn.
+    pub turn_further_quarter_ms: u64,
+}
+
+impl Durations {
+    /// A turn through `quarters` quarter turns: the first quarter, then each further one (0
+    /// for a turn that moves nothing). Saturates rather than overflows on absurd arguments.
+    pub fn turn_ms(self, quarters: u64) -> u64 {
+        match quarters {
+            0 => 0,
+            q => self
+                .turn_first_quarter_ms
+                .saturating_add(self.turn_further_quarter_ms.saturating_mul(q - 1)),
+        }
+    }
 }
 
 /// How a robot's joint angles are counted (a plugin's `[joint_angle]`): the units of a quarter

@@ -18,6 +18,8 @@ struct RawPlugin {
     joints: Option<String>,
     joint_angle: Option<RawJointAngle>,
     #[serde(default)]
+    timing: Vec<RawTiming>,
+    #[serde(default)]
     part: Vec<RawPart>,
 }
 
@@ -49,6 +51,119 @@ fn joint_angle(raw: Option<&RawJointAngle>) -> Result<JointAngle, PluginError> {
     Ok(JointAngle {
         quarter: raw.quarter,
         wraps: raw.wraps,
+    })
+}
+
+/// One `[[timing]]` table: a timing preset. A duration may be left out only where the robot
+/// has no operation of its kind (`timing_presets` checks).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawTiming {
+    name: String,
+    #[serde(default)]
+    doc: String,
+    extend_ms: Option<u64>,
+    retract_ms: Option<u64>,
+    turn_first_quarter_ms: Option<u64>,
+    turn_further_quarter_ms: Option<u64>,
+}
+
+/// The plugin's `[[timing]]` presets, in their order (the first is the default), each named
+/// once and giving every duration the robot's operations (`parts`) need.
+fn timing_presets(raw: &[RawTiming], parts: &[Part]) -> Result<Vec<TimingPreset>, PluginError> {
+    let mut names = BTreeSet::new();
+    let mut presets = Vec::new();
+    for (i, raw) in raw.iter().enumerate() {
+        let field = format!("timing[{i}]");
+        if raw.name.trim().is_empty() {
+            return Err(error(
+                format!("{field}.name"),
+                "a timing preset needs a name (what a scenario's `timing.preset` gives)",
+            ));
+        }
+        if !names.insert(raw.name.as_str()) {
+            return Err(error(
+                format!("{field}.name"),
+                format!("timing preset `{}` is defined twice", raw.name),
+            ));
+        }
+        presets.push(TimingPreset {
+            name: raw.name.clone(),
+            doc: raw.doc.clone(),
+            durations: durations(raw, parts, &field)?,
+        });
+    }
+    Ok(presets)
+}
+
+/// A preset's durations: each one given (at most [`MAX_OPERATION_MS`]), or left out where no
+/// operation of the robot is of its kind (then 0, never used).
+fn durations(raw: &RawTiming, parts: &[Part], field: &str) -> Result<Durations, PluginError> {
+    let given = |name: &'static str, value: Option<u64>, kinds: &[OperationKind]| {
+        duration(Given { name, value, kinds }, raw, parts, field)
+    };
+    let turns = [OperationKind::Turn, OperationKind::TurnTo];
+    Ok(Durations {
+        extend_ms: given("extend_ms", raw.extend_ms, &[OperationKind::Extend])?,
+        retract_ms: given("retract_ms", raw.retract_ms, &[OperationKind::Retract])?,
+        turn_first_quarter_ms: given("turn_first_quarter_ms", raw.turn_first_quarter_ms, &turns)?,
+        turn_further_quarter_ms: given(
+            "turn_further_quarter_ms",
+            raw.turn_further_quarter_ms,
+            &turns,
+        )?,
+    })
+}
+
+/// One duration field of a preset as written, and the kinds of operation that take it.
+struct Given<'a> {
+    name: &'static str,
+    value: Option<u64>,
+    kinds: &'a [OperationKind],
+}
+
+/// The value of `given` in preset `raw` (at `field`): refused above [`MAX_OPERATION_MS`], or
+/// when left out and an operation of the robot (`parts`) is of its kinds.
+fn duration(
+    given: Given,
+    raw: &RawTiming,
+    parts: &[Part],
+    field: &str,
+) -> Result<u64, PluginError> {
+    let name = given.name;
+    let Some(ms) = given.value else {
+        let Some((part, op)) = operation_of_kind(parts, given.kinds) else {
+            return Ok(0);
+        };
+        let message = format!(
+            "timing preset `{}` gives no `{name}`, which operation `{}` of part `{}` (kind `{}`) \
+             needs",
+            raw.name,
+            op.name,
+            part.name,
+            op.kind.name()
+        );
+        return Err(error(field, message));
+    };
+    if ms > MAX_OPERATION_MS {
+        return Err(error(
+            format!("{field}.{name}"),
+            format!(
+                "expected at most {MAX_OPERATION_MS} ms (the simulator's longest run), found {ms}"
+            ),
+        ));
+    }
+    Ok(ms)
+}
+
+/// The first operation (and its part) of one of `kinds`.
+fn operation_of_kind<'a>(
+    parts: &'a [Part],
+    kinds: &[OperationKind],
+) -> Option<(&'a Part, &'a Operation)> {
+    parts.iter().find_map(|part| {
+        let op = part.operations.iter().find(|op| kinds.contains(&op.kind))?;
+        Some((part, op))
     })
 }
 
@@ -148,6 +263,7 @@ impl RobotApi {
         }
         Ok(RobotApi {
             joint_angle: joint_angle(raw.joint_angle.as_ref())?,
+            timing: timing_presets(&raw.timing, &parts)?,
             name: raw.name,
             description: raw.description,
             parts,
@@ -709,5 +825,110 @@ mod tests {
         let with_args = with_ops("[[part.operation]]\nname = \"close\"\nkind = \"retract\"\nparams = [{ name = \"x\", type = \"bool\" }]\n")
             .expect_err("retract takes no parameters");
         assert!(with_args.message.contains("no parameters"), "{with_args}");
+    }
+
+    /// A gripper that latches and a hinge that turns, before its `[[timing]]` tables.
+    const LATCH_AND_TURN: &str = "name = \"g\"\n\
+        [[part]]\nname = \"Grip\"\ncount = 2\nmale = [0]\n\
+        [[part.operation]]\nname = \"close\"\nkind = \"extend\"\n\
+        [[part.operation]]\nname = \"open\"\nkind = \"retract\"\n\
+        [[part]]\nname = \"Hinge\"\n\
+        [[part.operation]]\nname = \"bend\"\nkind = \"turn_to\"\n\
+        params = [{ name = \"to\", type = \"int\" }, { name = \"up\", type = \"bool\" }]\n";
+
+    const FULL: &str = "extend_ms = 1000\nretract_ms = 500\n\
+        turn_first_quarter_ms = 800\nturn_further_quarter_ms = 600\n";
+
+    fn with_timing(tables: &str) -> Result<RobotApi, PluginError> {
+        RobotApi::from_toml(&format!("{LATCH_AND_TURN}{tables}"))
+    }
+
+    #[test]
+    fn timing_presets_are_read_in_order_and_a_turn_adds_its_further_quarters() {
+        let api = with_timing(&format!(
+            "[[timing]]\nname = \"servo\"\ndoc = \"quick\"\n{FULL}\
+             [[timing]]\nname = \"slow\"\n{}",
+            FULL.replace("= 800", "= 2000")
+        ))
+        .expect("two presets");
+        let names: Vec<&str> = api.timing.iter().map(|p| p.name.as_str()).collect();
+        assert_eq!(names, ["servo", "slow"]);
+        assert_eq!(api.timing[0].doc, "quick");
+        let servo = api.timing[0].durations;
+        assert_eq!((servo.extend_ms, servo.retract_ms), (1000, 500));
+        assert_eq!([0, 1, 2, 4].map(|q| servo.turn_ms(q)), [0, 800, 1400, 2600]);
+        assert_eq!(api.timing[1].durations.turn_ms(1), 2000);
+        assert_eq!(servo.turn_ms(u64::MAX), u64::MAX, "saturates");
+        assert!(with_timing("").expect("none").timing.is_empty());
+    }
+
+    #[test]
+    fn a_timing_preset_named_twice_or_not_at_all_is_refused_at_its_name() {
+        let text = format!(
+            "{LATCH_AND_TURN}[[timing]]\nname = \"servo\"\n{FULL}[[timing]]\nname = \"servo\"\n{FULL}"
+        );
+        let twice = RobotApi::from_toml(&text).expect_err("twice");
+        assert_eq!(
+            twice.to_string(),
+            "field `timing[1].name`: timing preset `servo` is defined twice"
+        );
+        let span = twice.span.expect("located");
+        assert_eq!(&text[span.clone()], "\"servo\"");
+        assert!(
+            span.start > text.find("servo").unwrap_or(0),
+            "the second one"
+        );
+        let empty = with_timing(&format!("[[timing]]\nname = \"\"\n{FULL}")).expect_err("empty");
+        assert_eq!(empty.field, "timing[0].name");
+        assert!(empty.message.contains("needs a name"), "{empty}");
+    }
+
+    #[test]
+    fn a_timing_preset_must_give_every_duration_the_robots_operations_take() {
+        let no_turn = FULL.replace("turn_further_quarter_ms = 600\n", "");
+        let text = format!("{LATCH_AND_TURN}[[timing]]\nname = \"servo\"\n{no_turn}");
+        let err = RobotApi::from_toml(&text).expect_err("the hinge turns");
+        assert_eq!(
+            err.to_string(),
+            "field `timing[0]`: timing preset `servo` gives no `turn_further_quarter_ms`, \
+             which operation `bend` of part `Hinge` (kind `turn_to`) needs"
+        );
+        let table = &text[err.span.expect("located")];
+        assert!(
+            table.starts_with("[[timing]]\nname = \"servo\""),
+            "the table: {table}"
+        );
+        let no_extend = FULL.replace("extend_ms = 1000\n", "");
+        let err = with_timing(&format!("[[timing]]\nname = \"servo\"\n{no_extend}"))
+            .expect_err("the gripper latches");
+        assert!(
+            err.message
+                .contains("no `extend_ms`, which operation `close`"),
+            "{err}"
+        );
+        // A robot that only latches needs no turn durations: they are 0, never used.
+        let latches = "name = \"g\"\n[[part]]\nname = \"Grip\"\ncount = 2\nmale = [0]\n\
+                       [[part.operation]]\nname = \"close\"\nkind = \"extend\"\n\
+                       [[timing]]\nname = \"servo\"\nextend_ms = 1000\n";
+        let api = RobotApi::from_toml(latches).expect("no turn, no retract");
+        assert_eq!(api.timing[0].durations.turn_ms(1), 0);
+        assert_eq!(api.timing[0].durations.retract_ms, 0);
+    }
+
+    #[test]
+    fn a_timing_presets_unknown_field_or_absurd_value_is_named() {
+        let text = format!("{LATCH_AND_TURN}[[timing]]\nname = \"servo\"\n{FULL}extnd_ms = 1\n");
+        let typo = RobotApi::from_toml(&text).expect_err("typo");
+        assert!(typo.message.contains("unknown field `extnd_ms`"), "{typo}");
+        assert_eq!(typo.hint.as_deref(), Some("did you mean `extend_ms`?"));
+        assert_eq!(&text[typo.span.expect("located")], "extnd_ms");
+        let long = FULL.replace("= 1000", "= 1000000001");
+        let err = with_timing(&format!("[[timing]]\nname = \"servo\"\n{long}")).expect_err("long");
+        assert_eq!(err.field, "timing[0].extend_ms");
+        assert!(err.message.contains("at most 1000000000 ms"), "{err}");
+        let negative = FULL.replace("= 500", "= -500");
+        let err = with_timing(&format!("[[timing]]\nname = \"servo\"\n{negative}"))
+            .expect_err("negative");
+        assert!(err.span.is_some(), "{err}");
     }
 }

@@ -63,6 +63,7 @@ impl Simulator {
         image::check_tools(source).map_err(SimError::Build)?;
         let world = self.world_for(run)?;
         let preset = crate::preset_of(&world, run.scenario).map_err(SimError::Input)?;
+        let durations = self.run_durations(run.scenario)?;
         let mut defines = vec![format!(
             "-DDR_CONF_BROADCAST_JITTER_MS={}",
             preset.jitter_ms
@@ -80,7 +81,7 @@ impl Simulator {
             .map_err(SimError::Build)?;
         let mut state = State::new(
             Arc::clone(&self.sequence),
-            (world, preset),
+            (world, preset, durations),
             run.scenario.clone(),
             run.seed,
             run.trace,
