@@ -123,6 +123,10 @@ impl Motion {
     /// The closest approach of the moving points `moving` (start positions), over the whole
     /// motion, to the `still` points; `None` when either list is empty.
     pub fn sweep_approach(&self, moving: &[[f64; 3]], still: &[[f64; 3]]) -> Option<f64> {
+        if let [leg] = self.legs.as_slice() {
+            // One leg (a joint turn): its points start where they are, no copy.
+            return leg.sweep_approach(moving, still);
+        }
         let mut starts = moving.to_vec();
         let mut best: Option<f64> = None;
         for leg in &self.legs {
