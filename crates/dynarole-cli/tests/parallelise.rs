@@ -11,7 +11,13 @@ fn scratch(name: &str, contents: &str) -> PathBuf {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("parallelise-tests");
     std::fs::create_dir_all(&dir).expect("scratch dir");
     let path = dir.join(name);
-    std::fs::write(&path, contents).expect("scratch file");
+    // Tests run in parallel and several write the same file: each writes its own copy and
+    // renames it into place (atomic), so that no test reads a file another is truncating.
+    let thread = format!("{:?}", std::thread::current().id());
+    let own: String = thread.chars().filter(char::is_ascii_alphanumeric).collect();
+    let partial = dir.join(format!("{name}.{own}.partial"));
+    std::fs::write(&partial, contents).expect("scratch file");
+    std::fs::rename(&partial, &path).expect("scratch file in place");
     path
 }
 

@@ -5,6 +5,7 @@
 use crate::motion::{closest_approach, MovingSide};
 use crate::robot_world::RobotWorld;
 use crate::roles::Assignment;
+use crate::simultaneous::{turns_together, Together};
 use dynarole_core::ast::SeparatorKind;
 use dynarole_core::check::ResolvedStatement;
 use dynarole_core::diagnostic::{Diagnostic, DiagnosticKind};
@@ -69,9 +70,10 @@ pub(crate) fn simultaneous_turns(
     };
     let motion = |s: &ResolvedStatement| {
         let module = assignment.get(&s.label)?;
-        world.motion(&program.robot, s, module)
+        let turner = world.view().index(module)?;
+        Some((world.motion(&program.robot, s, module)?, turner))
     };
-    checker.motions_apart(motion(a)?, motion(b)?, world)
+    checker.motions_apart(motion(a)?, motion(b)?, world, false)
 }
 
 /// Why statements `a` and `b`, joined by `&` in a group that starts from `world`, are not
@@ -95,7 +97,7 @@ pub(crate) fn group_pair(
         separator: SeparatorKind::Parallel,
         span: s.span,
     };
-    checker.decided_pair(&element(a), &element(b), sides, world)
+    checker.decided_pair(&element(a), &element(b), sides, world, false)
 }
 
 /// A warning of the model on the way through one order of a pair: the step it came from and
@@ -254,7 +256,8 @@ impl Checker<'_> {
             for (i, a) in group.iter().enumerate() {
                 for (k, b) in group.iter().enumerate().skip(i + 1) {
                     let sides = (sides[i].as_ref(), sides[k].as_ref());
-                    if let Some(reason) = self.decided_pair(a, b, sides, world) {
+                    let alone = group.len() == 2;
+                    if let Some(reason) = self.decided_pair(a, b, sides, world, alone) {
                         let kind = DiagnosticKind::NotIndependent {
                             step: self.describe(a),
                             other_step: self.describe(b),
@@ -300,6 +303,7 @@ impl Checker<'_> {
         b: &PlanElement,
         sides: (Option<&MovingSide>, Option<&MovingSide>),
         world: &RobotWorld,
+        alone: bool,
     ) -> Option<String> {
         if let (Some(sa), Some(sb)) = sides {
             // Such turns also warn alike in either order: the only warning a turn gets (its
@@ -308,11 +312,17 @@ impl Checker<'_> {
                 return None;
             }
         }
-        self.pair(a, b, world)
+        self.pair(a, b, world, alone)
     }
 
     /// Why `a` and `b` are not independent, if they are not.
-    fn pair(&self, a: &PlanElement, b: &PlanElement, world: &RobotWorld) -> Option<String> {
+    fn pair(
+        &self,
+        a: &PlanElement,
+        b: &PlanElement,
+        world: &RobotWorld,
+        alone: bool,
+    ) -> Option<String> {
         let run = |first: &PlanElement, second: &PlanElement| {
             let mut run = OrderRun::from(world.clone());
             self.apply(first, &mut run.world, &mut run.warnings)?;
@@ -321,7 +331,7 @@ impl Checker<'_> {
         };
         let firsts = || (self.describe(a), self.describe(b));
         match compare_orders(run(a, b), run(b, a), firsts) {
-            Orders::Agree => self.simultaneous_turns(a, b, world),
+            Orders::Agree => self.simultaneous_turns(a, b, world, alone),
             Orders::Differ(reason) => Some(reason),
             // Refused in both orders: the replay reports the step itself.
             Orders::RefusedBoth => None,
@@ -335,14 +345,23 @@ impl Checker<'_> {
         a: &PlanElement,
         b: &PlanElement,
         world: &RobotWorld,
+        alone: bool,
     ) -> Option<String> {
-        self.motions_apart(self.motion(a, world)?, self.motion(b, world)?, world)
+        self.motions_apart(self.motion(a, world)?, self.motion(b, world)?, world, alone)
     }
 
-    /// Two motions done at the same time: a shared moving module, or a closest approach below
-    /// the limit for some relative timing. Motions in place (latches) are the orders' to
-    /// decide.
-    fn motions_apart(&self, ma: Motion, mb: Motion, world: &RobotWorld) -> Option<String> {
+    /// Two motions done at the same time: a closest approach below the limit for some
+    /// relative timing. Two turns that share moving modules, or one of which moves the other's
+    /// module, are decided over every relative timing on a tree (`simultaneous.rs`) when they
+    /// are their group's only two (`alone`); otherwise, or where the robot cannot be cut so,
+    /// sharing a module is a conflict. Motions in place (latches) are the orders' to decide.
+    fn motions_apart(
+        &self,
+        (ma, ta): (Motion, usize),
+        (mb, tb): (Motion, usize),
+        world: &RobotWorld,
+        alone: bool,
+    ) -> Option<String> {
         if !ma.moves() || !mb.moves() {
             return None;
         }
@@ -351,31 +370,63 @@ impl Checker<'_> {
         } else {
             "motions"
         };
+        let limit = ma.limit.max(mb.limit);
+        let unit = world.model().length_unit();
+        let within = |closest: f64| {
+            format!("done at the same time, the {what} bring modules within {closest:.3} {unit} of each other (limit {limit})")
+        };
         let shared: Vec<&str> = ma
             .moving
             .iter()
             .filter(|(name, _)| mb.moving.iter().any(|(other, _)| other == name))
             .map(|(name, _)| name.as_str())
             .collect();
-        if !shared.is_empty() {
-            return Some(format!(
+        let carries = |m: &Motion, turner: usize| {
+            let name = world.view().name(turner);
+            m.moving.iter().any(|(n, _)| *n == name)
+        };
+        if shared.is_empty() && !carries(&ma, tb) && !carries(&mb, ta) {
+            return closest_approach(&ma, &mb).map(within);
+        }
+        // One turn moving the other's modules is decided for the two of them alone: with a
+        // third turn in the group, a module may be moved by all three at once, which the
+        // pair's box does not cover.
+        let together = if alone {
+            turns_together((&ma, ta), (&mb, tb), world)
+        } else {
+            None
+        };
+        match together {
+            Some(Together::Clear) => None,
+            Some(Together::Closest(closest)) => Some(within(closest)),
+            Some(Together::Unproven(bound)) => Some(format!(
+                "done at the same time, the {what} could not be proven to keep modules {limit} \
+                 {unit} apart for every relative timing (lower bound {bound:.3})"
+            )),
+            None if !shared.is_empty() && !alone => Some(format!(
+                "both {what} move {} and their group has more motions: only two {what} alone \
+                 are checked for every relative timing",
+                shared.join(", ")
+            )),
+            None if !shared.is_empty() => Some(format!(
                 "both {what} move {}; where they end depends on their timing",
                 shared.join(", ")
-            ));
+            )),
+            None => closest_approach(&ma, &mb).map(within),
         }
-        let limit = ma.limit.max(mb.limit);
-        let unit = world.model().length_unit();
-        closest_approach(&ma, &mb).map(|closest| {
-            format!("done at the same time, the {what} bring modules within {closest:.3} {unit} of each other (limit {limit})")
-        })
     }
 
-    fn motion(&self, element: &PlanElement, world: &RobotWorld) -> Option<Motion> {
+    /// The motion of an operation and its module's index (`None` for a block).
+    fn motion(&self, element: &PlanElement, world: &RobotWorld) -> Option<(Motion, usize)> {
         let PlanKind::Op(statement) = &element.kind else {
             return None;
         };
         let module = self.assignment.get(&statement.label)?;
-        world.motion(&self.program.robot, statement, module)
+        let turner = world.view().index(module)?;
+        Some((
+            world.motion(&self.program.robot, statement, module)?,
+            turner,
+        ))
     }
 
     /// Applies an element (a block: all of it, in order), adding the model's warnings to

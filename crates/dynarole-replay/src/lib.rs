@@ -13,6 +13,7 @@ mod robot_world;
 mod roles;
 mod routes;
 mod run;
+mod simultaneous;
 mod topology;
 
 pub use independence::{check_independence, check_independence_exhaustive};

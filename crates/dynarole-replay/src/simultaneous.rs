@@ -1,0 +1,535 @@
+//! Two joint turns done at the same time on a tree of modules, over every relative timing:
+//! the frame in which the robot moves as one turn carrying the other (or as two turns on
+//! either side of a still part), and a branch and bound over the joint-space box of the pair
+//! (both turns' fractions, every combination) that proves every two modules stay the limit
+//! apart, or finds how close they come.
+//!
+//! Why a frame is enough: turning one side of a joint by an angle, or the other side by minus
+//! that angle, differ by a rigid motion of the whole robot, so distances between modules are
+//! the same either way. On a tree, two joints cut the robot into three rigid groups; among the
+//! four ways of choosing sides, one leaves a group still and either moves the other two
+//! independently or moves one of them with the other (the inner turn's axis carried by the
+//! outer turn). Which modules a turn moves is the world model's answer (`RobotModel::motion`).
+
+use crate::robot_world::RobotWorld;
+use dynarole_world::{Leg, Motion};
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+
+/// The most boxes one pair of modules is split into before its approach is reported as not
+/// proven (conservatively, as a conflict): bounds the time the check takes.
+const MAX_BOXES_PER_PAIR: usize = 1 << 16;
+
+/// How far below a conflict already found a closer one is still looked for (lattice units or
+/// the robot's unit): messages print three decimals.
+const REFINEMENT: f64 = 1e-4;
+
+/// What two turns done together bring their modules to, over every relative timing.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Together {
+    /// Every two modules stay at least the limit apart.
+    Clear,
+    /// Two modules come this close (below the limit) for some timing.
+    Closest(f64),
+    /// Not proven within [`MAX_BOXES_PER_PAIR`] boxes: the lower bound reached.
+    Unproven(f64),
+}
+
+/// One turn as the frame search sees it: its rotation, the modules it moves (by index, on one
+/// side of its joint) and its own module.
+#[derive(Clone)]
+struct Side {
+    pivot: [f64; 3],
+    axis: [f64; 3],
+    angle_deg: f64,
+    moves: Vec<bool>,
+    turner: usize,
+}
+
+impl Side {
+    /// The turn of `motion` by module `turner`, when it is one rotation of whole modules
+    /// whose centres are its sweep's points.
+    fn of(
+        motion: &Motion,
+        turner: usize,
+        world: &RobotWorld,
+        centres: &[[f64; 3]],
+    ) -> Option<Side> {
+        let [Leg::Rotate {
+            pivot,
+            axis,
+            angle_deg,
+        }] = motion.legs.as_slice()
+        else {
+            return None;
+        };
+        let view = world.view();
+        let mut moves = vec![false; centres.len()];
+        for (name, at) in &motion.moving {
+            let m = view.index(name)?;
+            if centres.get(m) != Some(at) {
+                return None;
+            }
+            moves[m] = true;
+        }
+        Some(Side {
+            pivot: *pivot,
+            axis: *axis,
+            angle_deg: *angle_deg,
+            moves,
+            turner,
+        })
+    }
+
+    /// The other side of the joint turned the other way: the same motion up to a rigid
+    /// motion of the whole robot.
+    fn flipped(&self) -> Side {
+        Side {
+            angle_deg: -self.angle_deg,
+            moves: self.moves.iter().map(|m| !m).collect(),
+            ..self.clone()
+        }
+    }
+
+    fn leg(&self) -> Leg {
+        Leg::Rotate {
+            pivot: self.pivot,
+            axis: self.axis,
+            angle_deg: self.angle_deg,
+        }
+    }
+
+    /// The largest rate (per unit of the turn's fraction) at which a point at distance
+    /// `reach` from the pivot moves: its radius times the angle.
+    fn rate(&self, reach: f64) -> f64 {
+        reach * self.angle_deg.abs().to_radians()
+    }
+}
+
+/// How the robot moves under the two turns, in the frame where some modules stay still.
+enum Frame {
+    /// Each turn moves its own modules; neither moves the other's axis.
+    Apart(Side, Side),
+    /// `outer` moves its modules, among them `inner`'s module and all `inner` moves.
+    Carrying { outer: Side, inner: Side },
+}
+
+impl Frame {
+    /// The first frame, over the four choices of sides, in which the turns compose without
+    /// ambiguity; `None` when there is none (not a tree at these joints).
+    fn of(a: &Side, b: &Side) -> Option<Frame> {
+        for (a, b) in [
+            (a.clone(), b.clone()),
+            (a.clone(), b.flipped()),
+            (a.flipped(), b.clone()),
+            (a.flipped(), b.flipped()),
+        ] {
+            let disjoint = a.moves.iter().zip(&b.moves).all(|(x, y)| !(x & y));
+            let within = |inner: &Side, outer: &Side| {
+                inner.moves.iter().zip(&outer.moves).all(|(i, o)| !i | o)
+            };
+            if disjoint && !a.moves[b.turner] && !b.moves[a.turner] {
+                return Some(Frame::Apart(a, b));
+            }
+            if a.moves[b.turner] && !b.moves[a.turner] && within(&b, &a) {
+                return Some(Frame::Carrying { outer: a, inner: b });
+            }
+            if b.moves[a.turner] && !a.moves[b.turner] && within(&a, &b) {
+                return Some(Frame::Carrying { outer: b, inner: a });
+            }
+        }
+        None
+    }
+
+    /// Where module `m` (starting at `p`) is when the turns are at fractions `(fa, fb)`:
+    /// `fa` of the first side given to [`Frame::Apart`] or of `outer`.
+    fn position(&self, m: usize, p: [f64; 3], (fa, fb): (f64, f64)) -> [f64; 3] {
+        match self {
+            Frame::Apart(a, b) if a.moves[m] => a.leg().position_at(p, fa),
+            Frame::Apart(_, b) if b.moves[m] => b.leg().position_at(p, fb),
+            Frame::Apart(..) => p,
+            Frame::Carrying { outer, inner } if inner.moves[m] => {
+                outer.leg().position_at(inner.leg().position_at(p, fb), fa)
+            }
+            Frame::Carrying { outer, .. } if outer.moves[m] => outer.leg().position_at(p, fa),
+            Frame::Carrying { .. } => p,
+        }
+    }
+
+    /// Bounds on how fast module `m` (starting at `p`) moves per unit of each fraction.
+    fn rates(&self, m: usize, p: [f64; 3]) -> (f64, f64) {
+        match self {
+            Frame::Apart(a, _) if a.moves[m] => (a.rate(distance(p, a.pivot)), 0.0),
+            Frame::Apart(_, b) if b.moves[m] => (0.0, b.rate(distance(p, b.pivot))),
+            Frame::Carrying { outer, inner } if inner.moves[m] => {
+                // The inner turn keeps the module within its distance of the inner pivot,
+                // which the outer turn carries at its own distance from the outer pivot.
+                let reach = distance(p, inner.pivot) + distance(inner.pivot, outer.pivot);
+                (outer.rate(reach), inner.rate(distance(p, inner.pivot)))
+            }
+            Frame::Carrying { outer, .. } if outer.moves[m] => {
+                (outer.rate(distance(p, outer.pivot)), 0.0)
+            }
+            _ => (0.0, 0.0),
+        }
+    }
+
+    /// Which rigid group module `m` is in: two modules of one group never move apart.
+    fn group(&self, m: usize) -> u8 {
+        let (first, second) = match self {
+            Frame::Apart(a, b) => (a.moves[m], b.moves[m]),
+            Frame::Carrying { outer, inner } => (outer.moves[m], inner.moves[m]),
+        };
+        u8::from(first) + 2 * u8::from(second)
+    }
+}
+
+/// The approach of every two modules under turns `a` (by module `turner_a`) and `b` done
+/// together, over every relative timing; `None` when the robot does not give whole-module
+/// centres, a motion is not one rotation of whole modules, or no frame composes them.
+pub(crate) fn turns_together(
+    (a, turner_a): (&Motion, usize),
+    (b, turner_b): (&Motion, usize),
+    world: &RobotWorld,
+) -> Option<Together> {
+    let centres = world.model().rigid_module_centres()?;
+    let sa = Side::of(a, turner_a, world, &centres)?;
+    let sb = Side::of(b, turner_b, world, &centres)?;
+    let frame = Frame::of(&sa, &sb)?;
+    let limit = a.limit.max(b.limit);
+    let mut bar = limit;
+    let mut closest = None;
+    let mut unproven = None;
+    for (i, p) in centres.iter().enumerate() {
+        for (k, q) in centres.iter().enumerate().skip(i + 1) {
+            if frame.group(i) == frame.group(k) {
+                continue;
+            }
+            let pair = Pair {
+                frame: &frame,
+                points: ((i, *p), (k, *q)),
+            };
+            match pair.approach(bar) {
+                Approach::Clear => {}
+                Approach::Below(d) => {
+                    closest = Some(d);
+                    bar = d;
+                }
+                Approach::Unproven(bound) => {
+                    unproven = Some(unproven.map_or(bound, |u: f64| u.min(bound)));
+                }
+            }
+        }
+    }
+    Some(match (closest, unproven) {
+        (Some(d), _) => Together::Closest(d),
+        (None, Some(bound)) => Together::Unproven(bound),
+        (None, None) => Together::Clear,
+    })
+}
+
+/// Two modules (index and start position) under a frame.
+struct Pair<'f> {
+    frame: &'f Frame,
+    points: ((usize, [f64; 3]), (usize, [f64; 3])),
+}
+
+enum Approach {
+    Clear,
+    Below(f64),
+    Unproven(f64),
+}
+
+impl Pair<'_> {
+    /// Branch and bound over the box of both fractions: a box whose centre is `d` apart
+    /// keeps every point of it at least `d` minus the rates times the half-widths apart.
+    /// Boxes are taken lowest bound first (so the search ends as soon as no box can beat
+    /// the bar) and split across their wider dimension, weighted by the rates.
+    fn approach(&self, bar: f64) -> Approach {
+        let mut boxes = BinaryHeap::new();
+        boxes.push(self.piece((0.0, 1.0, 0.0, 1.0)));
+        let mut best: Option<f64> = None;
+        let mut bar = bar;
+        for _ in 0..MAX_BOXES_PER_PAIR {
+            let Some(piece) = boxes.pop() else {
+                break;
+            };
+            // Proving clearance is exact; refining a conflict already found stops at the
+            // precision messages print.
+            let slack = if best.is_some() { REFINEMENT } else { 0.0 };
+            if piece.bound >= bar - slack {
+                return best.map_or(Approach::Clear, Approach::Below);
+            }
+            if piece.centre_distance < bar {
+                best = Some(piece.centre_distance);
+                bar = piece.centre_distance;
+            }
+            for half in self.halves(piece.area) {
+                boxes.push(self.piece(half));
+            }
+        }
+        match (best, boxes.peek()) {
+            (Some(d), _) => Approach::Below(d),
+            (None, Some(lowest)) if lowest.bound < bar => Approach::Unproven(lowest.bound.max(0.0)),
+            (None, _) => Approach::Clear,
+        }
+    }
+
+    /// A box of fractions `(a0, a1, b0, b1)` with its centre's distance and its lower bound.
+    fn piece(&self, area: (f64, f64, f64, f64)) -> Piece {
+        let ((i, p), (k, q)) = self.points;
+        let (ra, rb) = add(self.frame.rates(i, p), self.frame.rates(k, q));
+        let (a0, a1, b0, b1) = area;
+        let centre = ((a0 + a1) / 2.0, (b0 + b1) / 2.0);
+        let d = distance(
+            self.frame.position(i, p, centre),
+            self.frame.position(k, q, centre),
+        );
+        Piece {
+            bound: d - ((a1 - a0) * ra + (b1 - b0) * rb) / 2.0,
+            centre_distance: d,
+            area,
+        }
+    }
+
+    /// The two halves of a box, split across its wider dimension weighted by the rates.
+    fn halves(&self, (a0, a1, b0, b1): (f64, f64, f64, f64)) -> [(f64, f64, f64, f64); 2] {
+        let ((i, p), (k, q)) = self.points;
+        let (ra, rb) = add(self.frame.rates(i, p), self.frame.rates(k, q));
+        let (ma, mb) = ((a0 + a1) / 2.0, (b0 + b1) / 2.0);
+        if (a1 - a0) * ra >= (b1 - b0) * rb {
+            [(a0, ma, b0, b1), (ma, a1, b0, b1)]
+        } else {
+            [(a0, a1, b0, mb), (a0, a1, mb, b1)]
+        }
+    }
+}
+
+/// A box of the search, ordered so that the heap gives the lowest bound first.
+struct Piece {
+    bound: f64,
+    centre_distance: f64,
+    area: (f64, f64, f64, f64),
+}
+
+impl PartialEq for Piece {
+    fn eq(&self, other: &Piece) -> bool {
+        self.cmp(other) == Ordering::Equal
+    }
+}
+
+impl Eq for Piece {}
+
+impl PartialOrd for Piece {
+    fn partial_cmp(&self, other: &Piece) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Ord for Piece {
+    fn cmp(&self, other: &Piece) -> Ordering {
+        // Reversed: `BinaryHeap` is a max-heap. Ties by area keep the order total.
+        other
+            .bound
+            .total_cmp(&self.bound)
+            .then_with(|| other.area.0.total_cmp(&self.area.0))
+            .then_with(|| other.area.2.total_cmp(&self.area.2))
+    }
+}
+
+fn add(a: (f64, f64), b: (f64, f64)) -> (f64, f64) {
+    (a.0 + b.0, a.1 + b.1)
+}
+
+fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
+    (0..3).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>().sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use dynarole_world::Action;
+
+    const CAR: &str = include_str!("../../../robots/atron/examples/car.json");
+    const CHAIN10: &str = include_str!("../../../robots/atron/examples/rotation-chain-10.json");
+    const SNAKE: &str = include_str!("../../../robots/atron/examples/snake.json");
+
+    fn world(text: &str) -> RobotWorld {
+        let config = dynarole_robots::read_configuration(text).expect("a bundled file");
+        let plugins = dynarole_robots::plugins();
+        let api = plugins.get(config.kind().name()).expect("its plugin");
+        RobotWorld::new(config, api).expect("a world")
+    }
+
+    /// A quarter turn up from where module `m`'s joint is.
+    fn quarter(world: &RobotWorld, m: usize) -> Action {
+        let at = world.view().joint(m, 0).expect("a joint");
+        Action::Turn {
+            joint: 0,
+            from: Some(at),
+            to: (at + 108) % 432,
+            increasing: true,
+        }
+    }
+
+    /// Every two modules' distance, row by row.
+    fn distances(points: &[[f64; 3]]) -> Vec<f64> {
+        let pairs = points
+            .iter()
+            .enumerate()
+            .flat_map(|(i, p)| points[i + 1..].iter().map(move |q| distance(*p, *q)));
+        pairs.collect()
+    }
+
+    fn centres(world: &RobotWorld) -> Vec<[f64; 3]> {
+        world.model().rigid_module_centres().expect("whole modules")
+    }
+
+    fn same(a: &[f64], b: &[f64]) -> bool {
+        a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-9)
+    }
+
+    /// The frame's corners are the world's own ends, up to rigid motion: one turn done (either
+    /// one), and both. Checked on every pair of quarter turns the world accepts in both
+    /// orders on three robots, so that the frame search is the world's kinematics.
+    #[test]
+    fn the_frames_corners_are_where_the_world_puts_the_modules() {
+        let mut checked = 0;
+        for text in [CAR, CHAIN10, SNAKE] {
+            let start = world(text);
+            let n = start.view().len();
+            for (i, k) in (0..n).flat_map(|i| (i + 1..n).map(move |k| (i, k))) {
+                let names = (start.view().name(i), start.view().name(k));
+                let (ta, tb) = (quarter(&start, i), quarter(&start, k));
+                let done = |first: (&str, &Action), then: Option<(&str, &Action)>| {
+                    let mut model = start.model().clone_model();
+                    model.apply(first.0, first.1).ok()?;
+                    if let Some((name, action)) = then {
+                        model.apply(name, action).ok()?;
+                    }
+                    Some(distances(&model.rigid_module_centres()?))
+                };
+                let (Some(a), Some(b), Some(both)) = (
+                    done((&names.0, &ta), None),
+                    done((&names.1, &tb), None),
+                    done((&names.0, &ta), Some((&names.1, &tb))),
+                ) else {
+                    continue;
+                };
+                let (Some(ma), Some(mb)) = (
+                    start.model().motion(&names.0, &ta),
+                    start.model().motion(&names.1, &tb),
+                ) else {
+                    continue;
+                };
+                let points = centres(&start);
+                let sa = Side::of(&ma, i, &start, &points).expect("a side");
+                let sb = Side::of(&mb, k, &start, &points).expect("a side");
+                let frame = Frame::of(&sa, &sb).expect("a tree at these joints");
+                let at = |f: (f64, f64)| {
+                    let moved: Vec<[f64; 3]> = (points.iter().enumerate())
+                        .map(|(m, p)| frame.position(m, *p, f))
+                        .collect();
+                    distances(&moved)
+                };
+                let (one, other) = (at((1.0, 0.0)), at((0.0, 1.0)));
+                assert!(same(&at((1.0, 1.0)), &both), "{names:?}: both turns");
+                let singles =
+                    (same(&one, &a) && same(&other, &b)) || (same(&one, &b) && same(&other, &a));
+                assert!(singles, "{names:?}: one turn alone");
+                checked += 1;
+            }
+        }
+        assert!(checked > 20, "only {checked} pairs checked");
+    }
+
+    /// The smallest distance over a dense grid of the box, for every two modules.
+    fn sampled_minimum(frame: &Frame, points: &[[f64; 3]], steps: u32) -> f64 {
+        let mut best = f64::INFINITY;
+        for s in 0..=steps {
+            for t in 0..=steps {
+                let f = (
+                    f64::from(s) / f64::from(steps),
+                    f64::from(t) / f64::from(steps),
+                );
+                let moved: Vec<[f64; 3]> = (points.iter().enumerate())
+                    .map(|(m, p)| frame.position(m, *p, f))
+                    .collect();
+                for (i, k) in
+                    (0..points.len()).flat_map(|i| (i + 1..points.len()).map(move |k| (i, k)))
+                {
+                    if frame.group(i) != frame.group(k) {
+                        best = best.min(distance(moved[i], moved[k]));
+                    }
+                }
+            }
+        }
+        best
+    }
+
+    /// The car's driver and an axle turned together, each fine alone and in either order, come
+    /// within the limit part-way (the search finds what a dense grid finds); two joints of the
+    /// rotation chain turned together stay clear everywhere in their box.
+    #[test]
+    fn the_search_finds_what_a_dense_grid_of_the_box_finds() {
+        let car = world(CAR);
+        let (m0, m6) = (0, car.view().index("M6").expect("M6"));
+        let a = car
+            .model()
+            .motion("M0", &quarter(&car, m0))
+            .expect("a turn");
+        let b = car
+            .model()
+            .motion(
+                "M6",
+                &Action::Turn {
+                    joint: 0,
+                    from: Some(108),
+                    to: 324,
+                    increasing: true,
+                },
+            )
+            .expect("a turn");
+        let Some(Together::Closest(found)) = turns_together((&a, m0), (&b, m6), &car) else {
+            panic!("the car's turns collide part-way");
+        };
+        let points = centres(&car);
+        let frame = Frame::of(
+            &Side::of(&a, m0, &car, &points).expect("a side"),
+            &Side::of(&b, m6, &car, &points).expect("a side"),
+        )
+        .expect("a frame");
+        let sampled = sampled_minimum(&frame, &points, 300);
+        assert!(
+            found <= sampled + 1e-9 && sampled - found < 0.01,
+            "{found} against {sampled}"
+        );
+        assert!(found < a.limit);
+
+        let chain = world(CHAIN10);
+        let (m2, m4) = (2, 4);
+        let a = chain
+            .model()
+            .motion("M2", &quarter(&chain, m2))
+            .expect("a turn");
+        let b = chain
+            .model()
+            .motion("M4", &quarter(&chain, m4))
+            .expect("a turn");
+        assert!(
+            a.moving.iter().any(|x| b.moving.contains(x)),
+            "the turns share modules"
+        );
+        assert_eq!(
+            turns_together((&a, m2), (&b, m4), &chain),
+            Some(Together::Clear)
+        );
+        let points = centres(&chain);
+        let frame = Frame::of(
+            &Side::of(&a, m2, &chain, &points).expect("a side"),
+            &Side::of(&b, m4, &chain, &points).expect("a side"),
+        )
+        .expect("a frame");
+        assert!(sampled_minimum(&frame, &points, 100) >= a.limit);
+    }
+}
