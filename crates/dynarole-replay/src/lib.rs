@@ -26,4 +26,5 @@ pub use robot_world::{action, RobotWorld, StepOutcome};
 pub use roles::{assign_modules, assign_modules_on, Assignment};
 pub use routes::token_routes;
 pub use run::{replay, Replay};
+pub use simultaneous::{first_contact, Along, Contact};
 pub use topology::{communication_graph, CommGraph};

@@ -116,8 +116,9 @@ enum Frame {
 
 impl Frame {
     /// The first frame, over the four choices of sides, in which the turns compose without
-    /// ambiguity; `None` when there is none (not a tree at these joints).
-    fn of(a: &Side, b: &Side) -> Option<Frame> {
+    /// ambiguity, and whether its first fraction is `b`'s (`b` carries `a`); `None` when there
+    /// is none (not a tree at these joints).
+    fn of(a: &Side, b: &Side) -> Option<(Frame, bool)> {
         for (a, b) in [
             (a.clone(), b.clone()),
             (a.clone(), b.flipped()),
@@ -129,13 +130,13 @@ impl Frame {
                 inner.moves.iter().zip(&outer.moves).all(|(i, o)| !i | o)
             };
             if disjoint && !a.moves[b.turner] && !b.moves[a.turner] {
-                return Some(Frame::Apart(a, b));
+                return Some((Frame::Apart(a, b), false));
             }
             if a.moves[b.turner] && !b.moves[a.turner] && within(&b, &a) {
-                return Some(Frame::Carrying { outer: a, inner: b });
+                return Some((Frame::Carrying { outer: a, inner: b }, false));
             }
             if b.moves[a.turner] && !a.moves[b.turner] && within(&a, &b) {
-                return Some(Frame::Carrying { outer: b, inner: a });
+                return Some((Frame::Carrying { outer: b, inner: a }, true));
             }
         }
         None
@@ -195,29 +196,24 @@ pub(crate) fn turns_together(
     let centres = world.model().rigid_module_centres()?;
     let sa = Side::of(a, turner_a, world, &centres)?;
     let sb = Side::of(b, turner_b, world, &centres)?;
-    let frame = Frame::of(&sa, &sb)?;
+    let (frame, _) = Frame::of(&sa, &sb)?;
     let limit = a.limit.max(b.limit);
     let mut bar = limit;
     let mut closest = None;
     let mut unproven = None;
-    for (i, p) in centres.iter().enumerate() {
-        for (k, q) in centres.iter().enumerate().skip(i + 1) {
-            if frame.group(i) == frame.group(k) {
-                continue;
+    for (i, k) in moving_pairs(&frame, centres.len()) {
+        let pair = Pair {
+            frame: &frame,
+            points: ((i, centres[i]), (k, centres[k])),
+        };
+        match pair.approach(bar) {
+            Approach::Clear => {}
+            Approach::Below(d) => {
+                closest = Some(d);
+                bar = d;
             }
-            let pair = Pair {
-                frame: &frame,
-                points: ((i, *p), (k, *q)),
-            };
-            match pair.approach(bar) {
-                Approach::Clear => {}
-                Approach::Below(d) => {
-                    closest = Some(d);
-                    bar = d;
-                }
-                Approach::Unproven(bound) => {
-                    unproven = Some(unproven.map_or(bound, |u: f64| u.min(bound)));
-                }
+            Approach::Unproven(bound) => {
+                unproven = Some(unproven.map_or(bound, |u: f64| u.min(bound)));
             }
         }
     }
@@ -226,6 +222,123 @@ pub(crate) fn turns_together(
         (None, Some(bound)) => Together::Unproven(bound),
         (None, None) => Together::Clear,
     })
+}
+
+/// Two modules closer than the limit while two turns run at once.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Contact {
+    /// When it first happens, as a fraction of the stretch of time searched.
+    pub at: f64,
+    /// The two modules (indices), lower first.
+    pub modules: (usize, usize),
+    /// How far apart they are then.
+    pub distance: f64,
+}
+
+/// What two turns running at once do over a stretch of time.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Along {
+    /// Every two modules stay at least the limit apart.
+    Clear,
+    /// The first moment two modules are closer than the limit.
+    Contact(Contact),
+    /// Not turns this search composes (not one rotation of whole modules each, no frame).
+    Unknown,
+}
+
+/// The least width of a piece of the stretch the search of the first contact splits (its
+/// time resolution, as a fraction of the stretch).
+const CONTACT_RESOLUTION: f64 = 1e-6;
+
+/// Turns `a` (by module `turner_a`) and `b` running at once over a stretch of time along
+/// which their fractions go linearly from `from` to `to` (`(a's, b's)`): the first moment two
+/// modules come closer than the limit. Exact to [`CONTACT_RESOLUTION`] of the stretch: a
+/// piece whose middle has two modules `d` apart keeps them at least `d` minus their rate
+/// times half its width apart, and pieces are searched earliest first.
+pub fn first_contact(
+    (a, turner_a): (&Motion, usize),
+    (b, turner_b): (&Motion, usize),
+    (from, to): ((f64, f64), (f64, f64)),
+    world: &RobotWorld,
+) -> Along {
+    let Some(centres) = world.model().rigid_module_centres() else {
+        return Along::Unknown;
+    };
+    let sides = Side::of(a, turner_a, world, &centres).zip(Side::of(b, turner_b, world, &centres));
+    let Some((frame, swapped)) = sides.and_then(|(sa, sb)| Frame::of(&sa, &sb)) else {
+        return Along::Unknown;
+    };
+    let order = |(x, y): (f64, f64)| if swapped { (y, x) } else { (x, y) };
+    let (from, to) = (order(from), order(to));
+    let at = |u: f64| (from.0 + (to.0 - from.0) * u, from.1 + (to.1 - from.1) * u);
+    let limit = a.limit.max(b.limit);
+    let mut first: Option<Contact> = None;
+    for (i, k) in moving_pairs(&frame, centres.len()) {
+        let (p, q) = (centres[i], centres[k]);
+        let (ra, rb) = add(frame.rates(i, p), frame.rates(k, q));
+        let rate = ra * (to.0 - from.0).abs() + rb * (to.1 - from.1).abs();
+        let apart = |u: f64| distance(frame.position(i, p, at(u)), frame.position(k, q, at(u)));
+        let before = first.map_or(1.0, |c| c.at);
+        if let Some((u, d)) = earliest_below(&apart, rate, limit, before) {
+            first = Some(Contact {
+                at: u,
+                modules: (i, k),
+                distance: d,
+            });
+        }
+    }
+    first.map_or(Along::Clear, Along::Contact)
+}
+
+/// The earliest `u` in `[0, before]` at which `apart(u)` (changing at most `rate` per unit of
+/// `u`) is below `limit`, to [`CONTACT_RESOLUTION`], with the distance there.
+fn earliest_below(
+    apart: &dyn Fn(f64) -> f64,
+    rate: f64,
+    limit: f64,
+    before: f64,
+) -> Option<(f64, f64)> {
+    let mut pieces = vec![(0.0_f64, before)];
+    let mut found = None;
+    for _ in 0..MAX_BOXES_PER_PAIR {
+        // Last pushed is the earlier half: the stack searches earliest first.
+        let Some((u0, u1)) = pieces.pop() else {
+            return found;
+        };
+        let middle = (u0 + u1) / 2.0;
+        let d = apart(middle);
+        if d < limit && u1 - u0 <= CONTACT_RESOLUTION {
+            return Some((middle, d));
+        }
+        if d < limit {
+            found = Some((middle, d));
+        }
+        if d - rate * (u1 - u0) / 2.0 >= limit {
+            continue;
+        }
+        if u1 - u0 > CONTACT_RESOLUTION {
+            pieces.push((middle, u1));
+            pieces.push((u0, middle));
+        }
+    }
+    found
+}
+
+/// Every two modules of different groups, lower index first, without visiting the pairs of
+/// the still group (group 0) with itself: the cost is the moving modules times all of them.
+fn moving_pairs(frame: &Frame, n: usize) -> Vec<(usize, usize)> {
+    let moving: Vec<usize> = (0..n).filter(|&m| frame.group(m) != 0).collect();
+    let mut pairs = Vec::new();
+    for &i in &moving {
+        for k in 0..n {
+            let counted = frame.group(k) != 0 && k < i;
+            if frame.group(k) != frame.group(i) && !counted {
+                pairs.push((i.min(k), i.max(k)));
+            }
+        }
+    }
+    pairs.sort_unstable();
+    pairs
 }
 
 /// Two modules (index and start position) under a frame.
@@ -425,7 +538,7 @@ mod tests {
                 let points = centres(&start);
                 let sa = Side::of(&ma, i, &start, &points).expect("a side");
                 let sb = Side::of(&mb, k, &start, &points).expect("a side");
-                let frame = Frame::of(&sa, &sb).expect("a tree at these joints");
+                let (frame, _) = Frame::of(&sa, &sb).expect("a tree at these joints");
                 let at = |f: (f64, f64)| {
                     let moved: Vec<[f64; 3]> = (points.iter().enumerate())
                         .map(|(m, p)| frame.position(m, *p, f))
@@ -494,7 +607,7 @@ mod tests {
             panic!("the car's turns collide part-way");
         };
         let points = centres(&car);
-        let frame = Frame::of(
+        let (frame, _) = Frame::of(
             &Side::of(&a, m0, &car, &points).expect("a side"),
             &Side::of(&b, m6, &car, &points).expect("a side"),
         )
@@ -525,7 +638,7 @@ mod tests {
             Some(Together::Clear)
         );
         let points = centres(&chain);
-        let frame = Frame::of(
+        let (frame, _) = Frame::of(
             &Side::of(&a, m2, &chain, &points).expect("a side"),
             &Side::of(&b, m4, &chain, &points).expect("a side"),
         )

@@ -236,6 +236,7 @@ fn dispatch(state: &Rc<RefCell<State>>, contexts: &mut Contexts, event: Event) {
             state.borrow_mut().op_done(attempt);
             after_operations(state);
         }
+        Event::Clash { entry } => state.borrow_mut().clash(entry),
         Event::Arrival(arrivals) => {
             let packet = state.borrow_mut().next_arrival(arrivals);
             if state.borrow_mut().arrive(&packet) {

@@ -27,6 +27,10 @@ pub enum Event {
     ResetCheck {
         module: usize,
     },
+    /// Two running turns bring modules within the limit now: `State::clashes[entry]`.
+    Clash {
+        entry: u32,
+    },
     /// The next packet of the scenario's `foreign[entry]`.
     Foreign {
         entry: usize,

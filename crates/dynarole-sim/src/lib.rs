@@ -488,8 +488,12 @@ fn failures(report: &Report, timeout_ms: u64) -> Vec<String> {
         ));
     }
     if !report.violations.is_empty() {
+        let clashes = match report.count("clash") {
+            0 => String::new(),
+            n => format!(", clash {n}"),
+        };
         out.push(format!(
-            "{} violations (S1 {}, S2 {}, S3 {})",
+            "{} violations (S1 {}, S2 {}, S3 {}{clashes})",
             report.violations.len(),
             report.count("S1"),
             report.count("S2"),

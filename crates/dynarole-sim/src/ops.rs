@@ -5,8 +5,9 @@
 use crate::event::Event;
 use crate::report::{Refusal, Violation};
 use crate::sequence::OpKind;
-use crate::state::{uniform, Attempt, State};
+use crate::state::{uniform, Attempt, Clash, State};
 use dynarole_recording::TraceEvent;
+use dynarole_replay::Along;
 use dynarole_world::Action;
 
 /// How a call of `dr_hal_op_start` relates to what already happened to its statement.
@@ -236,6 +237,85 @@ impl State {
         // Saturating: a plugin's absurd turn (a huge count of quarters) is never reached.
         let at = (self.now).saturating_add(self.duration_ms(m, s).saturating_mul(1000));
         self.schedule(at, Event::OpDone { attempt: id });
+        if self.seq.kinds[s] == OpKind::Turn && at > self.now {
+            self.note_overlaps(id, m, s, at);
+            self.spans.insert(id, (self.now, at));
+        }
+    }
+
+    /// A turn starts while others run: for each, the first instant at which the two bring two
+    /// modules within the limit (`dynarole_replay::first_contact`: both turns' motions on the
+    /// world's configuration now, their fractions going linearly with time over the overlap)
+    /// is due as a clash. Turns the search does not compose (not whole modules) are not
+    /// checked against each other.
+    fn note_overlaps(&mut self, id: u64, m: usize, s: usize, end_us: u64) {
+        let running: Vec<(u64, (u64, u64))> = self.spans.iter().map(|(k, v)| (*k, *v)).collect();
+        let name = self.view().name(m);
+        let Some(motion) = self
+            .world
+            .motion(&self.seq.robot, &self.seq.resolved[s], &name)
+        else {
+            return;
+        };
+        for (other, (start, end)) in running {
+            let Some(&Attempt { statement, module }) = self.attempts.get(&other) else {
+                continue;
+            };
+            let until = end.min(end_us);
+            let other_name = self.view().name(module);
+            let resolved = &self.seq.resolved[statement];
+            let Some(theirs) = self.world.motion(&self.seq.robot, resolved, &other_name) else {
+                continue;
+            };
+            let fraction = |t: u64, (a, b): (u64, u64)| (t - a) as f64 / (b - a) as f64;
+            let mine = (self.now, end_us);
+            let span = (
+                (fraction(self.now, (start, end)), 0.0),
+                (fraction(until, (start, end)), fraction(until, mine)),
+            );
+            let contact =
+                dynarole_replay::first_contact((&theirs, module), (&motion, m), span, &self.world);
+            if let Along::Contact(c) = contact {
+                let at = self.now + ((until - self.now) as f64 * c.at).round() as u64;
+                let entry = u32::try_from(self.clashes.len()).unwrap_or(u32::MAX);
+                self.clashes.push(Clash {
+                    attempts: (other, id),
+                    statements: (statement, s),
+                    modules: c.modules,
+                    limit: motion.limit.max(theirs.limit),
+                });
+                self.schedule(at, Event::Clash { entry });
+            }
+        }
+    }
+
+    /// A clash found when the later of two turns started is due: a violation, if both are
+    /// still running (neither interrupted).
+    pub fn clash(&mut self, entry: u32) {
+        let Some(clash) = usize::try_from(entry)
+            .ok()
+            .and_then(|e| self.clashes.get(e))
+        else {
+            return;
+        };
+        let (first, second) = clash.attempts;
+        let (sa, sb) = clash.statements;
+        let running = |id: u64, s: usize| self.phys[s].running == Some(id);
+        if !running(first, sa) || !running(second, sb) {
+            return;
+        }
+        let Some(m) = self.attempts.get(&second).map(|a| a.module) else {
+            return;
+        };
+        let view = self.view();
+        let what = format!(
+            "running at once with #{sa}, it brings {} and {} closer than the limit ({} {})",
+            view.name(clash.modules.0),
+            view.name(clash.modules.1),
+            clash.limit,
+            self.world.model().length_unit(),
+        );
+        self.violation(TraceEvent::Clash, m, sb, vec![sa], &what);
     }
 
     /// The operation's nominal duration, varied at random when the scenario asks for it.
@@ -291,6 +371,7 @@ impl State {
             return;
         };
         self.turns.remove(&id);
+        self.spans.remove(&id);
         if self.phys[s].running != Some(id) {
             return;
         }
@@ -399,6 +480,8 @@ impl State {
                 continue;
             };
             self.turns.remove(&id);
+            self.spans.remove(&id);
+            self.spans.remove(&id);
             if self.phys[a.statement].running == Some(id) {
                 self.phys[a.statement].running = None;
                 self.phys[a.statement].failed = true;

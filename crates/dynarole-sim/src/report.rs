@@ -187,9 +187,14 @@ impl Report {
             "  operations: {} started, {} re-issued, {} refused, {} unknown; resets {}, power cycles {}",
             c.ops_started, c.ops_reissued, c.ops_refused, c.ops_unknown, c.resets, c.power_cycles
         );
+        // Clashes are named only in runs that have them (every other summary is unchanged).
+        let clashes = match self.count("clash") {
+            0 => String::new(),
+            n => format!(", clash {n}"),
+        };
         let _ = writeln!(
             out,
-            "  violations: S1 {}, S2 {}, S3 {}",
+            "  violations: S1 {}, S2 {}, S3 {}{clashes}",
             self.count("S1"),
             self.count("S2"),
             self.count("S3")
@@ -310,8 +315,9 @@ pub(crate) fn trace_header() -> String {
          #   runtime describes it (`-`: none yet); detail: the statement, or the packet's link.\n\
          # events: power-on, power-off, reset, start, resume, retry, reissue, done, interrupt,\n\
          #   refused, unknown-op, finished (the module declares the end), S1/S2/S3 (a violation),\n\
-         #   timeout; a packet that did not arrive: lost, dead-link, collision, blocked, broken (a\n\
-         #   turn broke the link), off (the receiver was off).\n",
+         #   clash (two turns running at once bring modules within the limit), timeout; a packet\n\
+         #   that did not arrive: lost, dead-link, collision, blocked, broken (a turn broke the\n\
+         #   link), off (the receiver was off).\n",
         width = STATE_COLUMN
     )
 }

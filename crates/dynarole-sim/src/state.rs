@@ -96,6 +96,17 @@ pub struct Attempt {
     pub module: usize,
 }
 
+/// Two running turns found to bring modules within the limit at an instant still to come:
+/// reported then if both are still running.
+pub struct Clash {
+    /// The attempts (the earlier started first) and their statements.
+    pub attempts: (u64, u64),
+    pub statements: (usize, usize),
+    /// The two modules that come closer than the limit.
+    pub modules: (usize, usize),
+    pub limit: f64,
+}
+
 pub struct State {
     pub seq: Arc<Sequence>,
     pub scenario: Scenario,
@@ -131,6 +142,10 @@ pub struct State {
     pub next_id: u64,
     /// Turns in progress: attempt -> (turning module, which modules move).
     pub turns: BTreeMap<u64, (usize, Vec<bool>)>,
+    /// Turns in progress that move something: attempt -> (start, end) in µs.
+    pub spans: BTreeMap<u64, (u64, u64)>,
+    /// Clashes found between running turns, each due at its instant (`Event::Clash`).
+    pub clashes: Vec<Clash>,
     pub rng_loss: ChaCha8Rng,
     rng_hal: ChaCha8Rng,
     pub rng_faults: ChaCha8Rng,
@@ -233,6 +248,8 @@ impl State {
             attempts: BTreeMap::new(),
             next_id: 1,
             turns: BTreeMap::new(),
+            spans: BTreeMap::new(),
+            clashes: Vec::new(),
             rng_loss: stream(seed, 1),
             rng_hal: stream(seed, 2),
             rng_faults: stream(seed, 3),

@@ -292,6 +292,7 @@ fn dispatch(state: &mut State, boards: &mut [Board], event: Event) {
         // The firmware steps itself (its timer); the end is noted after each of its steps.
         Event::Step { .. } | Event::Foreign { .. } => {}
         Event::OpDone { attempt } => state.op_done(attempt),
+        Event::Clash { entry } => state.clash(entry),
         Event::Arrival(arrivals) => {
             let packet = state.next_arrival(arrivals);
             arrive(state, boards, &packet)
