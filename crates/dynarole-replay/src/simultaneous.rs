@@ -35,26 +35,25 @@ pub(crate) enum Together {
     Unproven(f64),
 }
 
-/// One turn as the frame search sees it: its rotation, the modules it moves (by index, on one
-/// side of its joint) and its own module.
+/// Every point the robot's sweeps are checked with, with its module's index
+/// (`RobotModel::sweep_points`): whole modules' centres, or blocks.
+type Points = [(usize, [f64; 3])];
+
+/// One turn as the frame search sees it: its rotation, the points it moves (by index, on one
+/// side of its joint) and the points of its own module.
 #[derive(Clone)]
 struct Side {
     pivot: [f64; 3],
     axis: [f64; 3],
     angle_deg: f64,
     moves: Vec<bool>,
-    turner: usize,
+    turner: Vec<usize>,
 }
 
 impl Side {
-    /// The turn of `motion` by module `turner`, when it is one rotation of whole modules
-    /// whose centres are its sweep's points.
-    fn of(
-        motion: &Motion,
-        turner: usize,
-        world: &RobotWorld,
-        centres: &[[f64; 3]],
-    ) -> Option<Side> {
+    /// The turn of `motion` by module `turner`, when it is one rotation whose moving points
+    /// are among the robot's `points`.
+    fn of(motion: &Motion, turner: usize, world: &RobotWorld, points: &Points) -> Option<Side> {
         let [Leg::Rotate {
             pivot,
             axis,
@@ -64,21 +63,32 @@ impl Side {
             return None;
         };
         let view = world.view();
-        let mut moves = vec![false; centres.len()];
+        let mut moves = vec![false; points.len()];
         for (name, at) in &motion.moving {
             let m = view.index(name)?;
-            if centres.get(m) != Some(at) {
-                return None;
-            }
-            moves[m] = true;
+            let k = points
+                .iter()
+                .position(|(module, p)| *module == m && p == at)?;
+            moves[k] = true;
         }
+        let own = points.iter().enumerate().filter(|(_, (m, _))| *m == turner);
         Some(Side {
             pivot: *pivot,
             axis: *axis,
             angle_deg: *angle_deg,
             moves,
-            turner,
+            turner: own.map(|(k, _)| k).collect(),
         })
+    }
+
+    /// Whether it moves any of the points `set`.
+    fn moves_any(&self, set: &[usize]) -> bool {
+        set.iter().any(|&k| self.moves[k])
+    }
+
+    /// Whether it moves all of the points `set` (another turn's module: its axis with it).
+    fn moves_all(&self, set: &[usize]) -> bool {
+        set.iter().all(|&k| self.moves[k])
     }
 
     /// The other side of the joint turned the other way: the same motion up to a rigid
@@ -129,20 +139,20 @@ impl Frame {
             let within = |inner: &Side, outer: &Side| {
                 inner.moves.iter().zip(&outer.moves).all(|(i, o)| !i | o)
             };
-            if disjoint && !a.moves[b.turner] && !b.moves[a.turner] {
+            if disjoint && !a.moves_any(&b.turner) && !b.moves_any(&a.turner) {
                 return Some((Frame::Apart(a, b), false));
             }
-            if a.moves[b.turner] && !b.moves[a.turner] && within(&b, &a) {
+            if a.moves_all(&b.turner) && !b.moves_any(&a.turner) && within(&b, &a) {
                 return Some((Frame::Carrying { outer: a, inner: b }, false));
             }
-            if b.moves[a.turner] && !a.moves[b.turner] && within(&a, &b) {
+            if b.moves_all(&a.turner) && !a.moves_any(&b.turner) && within(&a, &b) {
                 return Some((Frame::Carrying { outer: b, inner: a }, true));
             }
         }
         None
     }
 
-    /// Where module `m` (starting at `p`) is when the turns are at fractions `(fa, fb)`:
+    /// Where point `m` (starting at `p`) is when the turns are at fractions `(fa, fb)`:
     /// `fa` of the first side given to [`Frame::Apart`] or of `outer`.
     fn position(&self, m: usize, p: [f64; 3], (fa, fb): (f64, f64)) -> [f64; 3] {
         match self {
@@ -157,7 +167,7 @@ impl Frame {
         }
     }
 
-    /// Bounds on how fast module `m` (starting at `p`) moves per unit of each fraction.
+    /// Bounds on how fast point `m` (starting at `p`) moves per unit of each fraction.
     fn rates(&self, m: usize, p: [f64; 3]) -> (f64, f64) {
         match self {
             Frame::Apart(a, _) if a.moves[m] => (a.rate(distance(p, a.pivot)), 0.0),
@@ -175,7 +185,7 @@ impl Frame {
         }
     }
 
-    /// Which rigid group module `m` is in: two modules of one group never move apart.
+    /// Which rigid group point `m` is in: two points of one group never move apart.
     fn group(&self, m: usize) -> u8 {
         let (first, second) = match self {
             Frame::Apart(a, b) => (a.moves[m], b.moves[m]),
@@ -185,26 +195,26 @@ impl Frame {
     }
 }
 
-/// The approach of every two modules under turns `a` (by module `turner_a`) and `b` done
-/// together, over every relative timing; `None` when the robot does not give whole-module
-/// centres, a motion is not one rotation of whole modules, or no frame composes them.
+/// The approach of every two points of the robot under turns `a` (by module `turner_a`) and
+/// `b` done together, over every relative timing; `None` when the robot gives no sweep
+/// points, a motion is not one rotation of some of them, or no frame composes them.
 pub(crate) fn turns_together(
     (a, turner_a): (&Motion, usize),
     (b, turner_b): (&Motion, usize),
     world: &RobotWorld,
 ) -> Option<Together> {
-    let centres = world.model().rigid_module_centres()?;
-    let sa = Side::of(a, turner_a, world, &centres)?;
-    let sb = Side::of(b, turner_b, world, &centres)?;
+    let points = world.model().sweep_points()?;
+    let sa = Side::of(a, turner_a, world, &points)?;
+    let sb = Side::of(b, turner_b, world, &points)?;
     let (frame, _) = Frame::of(&sa, &sb)?;
     let limit = a.limit.max(b.limit);
     let mut bar = limit;
     let mut closest = None;
     let mut unproven = None;
-    for (i, k) in moving_pairs(&frame, centres.len()) {
+    for (i, k) in moving_pairs(&frame, points.len()) {
         let pair = Pair {
             frame: &frame,
-            points: ((i, centres[i]), (k, centres[k])),
+            points: ((i, points[i].1), (k, points[k].1)),
         };
         match pair.approach(bar) {
             Approach::Clear => {}
@@ -261,10 +271,10 @@ pub fn first_contact(
     (from, to): ((f64, f64), (f64, f64)),
     world: &RobotWorld,
 ) -> Along {
-    let Some(centres) = world.model().rigid_module_centres() else {
+    let Some(points) = world.model().sweep_points() else {
         return Along::Unknown;
     };
-    let sides = Side::of(a, turner_a, world, &centres).zip(Side::of(b, turner_b, world, &centres));
+    let sides = Side::of(a, turner_a, world, &points).zip(Side::of(b, turner_b, world, &points));
     let Some((frame, swapped)) = sides.and_then(|(sa, sb)| Frame::of(&sa, &sb)) else {
         return Along::Unknown;
     };
@@ -273,8 +283,8 @@ pub fn first_contact(
     let at = |u: f64| (from.0 + (to.0 - from.0) * u, from.1 + (to.1 - from.1) * u);
     let limit = a.limit.max(b.limit);
     let mut first: Option<Contact> = None;
-    for (i, k) in moving_pairs(&frame, centres.len()) {
-        let (p, q) = (centres[i], centres[k]);
+    for (i, k) in moving_pairs(&frame, points.len()) {
+        let (p, q) = (points[i].1, points[k].1);
         let (ra, rb) = add(frame.rates(i, p), frame.rates(k, q));
         let rate = ra * (to.0 - from.0).abs() + rb * (to.1 - from.1).abs();
         let apart = |u: f64| distance(frame.position(i, p, at(u)), frame.position(k, q, at(u)));
@@ -282,7 +292,7 @@ pub fn first_contact(
         if let Some((u, d)) = earliest_below(&apart, rate, limit, before) {
             first = Some(Contact {
                 at: u,
-                modules: (i, k),
+                modules: (points[i].0, points[k].0),
                 distance: d,
             });
         }
@@ -324,7 +334,7 @@ fn earliest_below(
     found
 }
 
-/// Every two modules of different groups, lower index first, without visiting the pairs of
+/// Every two points of different groups, lower index first, without visiting the pairs of
 /// the still group (group 0) with itself: the cost is the moving modules times all of them.
 fn moving_pairs(frame: &Frame, n: usize) -> Vec<(usize, usize)> {
     let moving: Vec<usize> = (0..n).filter(|&m| frame.group(m) != 0).collect();
@@ -466,6 +476,7 @@ mod tests {
     const CAR: &str = include_str!("../../../robots/atron/examples/car.json");
     const CHAIN10: &str = include_str!("../../../robots/atron/examples/rotation-chain-10.json");
     const SNAKE: &str = include_str!("../../../robots/atron/examples/snake.json");
+    const MTRAN_SNAKE: &str = include_str!("../../../robots/mtran/examples/mtran-snake4.json");
 
     fn world(text: &str) -> RobotWorld {
         let config = dynarole_robots::read_configuration(text).expect("a bundled file");
@@ -474,28 +485,44 @@ mod tests {
         RobotWorld::new(config, api).expect("a world")
     }
 
-    /// A quarter turn up from where module `m`'s joint is.
-    fn quarter(world: &RobotWorld, m: usize) -> Action {
-        let at = world.view().joint(m, 0).expect("a joint");
+    /// A quarter turn up of module `m`'s joint `joint` from where it is, in the units of the
+    /// robot's plugin (`[joint_angle]`).
+    fn quarter_of(world: &RobotWorld, m: usize, joint: u8) -> Action {
+        let config = world.configuration().expect("a configuration");
+        let plugins = dynarole_robots::plugins();
+        let angle = plugins
+            .get(config.kind().name())
+            .expect("its plugin")
+            .joint_angle;
+        let at = world.view().joint(m, joint).expect("a joint");
+        let to = at + angle.quarter;
         Action::Turn {
-            joint: 0,
+            joint,
             from: Some(at),
-            to: (at + 108) % 432,
+            to: if angle.wraps {
+                to.rem_euclid(4 * angle.quarter)
+            } else {
+                to
+            },
             increasing: true,
         }
     }
 
-    /// Every two modules' distance, row by row.
-    fn distances(points: &[[f64; 3]]) -> Vec<f64> {
+    fn quarter(world: &RobotWorld, m: usize) -> Action {
+        quarter_of(world, m, 0)
+    }
+
+    /// Every two points' distance, row by row.
+    fn distances(points: &[(usize, [f64; 3])]) -> Vec<f64> {
         let pairs = points
             .iter()
             .enumerate()
-            .flat_map(|(i, p)| points[i + 1..].iter().map(move |q| distance(*p, *q)));
+            .flat_map(|(i, (_, p))| points[i + 1..].iter().map(move |(_, q)| distance(*p, *q)));
         pairs.collect()
     }
 
-    fn centres(world: &RobotWorld) -> Vec<[f64; 3]> {
-        world.model().rigid_module_centres().expect("whole modules")
+    fn points_of(world: &RobotWorld) -> Vec<(usize, [f64; 3])> {
+        world.model().sweep_points().expect("sweep points")
     }
 
     fn same(a: &[f64], b: &[f64]) -> bool {
@@ -504,60 +531,80 @@ mod tests {
 
     /// The frame's corners are the world's own ends, up to rigid motion: one turn done (either
     /// one), and both. Checked on every pair of quarter turns the world accepts in both
-    /// orders on three robots, so that the frame search is the world's kinematics.
+    /// orders on three ATRON shapes and an M-TRAN snake (its blocks, both joints of each
+    /// module), so that the frame search is the world's kinematics.
     #[test]
     fn the_frames_corners_are_where_the_world_puts_the_modules() {
         let mut checked = 0;
-        for text in [CAR, CHAIN10, SNAKE] {
+        for (text, joints) in [(CAR, 1), (CHAIN10, 1), (SNAKE, 1), (MTRAN_SNAKE, 2)] {
             let start = world(text);
             let n = start.view().len();
-            for (i, k) in (0..n).flat_map(|i| (i + 1..n).map(move |k| (i, k))) {
-                let names = (start.view().name(i), start.view().name(k));
-                let (ta, tb) = (quarter(&start, i), quarter(&start, k));
-                let done = |first: (&str, &Action), then: Option<(&str, &Action)>| {
-                    let mut model = start.model().clone_model();
-                    model.apply(first.0, first.1).ok()?;
-                    if let Some((name, action)) = then {
-                        model.apply(name, action).ok()?;
-                    }
-                    Some(distances(&model.rigid_module_centres()?))
-                };
-                let (Some(a), Some(b), Some(both)) = (
-                    done((&names.0, &ta), None),
-                    done((&names.1, &tb), None),
-                    done((&names.0, &ta), Some((&names.1, &tb))),
-                ) else {
-                    continue;
-                };
-                let (Some(ma), Some(mb)) = (
-                    start.model().motion(&names.0, &ta),
-                    start.model().motion(&names.1, &tb),
-                ) else {
-                    continue;
-                };
-                let points = centres(&start);
-                let sa = Side::of(&ma, i, &start, &points).expect("a side");
-                let sb = Side::of(&mb, k, &start, &points).expect("a side");
-                let (frame, _) = Frame::of(&sa, &sb).expect("a tree at these joints");
-                let at = |f: (f64, f64)| {
-                    let moved: Vec<[f64; 3]> = (points.iter().enumerate())
-                        .map(|(m, p)| frame.position(m, *p, f))
-                        .collect();
-                    distances(&moved)
-                };
-                let (one, other) = (at((1.0, 0.0)), at((0.0, 1.0)));
-                assert!(same(&at((1.0, 1.0)), &both), "{names:?}: both turns");
-                let singles =
-                    (same(&one, &a) && same(&other, &b)) || (same(&one, &b) && same(&other, &a));
-                assert!(singles, "{names:?}: one turn alone");
-                checked += 1;
+            let modules = (0..n).flat_map(|i| (i + 1..n).map(move |k| (i, k)));
+            let turns =
+                |(i, k)| (0..joints).flat_map(move |ja| (0..joints).map(move |jb| (i, k, ja, jb)));
+            for (i, k, ja, jb) in modules.flat_map(turns) {
+                let (ta, tb) = (quarter_of(&start, i, ja), quarter_of(&start, k, jb));
+                checked += usize::from(corners_agree(&start, (i, &ta), (k, &tb)));
             }
         }
-        assert!(checked > 20, "only {checked} pairs checked");
+        assert!(checked > 30, "only {checked} pairs checked");
+    }
+
+    /// For turns `a` and `b` the world accepts alone and one after the other: the frame's
+    /// corners have every two points as far apart as the world's ends. False when the world
+    /// refuses one.
+    fn corners_agree(
+        start: &RobotWorld,
+        (i, ta): (usize, &Action),
+        (k, tb): (usize, &Action),
+    ) -> bool {
+        let names = (start.view().name(i), start.view().name(k));
+        let done = |first: (&str, &Action), then: Option<(&str, &Action)>| {
+            let mut model = start.model().clone_model();
+            model.apply(first.0, first.1).ok()?;
+            if let Some((name, action)) = then {
+                model.apply(name, action).ok()?;
+            }
+            Some(distances(&model.sweep_points()?))
+        };
+        let (Some(a), Some(b), Some(both)) = (
+            done((&names.0, ta), None),
+            done((&names.1, tb), None),
+            done((&names.0, ta), Some((&names.1, tb))),
+        ) else {
+            return false;
+        };
+        let (Some(ma), Some(mb)) = (
+            start.model().motion(&names.0, ta),
+            start.model().motion(&names.1, tb),
+        ) else {
+            return false;
+        };
+        let points = points_of(start);
+        let sa = Side::of(&ma, i, start, &points).expect("a side");
+        let sb = Side::of(&mb, k, start, &points).expect("a side");
+        let (frame, swapped) = Frame::of(&sa, &sb).expect("a tree at these joints");
+        let at = |f: (f64, f64)| {
+            let moved: Vec<(usize, [f64; 3])> = (points.iter().enumerate())
+                .map(|(m, (module, p))| (*module, frame.position(m, *p, f)))
+                .collect();
+            distances(&moved)
+        };
+        let (first, second) = if swapped { (b, a) } else { (a, b) };
+        assert!(same(&at((1.0, 1.0)), &both), "{names:?}: both turns");
+        assert!(
+            same(&at((1.0, 0.0)), &first),
+            "{names:?}: the first turn alone"
+        );
+        assert!(
+            same(&at((0.0, 1.0)), &second),
+            "{names:?}: the second turn alone"
+        );
+        true
     }
 
     /// The smallest distance over a dense grid of the box, for every two modules.
-    fn sampled_minimum(frame: &Frame, points: &[[f64; 3]], steps: u32) -> f64 {
+    fn sampled_minimum(frame: &Frame, points: &[(usize, [f64; 3])], steps: u32) -> f64 {
         let mut best = f64::INFINITY;
         for s in 0..=steps {
             for t in 0..=steps {
@@ -566,7 +613,7 @@ mod tests {
                     f64::from(t) / f64::from(steps),
                 );
                 let moved: Vec<[f64; 3]> = (points.iter().enumerate())
-                    .map(|(m, p)| frame.position(m, *p, f))
+                    .map(|(m, (_, p))| frame.position(m, *p, f))
                     .collect();
                 for (i, k) in
                     (0..points.len()).flat_map(|i| (i + 1..points.len()).map(move |k| (i, k)))
@@ -606,7 +653,7 @@ mod tests {
         let Some(Together::Closest(found)) = turns_together((&a, m0), (&b, m6), &car) else {
             panic!("the car's turns collide part-way");
         };
-        let points = centres(&car);
+        let points = points_of(&car);
         let (frame, _) = Frame::of(
             &Side::of(&a, m0, &car, &points).expect("a side"),
             &Side::of(&b, m6, &car, &points).expect("a side"),
@@ -637,12 +684,53 @@ mod tests {
             turns_together((&a, m2), (&b, m4), &chain),
             Some(Together::Clear)
         );
-        let points = centres(&chain);
+        let points = points_of(&chain);
         let (frame, _) = Frame::of(
             &Side::of(&a, m2, &chain, &points).expect("a side"),
             &Side::of(&b, m4, &chain, &points).expect("a side"),
         )
         .expect("a frame");
         assert!(sampled_minimum(&frame, &points, 100) >= a.limit);
+    }
+
+    /// On the M-TRAN snake (points are blocks), every pair of quarter turns of two modules
+    /// that the search calls clear stays the limit apart on a dense grid of the box, and a
+    /// found approach is the grid's to within its spacing.
+    #[test]
+    fn the_search_agrees_with_a_dense_grid_on_blocks() {
+        let start = world(MTRAN_SNAKE);
+        let points = points_of(&start);
+        let n = start.view().len();
+        let mut compared = 0;
+        for (i, k) in (0..n).flat_map(|i| (i + 1..n).map(move |k| (i, k))) {
+            for (ja, jb) in [(0, 0), (0, 1), (1, 0), (1, 1)] {
+                let (ta, tb) = (quarter_of(&start, i, ja), quarter_of(&start, k, jb));
+                let names = (start.view().name(i), start.view().name(k));
+                let (Some(ma), Some(mb)) = (
+                    start.model().motion(&names.0, &ta),
+                    start.model().motion(&names.1, &tb),
+                ) else {
+                    continue;
+                };
+                let Some(found) = turns_together((&ma, i), (&mb, k), &start) else {
+                    continue;
+                };
+                let sides = (
+                    Side::of(&ma, i, &start, &points).expect("a side"),
+                    Side::of(&mb, k, &start, &points).expect("a side"),
+                );
+                let (frame, _) = Frame::of(&sides.0, &sides.1).expect("a frame");
+                let sampled = sampled_minimum(&frame, &points, 60);
+                match found {
+                    Together::Clear => assert!(sampled >= ma.limit, "{names:?}: {sampled}"),
+                    Together::Closest(d) => {
+                        assert!(d <= sampled + 1e-9, "{names:?}: {d} {sampled}")
+                    }
+                    Together::Unproven(_) => {}
+                }
+                compared += 1;
+            }
+        }
+        assert!(compared >= 6, "only {compared} pairs compared");
     }
 }

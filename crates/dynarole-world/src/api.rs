@@ -213,6 +213,14 @@ pub trait RobotModel: fmt::Debug + Send + Sync {
     fn rigid_module_centres(&self) -> Option<Vec<[f64; 3]>> {
         None
     }
+    /// Every point of the robot its sweeps are checked with, with its module's index: the
+    /// points a motion's `moving` lists are among these (whole modules' centres by default,
+    /// from `rigid_module_centres`; a robot of blocks gives its blocks). `None`: the robot
+    /// does not say.
+    fn sweep_points(&self) -> Option<Vec<(usize, [f64; 3])>> {
+        let centres = self.rigid_module_centres()?;
+        Some(centres.into_iter().enumerate().collect())
+    }
     /// The configuration in the data-file format, for a robot that has one.
     fn configuration(&self) -> Option<Configuration>;
     /// The configuration moved out of the model at its end (no copy: a large robot's

@@ -79,6 +79,16 @@ impl RobotModel for MtranWorld {
         "block pitches"
     }
 
+    /// Both blocks of every module, in block pitches: what its turns' sweeps are checked with.
+    fn sweep_points(&self) -> Option<Vec<(usize, [f64; 3])>> {
+        let modules = MtranWorld::configuration(self).modules();
+        let blocks = modules
+            .iter()
+            .enumerate()
+            .flat_map(|(i, m)| m.block_centres().map(|b| (i, crate::world::pitches(b))));
+        Some(blocks.collect())
+    }
+
     fn configuration(&self) -> Option<Configuration> {
         Some(Configuration::new(MtranWorld::configuration(self).clone()))
     }

@@ -24,7 +24,7 @@ pub struct MtranWorld {
 }
 
 /// Quarter pitches to block pitches, the unit of the sweep check.
-fn pitches(v: Vec3) -> [f64; 3] {
+pub(crate) fn pitches(v: Vec3) -> [f64; 3] {
     v.map(|c| f64::from(c) / 2.0)
 }
 
