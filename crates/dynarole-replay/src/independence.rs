@@ -68,12 +68,11 @@ pub(crate) fn simultaneous_turns(
         assignment,
         exhaustive: true,
     };
-    let motion = |s: &ResolvedStatement| {
-        let module = assignment.get(&s.label)?;
-        let turner = world.view().index(module)?;
-        Some((world.motion(&program.robot, s, module)?, turner))
-    };
-    checker.motions_apart(motion(a)?, motion(b)?, world, false)
+    let (ma, mb) = (
+        checker.statement_motion(a, world)?,
+        checker.statement_motion(b, world)?,
+    );
+    checker.motions_apart(ma, mb, world, false)
 }
 
 /// Why statements `a` and `b`, joined by `&` in a group that starts from `world`, are not
@@ -421,6 +420,15 @@ impl Checker<'_> {
         let PlanKind::Op(statement) = &element.kind else {
             return None;
         };
+        self.statement_motion(statement, world)
+    }
+
+    /// The motion of a statement on the module of its label, and that module's index.
+    fn statement_motion(
+        &self,
+        statement: &ResolvedStatement,
+        world: &RobotWorld,
+    ) -> Option<(Motion, usize)> {
         let module = self.assignment.get(&statement.label)?;
         let turner = world.view().index(module)?;
         Some((
