@@ -261,3 +261,73 @@ fn a_window_checks_fewer_pairs_and_keeps_the_rest_in_order() {
     let out = parallelise(&input, &["--window", "-1"]);
     assert_eq!(out.status.code(), Some(2));
 }
+
+/// The simulated time (ms) at which `sequence` of `file` declares its end on `chain`.
+fn completion_ms(file: &str, sequence: &str, chain: &str, seed: &str) -> f64 {
+    let out = dynarole(&[
+        "simulate",
+        file,
+        "--sequence",
+        sequence,
+        "--from",
+        chain,
+        "--seed",
+        seed,
+        "--json",
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let summary: serde_json::Value = serde_json::from_slice(&out.stdout).expect("a JSON summary");
+    summary["completion_ms"]
+        .as_f64()
+        .expect("a completion time")
+}
+
+#[test]
+fn the_rotation_experiments_in_order_come_back_as_the_hand_parallel_groups() {
+    // Every joint of the chain turned at once: the group check proves it safe for every
+    // relative timing, so `parallelise` writes the hand-parallel groups from the `;` form, and
+    // its output ends no later in simulation.
+    let (file, chain) = (
+        "robots/atron/examples/parallel-rotate-10.dr",
+        "robots/atron/examples/rotation-chain-10.json",
+    );
+    assert_checks_clean(&["check", file, "--from", chain]);
+    let output = scratch("parallel_rotate_10.dr", "");
+    let out = dynarole(&[
+        "parallelise",
+        file,
+        "--sequence",
+        "rotate_in_order",
+        "--from",
+        chain,
+        "--name",
+        "parallel_rotate",
+        "-o",
+        &output.display().to_string(),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let body = |text: &str| -> String {
+        let start = text
+            .find("sequence parallel_rotate {")
+            .expect("the sequence");
+        let end = text[start..].find("\n}").expect("its end") + start;
+        text[start..end].to_string()
+    };
+    let written = std::fs::read_to_string(&output).expect("the output");
+    let shipped = std::fs::read_to_string(common::repo_root().join(file)).expect("the example");
+    assert_eq!(body(&written), body(&shipped));
+    let output = output.display().to_string();
+    for seed in ["1", "2", "3"] {
+        let parallelised = completion_ms(&output, "parallel_rotate", chain, seed);
+        let hand = completion_ms(file, "parallel_rotate", chain, seed);
+        let in_order = completion_ms(file, "rotate_in_order", chain, seed);
+        assert!(
+            parallelised <= hand,
+            "seed {seed}: {parallelised} ms, by hand {hand} ms"
+        );
+        assert!(
+            parallelised < in_order,
+            "seed {seed}: {parallelised} ms, in order {in_order} ms"
+        );
+    }
+}

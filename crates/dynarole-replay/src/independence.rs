@@ -5,7 +5,7 @@
 use crate::motion::{closest_approach, MovingSide};
 use crate::robot_world::RobotWorld;
 use crate::roles::Assignment;
-use crate::simultaneous::{turns_together, Together};
+use crate::simultaneous::{turns_together, Approach, Together};
 use dynarole_core::ast::SeparatorKind;
 use dynarole_core::check::ResolvedStatement;
 use dynarole_core::diagnostic::{Diagnostic, DiagnosticKind};
@@ -72,13 +72,13 @@ pub(crate) fn simultaneous_turns(
         checker.statement_motion(a, world)?,
         checker.statement_motion(b, world)?,
     );
-    checker.motions_apart(ma, mb, world, false)
+    checker.motions_apart(ma, mb, world, true)
 }
 
 /// Why statements `a` and `b`, joined by `&` in a group that starts from `world`, are not
-/// independent: the check `check_independence` makes of that pair of the group. `sides`:
-/// their moving sides on `world` (`MovingSide::of`, computed once per statement by the
-/// caller).
+/// independent as a group of two: the check `check_independence` makes of that pair of a
+/// group (the group's turns together are `group_turns_conflict`'s). `sides`: their moving
+/// sides on `world` (`MovingSide::of`, computed once per statement by the caller).
 pub(crate) fn group_pair(
     program: &Program,
     assignment: &Assignment,
@@ -96,7 +96,138 @@ pub(crate) fn group_pair(
         separator: SeparatorKind::Parallel,
         span: s.span,
     };
-    checker.decided_pair(&element(a), &element(b), sides, world, false)
+    let alone = Simultaneity::Pairwise { alone: true };
+    checker.decided_pair(&element(a), &element(b), sides, world, alone)
+}
+
+/// Why the turns among `statements` (a group starting from `world`, in its order), done
+/// together, are not safe for every relative timing: the statements involved (indices into
+/// `statements`, in order: the turns that bring the two modules together) and the reason;
+/// `None` when they are proven safe, or are not turns on a tree (the pair checks decide
+/// then).
+pub(crate) fn group_turns_conflict(
+    program: &Program,
+    assignment: &Assignment,
+    statements: &[&ResolvedStatement],
+    world: &RobotWorld,
+) -> Option<(Vec<usize>, String)> {
+    let checker = Checker {
+        program,
+        assignment,
+        exhaustive: false,
+    };
+    let motions: Vec<Option<(Motion, usize)>> = statements
+        .iter()
+        .map(|s| checker.statement_motion(s, world))
+        .collect();
+    let together = GroupTurns::of(&motions, world)?;
+    let describe = |i: usize| statements[i].describe(&program.robot);
+    together.conflict(world, &describe)
+}
+
+/// How the pair check treats two statements done at the same time.
+#[derive(Clone, Copy)]
+enum Simultaneity {
+    /// Their group's turns were decided together (`GroupTurns`): nothing left for the pair.
+    Decided,
+    /// Decided for the pair, `alone` when they are their group's only two.
+    Pairwise { alone: bool },
+}
+
+/// The turns of one group decided together over every relative timing (`simultaneous.rs`):
+/// the group's elements that are turns, and what they do together.
+struct GroupTurns {
+    members: Vec<usize>,
+    limit: f64,
+    verdict: Together,
+}
+
+impl GroupTurns {
+    /// The verdict on the elements whose motions (with their modules) are turns that move
+    /// modules, when there are at least two and they make a tree.
+    fn of(motions: &[Option<(Motion, usize)>], world: &RobotWorld) -> Option<GroupTurns> {
+        let members: Vec<usize> = (0..motions.len())
+            .filter(|&i| {
+                motions[i]
+                    .as_ref()
+                    .is_some_and(|(m, _)| m.is_turn() && m.moves())
+            })
+            .collect();
+        if members.len() < 2 {
+            return None;
+        }
+        let turns: Vec<(&Motion, usize)> = members
+            .iter()
+            .filter_map(|&i| motions[i].as_ref().map(|(m, t)| (m, *t)))
+            .collect();
+        let limit = turns.iter().map(|(m, _)| m.limit).fold(0.0, f64::max);
+        let verdict = turns_together(&turns, world)?;
+        Some(GroupTurns {
+            members,
+            limit,
+            verdict,
+        })
+    }
+
+    fn covers(&self, element: usize) -> bool {
+        self.members.contains(&element)
+    }
+
+    /// The elements a conflict involves (the turns that bring the modules together, in the
+    /// group's order: it is reported on the first two) and why; `describe` names an element.
+    fn conflict(
+        &self,
+        world: &RobotWorld,
+        describe: &dyn Fn(usize) -> String,
+    ) -> Option<(Vec<usize>, String)> {
+        let (approach, proven) = match &self.verdict {
+            Together::Clear => return None,
+            Together::Closest(approach) => (approach, true),
+            Together::Unproven(approach) => (approach, false),
+        };
+        let elements: Vec<usize> = approach.turns.iter().map(|&t| self.members[t]).collect();
+        if elements.len() < 2 {
+            return None;
+        }
+        let reason = self.reason(approach, proven, world, &|| {
+            let others: Vec<String> = elements[2..]
+                .iter()
+                .map(|&e| format!("`{}`", describe(e)))
+                .collect();
+            others.join(", ")
+        });
+        Some((elements, reason))
+    }
+
+    fn reason(
+        &self,
+        approach: &Approach,
+        proven: bool,
+        world: &RobotWorld,
+        others: &dyn Fn() -> String,
+    ) -> String {
+        let limit = self.limit;
+        let unit = world.model().length_unit();
+        let d = approach.distance;
+        let view = world.view();
+        let (a, b) = (view.name(approach.modules.0), view.name(approach.modules.1));
+        let with = if approach.turns.len() > 2 {
+            format!(" with {}", others())
+        } else {
+            String::new()
+        };
+        if proven {
+            format!(
+                "done at the same time{with}, the turns bring {a} and {b} within {d:.3} {unit} \
+                 of each other (limit {limit})"
+            )
+        } else {
+            format!(
+                "done at the same time{with}, the turns could not be proven to keep {a} and {b} \
+                 {limit} {unit} apart for every relative timing (lower bound {d:.3})"
+            )
+        }
+    }
 }
 
 /// A warning of the model on the way through one order of a pair: the step it came from and
@@ -252,11 +383,24 @@ impl Checker<'_> {
     fn plan(&self, plan: &Plan, world: &mut RobotWorld, out: &mut Vec<Diagnostic>) {
         for group in groups(plan) {
             let sides = self.sides(group, world);
+            let together = self.group_turns(group, world);
+            if let Some(together) = &together {
+                self.warn_group(group, together, world, out);
+            }
             for (i, a) in group.iter().enumerate() {
                 for (k, b) in group.iter().enumerate().skip(i + 1) {
                     let sides = (sides[i].as_ref(), sides[k].as_ref());
-                    let alone = group.len() == 2;
-                    if let Some(reason) = self.decided_pair(a, b, sides, world, alone) {
+                    let decided = together
+                        .as_ref()
+                        .is_some_and(|t| t.covers(i) && t.covers(k));
+                    let simultaneity = if decided {
+                        Simultaneity::Decided
+                    } else {
+                        Simultaneity::Pairwise {
+                            alone: group.len() == 2,
+                        }
+                    };
+                    if let Some(reason) = self.decided_pair(a, b, sides, world, simultaneity) {
                         let kind = DiagnosticKind::NotIndependent {
                             step: self.describe(a),
                             other_step: self.describe(b),
@@ -276,6 +420,35 @@ impl Checker<'_> {
                 // step just changes nothing.
                 let _ = self.apply(element, world, &mut Vec::new());
             }
+        }
+    }
+
+    /// The group's turns decided together, when there are two or more on a tree.
+    fn group_turns(&self, group: &[PlanElement], world: &RobotWorld) -> Option<GroupTurns> {
+        let motions: Vec<Option<(Motion, usize)>> =
+            group.iter().map(|e| self.motion(e, world)).collect();
+        GroupTurns::of(&motions, world)
+    }
+
+    /// The warning of a group whose turns are not safe together, on the first two turns
+    /// involved.
+    fn warn_group(
+        &self,
+        group: &[PlanElement],
+        together: &GroupTurns,
+        world: &RobotWorld,
+        out: &mut Vec<Diagnostic>,
+    ) {
+        let describe = |i: usize| self.describe(&group[i]);
+        if let Some((involved, reason)) = together.conflict(world, &describe) {
+            let (a, b) = (&group[involved[0]], &group[involved[1]]);
+            let kind = DiagnosticKind::NotIndependent {
+                step: self.describe(a),
+                other_step: self.describe(b),
+                reason,
+                other: b.span,
+            };
+            out.push(Diagnostic::new(kind, a.span));
         }
     }
 
@@ -302,7 +475,7 @@ impl Checker<'_> {
         b: &PlanElement,
         sides: (Option<&MovingSide>, Option<&MovingSide>),
         world: &RobotWorld,
-        alone: bool,
+        simultaneity: Simultaneity,
     ) -> Option<String> {
         if let (Some(sa), Some(sb)) = sides {
             // Such turns also warn alike in either order: the only warning a turn gets (its
@@ -311,7 +484,7 @@ impl Checker<'_> {
                 return None;
             }
         }
-        self.pair(a, b, world, alone)
+        self.pair(a, b, world, simultaneity)
     }
 
     /// Why `a` and `b` are not independent, if they are not.
@@ -320,7 +493,7 @@ impl Checker<'_> {
         a: &PlanElement,
         b: &PlanElement,
         world: &RobotWorld,
-        alone: bool,
+        simultaneity: Simultaneity,
     ) -> Option<String> {
         let run = |first: &PlanElement, second: &PlanElement| {
             let mut run = OrderRun::from(world.clone());
@@ -330,7 +503,10 @@ impl Checker<'_> {
         };
         let firsts = || (self.describe(a), self.describe(b));
         match compare_orders(run(a, b), run(b, a), firsts) {
-            Orders::Agree => self.simultaneous_turns(a, b, world, alone),
+            Orders::Agree => match simultaneity {
+                Simultaneity::Decided => None,
+                Simultaneity::Pairwise { alone } => self.simultaneous_turns(a, b, world, alone),
+            },
             Orders::Differ(reason) => Some(reason),
             // Refused in both orders: the replay reports the step itself.
             Orders::RefusedBoth => None,
@@ -391,20 +567,21 @@ impl Checker<'_> {
         // third turn in the group, a module may be moved by all three at once, which the
         // pair's box does not cover.
         let together = if alone {
-            turns_together((&ma, ta), (&mb, tb), world)
+            turns_together(&[(&ma, ta), (&mb, tb)], world)
         } else {
             None
         };
         match together {
             Some(Together::Clear) => None,
-            Some(Together::Closest(closest)) => Some(within(closest)),
+            Some(Together::Closest(closest)) => Some(within(closest.distance)),
             Some(Together::Unproven(bound)) => Some(format!(
                 "done at the same time, the {what} could not be proven to keep modules {limit} \
-                 {unit} apart for every relative timing (lower bound {bound:.3})"
+                 {unit} apart for every relative timing (lower bound {:.3})",
+                bound.distance
             )),
             None if !shared.is_empty() && !alone => Some(format!(
-                "both {what} move {} and their group has more motions: only two {what} alone \
-                 are checked for every relative timing",
+                "both {what} move {} and the motions of their group are not all turns of a \
+                 tree of modules, which only are checked together for every relative timing",
                 shared.join(", ")
             )),
             None if !shared.is_empty() => Some(format!(

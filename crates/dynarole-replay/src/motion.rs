@@ -64,20 +64,17 @@ impl MovingSide {
         world: &RobotWorld,
         (i, clear): (usize, &Cell<Option<usize>>),
     ) -> Option<bool> {
-        if self.modules.intersects(&b.modules) {
-            return Some(true);
-        }
-
-        let positions = world.model().rigid_module_centres()?;
-        // A turn that moves no module (a free end's joint) leaves every position where it
-        // was, so carrying its module along changes nothing it does; else moving the other's
-        // module changes the other's motion, and the full check decides.
+        // Sides that share a module, or one turn carrying the other's module, are turns of one
+        // linkage, decided over their whole joint-space box by the full check. A turn that
+        // moves no module (a free end's joint) leaves every position where it was, so carrying
+        // its module along changes nothing it does.
         let carries = |x: &MovingSide, y: &MovingSide| {
             x.modules.contains(y.pivot) && !y.motion.moving.is_empty()
         };
-        if carries(self, b) || carries(b, self) {
+        if self.modules.intersects(&b.modules) || carries(self, b) || carries(b, self) {
             return None;
         }
+        let positions = world.model().rigid_module_centres()?;
         if closest_approach(&self.motion, &b.motion).is_some() {
             return Some(true);
         }

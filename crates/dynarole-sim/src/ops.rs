@@ -269,12 +269,10 @@ impl State {
             };
             let fraction = |t: u64, (a, b): (u64, u64)| (t - a) as f64 / (b - a) as f64;
             let mine = (self.now, end_us);
-            let span = (
-                (fraction(self.now, (start, end)), 0.0),
-                (fraction(until, (start, end)), fraction(until, mine)),
-            );
-            let contact =
-                dynarole_replay::first_contact((&theirs, module), (&motion, m), span, &self.world);
+            let from = [fraction(self.now, (start, end)), 0.0];
+            let to = [fraction(until, (start, end)), fraction(until, mine)];
+            let turns = [(&theirs, module), (&motion, m)];
+            let contact = dynarole_replay::first_contact(&turns, (&from, &to), &self.world);
             if let Along::Contact(c) = contact {
                 let at = self.now + ((until - self.now) as f64 * c.at).round() as u64;
                 let entry = u32::try_from(self.clashes.len()).unwrap_or(u32::MAX);

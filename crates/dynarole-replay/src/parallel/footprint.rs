@@ -2,9 +2,10 @@
 //! the same verdict as running both orders (the property test compares the two graphs).
 //!
 //! Two turns `a` (statement `i`) and `b` (a later one), on the state `W` before `a`:
-//! - moving sides that share a module: ordered (the full check says "both turns move ...");
+//! - moving sides that share a module, or one turn moving the other's module: the full check
+//!   (both orders, and the two turns done together over every relative timing);
 //! - on a robot whose turns move whole modules (`RobotModel::rigid_module_centres`),
-//!   disjoint sides, neither pivot moved by the other turn (or the one moved
+//!   otherwise (disjoint sides, neither pivot moved by the other turn, or the one moved
 //!   turns no module, as at a free end of a chain): the two orders give
 //!   the same configuration (each module is turned by at most one of them, about an axis the
 //!   other does not move). If the two turns done at the same time can come closer than the

@@ -13,7 +13,7 @@
 //! group is added to the graph. The groups' reverse is left to the verification.
 
 use super::{transitive_reduction, Request};
-use crate::independence::group_pair;
+use crate::independence::{group_pair, group_turns_conflict};
 use crate::motion::MovingSide;
 use crate::robot_world::RobotWorld;
 use dynarole_core::check::ResolvedStatement;
@@ -159,6 +159,9 @@ impl<'a> GroupCheck<'a> {
                 reason,
             });
         }
+        if let Some(split) = self.turns_conflict(group, j) {
+            return Some(split);
+        }
         let reason = self.step_problem(&group.after, j)?;
         let last = *group.members.last()?;
         let culprit = group
@@ -170,6 +173,29 @@ impl<'a> GroupCheck<'a> {
             .unwrap_or(last);
         Some(Split {
             edge: (culprit, j),
+            reason,
+        })
+    }
+
+    /// Why `j`'s turn cannot join the group's turns done together, for some relative timing
+    /// of them all (each pair alone may be fine): the edge from the latest member involved.
+    fn turns_conflict(&self, group: &Group, j: usize) -> Option<Split> {
+        let (program, assignment) = (self.request.program, self.request.assignment);
+        let mut statements: Vec<&ResolvedStatement> =
+            group.members.iter().map(|&i| &self.statements[i]).collect();
+        statements.push(&self.statements[j]);
+        let (involved, reason) =
+            group_turns_conflict(program, assignment, &statements, &group.start)?;
+        let newest = group.members.len();
+        let culprit = involved
+            .iter()
+            .rev()
+            .find(|&&e| e != newest)
+            .or(involved.first())
+            .and_then(|&e| group.members.get(e))
+            .or(group.members.last())?;
+        Some(Split {
+            edge: (*culprit, j),
             reason,
         })
     }
