@@ -479,8 +479,11 @@ impl Checker<'_> {
     ) -> Option<String> {
         if let (Some(sa), Some(sb)) = sides {
             // Such turns also warn alike in either order: the only warning a turn gets (its
-            // joint already at the angle) does not depend on another module's turn.
-            if sa.proven_independent(sb, world) {
+            // joint already at the angle) does not depend on another module's turn. Linked
+            // turns are proven so for the two of them alone: with more turns in a group that
+            // were not decided together, the pair check says why.
+            let alone = !matches!(simultaneity, Simultaneity::Pairwise { alone: false });
+            if (alone || !sa.linked(sb)) && sa.proven_independent(sb, world) {
                 return None;
             }
         }

@@ -5,6 +5,7 @@
 
 use crate::bitset::BitSet;
 use crate::robot_world::RobotWorld;
+use crate::simultaneous::{turns_together, Together};
 use dynarole_core::check::ResolvedStatement;
 use dynarole_core::RobotApi;
 use dynarole_world::Motion;
@@ -44,6 +45,17 @@ impl MovingSide {
         })
     }
 
+    /// Whether the two turns are one linkage: their sides share a module, or one moves the
+    /// other's module (a turn that moves no module, a free end's joint, leaves every position
+    /// where it was, so carrying its module along changes nothing it does). Such a pair is
+    /// decided over its own joint-space box: for it alone, not with other turns of a group.
+    pub(crate) fn linked(&self, other: &MovingSide) -> bool {
+        let carries = |x: &MovingSide, y: &MovingSide| {
+            x.modules.contains(y.pivot) && !y.motion.moving.is_empty()
+        };
+        self.modules.intersects(&other.modules) || carries(self, other) || carries(other, self)
+    }
+
     /// Two turns done from `world`, each accepted on it alone (checked here for both),
     /// proven independent from their motions: both orders are accepted and end in the same
     /// configuration, and done at the same time they stay the limit apart. `false` when
@@ -65,17 +77,19 @@ impl MovingSide {
         (i, clear): (usize, &Cell<Option<usize>>),
     ) -> Option<bool> {
         // Sides that share a module, or one turn carrying the other's module, are turns of one
-        // linkage, decided over their whole joint-space box by the full check. A turn that
-        // moves no module (a free end's joint) leaves every position where it was, so carrying
-        // its module along changes nothing it does.
-        let carries = |x: &MovingSide, y: &MovingSide| {
-            x.modules.contains(y.pivot) && !y.motion.moving.is_empty()
-        };
-        if self.modules.intersects(&b.modules) || carries(self, b) || carries(b, self) {
-            return None;
-        }
+        // linkage: on a tree the two orders end alike (the shape depends on the joint angles
+        // only), the modules only one of them moves apart are where it alone puts them in
+        // either order (`a` is accepted on `world`, `b` is checked below), and the others are
+        // decided over the pair's whole joint-space box; where they make no tree, the full
+        // check.
         let positions = world.model().rigid_module_centres()?;
-        if closest_approach(&self.motion, &b.motion).is_some() {
+        if self.linked(b) {
+            let pair = [(&self.motion, self.pivot), (&b.motion, b.pivot)];
+            match turns_together(&pair, world)? {
+                Together::Clear => {}
+                Together::Closest(_) | Together::Unproven(_) => return Some(true),
+            }
+        } else if closest_approach(&self.motion, &b.motion).is_some() {
             return Some(true);
         }
 

@@ -61,6 +61,27 @@ pub(crate) struct Approach {
 /// (`RobotModel::sweep_points`): whole modules' centres, or blocks.
 type Points = [(usize, [f64; 3])];
 
+/// The robot's sweep points with, for each module, the indices of its points.
+struct Indexed {
+    points: Vec<(usize, [f64; 3])>,
+    by_module: Vec<Vec<usize>>,
+}
+
+impl Indexed {
+    fn new(points: Vec<(usize, [f64; 3])>) -> Indexed {
+        let modules = points.iter().map(|(m, _)| m + 1).max().unwrap_or(0);
+        let mut by_module = vec![Vec::new(); modules];
+        for (k, (m, _)) in points.iter().enumerate() {
+            by_module[*m].push(k);
+        }
+        Indexed { points, by_module }
+    }
+
+    fn of_module(&self, m: usize) -> impl Iterator<Item = usize> + '_ {
+        self.by_module.get(m).into_iter().flatten().copied()
+    }
+}
+
 /// The robot's sweep points and the linkage of a group's turns on them.
 type Linked = (Vec<(usize, [f64; 3])>, Linkage);
 
@@ -79,7 +100,7 @@ struct Side {
 impl Side {
     /// The turn of `motion` by module `turner`, when it is one rotation whose moving points
     /// are among the robot's `points`.
-    fn of(motion: &Motion, turner: usize, world: &RobotWorld, points: &Points) -> Option<Side> {
+    fn of(motion: &Motion, turner: usize, world: &RobotWorld, points: &Indexed) -> Option<Side> {
         let [Leg::Rotate {
             pivot,
             axis,
@@ -93,21 +114,18 @@ impl Side {
             return None;
         }
         let view = world.view();
-        let mut moves = vec![false; points.len()];
+        let mut moves = vec![false; points.points.len()];
         for (name, at) in &motion.moving {
             let m = view.index(name)?;
-            let k = points
-                .iter()
-                .position(|(module, p)| *module == m && p == at)?;
+            let k = points.of_module(m).find(|&k| points.points[k].1 == *at)?;
             moves[k] = true;
         }
-        let own = points.iter().enumerate().filter(|(_, (m, _))| *m == turner);
         Some(Side {
             pivot: *pivot,
             axis: axis.map(|c| c / length),
             angle_deg: *angle_deg,
             moves,
-            turner: own.map(|(k, _)| k).collect(),
+            turner: points.of_module(turner).collect(),
         })
     }
 
@@ -210,7 +228,7 @@ impl Linkage {
     }
 
     /// Where point `m` (starting at `p`) is when each turn `t` is at fraction `fractions[t]`
-    /// (the search needs only `reach`; the tests compare this with the world).
+    /// (the search needs only `reach` and `Whole`; the tests compare this with the world).
     #[cfg(test)]
     fn position(&self, m: usize, p: [f64; 3], fractions: &[f64]) -> [f64; 3] {
         self.chains[m]
@@ -243,8 +261,24 @@ impl Linkage {
     }
 
     /// Whether two points move apart: not moved by the same turns.
+    #[cfg(test)]
     fn rigid(&self, i: usize, k: usize) -> bool {
         self.chains[i] == self.chains[k]
+    }
+
+    /// Each point's rigid body (the points moved by the same turns), numbered in order of
+    /// first point.
+    fn bodies(&self) -> Vec<usize> {
+        let mut seen: Vec<&Vec<usize>> = Vec::new();
+        (self.chains.iter())
+            .map(|chain| match seen.iter().position(|c| *c == chain) {
+                Some(b) => b,
+                None => {
+                    seen.push(chain);
+                    seen.len() - 1
+                }
+            })
+            .collect()
     }
 
     /// How many outer turns points `i` and `k` share.
@@ -264,6 +298,47 @@ impl Linkage {
         turns.sort_unstable();
         turns.dedup();
         turns
+    }
+}
+
+/// Every point where the middle of one box puts it, and the chords that bound how far the box
+/// moves it, from each level of its chain in: the first test of every pair, which clears most
+/// of them, at the cost of one pass over the points instead of one per pair. Turns shared by
+/// two points move both rigidly, so the distance of the whole positions is theirs.
+struct Whole {
+    positions: Vec<[f64; 3]>,
+    /// `reach_from[m][l]`: the chords of point `m`'s turns from chain level `l` in.
+    reach_from: Vec<Vec<f64>>,
+}
+
+impl Whole {
+    fn of(linkage: &Linkage, points: &Points, (centre, half): (&[f64], &[f64])) -> Whole {
+        let mut positions = Vec::with_capacity(points.len());
+        let mut reach_from = Vec::with_capacity(points.len());
+        for (m, (_, p)) in points.iter().enumerate() {
+            let chain = &linkage.chains[m];
+            let mut suffix = vec![0.0; chain.len() + 1];
+            let mut q = *p;
+            for (level, &t) in chain.iter().enumerate().rev() {
+                let side = &linkage.sides[t];
+                suffix[level] = suffix[level + 1] + side.chord(q, half[t]);
+                q = side.leg().position_at(q, centre[t]);
+            }
+            positions.push(q);
+            reach_from.push(suffix);
+        }
+        Whole {
+            positions,
+            reach_from,
+        }
+    }
+
+    /// The lower bound over the whole box of the distance of points `i` and `k`, which share
+    /// their first `skip` turns.
+    fn bound(&self, i: usize, k: usize, skip: usize) -> f64 {
+        distance(self.positions[i], self.positions[k])
+            - self.reach_from[i][skip]
+            - self.reach_from[k][skip]
     }
 }
 
@@ -309,13 +384,13 @@ fn nesting(sides: &[Side]) -> Option<Vec<usize>> {
 /// their linkage; `None` when the robot gives no sweep points, a motion is not one rotation
 /// of some of them, or the turns are not on a tree.
 fn linkage_of(turns: &[(&Motion, usize)], world: &RobotWorld) -> Option<Linked> {
-    let points = world.model().sweep_points()?;
+    let points = Indexed::new(world.model().sweep_points()?);
     let sides = turns
         .iter()
         .map(|(motion, turner)| Side::of(motion, *turner, world, &points))
         .collect::<Option<Vec<Side>>>()?;
-    let linkage = Linkage::of(&sides, points.len())?;
-    Some((points, linkage))
+    let linkage = Linkage::of(&sides, points.points.len())?;
+    Some((points.points, linkage))
 }
 
 /// The approach of every two points of the robot under `turns` (each motion with its
@@ -328,7 +403,15 @@ pub(crate) fn turns_together(turns: &[(&Motion, usize)], world: &RobotWorld) -> 
     let mut budget = MAX_BOXES_PER_GROUP;
     let mut closest: Option<Approach> = None;
     let mut unproven: Option<Approach> = None;
-    for (i, k) in moving_pairs(&linkage, points.len()) {
+    let whole = Whole::of(
+        &linkage,
+        &points,
+        (&vec![0.5; turns.len()], &vec![0.5; turns.len()]),
+    );
+    for (i, k, skip) in moving_pairs(&linkage, points.len()) {
+        if whole.bound(i, k, skip) >= bar {
+            continue;
+        }
         let pair = Pair {
             linkage: &linkage,
             points: ((i, points[i].1), (k, points[k].1)),
@@ -360,7 +443,7 @@ pub(crate) fn turns_together(turns: &[(&Motion, usize)], world: &RobotWorld) -> 
 }
 
 /// Two modules closer than the limit while turns run at once.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct Contact {
     /// When it first happens, as a fraction of the stretch of time searched.
     pub at: f64,
@@ -368,10 +451,13 @@ pub struct Contact {
     pub modules: (usize, usize),
     /// How far apart they are then.
     pub distance: f64,
+    /// The turns (indices into the group searched, in order) that move them relative to
+    /// each other.
+    pub turns: Vec<usize>,
 }
 
 /// What turns running at once do over a stretch of time.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum Along {
     /// Every two modules stay at least the limit apart.
     Clear,
@@ -404,8 +490,17 @@ pub fn first_contact(
     let at = |u: f64| -> Vec<f64> { from.iter().zip(to).map(|(f, t)| f + (t - f) * u).collect() };
     let limit = turns.iter().map(|(m, _)| m.limit).fold(0.0, f64::max);
     let mut first: Option<Contact> = None;
-    for (i, k) in moving_pairs(&linkage, points.len()) {
-        let skip = linkage.shared(i, k);
+    let centre = at(0.5);
+    let half: Vec<f64> = from
+        .iter()
+        .zip(to)
+        .map(|(f, t)| (t - f).abs() / 2.0)
+        .collect();
+    let whole = Whole::of(&linkage, &points, (&centre, &half));
+    for (i, k, skip) in moving_pairs(&linkage, points.len()) {
+        if whole.bound(i, k, skip) >= limit {
+            continue;
+        }
         let piece = |u0: f64, u1: f64| {
             let centre = at((u0 + u1) / 2.0);
             let half: Vec<f64> = from
@@ -420,12 +515,13 @@ pub fn first_contact(
             let d = distance(p, q);
             (d, d - rp - rq)
         };
-        let before = first.map_or(1.0, |c| c.at);
+        let before = first.as_ref().map_or(1.0, |c| c.at);
         if let Some((u, d)) = earliest_below(&piece, limit, before) {
             first = Some(Contact {
                 at: u,
                 modules: (points[i].0, points[k].0),
                 distance: d,
+                turns: linkage.between(i, k),
             });
         }
     }
@@ -466,23 +562,28 @@ fn earliest_below(
     found
 }
 
-/// Every two points that at least two turns move relative to each other, lower index first,
-/// without visiting the pairs of the still body with itself: the cost is the moving points
-/// times all of them.
-fn moving_pairs(linkage: &Linkage, n: usize) -> Vec<(usize, usize)> {
-    let moving: Vec<usize> = (0..n).filter(|&m| !linkage.chains[m].is_empty()).collect();
+/// Every two points that at least two turns move relative to each other (lower index first in
+/// each, the moving points in order), with how many turns they share; the still body's pairs
+/// with itself are never visited, so the cost is the moving points times all of them.
+fn moving_pairs(linkage: &Linkage, n: usize) -> Vec<(usize, usize, usize)> {
+    let body = linkage.bodies();
+    let moving = |m: usize| !linkage.chains[m].is_empty();
     let mut pairs = Vec::new();
-    for &i in &moving {
+    for i in (0..n).filter(|&i| moving(i)) {
         for k in 0..n {
-            let counted = !linkage.chains[k].is_empty() && k < i;
+            if body[i] == body[k] || (moving(k) && k < i) {
+                continue;
+            }
             // Two points only one turn moves apart are where that turn alone puts them, at
-            // every timing of the others: its own sweep, which the replay checks.
-            if !linkage.rigid(i, k) && !counted && linkage.between(i, k).len() > 1 {
-                pairs.push((i.min(k), i.max(k)));
+            // every timing of the others: its own sweep, which the replay checks. Past the
+            // turns two points share, their chains have no turn in common.
+            let skip = linkage.shared(i, k);
+            let apart = linkage.chains[i].len() + linkage.chains[k].len() - 2 * skip;
+            if apart > 1 {
+                pairs.push((i.min(k), i.max(k), skip));
             }
         }
     }
-    pairs.sort_unstable();
     pairs
 }
 
@@ -697,11 +798,10 @@ mod tests {
         world: &RobotWorld,
         points: &[(usize, [f64; 3])],
     ) -> Linkage {
-        let sides = [
-            Side::of(a, i, world, points).expect("a side"),
-            Side::of(b, k, world, points).expect("a side"),
-        ];
-        Linkage::of(&sides, points.len()).expect("a tree at these joints")
+        let (found, linkage) =
+            linkage_of(&[(a, i), (b, k)], world).expect("a tree at these joints");
+        assert_eq!(found, points, "the robot's sweep points");
+        linkage
     }
 
     fn same(a: &[f64], b: &[f64]) -> bool {
@@ -760,9 +860,7 @@ mod tests {
             return false;
         };
         let points = points_of(start);
-        let sa = Side::of(&ma, i, start, &points).expect("a side");
-        let sb = Side::of(&mb, k, start, &points).expect("a side");
-        let linkage = Linkage::of(&[sa, sb], points.len()).expect("a tree at these joints");
+        let linkage = linkage_of_two((&ma, i), (&mb, k), start, &points);
         let at = |f: [f64; 2]| {
             let moved: Vec<(usize, [f64; 3])> = (points.iter().enumerate())
                 .map(|(m, (module, p))| (*module, linkage.position(m, *p, &f)))

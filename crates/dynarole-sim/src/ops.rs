@@ -238,82 +238,100 @@ impl State {
         let at = (self.now).saturating_add(self.duration_ms(m, s).saturating_mul(1000));
         self.schedule(at, Event::OpDone { attempt: id });
         if self.seq.kinds[s] == OpKind::Turn && at > self.now {
-            self.note_overlaps(id, m, s, at);
             self.spans.insert(id, (self.now, at));
+            self.check_running_turns();
         }
     }
 
-    /// A turn starts while others run: for each, the first instant at which the two bring two
-    /// modules within the limit (`dynarole_replay::first_contact`: both turns' motions on the
-    /// world's configuration now, their fractions going linearly with time over the overlap)
-    /// is due as a clash. Turns the search does not compose (not whole modules) are not
-    /// checked against each other.
-    fn note_overlaps(&mut self, id: u64, m: usize, s: usize, end_us: u64) {
+    /// The running turns changed (one started, ended or was cut short): all of them
+    /// together, with their fractions going linearly with time from now until the earliest of
+    /// them ends (`dynarole_replay::first_contact`: each turn's motion on the world's
+    /// configuration now, which holds every turn already done), are searched for the first
+    /// instant two modules come within the limit, due as a clash. The search of the previous
+    /// change is superseded: a turn that started since may move the modules it named. Turns
+    /// the search does not compose (not one rotation each, not a tree) are not checked.
+    pub(crate) fn check_running_turns(&mut self) {
+        self.pending_clash = None;
+        if self.spans.len() < 2 {
+            return;
+        }
         let running: Vec<(u64, (u64, u64))> = self.spans.iter().map(|(k, v)| (*k, *v)).collect();
-        let name = self.view().name(m);
-        let Some(motion) = self
-            .world
-            .motion(&self.seq.robot, &self.seq.resolved[s], &name)
+        let mut turns = Vec::new();
+        for &(id, span) in &running {
+            let Some(&Attempt { statement, module }) = self.attempts.get(&id) else {
+                continue;
+            };
+            let name = self.view().name(module);
+            let resolved = &self.seq.resolved[statement];
+            if let Some(motion) = self.world.motion(&self.seq.robot, resolved, &name) {
+                turns.push((id, statement, module, span, motion));
+            }
+        }
+        let Some(until) = turns.iter().map(|t| t.3 .1).min() else {
+            return;
+        };
+        if turns.len() < 2 || until <= self.now {
+            return;
+        }
+        let fraction = |t: u64, (a, b): (u64, u64)| (t - a) as f64 / (b - a) as f64;
+        let from: Vec<f64> = turns.iter().map(|t| fraction(self.now, t.3)).collect();
+        let to: Vec<f64> = turns.iter().map(|t| fraction(until, t.3)).collect();
+        let group: Vec<(&dynarole_world::Motion, usize)> =
+            turns.iter().map(|t| (&t.4, t.2)).collect();
+        let Along::Contact(c) = dynarole_replay::first_contact(&group, (&from, &to), &self.world)
         else {
             return;
         };
-        for (other, (start, end)) in running {
-            let Some(&Attempt { statement, module }) = self.attempts.get(&other) else {
-                continue;
-            };
-            let until = end.min(end_us);
-            let other_name = self.view().name(module);
-            let resolved = &self.seq.resolved[statement];
-            let Some(theirs) = self.world.motion(&self.seq.robot, resolved, &other_name) else {
-                continue;
-            };
-            let fraction = |t: u64, (a, b): (u64, u64)| (t - a) as f64 / (b - a) as f64;
-            let mine = (self.now, end_us);
-            let from = [fraction(self.now, (start, end)), 0.0];
-            let to = [fraction(until, (start, end)), fraction(until, mine)];
-            let turns = [(&theirs, module), (&motion, m)];
-            let contact = dynarole_replay::first_contact(&turns, (&from, &to), &self.world);
-            if let Along::Contact(c) = contact {
-                let at = self.now + ((until - self.now) as f64 * c.at).round() as u64;
-                let entry = u32::try_from(self.clashes.len()).unwrap_or(u32::MAX);
-                self.clashes.push(Clash {
-                    attempts: (other, id),
-                    statements: (statement, s),
-                    modules: c.modules,
-                    limit: motion.limit.max(theirs.limit),
-                });
-                self.schedule(at, Event::Clash { entry });
-            }
-        }
+        let at = self.now + ((until - self.now) as f64 * c.at).round() as u64;
+        let entry = u32::try_from(self.clashes.len()).unwrap_or(u32::MAX);
+        self.clashes.push(Clash {
+            attempts: c.turns.iter().map(|&t| turns[t].0).collect(),
+            statements: c.turns.iter().map(|&t| turns[t].1).collect(),
+            modules: c.modules,
+            limit: turns.iter().map(|t| t.4.limit).fold(0.0, f64::max),
+        });
+        self.pending_clash = Some(entry);
+        self.schedule(at, Event::Clash { entry });
     }
 
-    /// A clash found when the later of two turns started is due: a violation, if both are
-    /// still running (neither interrupted).
+    /// A clash found at the last change of the running turns is due: a violation on the
+    /// latest started of the turns involved, if it is still the search in force and every one
+    /// of them still runs, and not already reported for these turns and modules.
     pub fn clash(&mut self, entry: u32) {
+        if self.pending_clash != Some(entry) {
+            return;
+        }
         let Some(clash) = usize::try_from(entry)
             .ok()
             .and_then(|e| self.clashes.get(e))
         else {
             return;
         };
-        let (first, second) = clash.attempts;
-        let (sa, sb) = clash.statements;
-        let running = |id: u64, s: usize| self.phys[s].running == Some(id);
-        if !running(first, sa) || !running(second, sb) {
+        let all_running = (clash.attempts.iter().zip(&clash.statements))
+            .all(|(&id, &s)| self.phys[s].running == Some(id));
+        let key = (clash.attempts.clone(), clash.modules);
+        if !all_running || self.clashes_reported.contains(&key) {
             return;
         }
-        let Some(m) = self.attempts.get(&second).map(|a| a.module) else {
+        let (Some(&latest), Some(&s)) = (clash.attempts.last(), clash.statements.last()) else {
             return;
         };
+        let Some(m) = self.attempts.get(&latest).map(|a| a.module) else {
+            return;
+        };
+        let others: Vec<usize> = clash.statements[..clash.statements.len() - 1].to_vec();
+        let named: Vec<String> = others.iter().map(|o| format!("#{o}")).collect();
         let view = self.view();
         let what = format!(
-            "running at once with #{sa}, it brings {} and {} closer than the limit ({} {})",
+            "running at once with {}, it brings {} and {} closer than the limit ({} {})",
+            named.join(", "),
             view.name(clash.modules.0),
             view.name(clash.modules.1),
             clash.limit,
             self.world.model().length_unit(),
         );
-        self.violation(TraceEvent::Clash, m, sb, vec![sa], &what);
+        self.clashes_reported.insert(key);
+        self.violation(TraceEvent::Clash, m, s, others, &what);
     }
 
     /// The operation's nominal duration, varied at random when the scenario asks for it.
@@ -369,7 +387,7 @@ impl State {
             return;
         };
         self.turns.remove(&id);
-        self.spans.remove(&id);
+        let was_running_turn = self.spans.remove(&id).is_some();
         if self.phys[s].running != Some(id) {
             return;
         }
@@ -381,6 +399,10 @@ impl State {
             .apply(&self.seq.robot, &self.seq.resolved[s], &name);
         // Links may have changed (latches, facing connectors).
         self.links.clear();
+        if was_running_turn {
+            // The others go on from the configuration with this turn done.
+            self.check_running_turns();
+        }
         match applied {
             Ok(outcome) => {
                 let notes = if self.tracing() {
@@ -473,13 +495,13 @@ impl State {
             .filter(|(_, a)| a.module == m)
             .map(|(id, _)| *id)
             .collect();
+        let mut turn_stopped = false;
         for id in ids {
             let Some(a) = self.attempts.remove(&id) else {
                 continue;
             };
             self.turns.remove(&id);
-            self.spans.remove(&id);
-            self.spans.remove(&id);
+            turn_stopped |= self.spans.remove(&id).is_some();
             if self.phys[a.statement].running == Some(id) {
                 self.phys[a.statement].running = None;
                 self.phys[a.statement].failed = true;
@@ -487,6 +509,9 @@ impl State {
                 let label = self.trace_label(a.statement);
                 self.log(Some(m), TraceEvent::Interrupt, label);
             }
+        }
+        if turn_stopped {
+            self.check_running_turns();
         }
     }
 }

@@ -99,9 +99,10 @@ pub struct Attempt {
 /// Two running turns found to bring modules within the limit at an instant still to come:
 /// reported then if both are still running.
 pub struct Clash {
-    /// The attempts (the earlier started first) and their statements.
-    pub attempts: (u64, u64),
-    pub statements: (usize, usize),
+    /// The attempts of the turns that bring the modules together (the earliest started
+    /// first) and their statements.
+    pub attempts: Vec<u64>,
+    pub statements: Vec<usize>,
     /// The two modules that come closer than the limit.
     pub modules: (usize, usize),
     pub limit: f64,
@@ -146,6 +147,10 @@ pub struct State {
     pub spans: BTreeMap<u64, (u64, u64)>,
     /// Clashes found between running turns, each due at its instant (`Event::Clash`).
     pub clashes: Vec<Clash>,
+    /// The clash the last search of the running turns found, the only one in force.
+    pub pending_clash: Option<u32>,
+    /// Clashes reported, by their attempts and modules: one overlap is one violation.
+    pub clashes_reported: BTreeSet<(Vec<u64>, (usize, usize))>,
     pub rng_loss: ChaCha8Rng,
     rng_hal: ChaCha8Rng,
     pub rng_faults: ChaCha8Rng,
@@ -250,6 +255,8 @@ impl State {
             turns: BTreeMap::new(),
             spans: BTreeMap::new(),
             clashes: Vec::new(),
+            pending_clash: None,
+            clashes_reported: BTreeSet::new(),
             rng_loss: stream(seed, 1),
             rng_hal: stream(seed, 2),
             rng_faults: stream(seed, 3),

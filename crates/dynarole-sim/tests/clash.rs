@@ -54,3 +54,44 @@ fn turns_that_meet_only_while_both_run_clash_and_in_order_they_do_not() {
         assert!(report.violations.is_empty(), "{}", report.summary());
     }
 }
+
+const SNAKE: &str = include_str!("../../../robots/atron/examples/snake.json");
+
+/// Three joints of the snake (the CLI's golden case `check_from_three_turns_meet_only_together`):
+/// every two of them are clear together from the start, all three are not: with M3 and M6 done
+/// first, M4's turn sweeps M5 into M0. Durations varied by half either way give some runs that
+/// timing; the running turns are searched again whenever one ends (the configuration then
+/// holds it), so those runs clash, M4's turn among those named. With `;` the runs are clean.
+#[test]
+fn three_turns_that_meet_only_when_all_three_run_clash() {
+    let source = |separator: &str| {
+        format!(
+            "robot atron;\nsequence s {{\n    M3.Joint.rotateFromToBy(0, 108, true, 150){separator}\n    \
+             M4.Joint.rotateFromToBy(0, 108, true, 150){separator}\n    \
+             M6.Joint.rotateFromToBy(216, 0, true, 150);\n}}\n"
+        )
+    };
+    let mut scenario = Scenario::default();
+    scenario.timing.variation = 0.5;
+    let together = simulator(&source(" &"), &["s"], Protocol::Lattice);
+    let clashed: Vec<u64> = (1..=16)
+        .filter(|seed| {
+            let report = run(&together, SNAKE, None, &scenario, *seed);
+            let clashes: Vec<_> = (report.violations.iter())
+                .filter(|v| v.check == "clash")
+                .collect();
+            for clash in &clashes {
+                let mut named = clash.involved.clone();
+                named.push(clash.statement);
+                assert!(named.contains(&1) && named.len() >= 2, "{clash:?}");
+            }
+            !clashes.is_empty()
+        })
+        .collect();
+    assert!(!clashed.is_empty(), "no seed of 16 caught the clash");
+    let in_order = simulator(&source(";"), &["s"], Protocol::Lattice);
+    for seed in 1..=8 {
+        let report = run(&in_order, SNAKE, None, &scenario, seed);
+        assert!(report.violations.is_empty(), "{}", report.summary());
+    }
+}

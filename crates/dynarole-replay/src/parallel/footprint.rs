@@ -52,7 +52,16 @@ impl Later {
     ) -> Option<bool> {
         let cached = self.side.borrow().clone();
         let (side_b, fresh) = match cached {
-            Some((k, side)) if k == i + 1 && side.pivot != a.pivot => (side, false),
+            // Carried over only where `a` moves none of it (a turn changes no latch, so its
+            // set of modules is the same; their positions then are too).
+            Some((k, side))
+                if k == i + 1
+                    && side.pivot != a.pivot
+                    && !a.modules.intersects(&side.modules)
+                    && !a.modules.contains(side.pivot) =>
+            {
+                (side, false)
+            }
             _ => match MovingSide::of(&request.program.robot, b, module, world) {
                 Some(side) => (Rc::new(side), true),
                 // `b` is refused on `world` (a wrong angle, a locked joint): ordered.
@@ -60,6 +69,7 @@ impl Later {
             },
         };
         let verdict = a.decide(&side_b, world, (i, &self.clear));
+
         // A side carried over is only right for `world` when `a` moved none of it, nor its
         // module; otherwise the next pair computes it again.
         let valid =
