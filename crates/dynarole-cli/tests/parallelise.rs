@@ -291,7 +291,11 @@ fn the_rotation_experiments_in_order_come_back_as_the_hand_parallel_groups() {
         "robots/atron/examples/parallel-rotate-10.dr",
         "robots/atron/examples/rotation-chain-10.json",
     );
-    assert_checks_clean(&["check", file, "--from", chain]);
+    for n in [5, 10, 15, 20] {
+        let file = format!("robots/atron/examples/parallel-rotate-{n}.dr");
+        let chain = format!("robots/atron/examples/rotation-chain-{n}.json");
+        assert_checks_clean(&["check", &file, "--from", &chain]);
+    }
     let output = scratch("parallel_rotate_10.dr", "");
     let out = dynarole(&[
         "parallelise",
