@@ -243,7 +243,8 @@ impl State {
         }
     }
 
-    /// The running turns changed (one started, ended or was cut short): all of them
+    /// The running turns changed (one started, ended or was cut short), or an operation
+    /// completed while they run (a latch changes what they move): all of them
     /// together, with their fractions going linearly with time from now until the earliest of
     /// them ends (`dynarole_replay::first_contact`: each turn's motion on the world's
     /// configuration now, which holds every turn already done), are searched for the first
@@ -399,8 +400,10 @@ impl State {
             .apply(&self.seq.robot, &self.seq.resolved[s], &name);
         // Links may have changed (latches, facing connectors).
         self.links.clear();
-        if was_running_turn {
-            // The others go on from the configuration with this turn done.
+        if was_running_turn || self.spans.len() > 1 {
+            // The running turns go on from the configuration with this operation done: a turn
+            // in place, or a latch made or broken at this instant, which changes what the
+            // turns still running move.
             self.check_running_turns();
         }
         match applied {
