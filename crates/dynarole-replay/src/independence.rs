@@ -2,7 +2,7 @@
 //! configuration in either order, and two joint turns done at the same time must not sweep
 //! through each other.
 
-use crate::motion::{closest_approach, MovingSide};
+use crate::motion::{closest_approach, AtOnce, MovingSide};
 use crate::robot_world::RobotWorld;
 use crate::roles::Assignment;
 use crate::simultaneous::{turns_together, Approach, Together};
@@ -100,25 +100,21 @@ pub(crate) fn group_pair(
     checker.decided_pair(&element(a), &element(b), sides, world, alone)
 }
 
-/// Why the turns among `statements` (a group starting from `world`, in its order), done
-/// together, are not safe for every relative timing: the statements involved (indices into
-/// `statements`, in order: the turns that bring the two modules together) and the reason;
-/// `None` when they are proven safe, or are not turns on a tree (the pair checks decide
-/// then).
+/// Why the turns of a group starting from `world`, done together, are not safe for every
+/// relative timing: `sides` are its statements' moving sides on `world` in its order
+/// (`MovingSide::of`, computed once per statement by the caller; `None` for what is not a
+/// turn). The statements involved (indices into `sides`, in order: the turns that bring the
+/// two modules together) and the reason; `None` when they are proven safe, or are not turns
+/// on a tree (the pair checks decide then).
 pub(crate) fn group_turns_conflict(
     program: &Program,
-    assignment: &Assignment,
     statements: &[&ResolvedStatement],
+    sides: &[Option<&MovingSide>],
     world: &RobotWorld,
 ) -> Option<(Vec<usize>, String)> {
-    let checker = Checker {
-        program,
-        assignment,
-        exhaustive: false,
-    };
-    let motions: Vec<Option<(Motion, usize)>> = statements
+    let motions: Vec<Option<(&Motion, usize)>> = sides
         .iter()
-        .map(|s| checker.statement_motion(s, world))
+        .map(|side| side.map(|s| (s.motion(), s.pivot)))
         .collect();
     let together = GroupTurns::of(&motions, world)?;
     let describe = |i: usize| statements[i].describe(&program.robot);
@@ -128,8 +124,10 @@ pub(crate) fn group_turns_conflict(
 /// How the pair check treats two statements done at the same time.
 #[derive(Clone, Copy)]
 enum Simultaneity {
-    /// Their group's turns were decided together (`GroupTurns`): nothing left for the pair.
-    Decided,
+    /// Their group's turns were decided together (`GroupTurns`): nothing left for the pair;
+    /// `clear` when they were found safe (then, on a tree, two turns whose own sweeps are
+    /// clear are accepted in either order too).
+    Decided { clear: bool },
     /// Decided for the pair, `alone` when they are their group's only two.
     Pairwise { alone: bool },
 }
@@ -145,7 +143,7 @@ struct GroupTurns {
 impl GroupTurns {
     /// The verdict on the elements whose motions (with their modules) are turns that move
     /// modules, when there are at least two and they make a tree.
-    fn of(motions: &[Option<(Motion, usize)>], world: &RobotWorld) -> Option<GroupTurns> {
+    fn of(motions: &[Option<(&Motion, usize)>], world: &RobotWorld) -> Option<GroupTurns> {
         let members: Vec<usize> = (0..motions.len())
             .filter(|&i| {
                 motions[i]
@@ -156,10 +154,7 @@ impl GroupTurns {
         if members.len() < 2 {
             return None;
         }
-        let turns: Vec<(&Motion, usize)> = members
-            .iter()
-            .filter_map(|&i| motions[i].as_ref().map(|(m, t)| (m, *t)))
-            .collect();
+        let turns: Vec<(&Motion, usize)> = members.iter().filter_map(|&i| motions[i]).collect();
         let limit = turns.iter().map(|(m, _)| m.limit).fold(0.0, f64::max);
         let verdict = turns_together(&turns, world)?;
         Some(GroupTurns {
@@ -394,7 +389,10 @@ impl Checker<'_> {
                         .as_ref()
                         .is_some_and(|t| t.covers(i) && t.covers(k));
                     let simultaneity = if decided {
-                        Simultaneity::Decided
+                        let clear = together
+                            .as_ref()
+                            .is_some_and(|t| t.verdict == Together::Clear);
+                        Simultaneity::Decided { clear }
                     } else {
                         Simultaneity::Pairwise {
                             alone: group.len() == 2,
@@ -427,7 +425,10 @@ impl Checker<'_> {
     fn group_turns(&self, group: &[PlanElement], world: &RobotWorld) -> Option<GroupTurns> {
         let motions: Vec<Option<(Motion, usize)>> =
             group.iter().map(|e| self.motion(e, world)).collect();
-        GroupTurns::of(&motions, world)
+        let refs: Vec<Option<(&Motion, usize)>> = (motions.iter())
+            .map(|m| m.as_ref().map(|(m, t)| (m, *t)))
+            .collect();
+        GroupTurns::of(&refs, world)
     }
 
     /// The warning of a group whose turns are not safe together, on the first two turns
@@ -483,7 +484,11 @@ impl Checker<'_> {
             // turns are proven so for the two of them alone: with more turns in a group that
             // were not decided together, the pair check says why.
             let alone = !matches!(simultaneity, Simultaneity::Pairwise { alone: false });
-            if (alone || !sa.linked(sb)) && sa.proven_independent(sb, world) {
+            let at_once = match simultaneity {
+                Simultaneity::Decided { clear: true } => AtOnce::Decided,
+                _ => AtOnce::ToCheck,
+            };
+            if (alone || !sa.linked(sb)) && sa.proven_independent(sb, world, at_once) {
                 return None;
             }
         }
@@ -507,7 +512,7 @@ impl Checker<'_> {
         let firsts = || (self.describe(a), self.describe(b));
         match compare_orders(run(a, b), run(b, a), firsts) {
             Orders::Agree => match simultaneity {
-                Simultaneity::Decided => None,
+                Simultaneity::Decided { .. } => None,
                 Simultaneity::Pairwise { alone } => self.simultaneous_turns(a, b, world, alone),
             },
             Orders::Differ(reason) => Some(reason),

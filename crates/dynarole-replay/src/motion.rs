@@ -11,6 +11,14 @@ use dynarole_core::RobotApi;
 use dynarole_world::Motion;
 use std::cell::Cell;
 
+/// Whether two turns done at the same time are still to be checked, or were decided with all
+/// the turns of their group (`independence.rs`, the group's linkage over its whole box).
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(crate) enum AtOnce {
+    ToCheck,
+    Decided,
+}
+
 /// A motion on one state, with the modules it moves and its own module (by index). Only a
 /// motion with legs has one: one that moves in place (a latch) makes or breaks connections,
 /// which only running both orders decides.
@@ -45,6 +53,11 @@ impl MovingSide {
         })
     }
 
+    /// The motion on the state the side was found on.
+    pub(crate) fn motion(&self) -> &Motion {
+        &self.motion
+    }
+
     /// Whether the two turns are one linkage: their sides share a module, or one moves the
     /// other's module (a turn that moves no module, a free end's joint, leaves every position
     /// where it was, so carrying its module along changes nothing it does). Such a pair is
@@ -60,12 +73,17 @@ impl MovingSide {
     /// proven independent from their motions: both orders are accepted and end in the same
     /// configuration, and done at the same time they stay the limit apart. `false` when
     /// that is not proven (the full check decides).
-    pub(crate) fn proven_independent(&self, other: &MovingSide, world: &RobotWorld) -> bool {
+    pub(crate) fn proven_independent(
+        &self,
+        other: &MovingSide,
+        world: &RobotWorld,
+        at_once: AtOnce,
+    ) -> bool {
         // `decide` assumes the earlier turn is accepted on `world` and checks the later one's
         // sweep; asked both ways round, both sweeps are checked.
         let (first, second) = (Cell::new(None), Cell::new(None));
-        self.decide(other, world, (0, &first)) == Some(false)
-            && other.decide(self, world, (0, &second)) == Some(false)
+        self.decide(other, world, (0, &first), at_once) == Some(false)
+            && other.decide(self, world, (0, &second), at_once) == Some(false)
     }
 
     /// `self` is `a` (statement `i`), `b` the later turn, both on `world` (the state before
@@ -75,6 +93,7 @@ impl MovingSide {
         b: &MovingSide,
         world: &RobotWorld,
         (i, clear): (usize, &Cell<Option<usize>>),
+        at_once: AtOnce,
     ) -> Option<bool> {
         // Sides that share a module, or one turn carrying the other's module, are turns of one
         // linkage: on a tree the two orders end alike (the shape depends on the joint angles
@@ -83,7 +102,9 @@ impl MovingSide {
         // decided over the pair's whole joint-space box; where they make no tree, the full
         // check.
         let positions = world.model().rigid_module_centres()?;
-        if self.linked(b) {
+        if at_once == AtOnce::Decided {
+            // The group's turns together, these two among them, were found clear on a tree.
+        } else if self.linked(b) {
             let pair = [(&self.motion, self.pivot), (&b.motion, b.pivot)];
             match turns_together(&pair, world)? {
                 Together::Clear => {}

@@ -271,13 +271,15 @@ impl Linkage {
     fn bodies(&self) -> Vec<usize> {
         let mut seen: Vec<&Vec<usize>> = Vec::new();
         (self.chains.iter())
-            .map(|chain| match seen.iter().position(|c| *c == chain) {
-                Some(b) => b,
-                None => {
-                    seen.push(chain);
-                    seen.len() - 1
-                }
-            })
+            .map(
+                |chain| match seen.iter().position(|c| same_turns(c, chain)) {
+                    Some(b) => b,
+                    None => {
+                        seen.push(chain);
+                        seen.len() - 1
+                    }
+                },
+            )
             .collect()
     }
 
@@ -349,7 +351,7 @@ fn body_representatives(sides: &[Side], points: usize) -> Vec<usize> {
     let mut out = Vec::new();
     for m in 0..points {
         let signature: Vec<bool> = sides.iter().map(|s| s.moves[m]).collect();
-        if !seen.contains(&signature) {
+        if !seen.iter().any(|other| other.iter().eq(&signature)) {
             seen.push(signature);
             out.push(m);
         }
@@ -721,6 +723,12 @@ impl Ord for Piece {
                 .unwrap_or(Ordering::Equal)
         })
     }
+}
+
+/// Whether two chains hold the same turns, compared element by element: chains are a few
+/// turns long, for which a call to compare memory costs more than the comparison.
+fn same_turns(a: &[usize], b: &[usize]) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x == y)
 }
 
 fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {

@@ -159,7 +159,7 @@ impl<'a> GroupCheck<'a> {
                 reason,
             });
         }
-        if let Some(split) = self.turns_conflict(group, j) {
+        if let Some(split) = self.turns_conflict(group, j, side) {
             return Some(split);
         }
         let reason = self.step_problem(&group.after, j)?;
@@ -179,13 +179,16 @@ impl<'a> GroupCheck<'a> {
 
     /// Why `j`'s turn cannot join the group's turns done together, for some relative timing
     /// of them all (each pair alone may be fine): the edge from the latest member involved.
-    fn turns_conflict(&self, group: &Group, j: usize) -> Option<Split> {
-        let (program, assignment) = (self.request.program, self.request.assignment);
+    fn turns_conflict(&self, group: &Group, j: usize, side: Option<&MovingSide>) -> Option<Split> {
+        // A statement that is not a turn adds nothing to the group's turns.
+        side?;
         let mut statements: Vec<&ResolvedStatement> =
             group.members.iter().map(|&i| &self.statements[i]).collect();
         statements.push(&self.statements[j]);
-        let (involved, reason) =
-            group_turns_conflict(program, assignment, &statements, &group.start)?;
+        let mut sides: Vec<Option<&MovingSide>> = group.sides.iter().map(Option::as_ref).collect();
+        sides.push(side);
+        let program = self.request.program;
+        let (involved, reason) = group_turns_conflict(program, &statements, &sides, &group.start)?;
         let newest = group.members.len();
         let culprit = involved
             .iter()
