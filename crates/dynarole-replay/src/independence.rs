@@ -12,6 +12,7 @@ use dynarole_core::diagnostic::{Diagnostic, DiagnosticKind};
 use dynarole_core::expand::{Plan, PlanElement, PlanKind};
 use dynarole_core::{Program, RobotApi};
 use dynarole_world::{Motion, Warning};
+use std::cell::OnceCell;
 
 /// Warnings for every pair of elements of a parallel group that are not independent, walking
 /// the plans from the world's configuration. Pairs of whole-module turns that their motions prove
@@ -382,8 +383,22 @@ impl Checker<'_> {
             if let Some(together) = &together {
                 self.warn_group(group, together, world, out);
             }
+            // Each turn's own sweep on the group's start, asked once per turn for the pairs
+            // whose motions together the group decided.
+            let own: Vec<OnceCell<Option<bool>>> = vec![OnceCell::new(); group.len()];
+            let clear_alone = |i: usize| {
+                *own[i].get_or_init(|| sides[i].as_ref().and_then(|s| s.sweep_clear(world)))
+                    == Some(true)
+            };
             for (i, a) in group.iter().enumerate() {
                 for (k, b) in group.iter().enumerate().skip(i + 1) {
+                    let decided_clear = together.as_ref().is_some_and(|t| {
+                        t.covers(i) && t.covers(k) && t.verdict == Together::Clear
+                    });
+                    if decided_clear && clear_alone(i) && clear_alone(k) {
+                        // What `proven_independent` would find with `AtOnce::Decided`.
+                        continue;
+                    }
                     let sides = (sides[i].as_ref(), sides[k].as_ref());
                     let decided = together
                         .as_ref()

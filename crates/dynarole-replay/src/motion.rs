@@ -116,18 +116,33 @@ impl MovingSide {
 
         // Clear on the state after `a` (checked for the pair `i + 1`): only `a`'s modules moved.
         let incremental = clear.get() == Some(i + 1);
-        let still: Vec<[f64; 3]> = (0..positions.len())
-            .filter(|k| !b.modules.contains(*k))
-            .filter(|k| !incremental || self.modules.contains(*k))
-            .map(|k| positions[k])
-            .collect();
-        let moving: Vec<[f64; 3]> = b.motion.moving.iter().map(|(_, p)| *p).collect();
-        let approach = b.motion.sweep_approach(&moving, &still);
-        let collides = approach.is_some_and(|distance| distance < b.motion.limit);
+        let collides = b.sweep_collides(&positions, incremental.then_some(&self.modules));
         if !collides {
             clear.set(Some(i));
         }
         Some(collides)
+    }
+
+    /// Whether this turn alone, on the state whose module centres are `positions`, sweeps a
+    /// module it moves within the limit of one it does not (of those in `only`, when given).
+    fn sweep_collides(&self, positions: &[[f64; 3]], only: Option<&BitSet>) -> bool {
+        let still: Vec<[f64; 3]> = (0..positions.len())
+            .filter(|k| !self.modules.contains(*k))
+            .filter(|k| only.is_none_or(|set| set.contains(*k)))
+            .map(|k| positions[k])
+            .collect();
+        let moving: Vec<[f64; 3]> = self.motion.moving.iter().map(|(_, p)| *p).collect();
+        let approach = self.motion.sweep_approach(&moving, &still);
+        approach.is_some_and(|distance| distance < self.motion.limit)
+    }
+
+    /// Whether this turn alone sweeps clear of every module on `world` (`None` when the robot
+    /// does not move whole modules): what `proven_independent` asks of each turn of a pair
+    /// whose motions together were already decided (`AtOnce::Decided`), so that a group can
+    /// ask it once per turn.
+    pub(crate) fn sweep_clear(&self, world: &RobotWorld) -> Option<bool> {
+        let positions = world.model().rigid_module_centres()?;
+        Some(!self.sweep_collides(&positions, None))
     }
 }
 
