@@ -2,7 +2,7 @@
 //! configuration in either order, and two joint turns done at the same time must not sweep
 //! through each other.
 
-use crate::motion::{closest_approach, AtOnce, MovingSide};
+use crate::motion::{closest_approach, MovingSide};
 use crate::robot_world::RobotWorld;
 use crate::roles::Assignment;
 use crate::simultaneous::{turns_together, Approach, Together};
@@ -131,6 +131,18 @@ enum Simultaneity {
     Decided { clear: bool },
     /// Decided for the pair, `alone` when they are their group's only two.
     Pairwise { alone: bool },
+}
+
+impl Simultaneity {
+    /// How elements `i` and `k` of a group of `len` are treated, given its turns' verdict.
+    fn of(together: Option<&GroupTurns>, (i, k): (usize, usize), len: usize) -> Simultaneity {
+        match together {
+            Some(t) if t.covers(i) && t.covers(k) => Simultaneity::Decided {
+                clear: t.verdict == Together::Clear,
+            },
+            _ => Simultaneity::Pairwise { alone: len == 2 },
+        }
+    }
 }
 
 /// The turns of one group decided together over every relative timing (`simultaneous.rs`):
@@ -378,52 +390,7 @@ struct Checker<'a> {
 impl Checker<'_> {
     fn plan(&self, plan: &Plan, world: &mut RobotWorld, out: &mut Vec<Diagnostic>) {
         for group in groups(plan) {
-            let sides = self.sides(group, world);
-            let together = self.group_turns(group, world);
-            if let Some(together) = &together {
-                self.warn_group(group, together, world, out);
-            }
-            // Each turn's own sweep on the group's start, asked once per turn for the pairs
-            // whose motions together the group decided.
-            let own: Vec<OnceCell<Option<bool>>> = vec![OnceCell::new(); group.len()];
-            let clear_alone = |i: usize| {
-                *own[i].get_or_init(|| sides[i].as_ref().and_then(|s| s.sweep_clear(world)))
-                    == Some(true)
-            };
-            for (i, a) in group.iter().enumerate() {
-                for (k, b) in group.iter().enumerate().skip(i + 1) {
-                    let decided_clear = together.as_ref().is_some_and(|t| {
-                        t.covers(i) && t.covers(k) && t.verdict == Together::Clear
-                    });
-                    if decided_clear && clear_alone(i) && clear_alone(k) {
-                        // What `proven_independent` would find with `AtOnce::Decided`.
-                        continue;
-                    }
-                    let sides = (sides[i].as_ref(), sides[k].as_ref());
-                    let decided = together
-                        .as_ref()
-                        .is_some_and(|t| t.covers(i) && t.covers(k));
-                    let simultaneity = if decided {
-                        let clear = together
-                            .as_ref()
-                            .is_some_and(|t| t.verdict == Together::Clear);
-                        Simultaneity::Decided { clear }
-                    } else {
-                        Simultaneity::Pairwise {
-                            alone: group.len() == 2,
-                        }
-                    };
-                    if let Some(reason) = self.decided_pair(a, b, sides, world, simultaneity) {
-                        let kind = DiagnosticKind::NotIndependent {
-                            step: self.describe(a),
-                            other_step: self.describe(b),
-                            reason,
-                            other: b.span,
-                        };
-                        out.push(Diagnostic::new(kind, a.span));
-                    }
-                }
-            }
+            self.group(group, world, out);
             for element in group {
                 if let PlanKind::Block(inner) = &element.kind {
                     // Groups inside a block are checked from the state the block starts in.
@@ -434,6 +401,50 @@ impl Checker<'_> {
                 let _ = self.apply(element, world, &mut Vec::new());
             }
         }
+    }
+
+    /// The warnings of one group, from the state `world` it starts in: its turns together,
+    /// then every pair that the turns' verdict does not settle.
+    fn group(&self, group: &[PlanElement], world: &RobotWorld, out: &mut Vec<Diagnostic>) {
+        let sides = self.sides(group, world);
+        let together = self.group_turns(group, world);
+        if let Some(together) = &together {
+            self.warn_group(group, together, world, out);
+        }
+        // Each turn's own sweep on the group's start, asked once per turn for the pairs whose
+        // motions together the group found clear.
+        let own: Vec<OnceCell<Option<bool>>> = vec![OnceCell::new(); group.len()];
+        let clear_alone = |i: usize| {
+            *own[i].get_or_init(|| sides[i].as_ref().and_then(|s| s.sweep_clear(world)))
+                == Some(true)
+        };
+        for (i, a) in group.iter().enumerate() {
+            for (k, b) in group.iter().enumerate().skip(i + 1) {
+                let simultaneity = Simultaneity::of(together.as_ref(), (i, k), group.len());
+                if let Simultaneity::Decided { clear: true } = simultaneity {
+                    // On a tree, turns clear together whose own sweeps are clear are accepted
+                    // in either order and end alike.
+                    if clear_alone(i) && clear_alone(k) {
+                        continue;
+                    }
+                }
+                let sides = (sides[i].as_ref(), sides[k].as_ref());
+                if let Some(reason) = self.decided_pair(a, b, sides, world, simultaneity) {
+                    out.push(self.not_independent(a, b, reason));
+                }
+            }
+        }
+    }
+
+    /// The warning that `a` and `b`, joined by `&`, are not independent, at `a`.
+    fn not_independent(&self, a: &PlanElement, b: &PlanElement, reason: String) -> Diagnostic {
+        let kind = DiagnosticKind::NotIndependent {
+            step: self.describe(a),
+            other_step: self.describe(b),
+            reason,
+            other: b.span,
+        };
+        Diagnostic::new(kind, a.span)
     }
 
     /// The group's turns decided together, when there are two or more on a tree.
@@ -458,13 +469,7 @@ impl Checker<'_> {
         let describe = |i: usize| self.describe(&group[i]);
         if let Some((involved, reason)) = together.conflict(world, &describe) {
             let (a, b) = (&group[involved[0]], &group[involved[1]]);
-            let kind = DiagnosticKind::NotIndependent {
-                step: self.describe(a),
-                other_step: self.describe(b),
-                reason,
-                other: b.span,
-            };
-            out.push(Diagnostic::new(kind, a.span));
+            out.push(self.not_independent(a, b, reason));
         }
     }
 
@@ -498,12 +503,13 @@ impl Checker<'_> {
             // joint already at the angle) does not depend on another module's turn. Linked
             // turns are proven so for the two of them alone: with more turns in a group that
             // were not decided together, the pair check says why.
-            let alone = !matches!(simultaneity, Simultaneity::Pairwise { alone: false });
-            let at_once = match simultaneity {
-                Simultaneity::Decided { clear: true } => AtOnce::Decided,
-                _ => AtOnce::ToCheck,
+            // A group's pair found clear together got here because a turn's own sweep is not
+            // clear (`group`): the orders decide.
+            let shortcut = match simultaneity {
+                Simultaneity::Decided { clear } => !clear,
+                Simultaneity::Pairwise { alone } => alone || !sa.linked(sb),
             };
-            if (alone || !sa.linked(sb)) && sa.proven_independent(sb, world, at_once) {
+            if shortcut && sa.proven_independent(sb, world) {
                 return None;
             }
         }

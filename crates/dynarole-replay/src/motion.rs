@@ -11,14 +11,6 @@ use dynarole_core::RobotApi;
 use dynarole_world::Motion;
 use std::cell::Cell;
 
-/// Whether two turns done at the same time are still to be checked, or were decided with all
-/// the turns of their group (`independence.rs`, the group's linkage over its whole box).
-#[derive(Clone, Copy, PartialEq, Eq)]
-pub(crate) enum AtOnce {
-    ToCheck,
-    Decided,
-}
-
 /// A motion on one state, with the modules it moves and its own module (by index). Only a
 /// motion with legs has one: one that moves in place (a latch) makes or breaks connections,
 /// which only running both orders decides.
@@ -73,17 +65,12 @@ impl MovingSide {
     /// proven independent from their motions: both orders are accepted and end in the same
     /// configuration, and done at the same time they stay the limit apart. `false` when
     /// that is not proven (the full check decides).
-    pub(crate) fn proven_independent(
-        &self,
-        other: &MovingSide,
-        world: &RobotWorld,
-        at_once: AtOnce,
-    ) -> bool {
+    pub(crate) fn proven_independent(&self, other: &MovingSide, world: &RobotWorld) -> bool {
         // `decide` assumes the earlier turn is accepted on `world` and checks the later one's
         // sweep; asked both ways round, both sweeps are checked.
         let (first, second) = (Cell::new(None), Cell::new(None));
-        self.decide(other, world, (0, &first), at_once) == Some(false)
-            && other.decide(self, world, (0, &second), at_once) == Some(false)
+        self.decide(other, world, (0, &first)) == Some(false)
+            && other.decide(self, world, (0, &second)) == Some(false)
     }
 
     /// `self` is `a` (statement `i`), `b` the later turn, both on `world` (the state before
@@ -93,7 +80,6 @@ impl MovingSide {
         b: &MovingSide,
         world: &RobotWorld,
         (i, clear): (usize, &Cell<Option<usize>>),
-        at_once: AtOnce,
     ) -> Option<bool> {
         // Sides that share a module, or one turn carrying the other's module, are turns of one
         // linkage: on a tree the two orders end alike (the shape depends on the joint angles
@@ -102,9 +88,7 @@ impl MovingSide {
         // decided over the pair's whole joint-space box; where they make no tree, the full
         // check.
         let positions = world.model().rigid_module_centres()?;
-        if at_once == AtOnce::Decided {
-            // The group's turns together, these two among them, were found clear on a tree.
-        } else if self.linked(b) {
+        if self.linked(b) {
             let pair = [(&self.motion, self.pivot), (&b.motion, b.pivot)];
             match turns_together(&pair, world)? {
                 Together::Clear => {}
@@ -137,9 +121,8 @@ impl MovingSide {
     }
 
     /// Whether this turn alone sweeps clear of every module on `world` (`None` when the robot
-    /// does not move whole modules): what `proven_independent` asks of each turn of a pair
-    /// whose motions together were already decided (`AtOnce::Decided`), so that a group can
-    /// ask it once per turn.
+    /// does not move whole modules): all a group whose turns were found clear together asks
+    /// of each turn, once, for its pairs (`independence.rs`).
     pub(crate) fn sweep_clear(&self, world: &RobotWorld) -> Option<bool> {
         let positions = world.model().rigid_module_centres()?;
         Some(!self.sweep_collides(&positions, None))

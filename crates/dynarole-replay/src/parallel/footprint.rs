@@ -22,7 +22,7 @@
 //! The pair rule itself is `MovingSide::decide` (`motion.rs`, shared with the independence
 //! check); this file keeps what each later statement carries from one pair to the next.
 
-use crate::motion::{AtOnce, MovingSide};
+use crate::motion::MovingSide;
 use crate::robot_world::RobotWorld;
 use dynarole_core::check::ResolvedStatement;
 use std::cell::{Cell, RefCell};
@@ -68,7 +68,7 @@ impl Later {
                 None => return Some(true),
             },
         };
-        let verdict = a.decide(&side_b, world, (i, &self.clear), AtOnce::ToCheck);
+        let verdict = a.decide(&side_b, world, (i, &self.clear));
 
         // A side carried over is only right for `world` when `a` moved none of it, nor its
         // module; otherwise the next pair computes it again.
