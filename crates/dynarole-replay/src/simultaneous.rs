@@ -260,6 +260,22 @@ impl Linkage {
         (q, total)
     }
 
+    /// Points `i` and `k` (starting at `p` and `q`; they share their first `skip` turns) at
+    /// the middle of a box: their distance there and the lower bound over the box, each
+    /// turn's chords added to `weights`.
+    fn apart(
+        &self,
+        (p, q): ([f64; 3], [f64; 3]),
+        (i, k, skip): (usize, usize, usize),
+        box_: (&[f64], &[f64]),
+        weights: &mut [f64],
+    ) -> (f64, f64) {
+        let (p, rp) = self.reach((i, p), skip, box_, weights);
+        let (q, rq) = self.reach((k, q), skip, box_, weights);
+        let d = distance(p, q);
+        (d, d - rp - rq)
+    }
+
     /// Whether two points move apart: not moved by the same turns.
     #[cfg(test)]
     fn rigid(&self, i: usize, k: usize) -> bool {
@@ -512,10 +528,7 @@ pub fn first_contact(
                 .collect();
             let mut weights = vec![0.0; turns.len()];
             let box_ = (centre.as_slice(), half.as_slice());
-            let (p, rp) = linkage.reach((i, points[i].1), skip, box_, &mut weights);
-            let (q, rq) = linkage.reach((k, points[k].1), skip, box_, &mut weights);
-            let d = distance(p, q);
-            (d, d - rp - rq)
+            linkage.apart((points[i].1, points[k].1), (i, k, skip), box_, &mut weights)
         };
         let before = first.as_ref().map_or(1.0, |c| c.at);
         if let Some((u, d)) = earliest_below(&piece, limit, before) {
@@ -656,9 +669,7 @@ impl Pair<'_> {
         let skip = self.linkage.shared(i, k);
         let mut weights = vec![0.0; self.turns];
         let box_ = (centre.as_slice(), half.as_slice());
-        let (a, ra) = self.linkage.reach((i, p), skip, box_, &mut weights);
-        let (b, rb) = self.linkage.reach((k, q), skip, box_, &mut weights);
-        let d = distance(a, b);
+        let (d, bound) = self.linkage.apart((p, q), (i, k, skip), box_, &mut weights);
         let widest = (0..dims.len())
             .max_by(|&x, &y| {
                 weights[dims[x]]
@@ -667,7 +678,7 @@ impl Pair<'_> {
             })
             .unwrap_or(0);
         Piece {
-            bound: d - ra - rb,
+            bound,
             centre_distance: d,
             widest,
             area,

@@ -8,7 +8,7 @@ mod common;
 
 use common::*;
 use dynarole_codegen::Protocol;
-use dynarole_sim::Scenario;
+use dynarole_sim::{Report, Scenario, Simulator, Violation};
 
 const CAR: &str = include_str!("../../../robots/atron/examples/car.json");
 
@@ -19,6 +19,21 @@ fn source(separator: &str) -> String {
     )
 }
 
+/// The run's `clash` violations.
+fn clashes(report: &Report) -> Vec<&Violation> {
+    (report.violations.iter())
+        .filter(|v| v.check == "clash")
+        .collect()
+}
+
+/// Seeds 1 to 8 of `sim` from `start` have no violation.
+fn assert_clean(sim: &Simulator, start: &str, scenario: &Scenario) {
+    for seed in 1..=8 {
+        let report = run(sim, start, None, scenario, seed);
+        assert!(report.violations.is_empty(), "{}", report.summary());
+    }
+}
+
 #[test]
 fn turns_that_meet_only_while_both_run_clash_and_in_order_they_do_not() {
     let scenario = Scenario::default();
@@ -26,11 +41,7 @@ fn turns_that_meet_only_while_both_run_clash_and_in_order_they_do_not() {
     let clashed: Vec<u64> = (1..=8)
         .filter(|seed| {
             let report = run(&together, CAR, None, &scenario, *seed);
-            let clashes: Vec<_> = report
-                .violations
-                .iter()
-                .filter(|v| v.check == "clash")
-                .collect();
+            let clashes = clashes(&report);
             for clash in &clashes {
                 assert_eq!(clash.involved.len(), 1, "{clash:?}");
                 let pair = [clash.statement, clash.involved[0]];
@@ -49,10 +60,7 @@ fn turns_that_meet_only_while_both_run_clash_and_in_order_they_do_not() {
         .collect();
     assert!(!clashed.is_empty(), "no seed of 8 caught the clash");
     let in_order = simulator(&source(";"), &["s"], Protocol::Lattice);
-    for seed in 1..=8 {
-        let report = run(&in_order, CAR, None, &scenario, seed);
-        assert!(report.violations.is_empty(), "{}", report.summary());
-    }
+    assert_clean(&in_order, CAR, &scenario);
 }
 
 const SNAKE: &str = include_str!("../../../robots/atron/examples/snake.json");
@@ -77,9 +85,7 @@ fn three_turns_that_meet_only_when_all_three_run_clash() {
     let clashed: Vec<u64> = (1..=16)
         .filter(|seed| {
             let report = run(&together, SNAKE, None, &scenario, *seed);
-            let clashes: Vec<_> = (report.violations.iter())
-                .filter(|v| v.check == "clash")
-                .collect();
+            let clashes = clashes(&report);
             for clash in &clashes {
                 let mut named = clash.involved.clone();
                 named.push(clash.statement);
@@ -90,8 +96,5 @@ fn three_turns_that_meet_only_when_all_three_run_clash() {
         .collect();
     assert!(!clashed.is_empty(), "no seed of 16 caught the clash");
     let in_order = simulator(&source(";"), &["s"], Protocol::Lattice);
-    for seed in 1..=8 {
-        let report = run(&in_order, SNAKE, None, &scenario, seed);
-        assert!(report.violations.is_empty(), "{}", report.summary());
-    }
+    assert_clean(&in_order, SNAKE, &scenario);
 }
