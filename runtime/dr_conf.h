@@ -132,6 +132,22 @@
 #define DR_CONF_LATTICE_SUPPRESS 1
 #endif
 
+/* Lattice protocol: 1 when the program has synchronous groups (`sync { ... }`; the compiler
+ * sets it in dr_program_conf.h). Each state packet then carries a second window of bits, the
+ * statements whose modules are ready to start them, and each statement its group (README.md,
+ * "Synchronous groups"); 0 leaves the build as it was without them. */
+#ifndef DR_CONF_SYNC
+#define DR_CONF_SYNC 0
+#endif
+/* With DR_CONF_SYNC: how long after a synchronous group is ready (its last member's module
+ * set to start it) its members start, in ms. Every module learns the instant with the age of
+ * the news, so all of them start at it but for the packets' transit times; the delay is for
+ * the news to reach every member, retries included, before any of them moves (a turning
+ * module's links break). */
+#ifndef DR_CONF_SYNC_DELAY_MS
+#define DR_CONF_SYNC_DELAY_MS 400
+#endif
+
 /* Largest packet, in bytes (receive buffers are this big). */
 #ifndef DR_CONF_MAX_PACKET
 #define DR_CONF_MAX_PACKET 48

@@ -63,8 +63,12 @@ static void send_state(dr_module_t *m, dr_channels_t to, uint8_t kind)
     uint8_t frame[FRAME];
     uint8_t len;
     /* Encoded in place: dr_packet_frame then copies each payload byte onto itself. */
+#if DR_CONF_SYNC
+    state_payload(m, frame + DR_PACKET_HEADER);
+#else
     (void)dr_shared_encode(&m->shared, frame + DR_PACKET_HEADER, PAYLOAD);
-    len = dr_packet_frame(frame, FRAME, &m->identity, kind, frame + DR_PACKET_HEADER, PAYLOAD);
+#endif
+    len = dr_packet_frame(frame, FRAME, &m->identity, kind, frame + DR_PACKET_HEADER, WIRE);
     if (to != 0u) {
         uint8_t c;
         for (c = 0; c < DR_CONF_CHANNELS; c++) {
@@ -169,6 +173,9 @@ static uint8_t same_facts(const dr_shared_t *a, const dr_shared_t *b)
     uint8_t same = (uint8_t)(a->epoch == b->epoch && a->low == b->low);
     for (i = 0; i < NBYTES; i++) {
         same = (uint8_t)(same && a->done[i] == b->done[i]);
+#if DR_CONF_SYNC
+        same = (uint8_t)(same && a->ready[i] == b->ready[i]);
+#endif
     }
     return same;
 }

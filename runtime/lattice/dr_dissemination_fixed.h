@@ -21,9 +21,13 @@ static void broadcast(dr_module_t *m, uint32_t now)
     uint8_t frame[FRAME];
     uint8_t len;
     /* Encoded in place: dr_packet_frame then copies each payload byte onto itself. */
+#if DR_CONF_SYNC
+    state_payload(m, frame + DR_PACKET_HEADER);
+#else
     (void)dr_shared_encode(&m->shared, frame + DR_PACKET_HEADER, PAYLOAD);
+#endif
     len = dr_packet_frame(frame, FRAME, &m->identity, DR_PACKET_LATTICE_STATE,
-                          frame + DR_PACKET_HEADER, PAYLOAD);
+                          frame + DR_PACKET_HEADER, WIRE);
     dr_hal_broadcast(m, frame, len);
     m->packets_sent++;
     m->next_broadcast_ms = now + DR_CONF_BROADCAST_MS;

@@ -4,6 +4,9 @@
  * hooks (dr_dissemination.h) this file calls. */
 #include "dr_lattice.h"
 #include "dr_packet.h"
+#if DR_CONF_SYNC
+#include <stddef.h>
+#endif
 
 /* The module's program: with DR_CONF_ONE_PROGRAM the image's only one, whose fields are then
  * constants in the code (dr_module_init's precondition: it is passed that one). */
@@ -27,9 +30,13 @@ extern const dr_program_t dr_program;
 
 #define W ((uint16_t)DR_CONF_WINDOW)
 #define NBYTES ((uint8_t)(DR_CONF_WINDOW / 8))
-/* Payload: epoch (2, big-endian), low (2, big-endian), done (W/8). */
-#define PAYLOAD ((uint8_t)(DR_LATTICE_PAYLOAD_FIXED + NBYTES))
-#define FRAME ((uint8_t)(PAYLOAD + DR_PACKET_OVERHEAD))
+/* Payload: epoch (2, big-endian), low (2, big-endian), done (W/8), and with DR_CONF_SYNC
+ * ready (W/8). */
+#define SETS ((uint8_t)(1u + (DR_CONF_SYNC ? 1u : 0u)))
+#define PAYLOAD ((uint8_t)(DR_LATTICE_PAYLOAD_FIXED + SETS * NBYTES))
+/* A state frame's payload: the state and, with DR_CONF_SYNC, the countdown (go). */
+#define WIRE ((uint8_t)(PAYLOAD + (DR_CONF_SYNC ? DR_LATTICE_GO_BYTES : 0u)))
+#define FRAME ((uint8_t)(WIRE + DR_PACKET_OVERHEAD))
 /* NV record: program word, address, payload, CRC-16 (big-endian) over the bytes before it. */
 #define RECORD ((uint8_t)(5u + PAYLOAD + 2u))
 #define TOP_EPOCH 0xFFFFu
@@ -37,8 +44,9 @@ extern const dr_program_t dr_program;
 /* Compile-time checks of the configuration (a negative array size fails the build). */
 typedef char dr_lattice_check_window[(DR_CONF_WINDOW % 8 == 0 && DR_CONF_WINDOW >= 8 &&
                                       DR_CONF_WINDOW <= 1000) ? 1 : -1];
-typedef char dr_lattice_check_packet[(4 + DR_CONF_WINDOW / 8 + DR_PACKET_OVERHEAD <=
-                                      DR_CONF_MAX_PACKET) ? 1 : -1];
+typedef char dr_lattice_check_packet[(4 + (1 + DR_CONF_SYNC) * (DR_CONF_WINDOW / 8) +
+                                      DR_CONF_SYNC * DR_LATTICE_GO_BYTES +
+                                      DR_PACKET_OVERHEAD <= DR_CONF_MAX_PACKET) ? 1 : -1];
 typedef char dr_lattice_check_channels[(DR_CONF_CHANNELS >= 1 && DR_CONF_CHANNELS <= 32) ? 1 : -1];
 typedef char dr_lattice_check_counters[(DR_CONF_COUNTER_BITS == 16 || DR_CONF_COUNTER_BITS == 32) ? 1 : -1];
 /* A batch's other statements are the bits of dr_module_t.batch (8). */
@@ -68,8 +76,8 @@ static void set_bit(uint8_t *set, dr_stmt_t i)
     set[i >> 3] = (uint8_t)(set[i >> 3] | (1u << (i & 7u)));
 }
 
-/* Re-bases both sets `k` statements higher (bits below the new base are dropped). O(W/8). */
-static void shift(dr_shared_t *s, dr_stmt_t k)
+/* Re-bases one set `k` statements higher (bits below the new base are dropped). O(W/8). */
+static void shift_set(uint8_t *set, dr_stmt_t k)
 {
     uint8_t i;
     uint8_t r = (uint8_t)(k & 7u);
@@ -77,21 +85,30 @@ static void shift(dr_shared_t *s, dr_stmt_t k)
     for (i = 0; i < NBYTES; i++) {
         src = (dr_stmt_t)(i + (k >> 3));
         if (src < NBYTES) {
-            s->done[i] = (uint8_t)(s->done[src] >> r);
+            set[i] = (uint8_t)(set[src] >> r);
             if (r != 0u && src + 1u < NBYTES) {
-                s->done[i] = (uint8_t)(s->done[i] | (s->done[src + 1u] << (8u - r)));
+                set[i] = (uint8_t)(set[i] | (set[src + 1u] << (8u - r)));
             }
         } else {
-            s->done[i] = 0;
+            set[i] = 0;
         }
     }
 }
 
-/* Clears the bits of statements at or above n_statements; returns whether there were any.
- * Precondition: s->low <= n_statements. O(W/8): a byte at a time. */
-static uint8_t trim(dr_shared_t *s, uint16_t n_statements)
+/* Re-bases the state's sets `k` statements higher. O(W/8). */
+static void shift(dr_shared_t *s, dr_stmt_t k)
 {
-    uint16_t kept = (uint16_t)(n_statements - s->low); /* bits kept from here on */
+    shift_set(s->done, k);
+#if DR_CONF_SYNC
+    shift_set(s->ready, k);
+#endif
+}
+
+/* Clears the bits of one set for statements at or above n_statements; returns whether
+ * there were any. Precondition: low <= n_statements. O(W/8): a byte at a time. */
+static uint8_t trim_set(uint8_t *set, dr_stmt_t low, uint16_t n_statements)
+{
+    uint16_t kept = (uint16_t)(n_statements - low); /* bits kept from here on */
     uint8_t k;
     uint8_t mask;
     uint8_t found = 0;
@@ -101,10 +118,20 @@ static uint8_t trim(dr_shared_t *s, uint16_t n_statements)
         } else {
             mask = (uint8_t)((1u << kept) - 1u);
             kept = 0;
-            found = (uint8_t)(found | (s->done[k] & (uint8_t)~mask));
-            s->done[k] = (uint8_t)(s->done[k] & mask);
+            found = (uint8_t)(found | (set[k] & (uint8_t)~mask));
+            set[k] = (uint8_t)(set[k] & mask);
         }
     }
+    return found;
+}
+
+/* trim_set on each of the state's sets. */
+static uint8_t trim(dr_shared_t *s, uint16_t n_statements)
+{
+    uint8_t found = trim_set(s->done, s->low, n_statements);
+#if DR_CONF_SYNC
+    found = (uint8_t)(found | trim_set(s->ready, s->low, n_statements));
+#endif
     return found;
 }
 
@@ -151,6 +178,9 @@ void dr_shared_join(dr_shared_t *into, const dr_shared_t *other, uint16_t n_stat
         }
         for (i = 0; i < NBYTES; i++) {
             into->done[i] = (uint8_t)(into->done[i] | o.done[i]);
+#if DR_CONF_SYNC
+            into->ready[i] = (uint8_t)(into->ready[i] | o.ready[i]);
+#endif
         }
     }
     dr_shared_normalise(into, n_statements);
@@ -166,7 +196,20 @@ uint8_t dr_shared_is_done(const dr_shared_t *s, dr_stmt_t statement)
     return statement < W ? bit(s->done, statement) : 0u;
 }
 
-/* Returns the payload length (4 + DR_CONF_WINDOW / 8), or 0 when cap is too small. */
+#if DR_CONF_SYNC
+/* Cost: O(1). */
+uint8_t dr_shared_is_ready(const dr_shared_t *s, dr_stmt_t statement)
+{
+    dr_stmt_t i;
+    if (statement < s->low) {
+        return 1;
+    }
+    i = (dr_stmt_t)(statement - s->low);
+    return i < W ? (uint8_t)(bit(s->ready, i) | bit(s->done, i)) : 0u;
+}
+#endif
+
+/* Returns the payload length (PAYLOAD), or 0 when cap is too small. */
 uint8_t dr_shared_encode(const dr_shared_t *s, uint8_t *out, uint8_t cap)
 {
     uint8_t i;
@@ -179,6 +222,9 @@ uint8_t dr_shared_encode(const dr_shared_t *s, uint8_t *out, uint8_t cap)
     out[3] = (uint8_t)(s->low & 0xFFu);
     for (i = 0; i < NBYTES; i++) {
         out[4u + i] = s->done[i];
+#if DR_CONF_SYNC
+        out[4u + NBYTES + i] = s->ready[i];
+#endif
     }
     return PAYLOAD;
 }
@@ -200,6 +246,9 @@ uint8_t dr_shared_decode(dr_shared_t *s, const uint8_t *in, uint8_t len, uint16_
     s->low = (dr_stmt_t)low;
     for (i = 0; i < NBYTES; i++) {
         s->done[i] = in[4u + i];
+#if DR_CONF_SYNC
+        s->ready[i] = in[4u + NBYTES + i];
+#endif
     }
     return (uint8_t)!trim(s, n_statements);
 }
@@ -287,6 +336,30 @@ static uint8_t held_back(const dr_module_t *m)
     return (uint8_t)(no_nv(m) && (m->unheard != 0u || m->unechoed != DR_NONE));
 }
 
+#if DR_CONF_SYNC
+/* The state payload and the countdown (the group and the age of its news, 0xFFFF for none),
+ * in `out` (WIRE bytes). */
+static void state_payload(dr_module_t *m, uint8_t *out)
+{
+    uint32_t age = 0;
+    uint16_t group = 0xFFFFu;
+    (void)dr_shared_encode(&m->shared, out, PAYLOAD);
+    if (m->go_group != DR_NONE) {
+        group = (uint16_t)m->go_group;
+        age = dr_hal_now_ms(m) + DR_CONF_SYNC_DELAY_MS - m->go_at_ms;
+        if (age >= 0x80000000u) {
+            age = 0; /* a start later than the delay from now: a clock step back */
+        } else if (age > 0xFFFEu) {
+            age = 0xFFFEu;
+        }
+    }
+    out[PAYLOAD] = (uint8_t)(group >> 8);
+    out[PAYLOAD + 1u] = (uint8_t)(group & 0xFFu);
+    out[PAYLOAD + 2u] = (uint8_t)(age >> 8);
+    out[PAYLOAD + 3u] = (uint8_t)(age & 0xFFu);
+}
+#endif
+
 /* The dissemination policy's hooks (dr_dissemination.h, which dr_lattice.h included for the
  * policy's fields): here, after the helpers they may use and before the functions that call
  * them. */
@@ -318,9 +391,171 @@ static void issue(dr_module_t *m)
     dissemination_issued(m);
 }
 
+#if DR_CONF_SYNC
+/* Whether every member of the synchronous group of statement `s` (row `st`) is ready: the
+ * instant a module learns it is the group's agreed start (README.md, "Synchronous groups").
+ * O(group). */
+static uint8_t group_ready(const dr_shared_t *sh, dr_stmt_t s, const dr_statement_t *st)
+{
+    dr_stmt_t first = (dr_stmt_t)(s - st->sync_index);
+    uint8_t k;
+    for (k = 0; k < st->sync_size; k++) {
+        if (!dr_shared_is_ready(sh, (dr_stmt_t)(first + k))) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
+/* Whether every member of the group that starts at statement `first` (`size` members) is
+ * done. O(group). */
+static uint8_t group_done(const dr_shared_t *sh, dr_stmt_t first, uint8_t size)
+{
+    uint8_t k;
+    for (k = 0; k < size; k++) {
+        if (!dr_shared_is_done(sh, (dr_stmt_t)(first + k))) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
+/* Whether this module may start member `s` (row `st`) now: its group is ready and the
+ * countdown to the group's start is over. */
+static uint8_t may_start_member(const dr_module_t *m, dr_stmt_t s, const dr_statement_t *st)
+{
+    return (uint8_t)(m->go_open && m->go_group == (dr_stmt_t)(s - st->sync_index) &&
+                     m->go_epoch == m->shared.epoch && group_ready(&m->shared, s, st));
+}
+
+/* The first synchronous group with a member in the window that is ready and not done, as
+ * its first statement (with its size in *size); DR_NONE when there is none. O(W * group). */
+static dr_stmt_t ready_group(const dr_module_t *m, uint8_t *size)
+{
+    const dr_program_t *p = PROGRAM(m);
+    const dr_shared_t *sh = &m->shared;
+    dr_statement_t st;
+    dr_stmt_t i;
+    dr_stmt_t s = sh->low;
+    dr_stmt_t end = (p->n_statements - sh->low < W) ? (dr_stmt_t)(p->n_statements - sh->low) : W;
+    for (i = 0; i < end; i++, s++) {
+        dr_hal_table_read(&st, &p->statements[s], sizeof st);
+        if (st.sync_size != 0u && !bit(sh->done, i) && group_ready(sh, s, &st)) {
+            *size = st.sync_size;
+            return (dr_stmt_t)(s - st.sync_index);
+        }
+    }
+    return DR_NONE;
+}
+
+/* Keeps the countdown: drops a group that is done (or of an older epoch), takes the first
+ * ready group when there is none, starting its countdown now (`now` + the delay) unless a
+ * packet gave an earlier start, and opens it once the start has come. Returns whether the
+ * module took a group: news, passed on at once. O(W * group). */
+static uint8_t go_update(dr_module_t *m, uint32_t now)
+{
+    uint8_t size = 0;
+    dr_stmt_t first;
+    dr_statement_t st;
+    if (m->go_group != DR_NONE) {
+        dr_hal_table_read(&st, &PROGRAM(m)->statements[m->go_group], sizeof st);
+        if (m->go_epoch != m->shared.epoch ||
+            group_done(&m->shared, m->go_group, st.sync_size)) {
+            m->go_group = DR_NONE;
+        }
+    }
+    m->go_open = 0;
+    if (m->go_group == DR_NONE) {
+        first = ready_group(m, &size);
+        if (first == DR_NONE) {
+            return 0;
+        }
+        m->go_group = first;
+        m->go_epoch = m->shared.epoch;
+        m->go_at_ms = now + DR_CONF_SYNC_DELAY_MS;
+        return 1;
+    }
+    m->go_open = (uint8_t)((uint32_t)(now - m->go_at_ms) < 0x80000000u);
+    return 0;
+}
+
+/* A packet's countdown: group `group` was ready `age` ms before it was sent. Taken when this
+ * module knows the group ready too (after the join), for its own group or as its group when
+ * it has none; the earliest start wins: every estimate is late by the transit times of the
+ * packets that carried it, never early. */
+static void go_heard(dr_module_t *m, uint16_t group, uint16_t age, uint32_t now)
+{
+    const dr_program_t *p = PROGRAM(m);
+    dr_statement_t st;
+    uint32_t at = now - age + DR_CONF_SYNC_DELAY_MS;
+    if (group >= p->n_statements) {
+        return;
+    }
+    dr_hal_table_read(&st, &p->statements[group], sizeof st);
+    if (st.sync_size == 0u || st.sync_index != 0u || !group_ready(&m->shared, (dr_stmt_t)group, &st) ||
+        group_done(&m->shared, (dr_stmt_t)group, st.sync_size)) {
+        return;
+    }
+    if (m->go_group == DR_NONE) {
+        m->go_group = (dr_stmt_t)group;
+        m->go_epoch = m->shared.epoch;
+        m->go_at_ms = at;
+        m->relay = 1;
+    } else if (m->go_group == (dr_stmt_t)group && (uint32_t)(at - m->go_at_ms) >= 0x80000000u) {
+        m->go_at_ms = at;
+    }
+}
+
+/* This module's statements of synchronous groups whose dependencies are done and that are
+ * not done: returns whether one is not ready yet, setting its bit in `arm` (the module's own
+ * ready set, or NULL to only ask); or, with `waiting`, whether one is ready but its group is
+ * not (the module then starts nothing else: it is set to start with the group). Nothing while
+ * the module has no single address or the last epoch is over. O(W * (deps + group)). */
+static uint8_t sync_scan(const dr_module_t *m, uint8_t waiting, uint8_t *arm)
+{
+    const dr_program_t *p = PROGRAM(m);
+    dr_statement_t st;
+    const dr_shared_t *sh = &m->shared;
+    dr_stmt_t i;
+    dr_stmt_t s = sh->low;
+    dr_stmt_t end = (p->n_statements - sh->low < W) ? (dr_stmt_t)(p->n_statements - sh->low) : W;
+    dr_dep_t dep;
+    uint8_t d;
+    uint8_t found = 0;
+    if (m->address >= DR_MANY_ADDRESSES || dr_module_finished(m)) {
+        return 0;
+    }
+    for (i = 0; i < end; i++, s++) {
+        dr_hal_table_read(&st, &p->statements[s], sizeof st);
+        if (st.address != m->address || st.sync_size == 0u || bit(sh->done, i)) {
+            continue;
+        }
+        if (bit(sh->ready, i)) {
+            found = (uint8_t)(found | (waiting && !may_start_member(m, s, &st)));
+            continue;
+        }
+        for (d = 0; d < st.n_deps; d++) {
+            dr_hal_table_read(&dep, &p->deps[st.first_dep + d], sizeof dep);
+            if (!dr_shared_is_done(sh, dep)) {
+                break;
+            }
+        }
+        if (d == st.n_deps && !waiting) {
+            found = 1;
+            if (arm != NULL) {
+                set_bit(arm, i);
+            }
+        }
+    }
+    return found;
+}
+#endif
+
 /* This module's first statement at or above offset `from` of the window that is not done and
  * whose dependencies are all done, as its offset from the low-water mark; W when there is
- * none (or the module has no single address, or the last epoch is over). Reads *m only.
+ * none (or the module has no single address, or the last epoch is over). With DR_CONF_SYNC,
+ * a member of a synchronous group also waits for its whole group to be ready, and while one
+ * of the module's members waits so, nothing else starts here. Reads *m only.
  * O(W * deps). */
 static dr_stmt_t next_startable(const dr_module_t *m, dr_stmt_t from)
 {
@@ -333,6 +568,9 @@ static dr_stmt_t next_startable(const dr_module_t *m, dr_stmt_t from)
     dr_stmt_t end = (p->n_statements - sh->low < W) ? (dr_stmt_t)(p->n_statements - sh->low) : W;
     dr_dep_t dep;
     uint8_t d;
+#if DR_CONF_SYNC
+    uint8_t set_to_start = sync_scan(m, 1, NULL);
+#endif
     if (m->address >= DR_MANY_ADDRESSES || dr_module_finished(m)) {
         return W;
     }
@@ -348,6 +586,14 @@ static dr_stmt_t next_startable(const dr_module_t *m, dr_stmt_t from)
                 break;
             }
         }
+#if DR_CONF_SYNC
+        if (d == st.n_deps && st.sync_size != 0u && !may_start_member(m, s, &st)) {
+            continue;
+        }
+        if (d == st.n_deps && st.sync_size == 0u && set_to_start) {
+            continue;
+        }
+#endif
         if (d == st.n_deps) {
             return i;
         }
@@ -398,7 +644,17 @@ void dr_module_init(dr_module_t *m, const dr_program_t *program, void *platform)
     m->shared.low = 0;
     for (i = 0; i < NBYTES; i++) {
         m->shared.done[i] = 0;
+#if DR_CONF_SYNC
+        m->shared.ready[i] = 0;
+#endif
     }
+#if DR_CONF_SYNC
+    m->relay = 0;
+    m->go_open = 0;
+    m->go_group = DR_NONE;
+    m->go_epoch = 0;
+    m->go_at_ms = 0;
+#endif
     dr_shared_normalise(&m->shared, PROGRAM(m)->n_statements);
     m->unechoed = DR_NONE;
     m->unheard = 0;
@@ -471,6 +727,17 @@ void dr_module_step(dr_module_t *m)
     if (no_nv(m) && m->unheard != 0u && m->heard) {
         m->unheard = (dr_channels_t)(m->unheard & connected(m)); /* unlatched meanwhile */
     }
+#if DR_CONF_SYNC
+    /* Set to start its synchronous groups' members: a new fact, sent at once. Then the
+     * countdown to a ready group's start, kept by every module (taking one is news, passed
+     * on at once, as ready bits heard are: the countdown must reach every member before the
+     * first moves). */
+    if (m->running == DR_NONE && !held_back(m)) {
+        changed = (uint8_t)(changed | sync_scan(m, 0, m->shared.ready));
+    }
+    changed = (uint8_t)(changed | go_update(m, now) | m->relay);
+    m->relay = 0;
+#endif
     if (m->running == DR_NONE && !held_back(m)) {
         changed = (uint8_t)(changed | dissemination_start_is_news(start_next(m)));
     }
@@ -488,6 +755,10 @@ uint8_t dr_module_next_wakeup(dr_module_t *m, uint32_t *at_ms)
 {
     uint8_t wake = DR_WAKE_AT;
     uint32_t now = dr_hal_now_ms(m);
+#if DR_CONF_SYNC
+    uint8_t size = 0;
+    uint32_t at;
+#endif
     *at_ms = m->next_broadcast_ms;
     if (m->running != DR_NONE) {
         wake = (uint8_t)(wake | DR_WAKE_OP);
@@ -497,8 +768,39 @@ uint8_t dr_module_next_wakeup(dr_module_t *m, uint32_t *at_ms)
          next_startable(m, 0) != W)) {
         *at_ms = now;
     }
+#if DR_CONF_SYNC
+    if (m->relay || (m->running == DR_NONE && !held_back(m) && sync_scan(m, 0, NULL))) {
+        *at_ms = now;
+    }
+    /* The countdown's end (or a group to take) is a step's to see. */
+    if (!m->go_open && (m->go_group != DR_NONE || ready_group(m, &size) != DR_NONE)) {
+        at = (m->go_group != DR_NONE) ? m->go_at_ms : now;
+        if ((uint32_t)(at - *at_ms) >= 0x80000000u) {
+            *at_ms = at;
+        }
+    }
+#endif
     return wake;
 }
+
+#if DR_CONF_SYNC
+/* Whether `after` holds a ready statement that `before` (an earlier copy of the same module)
+ * does not. O(W). */
+static uint8_t ready_news(const dr_shared_t *before, const dr_shared_t *after)
+{
+    dr_stmt_t i;
+    dr_stmt_t s = after->low;
+    if (after->epoch != before->epoch) {
+        return 1;
+    }
+    for (i = 0; i < W; i++, s++) {
+        if (bit(after->ready, i) && !dr_shared_is_ready(before, s)) {
+            return 1;
+        }
+    }
+    return 0;
+}
+#endif
 
 /* Cost: O(len + W). */
 void dr_module_receive(dr_module_t *m, uint8_t channel, const uint8_t *bytes, uint8_t len)
@@ -518,7 +820,8 @@ void dr_module_receive(dr_module_t *m, uint8_t channel, const uint8_t *bytes, ui
     r = dr_packet_unframe(bytes, len, &m->identity, kind, &payload, &payload_len);
     if (r == DR_PACKET_FOREIGN) {
         count(&m->packets_foreign);
-    } else if (r != DR_PACKET_OK || !dr_shared_decode(&in, payload, payload_len, p->n_statements) ||
+    } else if (r != DR_PACKET_OK || payload_len != WIRE ||
+               !dr_shared_decode(&in, payload, PAYLOAD, p->n_statements) ||
                (p->n_epochs != 0u && in.epoch > p->n_epochs)) {
         count(&m->packets_malformed);
     } else {
@@ -536,6 +839,12 @@ void dr_module_receive(dr_module_t *m, uint8_t channel, const uint8_t *bytes, ui
         }
         before = m->shared;
         dr_shared_join(&m->shared, &in, p->n_statements);
+#if DR_CONF_SYNC
+        m->relay = (uint8_t)(m->relay | ready_news(&before, &m->shared));
+        go_heard(m, (uint16_t)((payload[PAYLOAD] << 8) | payload[PAYLOAD + 1u]),
+                 (uint16_t)((payload[PAYLOAD + 2u] << 8) | payload[PAYLOAD + 3u]),
+                 dr_hal_now_ms(m));
+#endif
         dissemination_heard(m, channel, &before, &in, (uint8_t)(kind == DR_PACKET_LATTICE_ASK));
     }
 }

@@ -17,6 +17,10 @@
 /* Bytes of a state payload before its DR_CONF_WINDOW / 8 bytes of done bits: epoch (2) and
  * low (2), big-endian. The compiler reads this line to size the frame (one source). */
 #define DR_LATTICE_PAYLOAD_FIXED 4u
+/* Bytes a state frame carries after the payload with DR_CONF_SYNC: the synchronous group the
+ * sender counts down to (2) and how long ago, in ms, it learnt the group was ready (2), both
+ * big-endian (README.md, "Synchronous groups"). The compiler reads this line too. */
+#define DR_LATTICE_GO_BYTES 4u
 
 /* Returned by a program's address_of when no role, or several, match this module. */
 #define DR_NO_ADDRESS 0xFFu
@@ -80,6 +84,11 @@ typedef struct {
     uint8_t n_deps;
     dr_dep_at_t first_dep;             /* position of its first dependency in deps[] */
     dr_args_at_t args;                 /* its arguments: row `args` of the program's args[] */
+#if DR_CONF_SYNC
+    uint8_t sync_size;                 /* members of its synchronous group; 0: none */
+    uint8_t sync_index;                /* its place in the group (the first is statement
+                                          number minus this) */
+#endif
 } dr_statement_t;
 
 /* A compiled sequence (generated, constant). */
@@ -112,6 +121,11 @@ typedef struct {
     uint16_t epoch;
     dr_stmt_t low;
     uint8_t done[DR_CONF_WINDOW / 8];
+#if DR_CONF_SYNC
+    /* The statements of synchronous groups whose modules are ready to start them (a done
+     * statement is ready too): a group starts once all its members are. Same window. */
+    uint8_t ready[DR_CONF_WINDOW / 8];
+#endif
 } dr_shared_t;
 
 /* A report counter (DR_CONF_COUNTER_BITS). */
@@ -137,6 +151,14 @@ typedef struct dr_module {
                                           neighbour has sent back yet, or DR_NONE */
     dr_channels_t unheard;             /* channels connected at the (re)start, not heard yet */
     uint8_t heard;                     /* a state packet arrived since the (re)start */
+#if DR_CONF_SYNC
+    uint8_t relay;                     /* news of a synchronous group: send at the next step */
+    uint8_t go_open;                   /* the countdown of go_group is over */
+    dr_stmt_t go_group;                /* first statement of the synchronous group this module
+                                          counts down to, or DR_NONE */
+    uint16_t go_epoch;                 /* the epoch of go_group */
+    uint32_t go_at_ms;                 /* when go_group starts, on this module's clock */
+#endif
     uint32_t next_broadcast_ms;        /* the next broadcast, and (adaptive) the next retry
                                           of a failed operation: the one timer of the runtime */
     /* The dissemination policy's own fields (dr_dissemination.h; none for the fixed period). */
@@ -183,6 +205,11 @@ void dr_module_init(dr_module_t *m, const dr_program_t *program, void *platform)
 void dr_shared_join(dr_shared_t *into, const dr_shared_t *other, uint16_t n_statements);
 void dr_shared_normalise(dr_shared_t *s, uint16_t n_statements);
 uint8_t dr_shared_is_done(const dr_shared_t *s, dr_stmt_t statement);
+#if DR_CONF_SYNC
+/* Whether `statement` is ready (its module is set to start it with its synchronous group)
+ * or done, in s's epoch. */
+uint8_t dr_shared_is_ready(const dr_shared_t *s, dr_stmt_t statement);
+#endif
 /* Encode/decode the payload of a DR_PACKET_LATTICE_STATE packet; decode returns 0 when the
  * payload has the wrong size or inconsistent fields. */
 uint8_t dr_shared_encode(const dr_shared_t *s, uint8_t *out, uint8_t cap);

@@ -77,7 +77,7 @@ pub fn run(args: &ParalleliseArgs) -> Result<ExitCode, Failure> {
             world: prepared.world.clone(),
             assignment: &prepared.assignment,
             name: &name,
-            blocks: args.protocol.shape() == Shape::Nested,
+            blocks: args.protocol.shape() != Shape::Flat,
             one_module_overlap: args.protocol.groups() == GroupRun::Overlapping,
             window: args.window,
         };

@@ -62,6 +62,11 @@ fn payload_bytes(protocol: Protocol, ir: &Ir, pending_slots: usize) -> usize {
     let info = protocol.info();
     runtime_size(info.header, info.payload.fixed)
         + match info.payload.grows {
+            // The done bits; with synchronous groups (DR_CONF_SYNC) the ready bits too, and
+            // the countdown after the payload.
+            Growth::WindowBits if ir.has_synchronous() => {
+                ir.window / 8 * 2 + runtime_size(info.header, "DR_LATTICE_GO_BYTES")
+            }
             Growth::WindowBits => ir.window / 8,
             Growth::PendingSlots => pending_slots,
             Growth::Nothing => 0,
@@ -251,6 +256,9 @@ fn lattice_conf(ir: &Ir, options: &CompileOptions, out: &mut String) {
     );
     let _ = writeln!(out, "#define DR_CONF_ARG_ROWS {}", rows.len());
     let _ = writeln!(out, "#define DR_CONF_LATTICE_BATCH {LATTICE_BATCH}");
+    if ir.has_synchronous() {
+        let _ = writeln!(out, "#define DR_CONF_SYNC 1 /* synchronous groups */");
+    }
 }
 
 fn program_header(ir: &Ir, options: &CompileOptions) -> String {
@@ -396,11 +404,18 @@ fn lattice_tables(ir: &Ir, options: &CompileOptions) -> String {
         let _ = writeln!(out, "    {}, /* {row} */", args.join(", "));
     }
     out.push_str("};\n\nstatic const dr_statement_t dr_program_statements[] DR_TABLE = {\n");
+    let sync = ir.has_synchronous();
     for (i, s) in ir.statements.iter().enumerate() {
         let (part, op) = &ir.operations[usize::from(s.op)];
+        // A member's group: its size and its place in it (dr_lattice.h, DR_CONF_SYNC only).
+        let group = match (sync, s.synchronous) {
+            (false, _) => String::new(),
+            (true, None) => ", 0u, 0u".to_string(),
+            (true, Some(g)) => format!(", {}u, {}u", g.size, i - usize::from(g.first)),
+        };
         let _ = writeln!(
             out,
-            "    {{ {}u, {}, {}u, {}u, {}u, {}u }}, /* {i}: {} */",
+            "    {{ {}u, {}, {}u, {}u, {}u, {}u{group} }}, /* {i}: {} */",
             s.address,
             op_macro(part, op),
             s.index,

@@ -181,7 +181,7 @@ pub static PROTOCOLS: [ProtocolInfo; 3] = [
         name: "token",
         help: "The token-passing baseline the paper replaced: one token, handed from module to module along chains of latched modules (its routes are computed on the configuration given with --from)",
         description: "token baseline",
-        shape: Shape::Nested,
+        shape: Shape::NestedInTurn,
         runtime: &runtime::TOKEN,
         header: "dr_token.h",
         source: "dr_token.c",

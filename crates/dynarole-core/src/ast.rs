@@ -85,12 +85,19 @@ pub enum SequenceDef {
     Reverse(Ident),
 }
 
+/// The word before a synchronous group's `{` (not a keyword: a name elsewhere). The parser
+/// and the formatter both read it here.
+pub const SYNC: &str = "sync";
+
 /// The inside of a sequence or of a block: elements, each closed by a separator.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Body {
     pub elements: Vec<Element>,
     /// From the `{` to the `}`.
     pub span: Span,
+    /// `sync { A & B; }`: the `sync` word, when the block is a synchronous group (its
+    /// motions start at one agreed instant and move in lock-step; docs/language.md).
+    pub synchronous: Option<Span>,
 }
 
 /// One element of a body and the separator that follows it.
@@ -106,7 +113,8 @@ pub struct Element {
 pub enum ElementKind {
     /// `M3.Joint.rotateFromToBy(0, 324, false, 150)`
     Statement(Statement),
-    /// `{ A; B }`: a nested body, run as one element of the enclosing group.
+    /// `{ A; B }`: a nested body, run as one element of the enclosing group; also
+    /// `sync { A & B; }` (the body says it is synchronous).
     Block(Body),
     /// `eight2snake` or `reverse eight2snake`: another sequence, run in place.
     Call(Call),

@@ -4,9 +4,9 @@
 //! also returns a [`Program`], the checked file that later passes (reverse, expand) work on.
 
 use crate::ast::*;
-use crate::diagnostic::{has_errors, Diagnostic, DiagnosticKind as K};
+use crate::diagnostic::{has_errors, Diagnostic, DiagnosticKind as K, SyncProblem};
 use crate::limits::MAX_STATEMENTS;
-use crate::robot::{ParamType, Part, RobotApi, RobotRegistry, Value};
+use crate::robot::{OperationKind, ParamType, Part, RobotApi, RobotRegistry, Value};
 use crate::span::Span;
 use crate::suggest::{closest, module_label_lookalike};
 use std::collections::BTreeMap;
@@ -440,6 +440,9 @@ impl<'f> Checker<'f> {
     }
 
     fn body(&mut self, body: &Body, robot: Option<&RobotApi>) {
+        if let Some(keyword) = body.synchronous {
+            self.synchronous(body, keyword, robot);
+        }
         for element in &body.elements {
             match &element.kind {
                 ElementKind::Statement(statement) => {
@@ -450,6 +453,44 @@ impl<'f> Checker<'f> {
                 }
                 ElementKind::Block(inner) => self.body(inner, robot),
                 ElementKind::Call(call) => self.sequence_name(&call.name),
+            }
+        }
+    }
+
+    /// A synchronous group is one parallel group of turns: what the runtime can start at one
+    /// instant and move in lock-step (a connector has no speed to share, and a block or a
+    /// sequence inside would have an order of its own).
+    fn synchronous(&mut self, body: &Body, keyword: Span, robot: Option<&RobotApi>) {
+        let Some((last, before)) = body.elements.split_last() else {
+            self.report(
+                K::SynchronousGroupShape {
+                    problem: SyncProblem::Empty,
+                },
+                keyword.to(body.span),
+            );
+            return;
+        };
+        for element in before {
+            if element.separator.kind == SeparatorKind::Sequential {
+                let problem = SyncProblem::SequentialInside;
+                self.report(K::SynchronousGroupShape { problem }, element.separator.span);
+            }
+        }
+        for element in before.iter().chain([last]) {
+            let ElementKind::Statement(statement) = &element.kind else {
+                let problem = SyncProblem::NotAStatement;
+                self.report(K::SynchronousGroupShape { problem }, element.span);
+                continue;
+            };
+            let Some(robot) = robot else { continue };
+            let Ok(resolved) = resolve_statement(self.file, statement, robot) else {
+                continue;
+            };
+            // A turn from a stated angle: the plugin loader makes its first parameters
+            // `from`, `to` and the direction, so every module can know the group's pace.
+            if robot.kind(resolved.part, resolved.operation) != OperationKind::Turn {
+                let step = resolved.describe(robot);
+                self.report(K::SynchronousNotATurn { step }, element.span);
             }
         }
     }

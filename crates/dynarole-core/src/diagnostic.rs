@@ -239,6 +239,17 @@ pub enum DiagnosticKind {
     NoModuleWithId {
         id: u32,
     },
+    // ---- synchronous groups ----
+    /// `sync { ... }` that is not one parallel group of statements.
+    SynchronousGroupShape {
+        problem: SyncProblem,
+    },
+    /// A statement of a synchronous group that does not turn a joint.
+    SynchronousNotATurn {
+        step: String,
+    },
+    /// A synchronous group, which the protocol's code cannot start at one instant.
+    SynchronousNotSupported,
     // ---- protocol limits ----
     /// The sequence does not fit what the generated code can encode.
     TargetLimit {
@@ -251,6 +262,16 @@ pub enum DiagnosticKind {
     TokenRoute {
         message: String,
     },
+}
+
+/// How a `sync { ... }` fails to be one parallel group of statements.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SyncProblem {
+    Empty,
+    /// A `;` before the last element.
+    SequentialInside,
+    /// A block or a use of a sequence.
+    NotAStatement,
 }
 
 impl Diagnostic {
@@ -491,6 +512,24 @@ impl Diagnostic {
                 .title("the token baseline cannot run this sequence on this configuration")
                 .label(message.clone())
                 .hint("the token travels over latched connectors only: keep the modules of consecutive statements joined, or use the lattice protocol (the default), which needs no route"),
+            K::SynchronousGroupShape { problem } => {
+                let label = match problem {
+                    SyncProblem::Empty => "a synchronous group with no statements",
+                    SyncProblem::SequentialInside => "`;` inside a synchronous group",
+                    SyncProblem::NotAStatement => "a block or a sequence inside a synchronous group",
+                };
+                d.title("a synchronous group is one parallel group of statements")
+                    .label(label)
+                    .hint("write `sync { A & B; }`: its statements joined by `&`, the last closed by `;`; what must happen before or after goes outside it")
+            }
+            K::SynchronousNotATurn { step } => d
+                .title(format!("`{step}` cannot move in lock-step"))
+                .label("not a turn from a stated angle")
+                .hint("a synchronous group holds turns that state where they start (an operation of kind `turn`): the modules start them at one instant and move them at the pace of the longest, which every module must know; put a connector or any other operation outside it"),
+            K::SynchronousNotSupported => d
+                .title("the token baseline cannot run a synchronous group")
+                .label("it runs one statement at a time, so these turns cannot start together")
+                .hint("use the `lattice` protocol (the default), which starts a synchronous group at one agreed instant"),
             K::NotSupportedByPaperProtocol { reason } => d
                 .title("not supported by the paper protocol")
                 .label(reason.clone())

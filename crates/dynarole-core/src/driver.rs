@@ -195,8 +195,11 @@ fn declared<'p>(program: &'p Program) -> Vec<&'p str> {
 /// What a protocol's code can run of an expanded sequence.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Shape {
-    /// Any sequence the language accepts (nested blocks included).
+    /// Any sequence the language accepts (nested blocks and synchronous groups included).
     Nested,
+    /// Nested blocks, but statements one at a time: no synchronous start (the token
+    /// baseline's).
+    NestedInTurn,
     /// One pending set at a time, no nested blocks (the paper's protocol).
     Flat,
 }
@@ -204,6 +207,12 @@ pub enum Shape {
 /// Lowers `plans` (run in turn) for a protocol of `shape`; the error is the first statement
 /// that the protocol cannot run or that exceeds what the runtime encodes.
 pub fn lower(program: &Program, plans: &[Plan], shape: Shape) -> Result<Ir, Diagnostic> {
+    if shape == Shape::NestedInTurn {
+        if let Some(span) = plans.iter().find_map(Plan::first_synchronous) {
+            let kind = crate::DiagnosticKind::SynchronousNotSupported;
+            return Err(Diagnostic::new(kind, span));
+        }
+    }
     if shape == Shape::Flat {
         for plan in plans {
             plan.flatten_for_paper()?;

@@ -10,6 +10,9 @@ use crate::span::Span;
 #[derive(Clone, Debug, PartialEq, Eq, Default)]
 pub struct Plan {
     pub elements: Vec<PlanElement>,
+    /// A synchronous group (`sync { ... }`): one parallel group of turns, started at one
+    /// instant and moved in lock-step.
+    pub synchronous: bool,
 }
 
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -68,7 +71,10 @@ impl Program<'_> {
                 })
             })
             .collect();
-        Plan { elements }
+        Plan {
+            elements,
+            synchronous: body.synchronous.is_some(),
+        }
     }
 }
 
@@ -89,6 +95,17 @@ impl Plan {
         }
     }
 
+    /// Where its first synchronous group is, nested ones included.
+    pub fn first_synchronous(&self) -> Option<Span> {
+        self.elements
+            .iter()
+            .find_map(|element| match &element.kind {
+                PlanKind::Block(inner) if inner.synchronous => Some(element.span),
+                PlanKind::Block(inner) => inner.first_synchronous(),
+                PlanKind::Op(_) => None,
+            })
+    }
+
     /// The plan as the paper's state machine can run it: a flat list of statements, each with
     /// its separator. A block is spliced in when that keeps its meaning (it is alone in its
     /// parallel group, or it is itself one parallel group); otherwise the paper protocol, with
@@ -99,6 +116,13 @@ impl Plan {
         for (element, &group_size) in self.elements.iter().zip(&group_sizes) {
             match &element.kind {
                 PlanKind::Op(s) => out.push((s.clone(), element.separator)),
+                PlanKind::Block(inner) if inner.synchronous => {
+                    let reason = "the paper protocol has no synchronous start".to_string();
+                    return Err(Diagnostic::new(
+                        DiagnosticKind::NotSupportedByPaperProtocol { reason },
+                        element.span,
+                    ));
+                }
                 PlanKind::Block(inner) => {
                     let flat = inner.flatten_for_paper()?;
                     let inner_groups = flat

@@ -176,7 +176,13 @@ impl Printer<'_> {
     fn element(&mut self, element: &Element, depth: usize) {
         match &element.kind {
             ElementKind::Statement(s) => self.out.push_str(&statement(s)),
-            ElementKind::Block(body) => self.body(body, depth),
+            ElementKind::Block(body) => {
+                if body.synchronous.is_some() {
+                    self.out.push_str(SYNC);
+                    self.out.push(' ');
+                }
+                self.body(body, depth)
+            }
             ElementKind::Call(call) => {
                 if call.reverse.is_some() {
                     self.out.push_str("reverse ");

@@ -24,6 +24,7 @@ pub mod robot;
 pub mod span;
 pub mod standalone;
 pub mod suggest;
+pub mod synchronous;
 pub mod toml_error;
 
 pub use check::{analyze, Program};

@@ -76,6 +76,17 @@ pub struct IrStatement {
     /// The statement as executed, e.g. `M3.Joint.rotateFromToBy(0, 324, false, 150)`.
     pub text: String,
     pub span: Span,
+    /// The synchronous group it belongs to, if any (`sync { ... }`): its members start at one
+    /// agreed instant and move in lock-step (`crate::synchronous`).
+    pub synchronous: Option<SyncGroup>,
+}
+
+/// A synchronous group of the IR: its members are the `size` statements from `first` on
+/// (a group is one parallel group of statements, numbered one after another).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SyncGroup {
+    pub first: u16,
+    pub size: u16,
 }
 
 /// A limit of the target that the sequence exceeds.
@@ -110,6 +121,13 @@ impl Program<'_> {
             )?;
             latest[usize::from(lowered.address)] = Some(statements.len() as u16);
             statements.push(lowered);
+        }
+        for group in synchronous_groups(plans) {
+            let members =
+                usize::from(group.first)..usize::from(group.first) + usize::from(group.size);
+            for member in &mut statements[members] {
+                member.synchronous = Some(group);
+            }
         }
         check_dep_entries(&statements)?;
         let window = window_needed(&statements, MAX_WINDOW).map_err(|s| {
@@ -181,6 +199,7 @@ impl Program<'_> {
             separator,
             text: statement.describe(&self.robot),
             span: statement.span,
+            synchronous: None,
         })
     }
 
@@ -280,6 +299,33 @@ fn flatten(plan: &Plan, entry: &[u16], out: &mut Flat) -> Result<Vec<u16>, Limit
     // plan together with the last closed one.
     group_entry.extend(group_exit);
     Ok(group_entry)
+}
+
+/// The synchronous groups of `plans` (run in turn), numbered as `flatten` numbers their
+/// statements: in source order, one after another. The flattening already fits the limits,
+/// so every number fits in 16 bits.
+fn synchronous_groups(plans: &[Plan]) -> Vec<SyncGroup> {
+    fn walk(plan: &Plan, next: &mut usize, out: &mut Vec<SyncGroup>) {
+        for element in &plan.elements {
+            match &element.kind {
+                PlanKind::Op(_) => *next += 1,
+                PlanKind::Block(inner) if inner.synchronous => {
+                    let size = inner.statements().len();
+                    if let (Ok(first), Ok(size)) = (u16::try_from(*next), u16::try_from(size)) {
+                        out.push(SyncGroup { first, size });
+                    }
+                    *next += size;
+                }
+                PlanKind::Block(inner) => walk(inner, next, out),
+            }
+        }
+    }
+    let mut out = Vec::new();
+    let mut next = 0;
+    for plan in plans {
+        walk(plan, &mut next, &mut out);
+    }
+    out
 }
 
 fn push_statement(
@@ -409,6 +455,11 @@ impl IrStatement {
 }
 
 impl Ir {
+    /// Whether any statement belongs to a synchronous group.
+    pub fn has_synchronous(&self) -> bool {
+        self.statements.iter().any(|s| s.synchronous.is_some())
+    }
+
     /// For each statement, every statement that depends on it through `deps`, transitively
     /// (what the sequence means; the checkers' S2). Dependencies always point backwards, so
     /// one pass from the end suffices.
@@ -541,6 +592,7 @@ mod tests {
                     separator: SeparatorKind::Sequential,
                     text: String::new(),
                     span: Span::default(),
+                    synchronous: None,
                 });
                 latest[usize::from(address)] = Some(i as u16);
             }
@@ -574,6 +626,7 @@ mod tests {
                 separator: SeparatorKind::Sequential,
                 text: String::new(),
                 span: Span::default(),
+                synchronous: None,
             })
             .collect();
         assert_eq!(window_needed(&statements, MAX_WINDOW), Ok(8));

@@ -280,6 +280,7 @@ impl Parser {
             return Ok(Body {
                 elements: Vec::new(),
                 span: open.to(close),
+                synchronous: None,
             });
         }
         self.depth += 1;
@@ -295,6 +296,7 @@ impl Parser {
         Ok(Body {
             elements,
             span: open.to(close),
+            synchronous: None,
         })
     }
 
@@ -354,6 +356,14 @@ impl Parser {
     fn element_kind(&mut self) -> Parse<ElementKind> {
         match self.peek() {
             Token::LBrace => self.body().map(ElementKind::Block),
+            // `sync` is a word only before `{`: elsewhere it stays a name (a sequence may be
+            // called `sync`), and a name followed by `{` means nothing else.
+            Token::Ident(word) if word == SYNC && *self.peek_at(1) == Token::LBrace => {
+                let keyword = self.bump().1;
+                let mut body = self.body()?;
+                body.synchronous = Some(keyword);
+                Ok(ElementKind::Block(body))
+            }
             Token::Reverse => {
                 let keyword = self.bump().1;
                 let name = self.ident("the name of a sequence")?;

@@ -41,6 +41,7 @@ impl Program<'_> {
                     Some(SequenceDef::Reverse(_)) | None => Body {
                         elements: vec![call_element(&target.name, false, target.span)],
                         span: decl.span,
+                        synchronous: None,
                     },
                 }
             }
@@ -104,9 +105,11 @@ impl Program<'_> {
                 }
             })
             .collect();
+        // The reverse of a synchronous group is synchronous: the same turns undone together.
         Body {
             elements,
             span: body.span,
+            synchronous: body.synchronous,
         }
     }
 

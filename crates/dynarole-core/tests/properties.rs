@@ -6,11 +6,19 @@ use dynarole_core::format::{format_file, format_items};
 use dynarole_core::{analyze, parse};
 use proptest::prelude::*;
 
-/// A generated element: an ATRON statement or a block of elements.
+/// A generated element: an ATRON statement, a block of elements, or a synchronous group of
+/// turns.
 #[derive(Clone, Debug)]
 enum Gen {
     Statement(String),
     Block(Vec<(Gen, bool)>),
+    Sync(Vec<String>),
+}
+
+fn turn() -> impl Strategy<Value = String> {
+    let angle = prop::sample::select(vec![0, 108, 216, 324]);
+    (0u32..10, angle.clone(), angle, any::<bool>(), 1u32..256)
+        .prop_map(|(m, f, t, d, s)| format!("M{m}.Joint.rotateFromToBy({f}, {t}, {d}, {s})"))
 }
 
 fn statement() -> impl Strategy<Value = String> {
@@ -26,7 +34,10 @@ fn statement() -> impl Strategy<Value = String> {
 }
 
 fn elements() -> impl Strategy<Value = Vec<(Gen, bool)>> {
-    let leaf = statement().prop_map(Gen::Statement);
+    let leaf = prop_oneof![
+        4 => statement().prop_map(Gen::Statement),
+        1 => prop::collection::vec(turn(), 1..4).prop_map(Gen::Sync),
+    ];
     let element = leaf.prop_recursive(3, 24, 4, |inner| {
         prop::collection::vec((inner, any::<bool>()), 1..4).prop_map(Gen::Block)
     });
@@ -40,6 +51,7 @@ fn body_text(elements: &[(Gen, bool)]) -> String {
         match element {
             Gen::Statement(s) => out.push_str(s),
             Gen::Block(inner) => out.push_str(&body_text(inner)),
+            Gen::Sync(turns) => out.push_str(&format!("sync {{ {}; }}", turns.join(" & "))),
         }
         let last = i + 1 == elements.len();
         out.push_str(if *parallel && !last { " & " } else { "; " });
@@ -66,8 +78,11 @@ proptest! {
         let Some(SequenceDef::Body(body)) = parsed.file.sequence("s").map(|d| d.definition.clone()) else {
             panic!("generated a body");
         };
-        let twice = program.reverse_body(&program.reverse_body(&body));
+        let once = program.reverse_body(&body);
+        let twice = program.reverse_body(&once);
         prop_assert_eq!(body_format(&twice), body_format(&body));
+        // The reverse of a synchronous group is synchronous, with the same turns inverted.
+        prop_assert_eq!(synchronous_sizes(&once), synchronous_sizes(&body));
     }
 
     #[test]
@@ -121,6 +136,22 @@ proptest! {
     }
 }
 
+/// The number of statements of each synchronous group, in order of their first statement
+/// (the reverse lists them backwards, so sorted).
+fn synchronous_sizes(body: &dynarole_core::ast::Body) -> Vec<usize> {
+    let mut out = Vec::new();
+    for e in &body.elements {
+        if let ElementKind::Block(inner) = &e.kind {
+            if inner.synchronous.is_some() {
+                out.push(inner.elements.len());
+            }
+            out.extend(synchronous_sizes(inner));
+        }
+    }
+    out.sort_unstable();
+    out
+}
+
 fn body_format(body: &dynarole_core::ast::Body) -> String {
     let decl = dynarole_core::ast::SequenceDecl {
         name: dynarole_core::ast::Ident {
@@ -141,6 +172,9 @@ fn shape(items: &[Item]) -> String {
                 ElementKind::Statement(s) => out.push_str(&dynarole_core::format::statement(s)),
                 ElementKind::Call(c) => out.push_str(&c.name.name),
                 ElementKind::Block(inner) => {
+                    if inner.synchronous.is_some() {
+                        out.push_str("sync");
+                    }
                     out.push('{');
                     body(inner, out);
                     out.push('}');

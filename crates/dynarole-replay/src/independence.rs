@@ -2,6 +2,7 @@
 //! configuration in either order, and two joint turns done at the same time must not sweep
 //! through each other.
 
+use crate::lockstep;
 use crate::motion::{closest_approach, MovingSide};
 use crate::robot_world::RobotWorld;
 use crate::roles::Assignment;
@@ -238,9 +239,7 @@ impl GroupTurns {
     }
 }
 
-/// A warning of the model on the way through one order of a pair: the step it came from and
-/// the warning (the orders are compared by the warning only, `same_warning`).
-pub(crate) type Warned = (String, Warning);
+pub(crate) use crate::robot_world::Warned;
 
 /// One order of a pair, run on a copy of the world: where it ends and what the model warned
 /// about on the way.
@@ -393,8 +392,12 @@ impl Checker<'_> {
             self.group(group, world, out);
             for element in group {
                 if let PlanKind::Block(inner) = &element.kind {
-                    // Groups inside a block are checked from the state the block starts in.
-                    self.plan(inner, &mut world.clone(), out);
+                    // Groups inside a block are checked from the state the block starts in;
+                    // a synchronous group's turns never run in any other timing than
+                    // together, which the replay checks (`lockstep.rs`).
+                    if !inner.synchronous {
+                        self.plan(inner, &mut world.clone(), out);
+                    }
                 }
                 // A refused step or a warning is the replay's to report; here a refused
                 // step just changes nothing.
@@ -469,8 +472,50 @@ impl Checker<'_> {
         let describe = |i: usize| self.describe(&group[i]);
         if let Some((involved, reason)) = together.conflict(world, &describe) {
             let (a, b) = (&group[involved[0]], &group[involved[1]]);
+            let reason = match self.lockstep_suggestion(group, together, world) {
+                Some(suggestion) => format!("{reason}; {suggestion}"),
+                None => reason,
+            };
             out.push(self.not_independent(a, b, reason));
         }
+    }
+
+    /// When the group's turns, unsafe over every relative timing, are safe moved in
+    /// lock-step: the synchronous group to write instead (`lockstep.rs` decides it as the
+    /// replay would).
+    fn lockstep_suggestion(
+        &self,
+        group: &[PlanElement],
+        together: &GroupTurns,
+        world: &RobotWorld,
+    ) -> Option<String> {
+        let statements: Vec<&PlanElement> = together.members.iter().map(|&i| &group[i]).collect();
+        let plan = Plan {
+            elements: (statements.iter().enumerate())
+                .map(|(j, e)| PlanElement {
+                    separator: if j + 1 == statements.len() {
+                        SeparatorKind::Sequential
+                    } else {
+                        SeparatorKind::Parallel
+                    },
+                    ..(*e).clone()
+                })
+                .collect(),
+            synchronous: true,
+        };
+        let mut after = world.clone();
+        let fine = lockstep::apply_synchronous(
+            self.program,
+            &plan,
+            &mut after,
+            self.assignment,
+            &mut Vec::new(),
+        );
+        fine.ok()?;
+        Some(format!(
+            "moved in lock-step they stay clear: write `{};`",
+            lockstep::describe(self.program, &plan)
+        ))
     }
 
     /// Each element's turn motion on `world` (the state its group starts from), for the
@@ -659,6 +704,10 @@ impl Checker<'_> {
                     .ok_or("no module for its label")?;
                 step(&self.program.robot, statement, module, world, warnings)
             }
+            PlanKind::Block(inner) if inner.synchronous => {
+                let assignment = self.assignment;
+                lockstep::apply_synchronous(self.program, inner, world, assignment, warnings)
+            }
             PlanKind::Block(inner) => inner
                 .elements
                 .iter()
@@ -669,6 +718,7 @@ impl Checker<'_> {
     fn describe(&self, element: &PlanElement) -> String {
         match &element.kind {
             PlanKind::Op(statement) => statement.describe(&self.program.robot),
+            PlanKind::Block(inner) if inner.synchronous => lockstep::describe(self.program, inner),
             PlanKind::Block(inner) => match inner.statements().first() {
                 Some(first) => format!("{{ {}; ... }}", first.describe(&self.program.robot)),
                 None => "{ }".to_string(),

@@ -6,6 +6,7 @@
 
 mod bitset;
 mod independence;
+mod lockstep;
 mod motion;
 mod parallel;
 mod prepare;
@@ -26,5 +27,5 @@ pub use robot_world::{action, RobotWorld, StepOutcome};
 pub use roles::{assign_modules, assign_modules_on, Assignment};
 pub use routes::token_routes;
 pub use run::{replay, Replay};
-pub use simultaneous::{first_contact, Along, Contact};
+pub use simultaneous::{first_contact, Along, Contact, Pairs};
 pub use topology::{communication_graph, CommGraph};

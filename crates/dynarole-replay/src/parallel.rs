@@ -169,6 +169,14 @@ fn input_statements(
     let plan = program.expand(request.sequence).ok_or_else(|| {
         ParalleliseError::Message(format!("no sequence named `{}`", request.sequence))
     })?;
+    if plan.first_synchronous().is_some() {
+        return Err(ParalleliseError::Message(format!(
+            "`{}` has a synchronous group (`sync {{ ... }}`): its turns must start together, \
+             which rearranging the statements would not keep; parallelise the sequences \
+             around it",
+            request.sequence
+        )));
+    }
     let input = replay(
         program,
         std::slice::from_ref(&plan),

@@ -5,7 +5,7 @@
 use dynarole_core::check::ResolvedStatement;
 use dynarole_core::robot::{OperationKind, Value};
 use dynarole_core::RobotApi;
-use dynarole_world::{Action, Configuration, Motion, Outcome, RobotModel, View};
+use dynarole_world::{Action, Configuration, Motion, Outcome, RobotModel, SweepCheck, View};
 
 /// A robot being reconfigured, of any kind.
 #[derive(Clone, Debug)]
@@ -15,6 +15,10 @@ pub struct RobotWorld {
 
 /// What an accepted step did (warnings included).
 pub type StepOutcome = Outcome;
+
+/// A warning of the model on the way through a run of steps: the step it came from and the
+/// warning (two orders of a pair are compared by the warning only).
+pub(crate) type Warned = (String, dynarole_world::Warning);
 
 impl RobotWorld {
     /// Starts from `config`; fails when the configuration is not of the plugin's robot.
@@ -83,6 +87,20 @@ impl RobotWorld {
             ));
         };
         self.model.apply(module, &action).map_err(|e| e.to_string())
+    }
+
+    /// [`RobotWorld::apply`] with its sweep checked as `sweep` says (`RobotModel::apply_swept`).
+    pub fn apply_swept(
+        &mut self,
+        robot: &RobotApi,
+        statement: &ResolvedStatement,
+        module: &str,
+        sweep: SweepCheck,
+    ) -> Result<StepOutcome, String> {
+        let Some(action) = action(robot, statement) else {
+            return self.apply(robot, statement, module);
+        };
+        (self.model.apply_swept(module, &action, sweep)).map_err(|e| e.to_string())
     }
 
     /// The motion `statement` would make on `module`, without doing it

@@ -1,10 +1,11 @@
 //! Replay: the statements of one or more plans executed one group at a time on the model.
 
+use crate::lockstep;
 use crate::robot_world::RobotWorld;
 use crate::roles::Assignment;
 use dynarole_core::diagnostic::{Diagnostic, DiagnosticKind};
 use dynarole_core::expand::{Plan, PlanKind};
-use dynarole_core::Program;
+use dynarole_core::{Program, Span};
 
 /// The end of a replay: the robot as it ends and every refused or suspicious step.
 #[derive(Clone, Debug)]
@@ -55,6 +56,9 @@ fn run_plan(
 ) {
     for element in &plan.elements {
         match &element.kind {
+            PlanKind::Block(inner) if inner.synchronous => {
+                run_synchronous(program, (inner, element.span), world, assignment, report)
+            }
             PlanKind::Block(inner) => run_plan(program, inner, world, assignment, report),
             PlanKind::Op(statement) => {
                 report.n_statements += 1;
@@ -83,6 +87,39 @@ fn run_plan(
                     }
                 }
             }
+        }
+    }
+}
+
+/// A synchronous group: its turns checked together along the lock-step timing and done as
+/// one step (`lockstep.rs`); refused whole, changing nothing, or done whole.
+fn run_synchronous(
+    program: &Program,
+    (plan, span): (&Plan, Span),
+    world: &mut RobotWorld,
+    assignment: &Assignment,
+    report: &mut Steps,
+) {
+    report.n_statements += plan.statements().len();
+    let mut warnings = Vec::new();
+    let step = || lockstep::describe(program, plan);
+    match lockstep::apply_synchronous(program, plan, world, assignment, &mut warnings) {
+        Ok(()) => {
+            for (step, warning) in warnings {
+                let kind = DiagnosticKind::StepSuspicious {
+                    step,
+                    reason: warning.to_string(),
+                };
+                report.diagnostics.push(Diagnostic::new(kind, span));
+            }
+        }
+        Err(reason) => {
+            report.n_rejected += 1;
+            let kind = DiagnosticKind::StepRejected {
+                step: step(),
+                reason,
+            };
+            report.diagnostics.push(Diagnostic::new(kind, span));
         }
     }
 }

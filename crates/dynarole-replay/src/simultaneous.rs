@@ -82,6 +82,71 @@ impl Indexed {
     }
 }
 
+/// The narrowest band of lock-step timings searched (fractions apart): turns of one module
+/// start at the same instant, a band of no width.
+const LEAST_BAND: f64 = 0.01;
+
+/// Which relative timings of a group's turns are searched: every one (`&`), or with some
+/// turns in lock-step (a synchronous group: started at one instant, moved at one pace, so
+/// that their fractions never differ by more than the skew the runtime allows).
+#[derive(Clone, Debug, PartialEq, Default)]
+pub(crate) struct Timings {
+    /// For each turn of the group, the synchronous group it belongs to, if any. Shorter than
+    /// the group: the turns past its end are free.
+    pub lockstep: Vec<Option<usize>>,
+    /// How far apart the fractions of two turns of one synchronous group may be (0 to 1).
+    pub skew: f64,
+}
+
+impl Timings {
+    /// Every relative timing.
+    pub fn every() -> Timings {
+        Timings::default()
+    }
+
+    fn set_of(&self, turn: usize) -> Option<usize> {
+        self.lockstep.get(turn).copied().flatten()
+    }
+
+    /// Whether the box `area` of the turns `dims` holds a timing allowed: for each
+    /// synchronous group, its turns' ranges leave room for fractions within the skew. (The
+    /// allowed timings of some of the turns are those of the same form: the others can
+    /// always follow.)
+    fn meets(&self, area: &[(f64, f64)], dims: &[usize]) -> bool {
+        self.spread(dims, |j| area[j]) <= self.band()
+    }
+
+    /// Whether the point `at` (turn `dims[j]` at `at[j]`) is a timing allowed.
+    fn holds(&self, at: &[f64], dims: &[usize]) -> bool {
+        self.spread(dims, |j| (at[j], at[j])) <= self.band()
+    }
+
+    /// The skew searched: at least [`LEAST_BAND`], a sound widening (more timings), since a
+    /// band of no width holds almost no box's middle, where conflicts are found.
+    fn band(&self) -> f64 {
+        self.skew.max(LEAST_BAND)
+    }
+
+    /// The largest, over the synchronous groups, of the least spread of their turns'
+    /// fractions that ranges `range(j)` of turns `dims[j]` allow.
+    fn spread(&self, dims: &[usize], range: impl Fn(usize) -> (f64, f64)) -> f64 {
+        // (set, highest low, lowest high) of each synchronous group met.
+        let mut sets: Vec<(usize, f64, f64)> = Vec::new();
+        for (j, &t) in dims.iter().enumerate() {
+            let Some(set) = self.set_of(t) else { continue };
+            let (lo, hi) = range(j);
+            match sets.iter_mut().find(|(s, _, _)| *s == set) {
+                Some(entry) => {
+                    entry.1 = entry.1.max(lo);
+                    entry.2 = entry.2.min(hi);
+                }
+                None => sets.push((set, lo, hi)),
+            }
+        }
+        sets.iter().map(|(_, lo, hi)| lo - hi).fold(0.0, f64::max)
+    }
+}
+
 /// The robot's sweep points and the linkage of a group's turns on them.
 type Linked = (Vec<(usize, [f64; 3])>, Linkage);
 
@@ -415,6 +480,28 @@ fn linkage_of(turns: &[(&Motion, usize)], world: &RobotWorld) -> Option<Linked> 
 /// module's index) done together, over every relative timing; `None` when the linkage
 /// cannot be made (`linkage_of`).
 pub(crate) fn turns_together(turns: &[(&Motion, usize)], world: &RobotWorld) -> Option<Together> {
+    turns_at(turns, world, &Timings::every(), Pairs::MovedByTwo)
+}
+
+/// Which pairs of points a search covers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Pairs {
+    /// Those at least two turns move relative to each other: the others are each turn's own
+    /// sweep, which the world checks when it applies the turn.
+    MovedByTwo,
+    /// Every pair a turn moves relative to another: the world applies these turns without
+    /// their own sweeps (`SweepCheck::WithOthers`), which this search then includes.
+    All,
+}
+
+/// [`turns_together`] over the relative timings `timings` allows, on the pairs `pairs`
+/// says.
+pub(crate) fn turns_at(
+    turns: &[(&Motion, usize)],
+    world: &RobotWorld,
+    timings: &Timings,
+    pairs: Pairs,
+) -> Option<Together> {
     let (points, linkage) = linkage_of(turns, world)?;
     let limit = turns.iter().map(|(m, _)| m.limit).fold(0.0, f64::max);
     let mut bar = limit;
@@ -426,7 +513,7 @@ pub(crate) fn turns_together(turns: &[(&Motion, usize)], world: &RobotWorld) -> 
         &points,
         (&vec![0.5; turns.len()], &vec![0.5; turns.len()]),
     );
-    for (i, k, skip) in moving_pairs(&linkage, points.len()) {
+    for (i, k, skip) in moving_pairs(&linkage, points.len(), pairs) {
         if whole.bound(i, k, skip) >= bar {
             continue;
         }
@@ -434,6 +521,7 @@ pub(crate) fn turns_together(turns: &[(&Motion, usize)], world: &RobotWorld) -> 
             linkage: &linkage,
             points: ((i, points[i].1), (k, points[k].1)),
             turns: turns.len(),
+            timings,
         };
         let approach = |distance: f64| Approach {
             distance,
@@ -491,13 +579,14 @@ const CONTACT_RESOLUTION: f64 = 1e-6;
 
 /// `turns` (each motion with its module's index) running at once over a stretch of time
 /// along which each turn's fraction goes linearly from `from[t]` to `to[t]`: the first moment
-/// two modules come closer than the limit. Exact to [`CONTACT_RESOLUTION`] of the stretch: a
+/// two modules (of the pairs `pairs` says) come closer than the limit. Exact to [`CONTACT_RESOLUTION`] of the stretch: a
 /// piece of it is a thin box of the fractions, bounded as the group check bounds its boxes,
 /// and pieces are searched earliest first.
 pub fn first_contact(
     turns: &[(&Motion, usize)],
     (from, to): (&[f64], &[f64]),
     world: &RobotWorld,
+    pairs: Pairs,
 ) -> Along {
     if from.len() != turns.len() || to.len() != turns.len() {
         return Along::Unknown;
@@ -515,7 +604,7 @@ pub fn first_contact(
         .map(|(f, t)| (t - f).abs() / 2.0)
         .collect();
     let whole = Whole::of(&linkage, &points, (&centre, &half));
-    for (i, k, skip) in moving_pairs(&linkage, points.len()) {
+    for (i, k, skip) in moving_pairs(&linkage, points.len(), pairs) {
         if whole.bound(i, k, skip) >= limit {
             continue;
         }
@@ -577,10 +666,15 @@ fn earliest_below(
     found
 }
 
-/// Every two points that at least two turns move relative to each other (lower index first in
-/// each, the moving points in order), with how many turns they share; the still body's pairs
+/// Every two points that at least two turns (with [`Pairs::All`], one) move relative to each
+/// other (lower index first in each, the moving points in order), with how many turns they
+/// share; the still body's pairs
 /// with itself are never visited, so the cost is the moving points times all of them.
-fn moving_pairs(linkage: &Linkage, n: usize) -> Vec<(usize, usize, usize)> {
+fn moving_pairs(linkage: &Linkage, n: usize, which: Pairs) -> Vec<(usize, usize, usize)> {
+    let least = match which {
+        Pairs::MovedByTwo => 2,
+        Pairs::All => 1,
+    };
     let body = linkage.bodies();
     let moving = |m: usize| !linkage.chains[m].is_empty();
     let mut pairs = Vec::new();
@@ -594,7 +688,7 @@ fn moving_pairs(linkage: &Linkage, n: usize) -> Vec<(usize, usize, usize)> {
             // turns two points share, their chains have no turn in common.
             let skip = linkage.shared(i, k);
             let apart = linkage.chains[i].len() + linkage.chains[k].len() - 2 * skip;
-            if apart > 1 {
+            if apart >= least {
                 pairs.push((i.min(k), i.max(k), skip));
             }
         }
@@ -607,6 +701,7 @@ struct Pair<'l> {
     linkage: &'l Linkage,
     points: ((usize, [f64; 3]), (usize, [f64; 3])),
     turns: usize,
+    timings: &'l Timings,
 }
 
 enum Search {
@@ -636,7 +731,8 @@ impl Pair<'_> {
             if piece.bound >= bar - slack {
                 return best.map_or(Search::Clear, Search::Below);
             }
-            if piece.centre_distance < bar {
+            // The middle is a timing found only where the timings allow it.
+            if piece.centre_distance < bar && self.timings.holds(&piece.middle(), &dims) {
                 best = Some(piece.centre_distance);
                 bar = piece.centre_distance;
             }
@@ -646,7 +742,10 @@ impl Pair<'_> {
             }
             *budget -= 1;
             for half in piece.halves() {
-                boxes.push(self.piece(half, &dims));
+                // A box of timings none of which is allowed is not searched.
+                if self.timings.meets(&half, &dims) {
+                    boxes.push(self.piece(half, &dims));
+                }
             }
         }
         match (best, boxes.peek()) {
@@ -696,6 +795,11 @@ struct Piece {
 }
 
 impl Piece {
+    /// The fractions at its middle, one per dimension.
+    fn middle(&self) -> Vec<f64> {
+        self.area.iter().map(|(lo, hi)| (lo + hi) / 2.0).collect()
+    }
+
     /// The two halves of the box across its widest dimension.
     fn halves(&self) -> [Vec<(f64, f64)>; 2] {
         let (lo, hi) = self.area.get(self.widest).copied().unwrap_or((0.0, 0.0));

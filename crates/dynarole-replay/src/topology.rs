@@ -53,7 +53,8 @@ pub fn communication_graph(
     }
 }
 
-fn links(world: &RobotWorld) -> BTreeSet<(usize, usize)> {
+/// Who can send to whom on `world` now: the directed links of the robot's link rule.
+pub(crate) fn links(world: &RobotWorld) -> BTreeSet<(usize, usize)> {
     let view = world.view();
     let mut out = BTreeSet::new();
     for module in 0..view.len() {

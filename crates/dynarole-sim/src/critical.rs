@@ -6,7 +6,9 @@
 
 use crate::scenario::Durations;
 use crate::sequence::{OpKind, Sequence};
+use dynarole_core::check::ResolvedStatement;
 use dynarole_core::lower::Ir;
+use dynarole_core::synchronous::lockstep_ms;
 use serde::Serialize;
 use std::collections::BTreeMap;
 
@@ -123,6 +125,13 @@ fn statement_durations(seq: &Sequence, durations: &Durations) -> impl Fn(usize) 
             0
         };
         out.push(kind.nominal_ms(durations, quarters));
+    }
+    // A synchronous group's turns all take the longest's time, as the simulator runs them.
+    for (s, duration) in out.iter_mut().enumerate() {
+        if let Some(group) = seq.synchronous(s) {
+            let members: Vec<&ResolvedStatement> = group.map(|k| &seq.resolved[k]).collect();
+            *duration = lockstep_ms(&seq.robot, *durations, &members);
+        }
     }
     move |s: usize| out.get(s).copied().unwrap_or(0)
 }

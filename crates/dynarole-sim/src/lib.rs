@@ -444,6 +444,7 @@ impl Simulator {
             violations: std::mem::take(&mut state.violations),
             refusals: std::mem::take(&mut state.refusals),
             modules,
+            synchronous_spread_ms: synchronous_spread(&self.sequence, &state.phys).map(ms),
             configuration_matches: None,
             difference: None,
             trace: state.trace.take().and_then(trace::Trace::into_lines),
@@ -504,4 +505,22 @@ fn failures(report: &Report, timeout_ms: u64) -> Vec<String> {
         out.push("the final configuration is not the expected one".into());
     }
     out
+}
+
+/// The most the first starts of one synchronous group's statements were apart (in the
+/// simulator's time unit), over the groups all of whose statements started; `None` when the
+/// sequence has no synchronous group.
+fn synchronous_spread(seq: &Sequence, phys: &[state::Phys]) -> Option<u64> {
+    let mut spread = None;
+    for s in 0..seq.len() {
+        let Some(group) = seq.synchronous(s).filter(|g| g.start == s) else {
+            continue;
+        };
+        let starts: Option<Vec<u64>> = group.map(|k| phys.get(k).and_then(|p| p.started)).collect();
+        let widest = starts.map_or(0, |t| {
+            t.iter().max().unwrap_or(&0) - t.iter().min().unwrap_or(&0)
+        });
+        spread = Some(spread.unwrap_or(0).max(widest));
+    }
+    spread
 }

@@ -6,9 +6,11 @@ use crate::event::Event;
 use crate::report::{Refusal, Violation};
 use crate::sequence::OpKind;
 use crate::state::{uniform, Attempt, Clash, State};
+use dynarole_core::check::ResolvedStatement;
+use dynarole_core::synchronous::lockstep_ms;
 use dynarole_recording::TraceEvent;
-use dynarole_replay::Along;
-use dynarole_world::Action;
+use dynarole_replay::{Along, Pairs};
+use dynarole_world::{Action, SweepCheck};
 
 /// How a call of `dr_hal_op_start` relates to what already happened to its statement.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -253,7 +255,7 @@ impl State {
     /// the search does not compose (not one rotation each, not a tree) are not checked.
     pub(crate) fn check_running_turns(&mut self) {
         self.pending_clash = None;
-        if self.spans.len() < 2 {
+        if self.spans.is_empty() {
             return;
         }
         let running: Vec<(u64, (u64, u64))> = self.spans.iter().map(|(k, v)| (*k, *v)).collect();
@@ -271,15 +273,24 @@ impl State {
         let Some(until) = turns.iter().map(|t| t.3 .1).min() else {
             return;
         };
-        if turns.len() < 2 || until <= self.now {
+        // A turn of a synchronous group is applied without its own sweep (`op_done`): its
+        // sweep is searched here, with every pair of points, even while it runs alone.
+        let lockstep = turns.iter().any(|t| self.seq.synchronous(t.1).is_some());
+        if (turns.len() < 2 && !lockstep) || until <= self.now {
             return;
         }
+        let pairs = if lockstep {
+            Pairs::All
+        } else {
+            Pairs::MovedByTwo
+        };
         let fraction = |t: u64, (a, b): (u64, u64)| (t - a) as f64 / (b - a) as f64;
         let from: Vec<f64> = turns.iter().map(|t| fraction(self.now, t.3)).collect();
         let to: Vec<f64> = turns.iter().map(|t| fraction(until, t.3)).collect();
         let group: Vec<(&dynarole_world::Motion, usize)> =
             turns.iter().map(|t| (&t.4, t.2)).collect();
-        let Along::Contact(c) = dynarole_replay::first_contact(&group, (&from, &to), &self.world)
+        let Along::Contact(c) =
+            dynarole_replay::first_contact(&group, (&from, &to), &self.world, pairs)
         else {
             return;
         };
@@ -322,10 +333,14 @@ impl State {
         };
         let others: Vec<usize> = clash.statements[..clash.statements.len() - 1].to_vec();
         let named: Vec<String> = others.iter().map(|o| format!("#{o}")).collect();
+        let with = match named.is_empty() {
+            // A synchronous group's turn alone: its own sweep (`check_running_turns`).
+            true => String::new(),
+            false => format!("running at once with {}, ", named.join(", ")),
+        };
         let view = self.view();
         let what = format!(
-            "running at once with {}, it brings {} and {} closer than the limit ({} {})",
-            named.join(", "),
+            "{with}it brings {} and {} closer than the limit ({} {})",
             view.name(clash.modules.0),
             view.name(clash.modules.1),
             clash.limit,
@@ -339,7 +354,8 @@ impl State {
     fn duration_ms(&mut self, m: usize, s: usize) -> u64 {
         let nominal = self.nominal_ms(m, s);
         let variation = self.scenario.timing.variation;
-        if variation <= 0.0 {
+        // A synchronous group's turns keep their pace: lock-step is the point of them.
+        if variation <= 0.0 || self.seq.synchronous(s).is_some() {
             return nominal;
         }
         let factor = 1.0 - variation + 2.0 * variation * uniform(&mut self.rng_timing);
@@ -348,6 +364,14 @@ impl State {
 
     fn nominal_ms(&self, m: usize, s: usize) -> u64 {
         let kind = self.seq.kinds[s];
+        if let Some(group) = self.seq.synchronous(s) {
+            if !self.already_there(m, s) {
+                // Every turn of the group at the pace of its longest (lock-step).
+                let members: Vec<&ResolvedStatement> =
+                    group.map(|k| &self.seq.resolved[k]).collect();
+                return lockstep_ms(&self.seq.robot, self.durations, &members);
+            }
+        }
         // A turn to the angle the joint already has (re-issued after it completed, or written
         // with a `from` that is not the joint's angle) moves nothing.
         let quarters = match kind {
@@ -395,9 +419,14 @@ impl State {
         self.phys[s].running = None;
         let name = self.view().name(m);
         let label = self.trace_label(s);
-        let applied = self
-            .world
-            .apply(&self.seq.robot, &self.seq.resolved[s], &name);
+        // A synchronous group's turn is checked with the others while it runs, its own sweep
+        // included (`check_running_turns`): alone it may pass where, in lock-step, it never is.
+        let sweep = match self.seq.synchronous(s) {
+            Some(_) => SweepCheck::WithOthers,
+            None => SweepCheck::Alone,
+        };
+        let applied =
+            (self.world).apply_swept(&self.seq.robot, &self.seq.resolved[s], &name, sweep);
         // Links may have changed (latches, facing connectors).
         self.links.clear();
         if was_running_turn || self.spans.len() > 1 {

@@ -110,6 +110,10 @@ pub struct Report {
     pub violations: Vec<Violation>,
     pub refusals: Vec<Refusal>,
     pub modules: Vec<ModuleReport>,
+    /// The most the first starts of one synchronous group's turns were apart, in ms (the
+    /// groups all of whose turns started; `None` for a program without synchronous groups).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub synchronous_spread_ms: Option<f64>,
     /// Whether the final configuration equals the expected one (`None`: nothing expected).
     pub configuration_matches: Option<bool>,
     pub difference: Option<String>,
@@ -199,6 +203,12 @@ impl Report {
             self.count("S2"),
             self.count("S3")
         );
+        if let Some(spread) = self.synchronous_spread_ms {
+            let _ = writeln!(
+                out,
+                "  synchronous groups: their turns started at most {spread:.3} ms apart"
+            );
+        }
         if explain_checks {
             out.push_str(CHECKS_EXPLAINED);
         }

@@ -76,29 +76,12 @@ impl Default for Network {
 /// scenario's overrides ([`Timing::durations`]).
 pub type Durations = dynarole_core::robot::Durations;
 
-/// The simulator's built-in timing preset `ussr`, for a robot whose plugin declares none (as
-/// [`USSR`] is for a robot with no network presets): the original simulator's durations,
-/// extend 3 s, retract 2 s, a quarter turn 0.55 s and 0.31 s per further quarter.
-pub const USSR_TIMING: Durations = Durations {
-    extend_ms: 3000,
-    retract_ms: 2000,
-    turn_first_quarter_ms: 550,
-    turn_further_quarter_ms: 310,
-};
+/// The simulator's built-in timing preset `ussr`, for a robot whose plugin declares none
+/// (`dynarole_core::robot::USSR_TIMING`).
+pub use dynarole_core::robot::USSR_TIMING;
 
-/// The name of [`USSR_TIMING`] in scenarios.
-const USSR_TIMING_NAME: &str = "ussr";
-
-/// The timing presets a scenario may name for `robot`, the default first: its plugin's
-/// `[[timing]]` alone (a robot that declares its durations gets no other robot's), or
-/// [`USSR_TIMING`] for a plugin that declares none.
 fn timing_presets(robot: &RobotApi) -> Vec<(&str, Durations)> {
-    if robot.timing.is_empty() {
-        return vec![(USSR_TIMING_NAME, USSR_TIMING)];
-    }
-    (robot.timing.iter())
-        .map(|p| (p.name.as_str(), p.durations))
-        .collect()
+    robot.timing_presets()
 }
 
 /// The durations of `robot`'s default timing preset (its first, or [`USSR_TIMING`]): what a

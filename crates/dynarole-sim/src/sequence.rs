@@ -69,6 +69,13 @@ pub struct Sequence {
 }
 
 impl Sequence {
+    /// The statements of the synchronous group statement `s` belongs to, if any.
+    pub fn synchronous(&self, s: usize) -> Option<std::ops::Range<usize>> {
+        let group = self.ir.statements.get(s)?.synchronous?;
+        let first = usize::from(group.first);
+        Some(first..first + usize::from(group.size))
+    }
+
     pub fn new(robot: RobotApi, ir: Ir, resolved: Vec<ResolvedStatement>) -> Sequence {
         let actions: Vec<Option<Action>> = resolved
             .iter()

@@ -196,6 +196,19 @@ pub trait RobotModel: fmt::Debug + Send + Sync {
     fn shape(&self) -> &dyn RobotShape;
     /// Does `action` on `module` (a name); the error is why the robot cannot.
     fn apply(&mut self, module: &str, action: &Action) -> Result<Outcome, OpError>;
+    /// Does `action` like [`RobotModel::apply`], its sweep checked as `sweep` says; every
+    /// other check (angles, locks, connectivity) is the same. The default checks the sweep
+    /// alone whatever `sweep` says: a robot that does not implement this refuses lock-step
+    /// turns that clear only together, never accepts a collision.
+    fn apply_swept(
+        &mut self,
+        module: &str,
+        action: &Action,
+        sweep: crate::SweepCheck,
+    ) -> Result<Outcome, OpError> {
+        let _ = sweep;
+        self.apply(module, action)
+    }
     /// The motion `action` would make, without doing it: a turn's legs, what it carries and
     /// its sweep's points; a connector's extend or retract moves in place
     /// ([`Motion::in_place`]). `None` for an action refused before anything moves (a wrong

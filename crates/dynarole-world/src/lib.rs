@@ -41,5 +41,5 @@ pub use geometry::{Rotation, Vec3};
 pub use motion::{Carried, Leg, Motion};
 pub use ops::{OpError, Outcome, Warning};
 pub use robot_set::Robots;
-pub use shape::{latched_or_male_to_free_female, Action, RobotShape};
+pub use shape::{latched_or_male_to_free_female, Action, RobotShape, SweepCheck};
 pub use view::View;

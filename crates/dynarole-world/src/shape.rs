@@ -62,6 +62,16 @@ pub enum Action {
     },
 }
 
+/// Who checks a turn's sweep when it is applied.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SweepCheck {
+    /// The model: the turn alone, against everything it does not move.
+    Alone,
+    /// The caller, with the turns it moves in lock-step with (a synchronous group): the turn
+    /// alone may pass where, moving with them, it never is.
+    WithOthers,
+}
+
 /// Where a packet sent on `port` goes on a robot whose connectors talk through a latch or,
 /// unlatched, from a male connector to the free female connector facing it: the rule a robot
 /// may give as its `link_target`.

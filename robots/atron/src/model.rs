@@ -8,7 +8,7 @@ use dynarole_world::geometry::to_f64;
 use dynarole_world::model_difference;
 use dynarole_world::Configuration;
 use dynarole_world::Motion;
-use dynarole_world::{Action, RobotKind, RobotModel, RobotShape};
+use dynarole_world::{Action, RobotKind, RobotModel, RobotShape, SweepCheck};
 use dynarole_world::{OpError, Outcome};
 use std::any::Any;
 
@@ -29,6 +29,15 @@ impl RobotModel for World {
     }
 
     fn apply(&mut self, module: &str, action: &Action) -> Result<Outcome, OpError> {
+        self.apply_swept(module, action, SweepCheck::Alone)
+    }
+
+    fn apply_swept(
+        &mut self,
+        module: &str,
+        action: &Action,
+        sweep: SweepCheck,
+    ) -> Result<Outcome, OpError> {
         match *action {
             Action::Extend { connector } => self.extend(module, connector),
             Action::Retract { connector } => self.retract(module, connector),
@@ -39,7 +48,7 @@ impl RobotModel for World {
                 ..
             } => {
                 let from = self.joint_from(module, from);
-                self.rotate(module, from, units(to), increasing)
+                self.rotate_swept(module, (from, units(to), increasing), sweep)
             }
         }
     }

@@ -13,7 +13,7 @@ use dynarole_world::world_common::{
     Sweep, SweptPoint,
 };
 use dynarole_world::{Carried, Motion};
-use dynarole_world::{OpError, Outcome};
+use dynarole_world::{OpError, Outcome, SweepCheck};
 use std::collections::BTreeSet;
 
 /// A turn before it is done: the modules on the moving side and the signed quarter turns
@@ -77,6 +77,19 @@ impl World {
         to_units: u16,
         increasing: bool,
     ) -> Result<Outcome, OpError> {
+        let angles = (from_units, to_units, increasing);
+        self.rotate_swept(module, angles, SweepCheck::Alone)
+    }
+
+    /// [`World::rotate`], its sweep checked here only when `sweep` is [`SweepCheck::Alone`];
+    /// `angles` are `(from, to, increasing)`.
+    pub fn rotate_swept(
+        &mut self,
+        module: &str,
+        angles: (u16, u16, bool),
+        sweep: SweepCheck,
+    ) -> Result<Outcome, OpError> {
+        let (from_units, to_units, increasing) = angles;
         let index = known_module(&self.config.structure, module)?;
         let turn = self.plan_turn(index, from_units, to_units, increasing)?;
         if turn.joint_quarters == 0 {
@@ -88,7 +101,10 @@ impl World {
             turn.north_moves,
             turn.joint_quarters,
         );
-        let closest = self.check_sweep(index, &moving, turn_quarters)?;
+        let closest = match sweep {
+            SweepCheck::Alone => self.check_sweep(index, &moving, turn_quarters)?,
+            SweepCheck::WithOthers => None,
+        };
         self.apply_turn(index, &moving, turn_quarters, !north_moves, quarters);
         let mut moved: BTreeSet<usize> = moving;
         if !north_moves {

@@ -6,7 +6,7 @@ use crate::world::MtranWorld;
 use dynarole_world::model_difference;
 use dynarole_world::Configuration;
 use dynarole_world::Motion;
-use dynarole_world::{Action, RobotKind, RobotModel, RobotShape};
+use dynarole_world::{Action, RobotKind, RobotModel, RobotShape, SweepCheck};
 use dynarole_world::{OpError, Outcome};
 use std::any::Any;
 
@@ -33,6 +33,15 @@ impl RobotModel for MtranWorld {
     }
 
     fn apply(&mut self, module: &str, action: &Action) -> Result<Outcome, OpError> {
+        self.apply_swept(module, action, SweepCheck::Alone)
+    }
+
+    fn apply_swept(
+        &mut self,
+        module: &str,
+        action: &Action,
+        sweep: SweepCheck,
+    ) -> Result<Outcome, OpError> {
         match *action {
             Action::Extend { connector } => self.connect(module, connector),
             Action::Retract { connector } => self.disconnect(module, connector),
@@ -43,7 +52,8 @@ impl RobotModel for MtranWorld {
                 increasing,
             } => {
                 let from = self.joint_from(module, joint, from);
-                self.rotate(module, mtran_joint(joint), from, degrees(to), increasing)
+                let angles = (from, degrees(to), increasing);
+                self.rotate_swept(module, mtran_joint(joint), angles, sweep)
             }
         }
     }

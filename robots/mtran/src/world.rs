@@ -13,7 +13,7 @@ use dynarole_world::world_common::{
     Sweep, SweptPoint,
 };
 use dynarole_world::{Carried, Motion};
-use dynarole_world::{OpError, Outcome};
+use dynarole_world::{OpError, Outcome, SweepCheck};
 use std::collections::BTreeSet;
 
 /// An M-TRAN configuration being reconfigured; operations succeed (maybe with warnings) or
@@ -68,6 +68,20 @@ impl MtranWorld {
         to_deg: i16,
         positive: bool,
     ) -> Result<Outcome, OpError> {
+        let angles = (from_deg, to_deg, positive);
+        self.rotate_swept(module, joint, angles, SweepCheck::Alone)
+    }
+
+    /// [`MtranWorld::rotate`], its sweep checked here only when `sweep` is
+    /// [`SweepCheck::Alone`]; `angles` are `(from, to, positive)`.
+    pub fn rotate_swept(
+        &mut self,
+        module: &str,
+        joint: MtranJoint,
+        angles: (i16, i16, bool),
+        sweep: SweepCheck,
+    ) -> Result<Outcome, OpError> {
+        let (from_deg, to_deg, positive) = angles;
         let index = known_module(&self.config.structure, module)?;
         self.check_angles(index, joint, from_deg, to_deg, positive)?;
         if from_deg == to_deg {
@@ -75,8 +89,12 @@ impl MtranWorld {
         }
         let (moving, turn_quarters, north_moves) = self.plan_turn(index, from_deg, to_deg)?;
         let (pivot, axis) = self.joint_pivot(index, joint);
-        let closest =
-            self.check_sweep(index, north_moves, &moving, (pivot, axis), turn_quarters)?;
+        let closest = match sweep {
+            SweepCheck::Alone => {
+                self.check_sweep(index, north_moves, &moving, (pivot, axis), turn_quarters)?
+            }
+            SweepCheck::WithOthers => None,
+        };
         let rotation = Rotation::about_axis(axis, turn_quarters).unwrap_or(Rotation::IDENTITY);
         let mut moved = moving;
         if north_moves {

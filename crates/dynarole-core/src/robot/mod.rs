@@ -41,6 +41,34 @@ pub struct TimingPreset {
     pub durations: Durations,
 }
 
+/// The simulator's built-in timing preset `ussr`, for a robot whose plugin declares none (as
+/// the network preset `ussr` is for a robot with no network presets): the original
+/// simulator's durations, extend 3 s, retract 2 s, a quarter turn 0.55 s and 0.31 s per
+/// further quarter.
+pub const USSR_TIMING: Durations = Durations {
+    extend_ms: 3000,
+    retract_ms: 2000,
+    turn_first_quarter_ms: 550,
+    turn_further_quarter_ms: 310,
+};
+
+/// The name of [`USSR_TIMING`] in scenarios.
+const USSR_TIMING_NAME: &str = "ussr";
+
+impl RobotApi {
+    /// The timing presets a scenario may name, the default first: the plugin's `[[timing]]`
+    /// alone (a robot that declares its durations gets no other robot's), or [`USSR_TIMING`]
+    /// for a plugin that declares none.
+    pub fn timing_presets(&self) -> Vec<(&str, Durations)> {
+        if self.timing.is_empty() {
+            return vec![(USSR_TIMING_NAME, USSR_TIMING)];
+        }
+        (self.timing.iter())
+            .map(|p| (p.name.as_str(), p.durations))
+            .collect()
+    }
+}
+
 /// How long each kind of operation takes, in ms. A duration of a kind the robot has no
 /// operation of may be left out of its plugin: it is 0, and never used.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

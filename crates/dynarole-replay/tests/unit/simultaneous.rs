@@ -2,7 +2,7 @@
 //! because they read the robots' example files.
 
 use super::*;
-use dynarole_world::Action;
+use dynarole_world::{Action, OpError};
 
 const CAR: &str = include_str!("../../../../robots/atron/examples/car.json");
 const CHAIN10: &str = include_str!("../../../../robots/atron/examples/rotation-chain-10.json");
@@ -19,6 +19,12 @@ fn world(text: &str) -> RobotWorld {
 /// A quarter turn up of module `m`'s joint `joint` from where it is, in the units of the
 /// robot's plugin (`[joint_angle]`).
 fn quarter_of(world: &RobotWorld, m: usize, joint: u8) -> Action {
+    quarters_of(world, m, joint, 1)
+}
+
+/// `quarters` quarter turns up of module `m`'s joint `joint` from where it is (on ATRON, 2
+/// is a half turn).
+fn quarters_of(world: &RobotWorld, m: usize, joint: u8, quarters: i64) -> Action {
     let config = world.configuration().expect("a configuration");
     let plugins = dynarole_robots::plugins();
     let angle = plugins
@@ -26,7 +32,7 @@ fn quarter_of(world: &RobotWorld, m: usize, joint: u8) -> Action {
         .expect("its plugin")
         .joint_angle;
     let at = world.view().joint(m, joint).expect("a joint");
-    let to = at + angle.quarter;
+    let to = at + quarters * angle.quarter;
     Action::Turn {
         joint,
         from: Some(at),
@@ -342,4 +348,316 @@ fn the_search_agrees_with_a_dense_grid_on_blocks() {
         }
     }
     assert!(compared >= 6, "only {compared} pairs compared");
+}
+
+/// All the turns of a group in one synchronous group, with skew `skew`.
+fn in_lockstep(turns: usize, skew: f64) -> Timings {
+    Timings {
+        lockstep: vec![Some(0); turns],
+        skew,
+    }
+}
+
+/// The limit of a group: the largest of its turns' (the search's).
+fn limit_of(group: &[(&Motion, usize)]) -> f64 {
+    group.iter().map(|(m, _)| m.limit).fold(0.0, f64::max)
+}
+
+/// Visits every point of a grid of `steps` intervals per turn whose fractions differ
+/// pairwise by at most `width` intervals, with that spread (in intervals): one synchronous
+/// group's band, sampled without walking the whole box.
+fn for_each_in_band(turns: usize, steps: u32, width: u32, visit: &mut dyn FnMut(&[f64], u32)) {
+    let mut fractions = vec![0.0; turns];
+    for first in 0..=steps {
+        // The others within `width` of the first: every point of the band with this first.
+        let (lo, hi) = (first.saturating_sub(width), (first + width).min(steps));
+        let mut digits = vec![lo; turns];
+        digits[0] = first;
+        loop {
+            let spread = digits.iter().max().unwrap_or(&0) - digits.iter().min().unwrap_or(&0);
+            if spread <= width {
+                for (f, d) in fractions.iter_mut().zip(&digits) {
+                    *f = f64::from(*d) / f64::from(steps);
+                }
+                visit(&fractions, spread);
+            }
+            let Some(j) = (1..turns).find(|&j| digits[j] < hi) else {
+                break;
+            };
+            digits[j] += 1;
+            digits[1..j].fill(lo);
+        }
+    }
+}
+
+/// What a dense grid of a synchronous group's band says of every two points some turn
+/// moves apart (those `Pairs::All` covers).
+struct Banded {
+    /// The smallest distance at a grid point inside the band: a timing the band allows, so
+    /// the search's closest is at most this.
+    inside: f64,
+    /// A lower bound of the distance over the whole band, so the search's closest (found
+    /// inside the band) is at least this: the grid widened by one interval (every timing of
+    /// the band rounds to one of its points), each point's distance lowered by how far half
+    /// an interval of every turn can move the two points.
+    lower: f64,
+}
+
+/// The band of skew `skew` (every turn of the linkage in one synchronous group) on a grid of
+/// `steps` intervals per turn.
+fn banded_minimum(
+    linkage: &Linkage,
+    points: &[(usize, [f64; 3])],
+    steps: u32,
+    skew: f64,
+) -> Banded {
+    let pairs: Vec<(usize, usize, usize)> = (0..points.len())
+        .flat_map(|i| (i + 1..points.len()).map(move |k| (i, k)))
+        .filter(|&(i, k)| !linkage.rigid(i, k))
+        .map(|(i, k)| (i, k, linkage.shared(i, k)))
+        .collect();
+    // Half an interval of turn `t` moves a point at most `half * angle * r`, `r` its
+    // distance from the turn's pivot (where the turner's point puts it); `r` itself grows by
+    // what the point moves, which `growth` covers. The turns two points share move both
+    // rigidly and are left out.
+    let half = 0.5 / f64::from(steps);
+    let angle = |t: usize| linkage.sides[t].angle_deg.abs().to_radians();
+    let growth = 1.0 / (1.0 - half * (0..linkage.sides.len()).map(angle).sum::<f64>());
+    let strict = (skew * f64::from(steps) + 1e-9).floor() as u32;
+    let mut banded = Banded {
+        inside: f64::INFINITY,
+        lower: f64::INFINITY,
+    };
+    for_each_in_band(linkage.sides.len(), steps, strict + 1, &mut |f, spread| {
+        let moved: Vec<[f64; 3]> = (points.iter().enumerate())
+            .map(|(m, (_, p))| linkage.position(m, *p, f))
+            .collect();
+        let pivots: Vec<[f64; 3]> = (linkage.sides.iter())
+            .map(|s| linkage.position(s.turner[0], s.pivot, f))
+            .collect();
+        let drift = |m: usize, skip: usize| -> f64 {
+            (linkage.chains[m][skip..].iter())
+                .map(|&t| half * angle(t) * distance(moved[m], pivots[t]))
+                .sum()
+        };
+        for &(i, k, skip) in &pairs {
+            let d = distance(moved[i], moved[k]);
+            banded.lower = banded
+                .lower
+                .min(d - growth * (drift(i, skip) + drift(k, skip)));
+            if spread <= strict {
+                banded.inside = banded.inside.min(d);
+            }
+        }
+    });
+    banded
+}
+
+/// The search of `group` in one synchronous group, with a wide and a narrow skew, over every
+/// pair of points (`Pairs::All`), checked against a band grid of `steps` intervals: for
+/// each skew, whether it was clear and whether the band kept out an approach some timing
+/// outside it has (so that the band, not the box, is what was compared).
+fn band_agrees_with_grid(
+    start: &RobotWorld,
+    group: &[(&Motion, usize)],
+    steps: u32,
+) -> Vec<(bool, bool)> {
+    let (_, linkage) = linkage_of(group, start).expect("a tree at these joints");
+    let limit = limit_of(group);
+    let modules: Vec<String> = group.iter().map(|(_, m)| start.view().name(*m)).collect();
+    // The closest a coarse grid of the whole box finds: timings that every timing allows.
+    let every = banded_minimum(&linkage, &points_of(start), 24, 1.0).inside;
+    let verdict = |skew: f64| {
+        let case = format!("{modules:?}, skew {skew}");
+        let grid = banded_minimum(&linkage, &points_of(start), steps, skew);
+        let found = turns_at(group, start, &in_lockstep(group.len(), skew), Pairs::All);
+        let clear = match found.expect("a linkage") {
+            Together::Clear => {
+                assert!(
+                    grid.inside >= limit,
+                    "{case}: the grid meets {}",
+                    grid.inside
+                );
+                true
+            }
+            Together::Closest(x) => {
+                assert!(
+                    grid.lower < limit,
+                    "{case}: {} found where the band clears {}",
+                    x.distance,
+                    grid.lower
+                );
+                assert!(
+                    x.distance <= grid.inside + REFINEMENT,
+                    "{case}: {} beyond the grid's {}",
+                    x.distance,
+                    grid.inside
+                );
+                assert!(
+                    x.distance >= grid.lower - 1e-9,
+                    "{case}: {} below the band's bound {}: a timing outside it",
+                    x.distance,
+                    grid.lower
+                );
+                false
+            }
+            Together::Unproven(x) => panic!("{case}: unproven at {}", x.distance),
+        };
+        (clear, every < grid.lower - 0.01)
+    };
+    [0.18, 0.05].map(verdict).to_vec()
+}
+
+/// The turns of `quarters` quarters up of every module of `start` that moves some sweep
+/// point (a turn moving none, a leaf's, leaves nothing to compare).
+fn motions_by(start: &RobotWorld, quarters: i64) -> Vec<Option<Motion>> {
+    let n = start.view().len();
+    let motion = |m: usize| {
+        let name = start.view().name(m);
+        (start.model())
+            .motion(&name, &quarters_of(start, m, 0, quarters))
+            .filter(|x| !x.moving.is_empty())
+    };
+    (0..n).map(motion).collect()
+}
+
+/// Every two turns on the snake and the car (every two modules, both a quarter or both a
+/// half turn up) and a few three, all in one synchronous group with a wide and a narrow
+/// skew, over every pair of points (`Pairs::All`): the search agrees with a dense grid of
+/// the band (`band_agrees_with_grid`). Clear only where no grid point inside the band is
+/// below the limit, never a conflict where the grid's bound clears the band, and a found
+/// approach no farther than the grid's closest inside the band and no closer than the
+/// band's bound (a timing outside the band must not be reported). Unproven fails: these
+/// groups are small.
+#[test]
+fn the_lockstep_band_agrees_with_a_dense_grid_inside_it() {
+    let (mut clear, mut closest, mut kept_out) = (0, 0, 0);
+    let mut tally = |(was_clear, was_kept_out): (bool, bool)| {
+        if was_clear {
+            clear += 1;
+        } else {
+            closest += 1;
+        }
+        kept_out += usize::from(was_kept_out);
+    };
+    for text in [SNAKE, CAR] {
+        let start = world(text);
+        let n = start.view().len();
+        for quarters in [1, 2] {
+            let motions = motions_by(&start, quarters);
+            for (a, b) in (0..n).flat_map(|a| (a + 1..n).map(move |b| (a, b))) {
+                let (Some(ma), Some(mb)) = (&motions[a], &motions[b]) else {
+                    continue;
+                };
+                let group = [(ma, a), (mb, b)];
+                band_agrees_with_grid(&start, &group, 120)
+                    .into_iter()
+                    .for_each(&mut tally);
+            }
+        }
+    }
+    // Three where the band matters: on the snake, half turns along its middle (every timing
+    // brings two modules together, the band keeps them apart or nearly); on the car, the
+    // driver and both axles a quarter.
+    for (text, quarters, names) in [
+        (SNAKE, 2, ["M2", "M3", "M4"]),
+        (SNAKE, 2, ["M3", "M4", "M6"]),
+        (CAR, 1, ["M0", "M1", "M6"]),
+    ] {
+        let start = world(text);
+        let motions = motions_by(&start, quarters);
+        let index = |name: &str| start.view().index(name).expect("a module");
+        let members = names.map(index);
+        let motion = |m: usize| motions[m].as_ref().expect("a turn that moves");
+        let group: Vec<(&Motion, usize)> = members.iter().map(|&m| (motion(m), m)).collect();
+        band_agrees_with_grid(&start, &group, 80)
+            .into_iter()
+            .for_each(&mut tally);
+    }
+    assert!(
+        clear >= 10 && closest >= 10,
+        "{clear} clear, {closest} closest"
+    );
+    assert!(
+        kept_out >= 5,
+        "the band kept out only {kept_out} approaches"
+    );
+}
+
+/// On the snake, M3 turning its joint a half turn up and M4 a half turn down, in lock-step:
+/// M3's turn alone brings M0 onto M6 (the world refuses it; M4's alone it accepts), so over
+/// every timing the pair meets, but moving together within the skew they stay clear (the
+/// grid of the band agrees, by its lower bound, so that the search's Clear is right).
+#[test]
+fn a_synchronous_pair_can_be_clear_where_one_turn_alone_collides() {
+    let start = world(SNAKE);
+    let index = |name: &str| start.view().index(name).expect("a module");
+    let (m0, m3, m4, m6) = (index("M0"), index("M3"), index("M4"), index("M6"));
+    let half = |increasing| Action::Turn {
+        joint: 0,
+        from: None,
+        to: 216,
+        increasing,
+    };
+    let (up, down) = (half(true), half(false));
+    let alone = |name: &str, action: &Action| start.model().clone_model().apply(name, action);
+    assert!(
+        matches!(alone("M3", &up), Err(OpError::SweepCollision { moving, still, .. })
+            if (moving.as_str(), still.as_str()) == ("M0", "M6")),
+        "M3's turn alone brings M0 onto M6"
+    );
+    assert!(alone("M4", &down).is_ok(), "M4's turn alone is clear");
+    let motion = |name: &str, action: &Action| start.model().motion(name, action).expect("a turn");
+    let (a, b) = (motion("M3", &up), motion("M4", &down));
+    let group = [(&a, m3), (&b, m4)];
+
+    let banded = turns_at(&group, &start, &in_lockstep(2, 0.18), Pairs::All);
+    assert_eq!(banded, Some(Together::Clear));
+    let (_, linkage) = linkage_of(&group, &start).expect("a tree");
+    let grid = banded_minimum(&linkage, &points_of(&start), 400, 0.18);
+    assert!(grid.lower >= a.limit, "the band's bound {}", grid.lower);
+
+    let Some(Together::Closest(found)) = turns_at(&group, &start, &Timings::every(), Pairs::All)
+    else {
+        panic!("over every timing M3's turn alone is a timing, which meets");
+    };
+    assert_eq!(found.modules, (m0, m6));
+    // Both turns move them apart (M0 is on M3's moving side, M6 on M4's): the timing that
+    // meets is M3's turn with M4's not begun.
+    assert_eq!(found.turns, vec![0, 1]);
+    assert!(found.distance <= REFINEMENT, "{}", found.distance);
+}
+
+/// With a skew of a whole turn the band is the whole box: on a few pairs of turns on the
+/// snake and the car, clear and not, the verdict over every pair of points is exactly the
+/// one over every timing (the same distance, modules and turns).
+#[test]
+fn the_band_with_full_skew_is_every_timing() {
+    let (mut clear, mut closest) = (0, 0);
+    for (text, quarters, names) in [
+        (SNAKE, 1, ["M3", "M4"]),
+        (SNAKE, 2, ["M3", "M4"]),
+        (SNAKE, 1, ["M0", "M6"]),
+        (CAR, 1, ["M0", "M6"]),
+        (CAR, 2, ["M1", "M6"]),
+    ] {
+        let start = world(text);
+        let motions = motions_by(&start, quarters);
+        let index = |name: &str| start.view().index(name).expect("a module");
+        let [a, b] = names.map(index);
+        let turn = |m: usize| motions[m].as_ref().expect("a turn that moves");
+        let group = [(turn(a), a), (turn(b), b)];
+        let every = turns_at(&group, &start, &Timings::every(), Pairs::All);
+        let whole = turns_at(&group, &start, &in_lockstep(2, 1.0), Pairs::All);
+        assert_eq!(whole, every, "{names:?}, {quarters} quarters");
+        match every {
+            Some(Together::Clear) => clear += 1,
+            Some(Together::Closest(_)) => closest += 1,
+            other => panic!("{names:?}, {quarters} quarters: {other:?}"),
+        }
+    }
+    assert!(
+        clear >= 2 && closest >= 2,
+        "{clear} clear, {closest} closest"
+    );
 }
