@@ -448,6 +448,18 @@ static dr_stmt_t ready_group(const dr_module_t *m, uint8_t *size)
     return DR_NONE;
 }
 
+/* Whether the module counts down to a group that is done, or of an older epoch. */
+static uint8_t go_stale(const dr_module_t *m)
+{
+    dr_statement_t st;
+    if (m->go_group == DR_NONE) {
+        return 0;
+    }
+    dr_hal_table_read(&st, &PROGRAM(m)->statements[m->go_group], sizeof st);
+    return (uint8_t)(m->go_epoch != m->shared.epoch ||
+                     group_done(&m->shared, m->go_group, st.sync_size));
+}
+
 /* Keeps the countdown: drops a group that is done (or of an older epoch), takes the first
  * ready group when there is none, starting its countdown now (`now` + the delay) unless a
  * packet gave an earlier start, and opens it once the start has come. Returns whether the
@@ -456,13 +468,8 @@ static uint8_t go_update(dr_module_t *m, uint32_t now)
 {
     uint8_t size = 0;
     dr_stmt_t first;
-    dr_statement_t st;
-    if (m->go_group != DR_NONE) {
-        dr_hal_table_read(&st, &PROGRAM(m)->statements[m->go_group], sizeof st);
-        if (m->go_epoch != m->shared.epoch ||
-            group_done(&m->shared, m->go_group, st.sync_size)) {
-            m->go_group = DR_NONE;
-        }
+    if (go_stale(m)) {
+        m->go_group = DR_NONE;
     }
     m->go_open = 0;
     if (m->go_group == DR_NONE) {
@@ -772,12 +779,19 @@ uint8_t dr_module_next_wakeup(dr_module_t *m, uint32_t *at_ms)
     if (m->relay || (m->running == DR_NONE && !held_back(m) && sync_scan(m, 0, NULL))) {
         *at_ms = now;
     }
-    /* The countdown's end (or a group to take) is a step's to see. */
-    if (!m->go_open && (m->go_group != DR_NONE || ready_group(m, &size) != DR_NONE)) {
-        at = (m->go_group != DR_NONE) ? m->go_at_ms : now;
-        if ((uint32_t)(at - *at_ms) >= 0x80000000u) {
-            *at_ms = at;
+    /* A group to take or to drop is the next step's to see, the countdown's end its step. */
+    at = *at_ms;
+    if (m->go_group == DR_NONE) {
+        if (ready_group(m, &size) != DR_NONE) {
+            at = now;
         }
+    } else if (go_stale(m)) {
+        at = now;
+    } else if (!m->go_open) {
+        at = m->go_at_ms;
+    }
+    if ((uint32_t)(at - *at_ms) >= 0x80000000u) {
+        *at_ms = at;
     }
 #endif
     return wake;

@@ -151,6 +151,14 @@ fn validate(ir: &Ir, topology: &Topology, options: &ModelOptions) -> Result<(), 
     if ir.statements.is_empty() {
         return Err(limit("the model needs at least one statement".into()));
     }
+    if let Some(member) = ir.statements.iter().find(|s| s.synchronous.is_some()) {
+        // Said rather than modelled without it: a proof of the model would not be a proof
+        // of the runtime's start barrier (its liveness above all).
+        return Err(LimitError {
+            message: "the model of the lattice protocol does not include synchronous groups' start (the ready bits and the countdown); check the sequence with `check --from` and `simulate`".into(),
+            span: member.span,
+        });
+    }
     if topology.modules.is_empty() || topology.modules.len() > MAX_MODEL_MODULES {
         return Err(limit(format!(
             "the model handles 1 to {MAX_MODEL_MODULES} modules; the configuration has {}",

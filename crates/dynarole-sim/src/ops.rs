@@ -335,7 +335,7 @@ impl State {
         let named: Vec<String> = others.iter().map(|o| format!("#{o}")).collect();
         let with = match named.is_empty() {
             // A synchronous group's turn alone: its own sweep (`check_running_turns`).
-            true => String::new(),
+            true => "running alone, ".to_string(),
             false => format!("running at once with {}, ", named.join(", ")),
         };
         let view = self.view();

@@ -14,5 +14,6 @@ void test_packets(void);
 void test_sim(void);
 void test_describe(void);
 void test_dissemination(void);
+void test_sync(void);
 
 #endif /* CHECK_H */
