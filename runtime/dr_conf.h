@@ -140,12 +140,25 @@
 #define DR_CONF_SYNC 0
 #endif
 /* With DR_CONF_SYNC: how long after a synchronous group is ready (its last member's module
- * set to start it) its members start, in ms. Every module learns the instant with the age of
- * the news, so all of them start at it but for the packets' transit times; the delay is for
- * the news to reach every member, retries included, before any of them moves (a turning
- * module's links break). */
+ * set to start it) its members start, in ms: DR_CONF_SYNC_DELAY_MS, plus
+ * DR_CONF_SYNC_DELAY_PER_MEMBER_MS for each member after the first. Every module learns the
+ * instant with the age of the news, so all of them start at it but for the packets' transit
+ * times; the delay is for the news to reach every member, retries included, before any of
+ * them moves (a turning module's links break), and the members of a larger group are more
+ * links apart (the members stand for the links: the runtime does not know the shape). */
 #ifndef DR_CONF_SYNC_DELAY_MS
 #define DR_CONF_SYNC_DELAY_MS 400
+#endif
+#ifndef DR_CONF_SYNC_DELAY_PER_MEMBER_MS
+#define DR_CONF_SYNC_DELAY_PER_MEMBER_MS 40
+#endif
+/* With DR_CONF_SYNC: while a module counts down, it sends its state and the countdown again
+ * at a random time between half this and this many ms after the last time, until the start:
+ * a neighbour that missed the news (two neighbours answering it at once collide at its
+ * half-duplex side, again and again) hears it on one of several independent tries within the
+ * delay. 0: only when it is news. */
+#ifndef DR_CONF_SYNC_REPEAT_MS
+#define DR_CONF_SYNC_REPEAT_MS 60
 #endif
 
 /* Largest packet, in bytes (receive buffers are this big). */

@@ -37,7 +37,12 @@ void dr_hal_send(struct dr_module *m, uint8_t channel, const uint8_t *bytes, uin
  * part index (connector or joint; 0 if the part has none), `args` its arguments. The statement
  * number lets a platform log or check exactly which statement runs (the simulator's S1-S3
  * checks rest on it); the operation is fully described by (op, index, args).
- * Operations are idempotent: re-issuing one that already took effect completes at once. */
+ * Operations are idempotent: re-issuing one that already took effect completes at once.
+ * A member of a synchronous group (its row's sync_size is not 0: `sync { ... }`, lattice
+ * runtime only) is started on every member's module at one agreed instant, and must move at
+ * the pace that makes it take as long as the group's longest member (the rows sync_index
+ * back from it are its group), so that all of them keep in lock-step (lattice/README.md,
+ * "Synchronous groups"). */
 void dr_hal_op_start(struct dr_module *m, uint16_t statement, uint8_t op, uint8_t index,
                      const int16_t *args);
 /* Whether the started operations are still running, all done, or one failed. */

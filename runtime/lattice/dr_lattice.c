@@ -337,16 +337,25 @@ static uint8_t held_back(const dr_module_t *m)
 }
 
 #if DR_CONF_SYNC
+/* How long after a group of `size` members is ready its members start: the news crosses
+ * more links in a larger group (README.md, "Synchronous groups"). O(1). */
+static uint32_t sync_delay(uint8_t size)
+{
+    return DR_CONF_SYNC_DELAY_MS + (uint32_t)(size - 1u) * DR_CONF_SYNC_DELAY_PER_MEMBER_MS;
+}
+
 /* The state payload and the countdown (the group and the age of its news, 0xFFFF for none),
  * in `out` (WIRE bytes). */
 static void state_payload(dr_module_t *m, uint8_t *out)
 {
     uint32_t age = 0;
     uint16_t group = 0xFFFFu;
+    dr_statement_t st;
     (void)dr_shared_encode(&m->shared, out, PAYLOAD);
     if (m->go_group != DR_NONE) {
         group = (uint16_t)m->go_group;
-        age = dr_hal_now_ms(m) + DR_CONF_SYNC_DELAY_MS - m->go_at_ms;
+        dr_hal_table_read(&st, &PROGRAM(m)->statements[m->go_group], sizeof st);
+        age = dr_hal_now_ms(m) + sync_delay(st.sync_size) - m->go_at_ms;
         if (age >= 0x80000000u) {
             age = 0; /* a start later than the delay from now: a clock step back */
         } else if (age > 0xFFFEu) {
@@ -479,11 +488,31 @@ static uint8_t go_update(dr_module_t *m, uint32_t now)
         }
         m->go_group = first;
         m->go_epoch = m->shared.epoch;
-        m->go_at_ms = now + DR_CONF_SYNC_DELAY_MS;
+        m->go_at_ms = now + sync_delay(size);
         return 1;
     }
     m->go_open = (uint8_t)((uint32_t)(now - m->go_at_ms) < 0x80000000u);
     return 0;
+}
+
+/* Whether the countdown is to be sent now: it is news, or the module counts down and its
+ * repeat is due; then the next repeat is drawn, between half DR_CONF_SYNC_REPEAT_MS and all
+ * of it from now (random, so that two neighbours do not repeat in step). O(1). */
+static uint8_t go_repeat(dr_module_t *m, uint32_t now, uint8_t news)
+{
+#if DR_CONF_SYNC_REPEAT_MS > 0
+    uint8_t due = (uint8_t)((uint32_t)(now - m->go_repeat_ms) < 0x80000000u);
+    if (m->go_group == DR_NONE || m->go_open || (!news && !due)) {
+        return news;
+    }
+    m->go_repeat_ms = now + DR_CONF_SYNC_REPEAT_MS / 2u +
+                      (uint32_t)(dr_hal_random(m) % (DR_CONF_SYNC_REPEAT_MS / 2u + 1u));
+    return 1;
+#else
+    (void)m;
+    (void)now;
+    return news;
+#endif
 }
 
 /* A packet's countdown: group `group` was ready `age` ms before it was sent. Taken when this
@@ -494,11 +523,12 @@ static void go_heard(dr_module_t *m, uint16_t group, uint16_t age, uint32_t now)
 {
     const dr_program_t *p = PROGRAM(m);
     dr_statement_t st;
-    uint32_t at = now - age + DR_CONF_SYNC_DELAY_MS;
+    uint32_t at;
     if (group >= p->n_statements) {
         return;
     }
     dr_hal_table_read(&st, &p->statements[group], sizeof st);
+    at = now - age + sync_delay(st.sync_size);
     if (st.sync_size == 0u || st.sync_index != 0u || !group_ready(&m->shared, (dr_stmt_t)group, &st) ||
         group_done(&m->shared, (dr_stmt_t)group, st.sync_size)) {
         return;
@@ -661,6 +691,7 @@ void dr_module_init(dr_module_t *m, const dr_program_t *program, void *platform)
     m->go_group = DR_NONE;
     m->go_epoch = 0;
     m->go_at_ms = 0;
+    m->go_repeat_ms = 0;
 #endif
     dr_shared_normalise(&m->shared, PROGRAM(m)->n_statements);
     m->unechoed = DR_NONE;
@@ -737,12 +768,12 @@ void dr_module_step(dr_module_t *m)
 #if DR_CONF_SYNC
     /* Set to start its synchronous groups' members: a new fact, sent at once. Then the
      * countdown to a ready group's start, kept by every module (taking one is news, passed
-     * on at once, as ready bits heard are: the countdown must reach every member before the
-     * first moves). */
+     * on at once, as ready bits heard are, and sent again until the start: the countdown
+     * must reach every member before the first moves). */
     if (m->running == DR_NONE && !held_back(m)) {
         changed = (uint8_t)(changed | sync_scan(m, 0, m->shared.ready));
     }
-    changed = (uint8_t)(changed | go_update(m, now) | m->relay);
+    changed = (uint8_t)(changed | go_repeat(m, now, (uint8_t)(go_update(m, now) | m->relay)));
     m->relay = 0;
 #endif
     if (m->running == DR_NONE && !held_back(m)) {
@@ -789,6 +820,11 @@ uint8_t dr_module_next_wakeup(dr_module_t *m, uint32_t *at_ms)
         at = now;
     } else if (!m->go_open) {
         at = m->go_at_ms;
+#if DR_CONF_SYNC_REPEAT_MS > 0
+        if ((uint32_t)(m->go_repeat_ms - at) >= 0x80000000u) {
+            at = m->go_repeat_ms; /* a repeat before the start */
+        }
+#endif
     }
     if ((uint32_t)(at - *at_ms) >= 0x80000000u) {
         *at_ms = at;

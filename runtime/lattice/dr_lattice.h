@@ -158,6 +158,7 @@ typedef struct dr_module {
                                           counts down to, or DR_NONE */
     uint16_t go_epoch;                 /* the epoch of go_group */
     uint32_t go_at_ms;                 /* when go_group starts, on this module's clock */
+    uint32_t go_repeat_ms;             /* the countdown's next repeat (DR_CONF_SYNC_REPEAT_MS) */
 #endif
     uint32_t next_broadcast_ms;        /* the next broadcast, and (adaptive) the next retry
                                           of a failed operation: the one timer of the runtime */

@@ -138,3 +138,29 @@ fn a_member_losing_power_mid_turn_breaks_lock_step_and_the_clash_is_reported() {
         "{clashes:?}"
     );
 }
+
+/// Every joint of the original authors' chain of 15 in one group: the ends are 14 hops
+/// apart. On the ATRON preset, a module between two neighbours can miss the countdown while
+/// their answers to it collide at its half-duplex side, again and again; the countdown is
+/// therefore sent again until the start (DR_CONF_SYNC_REPEAT_MS). Sent only once, 4 of these
+/// 200 lossless runs had a member hear it only after its neighbours had started, and start
+/// seconds late.
+#[test]
+fn every_member_of_a_long_chain_hears_the_countdown_in_time_without_loss() {
+    const CHAIN: &str = include_str!("../../../robots/atron/examples/rotation-chain-15.json");
+    let turns: Vec<String> = (0..15)
+        .map(|k| format!("M{k}.Joint.rotateFromToBy(0, 216, true, 150)"))
+        .collect();
+    let source = format!(
+        "robot atron;\nsequence s {{\n    sync {{ {}; }};\n}}\n",
+        turns.join(" & ")
+    );
+    let sync = simulator(&source, &["s"], Protocol::Lattice);
+    let bound = 14.0 * SKEW_PER_HOP_MS as f64;
+    for seed in 1..=200 {
+        let report = run(&sync, CHAIN, None, &Scenario::default(), seed);
+        assert_clean(&report);
+        let spread = report.synchronous_spread_ms.expect("a synchronous group");
+        assert!(spread <= bound, "seed {seed}: {spread} ms");
+    }
+}
