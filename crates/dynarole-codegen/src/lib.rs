@@ -31,5 +31,5 @@ pub use protocol::{
     Dissemination, GroupRun, Growth, Modelled, PaperMerge, Payload, Protocol, ProtocolInfo,
     Setting, TokenRetries, Variant, PROTOCOLS,
 };
-pub use runtime::warning_flags;
+pub use runtime::{synchronous_delay_ms, warning_flags};
 pub use token::TokenRoutes;

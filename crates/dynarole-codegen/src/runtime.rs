@@ -36,6 +36,34 @@ pub fn warning_flags() -> Vec<&'static str> {
     flags
 }
 
+/// How long after a synchronous group of `members` is ready the lattice runtime starts it, in
+/// ms: `DR_CONF_SYNC_DELAY_MS` plus `DR_CONF_SYNC_DELAY_PER_MEMBER_MS` for each member after
+/// the first, the defaults of the embedded `runtime/dr_conf.h` (their one definition), so that
+/// the critical path waits for the countdown as the modules do.
+pub fn synchronous_delay_ms(members: usize) -> u64 {
+    let base = conf_default("DR_CONF_SYNC_DELAY_MS");
+    let per_member = conf_default("DR_CONF_SYNC_DELAY_PER_MEMBER_MS");
+    base.saturating_add(per_member.saturating_mul(members.saturating_sub(1) as u64))
+}
+
+/// The number a `#define NAME N` of `runtime/dr_conf.h` gives.
+fn conf_default(name: &str) -> u64 {
+    let value = COMMON[0]
+        .1
+        .lines()
+        .filter_map(|line| line.trim().strip_prefix("#define "))
+        .find_map(|rest| {
+            let (key, value) = rest.split_once(char::is_whitespace)?;
+            (key == name).then(|| value.trim().parse::<u64>().ok())?
+        });
+    // The file is embedded at build time and a test reads it: this cannot fail at run time.
+    assert!(
+        value.is_some(),
+        "runtime/dr_conf.h defines {name} as a number"
+    );
+    value.unwrap_or_default()
+}
+
 /// The lattice protocol. The describe file is for traces (host, simulator); the MCU build in
 /// the generated Makefile leaves it out, with dr_text.c. The dissemination policies are
 /// headers that dr_lattice.c includes (dr_dissemination.h), both copied: the configuration

@@ -549,3 +549,13 @@ fn dissemination_is_configured_for_the_lattice_protocol_only() {
         Err("unknown dissemination `trickle`, expected `adaptive` or `fixed`".to_string())
     );
 }
+
+/// The countdown of a synchronous group, read from `runtime/dr_conf.h`: a base and a share
+/// per member after the first, both positive.
+#[test]
+fn the_synchronous_delay_grows_by_one_share_per_member() {
+    let one = dynarole_codegen::synchronous_delay_ms(1);
+    let share = dynarole_codegen::synchronous_delay_ms(2) - one;
+    assert!(one > 0 && share > 0, "{one} {share}");
+    assert_eq!(dynarole_codegen::synchronous_delay_ms(20), one + 19 * share);
+}

@@ -2,10 +2,12 @@
 //! (the IR's `deps`, what the sequence means) weighted by the timing preset's operation
 //! durations, and the hand-overs along it (dependency edges between statements of different
 //! modules). No run can complete sooner; a protocol that passes the baton from one module to
-//! the next by broadcast pays about one broadcast period per hand-over on top.
+//! the next by broadcast pays about one broadcast period per hand-over on top. A synchronous
+//! group's members weigh the runtime's countdown plus the group's lock-step duration.
 
 use crate::scenario::Durations;
 use crate::sequence::{OpKind, Sequence};
+use dynarole_codegen::synchronous_delay_ms;
 use dynarole_core::check::ResolvedStatement;
 use dynarole_core::lower::Ir;
 use dynarole_core::synchronous::lockstep_ms;
@@ -126,11 +128,13 @@ fn statement_durations(seq: &Sequence, durations: &Durations) -> impl Fn(usize) 
         };
         out.push(kind.nominal_ms(durations, quarters));
     }
-    // A synchronous group's turns all take the longest's time, as the simulator runs them.
+    // A synchronous group's turns all take the longest's time, as the simulator runs them,
+    // and start no sooner than the runtime's countdown after their dependencies are done.
     for (s, duration) in out.iter_mut().enumerate() {
         if let Some(group) = seq.synchronous(s) {
             let members: Vec<&ResolvedStatement> = group.map(|k| &seq.resolved[k]).collect();
-            *duration = lockstep_ms(&seq.robot, *durations, &members);
+            let countdown = synchronous_delay_ms(members.len());
+            *duration = countdown + lockstep_ms(&seq.robot, *durations, &members);
         }
     }
     move |s: usize| out.get(s).copied().unwrap_or(0)

@@ -80,3 +80,19 @@ fn any_weights() {
     assert_eq!(path.statements.len(), 3);
     assert_eq!(path.handovers, 1);
 }
+
+#[test]
+fn a_synchronous_group_waits_for_the_countdown_and_moves_at_its_longest_members_pace() {
+    // #0 retracts (2 s); then M3's quarter turn and M4's half turn start together after the
+    // runtime's countdown for two members, and both take the half turn's 0.86 s.
+    let sim = simulator(
+        "robot atron;\nsequence s {\n    M3.Connector[0].retract();\n    sync {\n        \
+         M3.Joint.rotateFromToBy(0, 108, true, 150) &\n        \
+         M4.Joint.rotateFromToBy(0, 216, false, 150);\n    };\n}\n",
+    );
+    let countdown = dynarole_codegen::synchronous_delay_ms(2);
+    assert!(countdown > 0);
+    let path = sim.critical_path(&USSR_TIMING);
+    assert_eq!(path.duration_ms, 2000 + countdown + 860);
+    assert_eq!(path.statements.len(), 2);
+}
