@@ -198,7 +198,11 @@ void dr_module_init(dr_module_t *m, const dr_program_t *program, void *platform)
  * (bit k: statement run + 1 + k); e.g. "e0 low3 done5 run4", "e0 low22 done0 run22+1". With DR_PROGRAM_NO_NV, what the
  * module waits for follows: ` hear<channels>` (hexadecimal, bit c = channel c) while a
  * neighbour connected at the restart has not been heard, ` echo<statement>` while its own
- * completion has not been sent back; e.g. "e0 low0 done0 run- hear11". Cost: O(W/4). */
+ * completion has not been sent back; e.g. "e0 low0 done0 run- hear11". With DR_CONF_SYNC,
+ * after `run`: ` ready<window>` (hexadecimal as `done`; absent when empty) and ` go<statement>`
+ * while the module counts down to the synchronous group whose first statement that is
+ * (` went<statement>` once the countdown is over and until the group is done); e.g.
+ * "e0 low0 done0 run- ready3 go0". Cost: O(W/4). */
 
 /* The semilattice (exported for tests and for the model checker's reference):
  * join: commutative, associative, idempotent; normalise: advance the low-water mark over the

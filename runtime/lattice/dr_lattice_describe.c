@@ -53,6 +53,25 @@ uint8_t dr_module_describe(const dr_module_t *m, char *out, uint8_t cap)
             text_hex(out, cap, &n, m->batch);
         }
     }
+#if DR_CONF_SYNC
+    /* Synchronous groups: the ready set (as `done`) and the group counted down to. */
+    leading = 1;
+    for (j = (uint16_t)(W / 4u); j > 0u; j--) {
+        nibble = (uint8_t)(((unsigned)m->shared.ready[(j - 1u) >> 1] >> (((j - 1u) & 1u) * 4u)) &
+                           0x0Fu);
+        if (nibble != 0u || !leading) {
+            if (leading) {
+                dr_text_str(out, cap, &n, " ready");
+            }
+            leading = 0;
+            dr_text_char(out, cap, &n, hex[nibble]);
+        }
+    }
+    if (m->go_group != DR_NONE) {
+        dr_text_str(out, cap, &n, m->go_open ? " went" : " go");
+        dr_text_decimal(out, cap, &n, m->go_group);
+    }
+#endif
     /* DR_PROGRAM_NO_NV: what the module waits for before it may start anything. */
     if (m->unheard != 0u) {
         dr_text_str(out, cap, &n, " hear");

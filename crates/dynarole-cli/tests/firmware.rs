@@ -236,6 +236,42 @@ fn a_short_sequence_runs_on_emulated_atmega128s_in_the_host_runs_order() {
     assert!(value["firmware"]["text"].as_u64().expect("text") > 1000);
 }
 
+/// A synchronous group on the chip: the snake's two half turns that may only turn together
+/// and their derived reverse, under 30 % loss. The image has the ready bits and the countdown
+/// (`DR_CONF_SYNC`); every statement's events come in the host run's order, the trace's state
+/// column shows the countdown, and the two members start within the skew the check assumes.
+#[test]
+fn a_synchronous_group_starts_at_one_instant_on_emulated_atmega128s() {
+    if !avr_tools() {
+        return;
+    }
+    let args = [
+        "robots/atron/examples/snake-twist.dr",
+        "--sequence",
+        "there_and_back",
+        "--from",
+        "robots/atron/examples/snake.json",
+        "--expect",
+        "robots/atron/examples/snake.json",
+        "--loss",
+        "0.3",
+        "--seed",
+        "2",
+    ];
+    let (_, report) = compare_with_host(&args, "snake-twist", true);
+    let spread = report["synchronous_spread_ms"].as_f64().expect("a spread");
+    // M3 and M4 are neighbours: one hop.
+    let bound = dynarole_core::synchronous::SKEW_PER_HOP_MS as f64;
+    assert!(spread <= bound, "{spread} ms");
+    let trace = std::fs::read_to_string(scratch("snake-twist-true.trace")).expect("trace");
+    assert!(
+        trace
+            .lines()
+            .any(|l| l.contains(" start ") && l.contains(" went")),
+        "no start shows the countdown over:\n{trace}"
+    );
+}
+
 #[test]
 fn firmware_refuses_an_unknown_mcu_and_foreign_packets() {
     let out = dynarole(&[

@@ -54,6 +54,9 @@ void test_describe(void)
     memset(&m, 0, sizeof m);
     m.running = DR_NONE;
     m.unechoed = DR_NONE;
+#if DR_CONF_SYNC
+    m.go_group = DR_NONE;
+#endif
     check_text(&m, "e0 low0 done0 run-");
     check_bounded(&m, "e0 low0 done0 run-");
 
@@ -124,4 +127,24 @@ void test_describe(void)
         strcat(want, "f");
     }
     check_text(&m, want);
+    m.unheard = 0;
+
+#if DR_CONF_SYNC
+    /* Synchronous groups: the ready set after `run` (absent when empty), then the group
+     * counted down to, `went` once its countdown is over. */
+    m.shared.ready[0] = 0x03u;
+    check_text(&m, "e1 low0 done0 run- ready3");
+    m.go_group = 0u;
+    check_text(&m, "e1 low0 done0 run- ready3 go0");
+    check_bounded(&m, "e1 low0 done0 run- ready3 go0");
+    m.go_open = 1u;
+    m.running = 1u;
+    check_text(&m, "e1 low0 done0 run1 ready3 went0");
+    if (DR_CONF_WINDOW >= 16) {
+        m.shared.ready[1] = 0x01u;
+        m.shared.ready[0] = 0x00u;
+        m.unechoed = 7u;
+        check_text(&m, "e1 low0 done0 run1 ready100 went0 echo7");
+    }
+#endif
 }
