@@ -20,13 +20,30 @@ static void text_hex(char *out, uint8_t cap, uint8_t *n, uint32_t v)
     }
 }
 
+/* Appends the window's set `set` (bit i: statement low + i) as one hexadecimal number, without
+ * leading zeros ("0" when empty). Cost: O(W/4). */
+static void text_set(char *out, uint8_t cap, uint8_t *n, const uint8_t *set)
+{
+    uint8_t leading = 1;
+    uint8_t nibble;
+    uint16_t j;
+    for (j = (uint16_t)(W / 4u); j > 0u; j--) {
+        nibble = (uint8_t)(((unsigned)set[(j - 1u) >> 1] >> (((j - 1u) & 1u) * 4u)) & 0x0Fu);
+        if (nibble != 0u || j == 1u || !leading) {
+            leading = 0;
+            dr_text_char(out, cap, n, hex[nibble]);
+        }
+    }
+}
+
 /* Cost: O(W/4). */
 uint8_t dr_module_describe(const dr_module_t *m, char *out, uint8_t cap)
 {
     uint8_t n = 0;
-    uint8_t leading = 1;
-    uint8_t nibble;
+#if DR_CONF_SYNC
     uint16_t j;
+    uint8_t any = 0;
+#endif
     if (cap == 0u) {
         return 0;
     }
@@ -35,14 +52,7 @@ uint8_t dr_module_describe(const dr_module_t *m, char *out, uint8_t cap)
     dr_text_str(out, cap, &n, " low");
     dr_text_decimal(out, cap, &n, m->shared.low);
     dr_text_str(out, cap, &n, " done");
-    for (j = (uint16_t)(W / 4u); j > 0u; j--) {
-        nibble = (uint8_t)(((unsigned)m->shared.done[(j - 1u) >> 1] >> (((j - 1u) & 1u) * 4u)) &
-                           0x0Fu);
-        if (nibble != 0u || j == 1u || !leading) {
-            leading = 0;
-            dr_text_char(out, cap, &n, hex[nibble]);
-        }
-    }
+    text_set(out, cap, &n, m->shared.done);
     dr_text_str(out, cap, &n, " run");
     if (m->running == DR_NONE) {
         dr_text_char(out, cap, &n, '-');
@@ -54,18 +64,14 @@ uint8_t dr_module_describe(const dr_module_t *m, char *out, uint8_t cap)
         }
     }
 #if DR_CONF_SYNC
-    /* Synchronous groups: the ready set (as `done`) and the group counted down to. */
-    leading = 1;
-    for (j = (uint16_t)(W / 4u); j > 0u; j--) {
-        nibble = (uint8_t)(((unsigned)m->shared.ready[(j - 1u) >> 1] >> (((j - 1u) & 1u) * 4u)) &
-                           0x0Fu);
-        if (nibble != 0u || !leading) {
-            if (leading) {
-                dr_text_str(out, cap, &n, " ready");
-            }
-            leading = 0;
-            dr_text_char(out, cap, &n, hex[nibble]);
-        }
+    /* Synchronous groups: the ready set (as `done`; absent when empty) and the group counted
+     * down to. */
+    for (j = 0; j < (uint16_t)(W / 8u); j++) {
+        any = (uint8_t)(any | m->shared.ready[j]);
+    }
+    if (any != 0u) {
+        dr_text_str(out, cap, &n, " ready");
+        text_set(out, cap, &n, m->shared.ready);
     }
     if (m->go_group != DR_NONE) {
         dr_text_str(out, cap, &n, m->go_open ? " went" : " go");
