@@ -1,9 +1,10 @@
-//! Benchmark: replay of the paper's eight2car, and of a 1,000-statement sequence on a generated
-//! 10,000-module ATRON chain.
+//! Benchmark: replay of the paper's eight2car, of a 1,000-statement sequence on a generated
+//! 10,000-module ATRON chain, and the independence check of a group whose completion orders
+//! are all checked (the eight's eight latches released at once: 2^8 sets).
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use dynarole_core::{analyze, parse};
-use dynarole_replay::{assign_modules, replay, RobotWorld};
+use dynarole_replay::{assign_modules, check_independence, replay, RobotWorld};
 use dynarole_robot_atron::generated::atron_chain_json;
 
 const FIG5: &str = include_str!("../../../robots/atron/examples/eight2car.dr");
@@ -49,7 +50,47 @@ fn bench_replay(c: &mut Criterion, name: &str, source: &str, config: &str, seque
     });
 }
 
+/// The eight's releasable latches (each alone keeps the robot whole) joined in one group of
+/// `k`: every pair gives the same warnings in either order, so the group's completion orders
+/// decide it (`k` · 2^(k−1) steps).
+fn releases(k: usize) -> String {
+    let latches = [
+        "M0.Connector[$CONNECTOR_0]",
+        "M0.Connector[$CONNECTOR_4]",
+        "M3.Connector[$CONNECTOR_0]",
+        "M3.Connector[$CONNECTOR_2]",
+        "M3.Connector[$CONNECTOR_4]",
+        "M3.Connector[$CONNECTOR_6]",
+        "M6.Connector[$CONNECTOR_2]",
+        "M6.Connector[$CONNECTOR_6]",
+    ];
+    let ops: Vec<String> = (latches.iter().take(k))
+        .map(|l| format!("    {l}.retract()"))
+        .collect();
+    format!("robot atron;\nsequence s {{\n{};\n}}\n", ops.join(" &\n"))
+}
+
+fn bench_orders(c: &mut Criterion, k: usize) {
+    let registry = dynarole_robots::plugins();
+    let source = releases(k);
+    let parsed = parse(&source);
+    let program = analyze(&parsed.file, &registry)
+        .0
+        .expect("the releases check");
+    let config = dynarole_robots::read_configuration(EIGHT).expect("the eight");
+    let plans = vec![program.expand("s").expect("s")];
+    let assignment = assign_modules(&program, &plans, &config).expect("labels");
+    let world = RobotWorld::new(config, &program.robot).expect("world");
+    let name = format!("independence of {k} releases on the eight, every completion order");
+    c.bench_function(&name, |b| {
+        b.iter(|| check_independence(&program, &plans, world.clone(), &assignment))
+    });
+}
+
 fn benches(c: &mut Criterion) {
+    for k in [4, 6, 8] {
+        bench_orders(c, k);
+    }
     bench_replay(
         c,
         "replay eight2car (25 statements, 7 modules)",

@@ -4,15 +4,17 @@
 
 use crate::lockstep;
 use crate::motion::{closest_approach, MovingSide};
+use crate::orders::{every_order, Elements, Verdict, EVERY_ORDER_UP_TO};
 use crate::robot_world::RobotWorld;
 use crate::roles::Assignment;
 use crate::simultaneous::{turns_together, Approach, Together};
+use crate::warnings::unmatched;
 use dynarole_core::ast::SeparatorKind;
 use dynarole_core::check::ResolvedStatement;
 use dynarole_core::diagnostic::{Diagnostic, DiagnosticKind};
 use dynarole_core::expand::{Plan, PlanElement, PlanKind};
 use dynarole_core::{Program, RobotApi};
-use dynarole_world::{Motion, Warning};
+use dynarole_world::Motion;
 use std::cell::OnceCell;
 
 /// Warnings for every pair of elements of a parallel group that are not independent, walking
@@ -102,25 +104,47 @@ pub(crate) fn group_pair(
     checker.decided_pair(&element(a), &element(b), sides, world, alone)
 }
 
-/// Why the turns of a group starting from `world`, done together, are not safe for every
-/// relative timing: `sides` are its statements' moving sides on `world` in its order
-/// (`MovingSide::of`, computed once per statement by the caller; `None` for what is not a
-/// turn). The statements involved (indices into `sides`, in order: the turns that bring the
-/// two modules together) and the reason; `None` when they are proven safe, or are not turns
-/// on a tree (the pair checks decide then).
-pub(crate) fn group_turns_conflict(
+/// What the turns of a group starting from `world`, done together, say about it.
+pub(crate) enum GroupTurnsVerdict {
+    /// Not safe for every relative timing: the statements involved (indices into the
+    /// group, in order: the turns that bring the two modules together) and the reason.
+    Conflict(Vec<usize>, String),
+    /// Every statement is a turn, proven clear with the others and alone: any order and
+    /// timing of them ends alike and keeps the structure, so nothing else is asked.
+    Settled,
+    /// Proven clear, or not turns on a tree: the pairs and the completion orders decide.
+    Open,
+}
+
+/// The verdict on the turns of a group starting from `world`: `sides` are its statements'
+/// moving sides on `world` in its order (`MovingSide::of`, computed once per statement by the
+/// caller; `None` for what is not a turn).
+pub(crate) fn group_turns(
     program: &Program,
     statements: &[&ResolvedStatement],
     sides: &[Option<&MovingSide>],
     world: &RobotWorld,
-) -> Option<(Vec<usize>, String)> {
+) -> GroupTurnsVerdict {
     let motions: Vec<Option<(&Motion, usize)>> = sides
         .iter()
         .map(|side| side.map(|s| (s.motion(), s.pivot)))
         .collect();
-    let together = GroupTurns::of(&motions, world)?;
+    let Some(together) = GroupTurns::of(&motions, world) else {
+        return GroupTurnsVerdict::Open;
+    };
     let describe = |i: usize| statements[i].describe(&program.robot);
-    together.conflict(world, &describe)
+    if let Some((involved, reason)) = together.conflict(world, &describe) {
+        return GroupTurnsVerdict::Conflict(involved, reason);
+    }
+    let settled = (0..sides.len()).all(|i| {
+        settled_by_turns(Some(&together), i)
+            && sides[i].and_then(|s| s.sweep_clear(world)) == Some(true)
+    });
+    if settled {
+        GroupTurnsVerdict::Settled
+    } else {
+        GroupTurnsVerdict::Open
+    }
 }
 
 /// How the pair check treats two statements done at the same time.
@@ -144,6 +168,21 @@ impl Simultaneity {
             _ => Simultaneity::Pairwise { alone: len == 2 },
         }
     }
+}
+
+/// Is element `i` a turn that the group's turns, decided together, found clear? Such turns
+/// end alike in every order among themselves and keep the structure: only what is not one
+/// asks for the group's completion orders.
+fn settled_by_turns(together: Option<&GroupTurns>, i: usize) -> bool {
+    together.is_some_and(|t| t.covers(i) && t.verdict == Together::Clear)
+}
+
+/// Why a group is refused whose completion orders are too many to be checked.
+pub(crate) fn too_large(len: usize) -> String {
+    format!(
+        "a group of {len} statements that are not all turns proven clear together is checked \
+         in every completion order only up to {EVERY_ORDER_UP_TO} statements: split it"
+    )
 }
 
 /// The turns of one group decided together over every relative timing (`simultaneous.rs`):
@@ -325,38 +364,6 @@ pub(crate) fn compare_orders(
     }
 }
 
-/// The first warning of `these` that `others` does not have (counting repeats).
-fn unmatched<'w>(these: &'w [Warned], others: &[Warned]) -> Option<&'w Warned> {
-    let mut left: Vec<&Warning> = others.iter().map(|(_, warning)| warning).collect();
-    these.iter().find(|(_, warning)| {
-        match left.iter().position(|other| same_warning(other, warning)) {
-            Some(k) => {
-                left.swap_remove(k);
-                false
-            }
-            None => true,
-        }
-    })
-}
-
-/// The same warning as the model reports it, but a split into the same two parts is the same
-/// whichever side commanded it (the model lists the commanding module's side first).
-fn same_warning(a: &Warning, b: &Warning) -> bool {
-    match (a, b) {
-        (
-            Warning::Split { first, second },
-            Warning::Split {
-                first: other_first,
-                second: other_second,
-            },
-        ) => {
-            (first == other_first && second == other_second)
-                || (first == other_second && second == other_first)
-        }
-        _ => a == b,
-    }
-}
-
 /// Does `statement` on `module`, adding the model's warnings to `warnings`; the error names
 /// the step and says why the model refused it.
 pub(crate) fn step(
@@ -409,6 +416,7 @@ impl Checker<'_> {
     /// The warnings of one group, from the state `world` it starts in: its turns together,
     /// then every pair that the turns' verdict does not settle.
     fn group(&self, group: &[PlanElement], world: &RobotWorld, out: &mut Vec<Diagnostic>) {
+        let warned = out.len();
         let sides = self.sides(group, world);
         let together = self.group_turns(group, world);
         if let Some(together) = &together {
@@ -435,6 +443,36 @@ impl Checker<'_> {
                 if let Some(reason) = self.decided_pair(a, b, sides, world, simultaneity) {
                     out.push(self.not_independent(a, b, reason));
                 }
+            }
+        }
+        // Pairs fine, three or more may still depend on each other only together.
+        let settled = |i: usize| settled_by_turns(together.as_ref(), i) && clear_alone(i);
+        if out.len() == warned && group.len() > 2 && !(0..group.len()).all(settled) {
+            out.extend(self.orders(group, world));
+        }
+    }
+
+    /// The warning of a group some completion order of which goes wrong where the written
+    /// order does not (`orders.rs`), or that is too large to be checked so.
+    fn orders(&self, group: &[PlanElement], world: &RobotWorld) -> Option<Diagnostic> {
+        let apply = |e: &PlanElement, w: &mut RobotWorld, warned: &mut Vec<Warned>| {
+            self.apply(e, w, warned)
+        };
+        let describe = |e: &PlanElement| self.describe(e);
+        let elements = Elements {
+            elements: group,
+            apply: &apply,
+            describe: &describe,
+        };
+        match every_order(&elements, world) {
+            Verdict::Same => None,
+            Verdict::Wrong(wrong) => {
+                let (a, b) = (&group[wrong.at], &group[wrong.other]);
+                Some(self.not_independent(a, b, wrong.reason))
+            }
+            Verdict::TooLarge => {
+                let (a, b) = (&group[0], &group[group.len() - 1]);
+                Some(self.not_independent(a, b, too_large(group.len())))
             }
         }
     }
@@ -732,39 +770,4 @@ fn groups(plan: &Plan) -> Vec<&[PlanElement]> {
     plan.elements
         .split_inclusive(|e| e.separator == SeparatorKind::Sequential)
         .collect()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn split(first: &[&str], second: &[&str]) -> Warned {
-        let names = |v: &[&str]| v.iter().map(|s| s.to_string()).collect();
-        let warning = Warning::Split {
-            first: names(first),
-            second: names(second),
-        };
-        ("step".to_string(), warning)
-    }
-
-    #[test]
-    fn one_split_is_the_same_whichever_side_commands_it() {
-        // Two retracts that each leave M4 alone when done second: either order ends with the
-        // same split, reported from the other side.
-        let ab = [split(&["M4"], &["M0", "M1"])];
-        let ba = [split(&["M0", "M1"], &["M4"])];
-        assert!(unmatched(&ab, &ba).is_none());
-        assert!(unmatched(&ba, &ab).is_none());
-    }
-
-    #[test]
-    fn a_warning_in_one_order_only_is_unmatched_counting_repeats() {
-        let once = [split(&["M3"], &["M0"])];
-        let twice = [split(&["M3"], &["M0"]), split(&["M0"], &["M3"])];
-        let other = [split(&["M4"], &["M0", "M3"])];
-        assert!(unmatched(&once, &[]).is_some());
-        assert!(unmatched(&[], &once).is_none());
-        assert!(unmatched(&twice, &once).is_some());
-        assert!(unmatched(&once, &other).is_some());
-    }
 }

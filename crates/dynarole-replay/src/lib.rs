@@ -8,6 +8,7 @@ mod bitset;
 mod independence;
 mod lockstep;
 mod motion;
+mod orders;
 mod parallel;
 mod prepare;
 mod robot_world;
@@ -16,6 +17,7 @@ mod routes;
 mod run;
 mod simultaneous;
 mod topology;
+mod warnings;
 
 pub use independence::{check_independence, check_independence_exhaustive};
 pub use parallel::{

@@ -680,3 +680,256 @@ fn parallelise_keeps_a_retract_after_the_extend_that_makes_it_safe() {
     assert!(positions(n, &found.edges)[retract].0 > positions(n, &found.edges)[extend].0);
     check_written(&found, &found.forms[0].text, EIGHT);
 }
+
+/// A warning as text, a split the same whichever side commanded it (as the check compares).
+fn warning_text(warning: &dynarole_world::Warning) -> String {
+    match warning {
+        dynarole_world::Warning::Split { first, second } => {
+            let mut sides = [first.join(","), second.join(",")];
+            sides.sort();
+            format!("split {sides:?}")
+        }
+        other => format!("{other:?}"),
+    }
+}
+
+/// Every order of `items`, by swapping (k! of them).
+fn orders_of(items: &[usize]) -> Vec<Vec<usize>> {
+    if items.len() <= 1 {
+        return vec![items.to_vec()];
+    }
+    let mut out = Vec::new();
+    for (i, &first) in items.iter().enumerate() {
+        let rest: Vec<usize> = (items.iter().enumerate())
+            .filter(|&(k, _)| k != i)
+            .map(|(_, &x)| x)
+            .collect();
+        for mut order in orders_of(&rest) {
+            order.insert(0, first);
+            out.push(order);
+        }
+    }
+    out
+}
+
+/// Does some completion order of `moves[group]`, run one after the other from the state the
+/// moves before it leave, give another end, another warning or a refusal than the written
+/// order? Every order is run (the reference the subset check is tested against); `None` when
+/// the written order itself is refused.
+fn some_order_differs(
+    config: &str,
+    moves: &[String],
+    group: std::ops::Range<usize>,
+) -> Option<bool> {
+    let source = source_of("atron", moves);
+    let parsed = parse(&source);
+    let (program, _) = analyze(&parsed.file, &dynarole_robots::plugins());
+    let program = program.expect("program");
+    let plan = program.expand("s").expect("s");
+    let config = dynarole_robots::read_configuration(config).expect("configuration");
+    let assignment =
+        assign_modules(&program, std::slice::from_ref(&plan), &config).expect("labels");
+    let statements = plan.statements();
+    let run = |world: &mut RobotWorld, i: usize| {
+        let module = &assignment[&statements[i].label];
+        world.apply(&program.robot, statements[i], module)
+    };
+    let mut start = RobotWorld::new(config, &program.robot).expect("world");
+    for i in 0..group.start {
+        run(&mut start, i).expect("the moves are valid in order");
+    }
+    let outcome = |order: &[usize]| {
+        let mut world = start.clone();
+        let mut warnings = Vec::new();
+        for &i in order {
+            let outcome = run(&mut world, i).ok()?;
+            warnings.extend(outcome.warnings.iter().map(warning_text));
+        }
+        warnings.sort();
+        Some((world, warnings))
+    };
+    let written: Vec<usize> = group.clone().collect();
+    let (end, warnings) = outcome(&written)?;
+    Some(
+        orders_of(&written)
+            .iter()
+            .any(|order| match outcome(order) {
+                None => true,
+                Some((other_end, other_warnings)) => {
+                    other_end.difference(&end).is_some() || other_warnings != warnings
+                }
+            }),
+    )
+}
+
+/// The connector operations the model accepts without a warning on `config` (of `n`
+/// modules), as statements.
+fn atron_connector_operations(config: &str, n: usize) -> Vec<String> {
+    let picks: Vec<(usize, u8, u8)> = (0..n)
+        .flat_map(|m| (0..2u8).flat_map(move |op| (0..8u8).map(move |c| (m, op, c))))
+        .collect();
+    // Each pick alone, from the start: `atron_moves` keeps it when it is accepted.
+    picks
+        .iter()
+        .flat_map(|&pick| atron_moves(config, n, &[pick]))
+        .collect()
+}
+
+/// `moves` with `moves[group]` joined by `&`, checked from `config`: its warnings.
+fn group_warnings(config: &str, moves: &[String], group: std::ops::Range<usize>) -> Vec<String> {
+    let mut body = String::new();
+    for (k, m) in moves.iter().enumerate() {
+        let join = group.contains(&k) && k + 1 < group.end;
+        body.push_str(&format!("    {m}{}\n", if join { " &" } else { ";" }));
+    }
+    let source = format!("robot atron;\nsequence s {{\n{body}}}\n");
+    let parsed = parse(&source);
+    let (program, _) = analyze(&parsed.file, &dynarole_robots::plugins());
+    let program = program.expect("program");
+    let config = dynarole_robots::read_configuration(config).expect("configuration");
+    let plans = vec![program.expand("s").expect("s")];
+    let assignment = assign_modules(&program, &plans, &config).expect("labels");
+    let world = RobotWorld::new(config, &program.robot).expect("world");
+    let warnings = check_independence(&program, &plans, world, &assignment);
+    warnings.iter().map(|d| format!("{:?}", d.kind)).collect()
+}
+
+#[test]
+fn three_statements_that_split_the_robot_only_together_are_warned_by_the_check() {
+    // The group `parallelise` never writes, written by hand: each pair is fine, both retracts
+    // before the extend leave M3 alone.
+    let source = sequential(EIGHT2CAR);
+    let moves: Vec<String> = (source.lines())
+        .filter(|l| l.trim_end().ends_with(';') && l.contains('.'))
+        .map(|l| l.trim().trim_end_matches(';').to_string())
+        .collect();
+    let at = |text: &str| moves.iter().position(|m| m == text);
+    let extend = at("M1.Connector[$CONNECTOR_6].extend()").expect("the extend");
+    let group = extend..extend + 3;
+    assert!(
+        moves[group.end - 1].contains("retract"),
+        "{:?}",
+        &moves[group.clone()]
+    );
+    assert_eq!(some_order_differs(EIGHT, &moves, group.clone()), Some(true));
+    let warnings = group_warnings(EIGHT, &moves, group);
+    assert_eq!(warnings.len(), 1, "{warnings:?}");
+    assert!(
+        warnings[0].contains("the robot is now in two parts"),
+        "{warnings:?}"
+    );
+}
+
+/// A group of `len` moves from `first` (wrapped to fit), when there are enough moves.
+fn group_in(moves: &[String], first: usize, len: usize) -> Option<std::ops::Range<usize>> {
+    let start = first % (moves.len().checked_sub(len)? + 1);
+    Some(start..start + len)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
+
+    #[test]
+    fn a_group_of_connector_operations_is_warned_exactly_when_some_order_differs(
+        structure in 5usize..8,
+        picks in proptest::collection::vec(0usize..64, 3..6),
+    ) {
+        // Latches move nothing: whether such a group is independent is all in its completion
+        // orders, here run one by one (up to 120 of them) against the check's subsets. The
+        // group: distinct operations each valid alone on one of the paper's shapes (which
+        // have loops), in a random order.
+        let (config, n) = atron_structure(structure, 0);
+        let candidates = atron_connector_operations(&config, n);
+        prop_assume!(!candidates.is_empty());
+        let mut moves: Vec<String> = Vec::new();
+        for pick in picks {
+            let operation = &candidates[pick % candidates.len()];
+            if !moves.contains(operation) {
+                moves.push(operation.clone());
+            }
+        }
+        prop_assume!(moves.len() >= 3);
+        let differs = some_order_differs(&config, &moves, 0..moves.len());
+        prop_assume!(differs.is_some());
+        let warnings = group_warnings(&config, &moves, 0..moves.len());
+        prop_assert_eq!(differs, Some(!warnings.is_empty()), "{:?}\n{:?}", moves, warnings);
+    }
+
+    #[test]
+    fn a_group_some_order_of_which_differs_is_warned(
+        structure in 0usize..8,
+        picks in proptest::collection::vec((0usize..7, 0u8..3, 0u8..8), 20..120),
+        first in 0usize..64,
+        len in 3usize..6,
+    ) {
+        // With turns, the check also warns where the motions overlap: one way only.
+        let (config, n) = atron_structure(structure, 0);
+        let moves = atron_moves(&config, n, &picks);
+        let group = group_in(&moves, first, len);
+        prop_assume!(group.is_some());
+        let group = group.unwrap_or_default();
+        if some_order_differs(&config, &moves, group.clone()) == Some(true) {
+            let warnings = group_warnings(&config, &moves, group);
+            prop_assert!(!warnings.is_empty(), "{:?}", moves);
+        }
+    }
+}
+
+/// Eight2car's configuration just before M1's extend that holds M3 (statement `before` of the
+/// sequence written in order), replayed.
+fn eight2car_before(before: &str) -> Configuration {
+    let source = sequential(EIGHT2CAR);
+    let cut = source.find(before).expect("the statement");
+    let prefix = format!("{}}}\n", &source[..cut]);
+    replayed(&prefix, "eight2car", EIGHT)
+}
+
+#[test]
+fn a_group_that_splits_the_robot_only_in_another_order_than_the_input_is_split_by_the_builder() {
+    // Where M3 is held by its connectors 0 and 2 only: extending M1's 6 (which holds M3 too),
+    // then retracting 0 and 2 is fine, and so is each pair, but both retracts before the
+    // extend leave M3 alone. Only the completion orders show it (the input's own order and
+    // its pairs do not): the builder keeps the second retract out of the group, and the
+    // verification repairs nothing.
+    let config = eight2car_before("    M1.Connector[$CONNECTOR_6].extend();");
+    let source = "robot atron;\nsequence s {\n    M1.Connector[$CONNECTOR_6].extend();\n    \
+                  M3.Connector[$CONNECTOR_0].retract();\n    M3.Connector[$CONNECTOR_2].retract();\n}\n";
+    let parsed = parse(source);
+    let (program, diagnostics) = analyze(&parsed.file, &dynarole_robots::plugins());
+    let program = program.unwrap_or_else(|| panic!("{diagnostics:?}"));
+    let plan = program.expand("s").expect("s");
+    let assignment = assign_modules(&program, &[plan], &config).expect("labels");
+    let world = RobotWorld::new(config, &program.robot).expect("world");
+    let request = Request {
+        program: &program,
+        sequence: "s",
+        world,
+        assignment: &assignment,
+        name: "out",
+        blocks: true,
+        one_module_overlap: true,
+        window: None,
+    };
+    let found = parallelise(&request).unwrap_or_else(|e| panic!("{e:?}"));
+    let repairs: Vec<&String> = (found.notes.iter())
+        .filter(|n| n.contains("` before `"))
+        .collect();
+    assert!(
+        repairs.is_empty(),
+        "{:?}\n{}",
+        found.notes,
+        found.forms[0].text
+    );
+    let grouped = group_checked_graph(&request).unwrap_or_else(|e| panic!("{e:?}"));
+    let at = positions(3, &grouped);
+    assert!(
+        at[2].0 > at[0].0,
+        "the second retract after the first: {grouped:?}"
+    );
+    assert!(
+        found.notes.iter().any(|n| n.contains("if they end")),
+        "the reason is given: {:?}\n{}\n{grouped:?}",
+        found.notes,
+        found.forms[0].text
+    );
+}

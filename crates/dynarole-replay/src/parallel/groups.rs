@@ -13,9 +13,10 @@
 //! group is added to the graph. The groups' reverse is left to the verification.
 
 use super::{transitive_reduction, Request};
-use crate::independence::{group_pair, group_turns_conflict};
+use crate::independence::{group_pair, group_turns, step, too_large, GroupTurnsVerdict};
 use crate::motion::MovingSide;
-use crate::robot_world::RobotWorld;
+use crate::orders::{every_order, Elements, Verdict};
+use crate::robot_world::{RobotWorld, Warned};
 use dynarole_core::check::ResolvedStatement;
 use dynarole_core::Span;
 
@@ -159,10 +160,16 @@ impl<'a> GroupCheck<'a> {
                 reason,
             });
         }
-        if let Some(split) = self.turns_conflict(group, j, side) {
-            return Some(split);
-        }
-        let reason = self.step_problem(&group.after, j)?;
+        let settled = match self.turns_conflict(group, j, side) {
+            Ok(settled) => settled,
+            Err(split) => return Some(split),
+        };
+        let Some(reason) = self.step_problem(&group.after, j) else {
+            if settled || group.members.len() < 2 {
+                return None;
+            }
+            return self.orders_conflict(group, j);
+        };
         let last = *group.members.last()?;
         let culprit = group
             .members
@@ -179,16 +186,29 @@ impl<'a> GroupCheck<'a> {
 
     /// Why `j`'s turn cannot join the group's turns done together, for some relative timing
     /// of them all (each pair alone may be fine): the edge from the latest member involved.
-    fn turns_conflict(&self, group: &Group, j: usize, side: Option<&MovingSide>) -> Option<Split> {
-        // A statement that is not a turn adds nothing to the group's turns.
-        side?;
+    /// Otherwise whether the group with it is all turns that settle it (`GroupTurnsVerdict`).
+    fn turns_conflict(
+        &self,
+        group: &Group,
+        j: usize,
+        side: Option<&MovingSide>,
+    ) -> Result<bool, Split> {
+        // A statement that is not a turn adds nothing to the group's turns, and leaves the
+        // group to its completion orders.
+        if side.is_none() {
+            return Ok(false);
+        }
         let mut statements: Vec<&ResolvedStatement> =
             group.members.iter().map(|&i| &self.statements[i]).collect();
         statements.push(&self.statements[j]);
         let mut sides: Vec<Option<&MovingSide>> = group.sides.iter().map(Option::as_ref).collect();
         sides.push(side);
         let program = self.request.program;
-        let (involved, reason) = group_turns_conflict(program, &statements, &sides, &group.start)?;
+        let (involved, reason) = match group_turns(program, &statements, &sides, &group.start) {
+            GroupTurnsVerdict::Conflict(involved, reason) => (involved, reason),
+            GroupTurnsVerdict::Settled => return Ok(true),
+            GroupTurnsVerdict::Open => return Ok(false),
+        };
         let newest = group.members.len();
         let culprit = involved
             .iter()
@@ -196,11 +216,54 @@ impl<'a> GroupCheck<'a> {
             .find(|&&e| e != newest)
             .or(involved.first())
             .and_then(|&e| group.members.get(e))
-            .or(group.members.last())?;
+            .or(group.members.last());
+        match culprit {
+            Some(&culprit) => Err(Split {
+                edge: (culprit, j),
+                reason,
+            }),
+            None => Ok(false),
+        }
+    }
+
+    /// Why `j` cannot join `group`, whose pairs are all fine with it, for some completion
+    /// order of them all (`orders.rs`): the edge from the latest member without which every
+    /// order is fine.
+    fn orders_conflict(&self, group: &Group, j: usize) -> Option<Split> {
+        let mut members = group.members.clone();
+        members.push(j);
+        let reason = self.orders_problem(&group.start, &members)?;
+        let without = |skip: usize| -> Vec<usize> {
+            members.iter().copied().filter(|&m| m != skip).collect()
+        };
+        let culprit = (group.members.iter().rev().copied())
+            .find(|&i| self.orders_problem(&group.start, &without(i)).is_none())
+            .or(group.members.last().copied())?;
         Some(Split {
-            edge: (*culprit, j),
+            edge: (culprit, j),
             reason,
         })
+    }
+
+    /// Why `members` (input indices, in input order) started together from `start` go wrong
+    /// in some completion order where the input order does not.
+    fn orders_problem(&self, start: &RobotWorld, members: &[usize]) -> Option<String> {
+        let robot = &self.request.program.robot;
+        let apply = |&m: &usize, world: &mut RobotWorld, warned: &mut Vec<Warned>| {
+            let module = self.module(m).ok_or("no module for its label")?;
+            step(robot, &self.statements[m], module, world, warned)
+        };
+        let describe = |&m: &usize| self.statements[m].describe(robot);
+        let elements = Elements {
+            elements: members,
+            apply: &apply,
+            describe: &describe,
+        };
+        match every_order(&elements, start) {
+            Verdict::Same => None,
+            Verdict::Wrong(wrong) => Some(wrong.reason),
+            Verdict::TooLarge => Some(too_large(members.len())),
+        }
     }
 
     /// The state after `group`'s members but `skip`, run in order from its start.
