@@ -36,6 +36,9 @@ pub enum Target {
     Campaign,
     /// The robot plugin TOML loader, and a source naming the loaded robot.
     Plugin,
+    /// RoFI's plan files (old text format or RofiWorld JSON), and the validity of each
+    /// configuration read.
+    Rofi,
 }
 
 /// What became of an input that broke no property.
@@ -284,7 +287,7 @@ const JSON_WORDS: &[&str] = &[
 ];
 
 impl Target {
-    pub const ALL: [Target; 7] = [
+    pub const ALL: [Target; 8] = [
         Target::Parse,
         Target::Check,
         Target::Format,
@@ -292,6 +295,7 @@ impl Target {
         Target::Scenario,
         Target::Campaign,
         Target::Plugin,
+        Target::Rofi,
     ];
 
     /// The corpus folder's name.
@@ -304,6 +308,7 @@ impl Target {
             Target::Scenario => "scenario",
             Target::Campaign => "campaign",
             Target::Plugin => "plugin",
+            Target::Rofi => "rofi",
         }
     }
 
@@ -312,6 +317,7 @@ impl Target {
         match self {
             Target::Parse | Target::Check | Target::Format => source_words(),
             Target::Configuration => json_words(),
+            Target::Rofi => ROFI_WORDS,
             Target::Scenario | Target::Campaign | Target::Plugin => TOML_WORDS,
         }
     }
@@ -326,6 +332,7 @@ impl Target {
             Target::Scenario => loader(text, Scenario::from_toml_str(text).map(|_| ())),
             Target::Campaign => campaign(text),
             Target::Plugin => plugin(ctx, text),
+            Target::Rofi => rofi(text),
         }
     }
 }
@@ -412,6 +419,63 @@ fn configuration(text: &str) -> Result<Outcome, String> {
             e.path, e.message
         )),
     }
+}
+
+/// Tokens of RoFI's two formats.
+const ROFI_WORDS: &[&str] = &[
+    "C",
+    "M",
+    "E",
+    "A",
+    "B",
+    "+X",
+    "-X",
+    "-Z",
+    "N",
+    "E",
+    "S",
+    "W",
+    "#",
+    "length",
+    "queue",
+    "cfgs",
+    "\n",
+    "\r\n",
+    "\"modules\"",
+    "\"moduleJoints\"",
+    "\"spaceJoints\"",
+    "\"universal\"",
+    "\"A-X\"",
+    "\"B+X\"",
+    "\"North\"",
+    "90",
+    "-90",
+    "180",
+    "1e999",
+];
+
+/// A RoFI file read as its content says (JSON when it opens with `{` or `[`), and every
+/// configuration it holds validated: kinematics and collisions must answer, not panic.
+fn rofi(text: &str) -> Result<Outcome, String> {
+    let json = text.trim_start().starts_with(['{', '[']);
+    let read = if json {
+        dynarole_robot_rofi::read_rofiworld(text).map_err(|e| e.to_string())
+    } else {
+        dynarole_robot_rofi::read_old_format(text)
+            .map(|plan| plan.configurations.into_iter().map(|(_, c)| c).collect())
+            .map_err(|e| e.to_string())
+    };
+    let configurations = match read {
+        Ok(configurations) => configurations,
+        Err(e) => return loader(text, Err(e)),
+    };
+    let mut outcome = Outcome::Accepted;
+    for config in &configurations {
+        if let Err(invalid) = dynarole_robot_rofi::validate(config) {
+            outcome = loader(text, Err(invalid))?;
+        }
+    }
+    Ok(outcome)
 }
 
 fn campaign(text: &str) -> Result<Outcome, String> {

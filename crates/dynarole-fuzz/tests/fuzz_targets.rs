@@ -73,6 +73,11 @@ fn plugin() {
     fuzz(Target::Plugin);
 }
 
+#[test]
+fn rofi() {
+    fuzz(Target::Rofi);
+}
+
 /// The hostile inputs of `target` (`fuzz/regressions/<target>/`), every path run.
 fn regressions(target: Target) {
     let dir = corpus::root().join("regressions").join(target.name());

@@ -1,0 +1,24 @@
+//! RoFI universal modules (issue 30, first part): a configuration of them (`module.rs`), RoFI's
+//! old text format read with located errors (`old_format.rs`) and its RofiWorld JSON, one world
+//! or a plan of them, with errors naming the field (`rofiworld.rs`), the forward kinematics of their
+//! shoes (`kinematics.rs`) and the validity RoFI asks of a configuration, connected, every
+//! loop closed and no two shoes overlapping (`validity.rs`), and a group of joint turns checked
+//! along its whole motion, over every relative timing or in lock-step (`sweep.rs`). Not yet a
+//! robot of the registry.
+
+mod kinematics;
+mod module;
+mod old_format;
+mod rofiworld;
+mod sweep;
+mod validity;
+
+pub use kinematics::{
+    across_connection, across_module, poses, poses_from, KinematicsError, Poses, Shoe,
+    LOOP_TOLERANCE,
+};
+pub use module::*;
+pub use old_format::{read_old_format, OldFormatError, Plan};
+pub use rofiworld::{read_rofiworld, RofiWorldError};
+pub use sweep::{sweep, sweep_within, SweepError, SweepVerdict, Timing, Turn, SWEEP_BUDGET};
+pub use validity::{first_collision, validate, Collision, Invalid, COLLISION_DISTANCE_SQUARED};

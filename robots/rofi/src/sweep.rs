@@ -1,0 +1,586 @@
+//! Joint turns of RoFI modules checked along their whole motion, not at samples: a group of
+//! turns done at once, over every relative timing (each turn anywhere in its motion while the
+//! others are anywhere in theirs) or in lock-step, proven to keep every two shoes of
+//! different modules apart, or shown to bring two together (at which fractions), or, past a
+//! budget of pieces, reported unproven with its lower bound.
+//!
+//! The bound: shoes are placed along a spanning tree of the modules (each module's own
+//! joints always a tree edge). A turn moves two shoes relative to each other only when its
+//! module lies between them on the tree, and then by at most its angle (in radians) times the
+//! distance of either shoe from the joint's axis, which is at most the number of tree links
+//! (each one unit) from the shoe to the axis. So over a piece of the box of fractions whose
+//! half-widths are h, two shoes at distance d at its centre stay at least
+//! d − min(Σ |Δθ_i| h_i r_i(a), Σ |Δθ_i| h_i r_i(b)) apart. Pieces are halved along the turn
+//! with the largest |Δθ_i| h_i until every pair is proven apart, one is found overlapping at
+//! a piece's centre, or the budget is spent. RoFI's own tools check a step at ten samples of
+//! the lock-step timing only.
+
+use crate::kinematics::{
+    across_connection, across_module, centre_of as centre, Shoe, LOOP_TOLERANCE,
+};
+use crate::module::{Connection, Connector, Dock, Joint, Module, RofiConfiguration, Side};
+use crate::validity::{Collision, COLLISION_DISTANCE_SQUARED};
+use nalgebra::Matrix4;
+use std::collections::{BTreeMap, VecDeque};
+use std::fmt;
+
+/// Pieces of the box examined before a group is reported unproven.
+pub const SWEEP_BUDGET: usize = 200_000;
+
+/// One joint turned from `from` by `by` degrees (signed: gamma's direction is in the sign).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Turn {
+    pub module: u32,
+    pub joint: Joint,
+    pub from: f64,
+    pub by: f64,
+}
+
+/// How the turns of a group run relative to each other.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Timing {
+    /// Every relative timing: each turn's fraction independent of the others'.
+    Every,
+    /// Lock-step: every turn at the same fraction of its motion.
+    LockStep,
+}
+
+/// What the motion of a group does.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SweepVerdict {
+    /// No two shoes of different modules come closer than one unit.
+    Clear,
+    /// Two shoes overlap with the turns at these fractions of their motions.
+    Collides {
+        fractions: Vec<f64>,
+        collision: Collision,
+    },
+    /// A loop of connections does not stay closed with the turns at these fractions.
+    OpensLoop {
+        fractions: Vec<f64>,
+        connection: Connection,
+    },
+    /// The budget ran out: the closest the check could prove the two shoes stay.
+    Unproven {
+        lower_bound: f64,
+        shoes: (Shoe, Shoe),
+    },
+}
+
+/// Why a group of turns cannot be checked.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SweepError {
+    UnknownModule(u32),
+    /// The joint is not at the turn's start angle.
+    NotAtStart {
+        turn: Turn,
+        now: f64,
+    },
+    /// Alpha or beta would leave ±90 degrees.
+    OutOfRange(Turn),
+    /// Two turns of one joint in one group.
+    SameJoint(Turn),
+    /// The configuration is not connected.
+    NotConnected,
+}
+
+impl fmt::Display for SweepError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            SweepError::UnknownModule(id) => write!(f, "no module {id}"),
+            SweepError::NotAtStart { turn, now } => write!(
+                f,
+                "module {}: {} is at {now} degrees, not at the turn's start {}",
+                turn.module,
+                turn.joint.name(),
+                turn.from
+            ),
+            SweepError::OutOfRange(turn) => write!(
+                f,
+                "module {}: {} would turn to {} degrees, outside -90..90",
+                turn.module,
+                turn.joint.name(),
+                turn.from + turn.by
+            ),
+            SweepError::SameJoint(turn) => write!(
+                f,
+                "module {}: {} is turned twice in one group",
+                turn.module,
+                turn.joint.name()
+            ),
+            SweepError::NotConnected => write!(f, "the configuration is not connected"),
+        }
+    }
+}
+
+/// Checks the motion of `turns` done together from `config` (valid at the start) with the
+/// given timing.
+pub fn sweep(
+    config: &RofiConfiguration,
+    turns: &[Turn],
+    timing: Timing,
+) -> Result<SweepVerdict, SweepError> {
+    sweep_within(config, turns, timing, SWEEP_BUDGET)
+}
+
+/// [`sweep`] with another budget of pieces (a smaller one answers "unproven" sooner).
+pub fn sweep_within(
+    config: &RofiConfiguration,
+    turns: &[Turn],
+    timing: Timing,
+    budget: usize,
+) -> Result<SweepVerdict, SweepError> {
+    check_turns(config, turns)?;
+    let tree = Tree::of(config)?;
+    let search = Search::new(&tree, turns, timing);
+    Ok(search.run(budget))
+}
+
+fn check_turns(config: &RofiConfiguration, turns: &[Turn]) -> Result<(), SweepError> {
+    for (i, turn) in turns.iter().enumerate() {
+        let module = config
+            .module(turn.module)
+            .ok_or(SweepError::UnknownModule(turn.module))?;
+        let now = module.joint(turn.joint);
+        let same = match turn.joint {
+            Joint::Gamma => crate::module::circular(now - turn.from).abs() < 1e-9,
+            _ => (now - turn.from).abs() < 1e-9,
+        };
+        if !same {
+            return Err(SweepError::NotAtStart { turn: *turn, now });
+        }
+        let end = turn.from + turn.by;
+        if turn.joint != Joint::Gamma && end.abs() > crate::module::SHOE_JOINT_LIMIT_DEG {
+            return Err(SweepError::OutOfRange(*turn));
+        }
+        let earlier = &turns[..i];
+        if earlier
+            .iter()
+            .any(|t| t.module == turn.module && t.joint == turn.joint)
+        {
+            return Err(SweepError::SameJoint(*turn));
+        }
+    }
+    Ok(())
+}
+
+/// A spanning tree of the shoes in which every module's own link is an edge: shoes by index
+/// (module's position in ID order · 2 + side), each placed from its parent.
+struct Tree {
+    modules: Vec<Module>,
+    /// Shoes in placing order: (shoe, parent shoe and how to get there from it).
+    order: Vec<(usize, Option<(usize, Link)>)>,
+    /// Connections not in the tree: they must stay closed.
+    loops: Vec<Connection>,
+    /// For each shoe, the interval of its subtree in the placing order (Euler tour).
+    subtree: Vec<(usize, usize)>,
+    parent: Vec<Option<usize>>,
+    index: BTreeMap<u32, usize>,
+}
+
+#[derive(Clone, Copy)]
+enum Link {
+    /// Across the module's joints from the parent's side.
+    Module(Side),
+    /// Across a connection from the parent's dock.
+    Connection(Dock, u8, Dock),
+}
+
+impl Tree {
+    fn of(config: &RofiConfiguration) -> Result<Tree, SweepError> {
+        let modules: Vec<Module> = config.modules().copied().collect();
+        let index: BTreeMap<u32, usize> = (modules.iter().enumerate())
+            .map(|(i, m)| (m.id, i))
+            .collect();
+        let shoe = |id: u32, side: Side| index.get(&id).map(|m| m * 2 + side as usize);
+        let n = modules.len() * 2;
+        let mut parent = vec![None; n];
+        let mut order = Vec::with_capacity(n);
+        let mut placed = vec![false; n];
+        let mut tree_connections = Vec::new();
+        let mut queue = VecDeque::new();
+        if n > 0 {
+            placed[0] = true;
+            order.push((0, None));
+            placed[1] = true;
+            parent[1] = Some(0);
+            order.push((1, Some((0, Link::Module(Side::A)))));
+            queue.push_back(0usize);
+        }
+        while let Some(m) = queue.pop_front() {
+            for side in [Side::A, Side::B] {
+                for dock in Dock::ALL {
+                    let here = m * 2 + side as usize;
+                    let port = (modules[m].id, Connector::new(side, dock));
+                    let Some(c) = config.connection_at(port) else {
+                        continue;
+                    };
+                    let Some(there) = shoe(c.to.0, c.to.1.side()) else {
+                        continue;
+                    };
+                    if placed[there] {
+                        continue;
+                    }
+                    let link = Link::Connection(dock, c.orientation.quarter_turns(), c.to.1.dock());
+                    placed[there] = true;
+                    parent[there] = Some(here);
+                    order.push((there, Some((here, link))));
+                    tree_connections.push(c);
+                    let other = there ^ 1;
+                    placed[other] = true;
+                    parent[other] = Some(there);
+                    order.push((other, Some((there, Link::Module(c.to.1.side())))));
+                    queue.push_back(there / 2);
+                }
+            }
+        }
+        if placed.iter().any(|p| !p) {
+            return Err(SweepError::NotConnected);
+        }
+        let in_tree = |c: &Connection| {
+            tree_connections
+                .iter()
+                .any(|t| *t == *c || *t == c.reversed())
+        };
+        let loops = (config.connections().iter())
+            .filter(|c| !in_tree(c))
+            .copied()
+            .collect();
+        let subtree = euler(&parent, &order);
+        Ok(Tree {
+            modules,
+            order,
+            loops,
+            subtree,
+            parent,
+            index,
+        })
+    }
+
+    fn shoe_index(&self, (id, side): Shoe) -> Option<usize> {
+        self.index.get(&id).map(|m| m * 2 + side as usize)
+    }
+
+    fn shoe_of(&self, index: usize) -> Shoe {
+        let side = if index % 2 == 0 { Side::A } else { Side::B };
+        (self.modules[index / 2].id, side)
+    }
+
+    /// Is `shoe` in the subtree of `root`?
+    fn within(&self, shoe: usize, root: usize) -> bool {
+        let (a, b) = self.subtree[root];
+        let (x, _) = self.subtree[shoe];
+        a <= x && x < b
+    }
+
+    /// Tree links from every shoe to `from`.
+    fn hops_from(&self, from: usize) -> Vec<usize> {
+        let n = self.parent.len();
+        let mut neighbours = vec![Vec::new(); n];
+        for (child, p) in self.parent.iter().enumerate() {
+            if let Some(p) = p {
+                neighbours[child].push(*p);
+                neighbours[*p].push(child);
+            }
+        }
+        let mut hops = vec![usize::MAX; n];
+        hops[from] = 0;
+        let mut queue = VecDeque::from([from]);
+        while let Some(s) = queue.pop_front() {
+            for &t in &neighbours[s] {
+                if hops[t] == usize::MAX {
+                    hops[t] = hops[s] + 1;
+                    queue.push_back(t);
+                }
+            }
+        }
+        hops
+    }
+
+    /// Every shoe's pose with the modules' joints at `modules`' angles.
+    fn poses(&self, modules: &[Module]) -> Vec<Matrix4<f64>> {
+        let mut poses = vec![Matrix4::identity(); self.parent.len()];
+        for &(shoe, from) in &self.order {
+            if let Some((parent, link)) = from {
+                let step = match link {
+                    Link::Module(side) => across_module(&modules[parent / 2], side),
+                    Link::Connection(d1, o, d2) => across_connection(d1, o, d2),
+                };
+                poses[shoe] = poses[parent] * step;
+            }
+        }
+        poses
+    }
+}
+
+/// Each shoe's (entry, exit) in a depth-first walk of the tree given by `parent`.
+fn euler(
+    parent: &[Option<usize>],
+    order: &[(usize, Option<(usize, Link)>)],
+) -> Vec<(usize, usize)> {
+    let n = parent.len();
+    let mut children = vec![Vec::new(); n];
+    for &(shoe, from) in order {
+        if let Some((p, _)) = from {
+            children[p].push(shoe);
+        }
+    }
+    let mut span = vec![(0, 0); n];
+    let mut clock = 0;
+    // (shoe, next child to visit)
+    let mut stack = vec![(0usize, 0usize)];
+    if n == 0 {
+        return span;
+    }
+    span[0].0 = clock;
+    clock += 1;
+    while let Some((shoe, next)) = stack.last().copied() {
+        if let Some(&child) = children[shoe].get(next) {
+            if let Some(top) = stack.last_mut() {
+                top.1 += 1;
+            }
+            span[child].0 = clock;
+            clock += 1;
+            stack.push((child, 0));
+        } else {
+            span[shoe].1 = clock;
+            stack.pop();
+        }
+    }
+    span
+}
+
+/// The turns as the search needs them: which module's link each one crosses and how far
+/// every shoe is from its axis.
+struct Search<'t> {
+    tree: &'t Tree,
+    turns: Vec<Turn>,
+    /// The far shoe of each turn's module link (its subtree is one side of the turn).
+    far: Vec<usize>,
+    /// Per turn, every shoe's tree links to the turn's axis.
+    reach: Vec<Vec<usize>>,
+    timing: Timing,
+}
+
+/// A piece of the box: its centre and half-widths, and the pairs not yet proven apart on it.
+struct Piece {
+    centre: Vec<f64>,
+    half: Vec<f64>,
+    pairs: Vec<(usize, usize)>,
+    /// What its parent proved of it: every pair stays at least this far apart on it (the
+    /// closest pair named), which is what is reported if the budget runs out.
+    lower: (f64, (usize, usize)),
+}
+
+impl<'t> Search<'t> {
+    fn new(tree: &'t Tree, turns: &[Turn], timing: Timing) -> Self {
+        let mut far = Vec::new();
+        let mut reach = Vec::new();
+        for turn in turns {
+            let m = tree.index.get(&turn.module).copied().unwrap_or(0);
+            let (a, b) = (m * 2, m * 2 + 1);
+            far.push(if tree.parent[b] == Some(a) { b } else { a });
+            let from_a = tree.hops_from(a);
+            let from_b = tree.hops_from(b);
+            let hops: Vec<usize> = match turn.joint {
+                Joint::Alpha => from_a,
+                Joint::Beta => from_b,
+                Joint::Gamma => from_a.iter().zip(&from_b).map(|(x, y)| *x.min(y)).collect(),
+            };
+            reach.push(hops);
+        }
+        Search {
+            tree,
+            turns: turns.to_vec(),
+            far,
+            reach,
+            timing,
+        }
+    }
+
+    fn dimensions(&self) -> usize {
+        match self.timing {
+            Timing::Every => self.turns.len(),
+            Timing::LockStep => usize::from(!self.turns.is_empty()),
+        }
+    }
+
+    /// Each turn's fraction at a point of the box.
+    fn fractions(&self, point: &[f64]) -> Vec<f64> {
+        match self.timing {
+            Timing::Every => point.to_vec(),
+            Timing::LockStep => vec![point.first().copied().unwrap_or(0.0); self.turns.len()],
+        }
+    }
+
+    /// The modules with the turns at `fractions`.
+    fn modules_at(&self, fractions: &[f64]) -> Vec<Module> {
+        let mut modules = self.tree.modules.clone();
+        for (turn, t) in self.turns.iter().zip(fractions) {
+            let m = self.tree.index.get(&turn.module).copied().unwrap_or(0);
+            let angle = turn.from + t * turn.by;
+            match turn.joint {
+                Joint::Alpha => modules[m].alpha = angle,
+                Joint::Beta => modules[m].beta = angle,
+                Joint::Gamma => modules[m].gamma = angle,
+            }
+        }
+        modules
+    }
+
+    /// The pairs of shoes of different modules that some turn moves relative to each other.
+    fn moving_pairs(&self) -> Vec<(usize, usize)> {
+        let n = self.tree.parent.len();
+        let mut pairs = Vec::new();
+        for a in 0..n {
+            for b in (a + 1)..n {
+                if a / 2 != b / 2 && self.crossing(a, b).next().is_some() {
+                    pairs.push((a, b));
+                }
+            }
+        }
+        pairs
+    }
+
+    /// The turns whose module link lies between shoes `a` and `b` on the tree.
+    fn crossing(&self, a: usize, b: usize) -> impl Iterator<Item = usize> + '_ {
+        (0..self.turns.len())
+            .filter(move |&i| self.tree.within(a, self.far[i]) != self.tree.within(b, self.far[i]))
+    }
+
+    /// How far `a` and `b` can move relative to each other over a piece of half-widths `half`
+    /// (per turn).
+    fn bound(&self, (a, b): (usize, usize), half: &[f64]) -> f64 {
+        let (mut via_a, mut via_b) = (0.0, 0.0);
+        for i in self.crossing(a, b) {
+            let swing = self.turns[i].by.to_radians().abs() * half[i];
+            via_a += swing * self.reach[i][a] as f64;
+            via_b += swing * self.reach[i][b] as f64;
+        }
+        f64::min(via_a, via_b)
+    }
+
+    fn run(&self, budget: usize) -> SweepVerdict {
+        let dims = self.dimensions();
+        let pairs = self.moving_pairs();
+        if dims == 0 || pairs.is_empty() {
+            return SweepVerdict::Clear;
+        }
+        let first = pairs[0];
+        let mut stack = vec![Piece {
+            centre: vec![0.5; dims],
+            half: vec![0.5; dims],
+            pairs,
+            lower: (0.0, first),
+        }];
+        let limit = COLLISION_DISTANCE_SQUARED.sqrt();
+        let mut examined = 0;
+        while let Some(piece) = stack.pop() {
+            examined += 1;
+            if examined > budget {
+                stack.push(piece);
+                return self.unproven(&stack);
+            }
+            let fractions = self.fractions(&piece.centre);
+            let modules = self.modules_at(&fractions);
+            let poses = self.tree.poses(&modules);
+            if let Some(connection) = self.open_loop(&poses) {
+                return SweepVerdict::OpensLoop {
+                    fractions,
+                    connection,
+                };
+            }
+            let half = self.fractions(&piece.half);
+            let mut pending = Vec::new();
+            let mut lower = (f64::INFINITY, first);
+            for &(a, b) in &piece.pairs {
+                let d = (centre(&poses[a]) - centre(&poses[b])).norm();
+                if d * d < COLLISION_DISTANCE_SQUARED {
+                    let shoes = (self.tree.shoe_of(a), self.tree.shoe_of(b));
+                    let collision = Collision { shoes, distance: d };
+                    return SweepVerdict::Collides {
+                        fractions,
+                        collision,
+                    };
+                }
+                let proven = d - self.bound((a, b), &half);
+                if proven < limit {
+                    pending.push((a, b));
+                    if proven < lower.0 {
+                        lower = (proven.max(0.0), (a, b));
+                    }
+                }
+            }
+            if !pending.is_empty() {
+                stack.extend(self.halves(&piece, pending, lower));
+            }
+        }
+        SweepVerdict::Clear
+    }
+
+    /// The verdict when the budget is spent: the least that the pieces left are proven to
+    /// keep, each by the piece it was halved from.
+    fn unproven(&self, left: &[Piece]) -> SweepVerdict {
+        let least = (left.iter().map(|p| p.lower))
+            .min_by(|x, y| x.0.total_cmp(&y.0))
+            .unwrap_or((0.0, (0, 0)));
+        let (lower_bound, (a, b)) = least;
+        let shoes = (self.tree.shoe_of(a), self.tree.shoe_of(b));
+        SweepVerdict::Unproven { lower_bound, shoes }
+    }
+
+    /// The piece halved along the dimension that swings most.
+    fn halves(
+        &self,
+        piece: &Piece,
+        pairs: Vec<(usize, usize)>,
+        lower: (f64, (usize, usize)),
+    ) -> [Piece; 2] {
+        let swing = |k: usize| match self.timing {
+            Timing::Every => self.turns[k].by.abs() * piece.half[k],
+            Timing::LockStep => piece.half[k],
+        };
+        let k = (0..piece.half.len())
+            .max_by(|&x, &y| swing(x).total_cmp(&swing(y)))
+            .unwrap_or(0);
+        let mut half = piece.half.clone();
+        half[k] /= 2.0;
+        let mut low = piece.centre.clone();
+        low[k] -= half[k];
+        let mut high = piece.centre.clone();
+        high[k] += half[k];
+        [
+            Piece {
+                centre: low,
+                half: half.clone(),
+                pairs: pairs.clone(),
+                lower,
+            },
+            Piece {
+                centre: high,
+                half,
+                pairs,
+                lower,
+            },
+        ]
+    }
+
+    /// A connection outside the tree whose two shoes no longer mate.
+    fn open_loop(&self, poses: &[Matrix4<f64>]) -> Option<Connection> {
+        self.tree.loops.iter().copied().find(|c| {
+            let (Some(from), Some(to)) = (
+                self.tree.shoe_index((c.from.0, c.from.1.side())),
+                self.tree.shoe_index((c.to.0, c.to.1.side())),
+            ) else {
+                return true;
+            };
+            let step = across_connection(
+                c.from.1.dock(),
+                c.orientation.quarter_turns(),
+                c.to.1.dock(),
+            );
+            let gap = (poses[from] * step - poses[to]).abs().max();
+            gap > LOOP_TOLERANCE
+        })
+    }
+}
