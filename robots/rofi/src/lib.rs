@@ -3,13 +3,15 @@
 //! or a plan of them, with errors naming the field (`rofiworld.rs`), the forward kinematics of their
 //! shoes (`kinematics.rs`) and the validity RoFI asks of a configuration, connected, every
 //! loop closed and no two shoes overlapping (`validity.rs`), and a group of joint turns checked
-//! along its whole motion, over every relative timing or in lock-step (`sweep.rs`). Not yet a
-//! robot of the registry.
+//! along its whole motion, over every relative timing or in lock-step (`sweep.rs`); a plan's
+//! consecutive configurations as steps, each checked and its turns classed (`steps.rs`). Not
+//! yet a robot of the registry.
 
 mod kinematics;
 mod module;
 mod old_format;
 mod rofiworld;
+mod steps;
 mod sweep;
 mod validity;
 
@@ -20,5 +22,6 @@ pub use kinematics::{
 pub use module::*;
 pub use old_format::{read_old_format, OldFormatError, Plan};
 pub use rofiworld::{read_rofiworld, RofiWorldError};
+pub use steps::{plan_steps, step_between, Step, StepError, Together};
 pub use sweep::{sweep, sweep_within, SweepError, SweepVerdict, Timing, Turn, SWEEP_BUDGET};
 pub use validity::{first_collision, validate, Collision, Invalid, COLLISION_DISTANCE_SQUARED};

@@ -1,0 +1,237 @@
+//! A plan's consecutive configurations as steps: turns alone, together over any timing, and
+//! a loop of two modules that turns only in lock-step; connections released and made; and
+//! each way a step can be refused, the plan naming the step.
+
+use dynarole_robot_rofi::{
+    plan_steps, poses, read_old_format, step_between, Connection, Connector, Dock, Joint, Module,
+    Orientation, RofiConfiguration, Side, StepError, SweepVerdict, Together,
+};
+
+fn module(id: u32, alpha: f64, beta: f64, gamma: f64) -> Module {
+    Module::new(id, alpha, beta, gamma)
+}
+
+fn edge(from: (u32, Side, Dock), o: Orientation, to: (u32, Side, Dock)) -> Connection {
+    Connection {
+        from: (from.0, Connector::new(from.1, from.2)),
+        orientation: o,
+        to: (to.0, Connector::new(to.1, to.2)),
+    }
+}
+
+fn configuration(modules: &[Module], edges: &[Connection]) -> RofiConfiguration {
+    RofiConfiguration::from_parts(modules, edges).expect("a configuration")
+}
+
+/// Straight modules 1..=n, B of each on A of the next.
+fn chain(angles: &[(f64, f64, f64)]) -> RofiConfiguration {
+    let modules: Vec<Module> = (angles.iter().enumerate())
+        .map(|(i, &(a, b, g))| module(i as u32 + 1, a, b, g))
+        .collect();
+    let edges: Vec<Connection> = (1..angles.len() as u32)
+        .map(|id| {
+            let n = Orientation::North;
+            edge(
+                (id, Side::B, Dock::MinusZ),
+                n,
+                (id + 1, Side::A, Dock::MinusZ),
+            )
+        })
+        .collect();
+    configuration(&modules, &edges)
+}
+
+#[test]
+fn one_turn_is_a_step_alone_and_two_apart_run_at_any_timing() {
+    let straight = chain(&[(0.0, 0.0, 0.0); 4]);
+    let bent = chain(&[
+        (0.0, 0.0, 0.0),
+        (90.0, 0.0, 0.0),
+        (0.0, 0.0, 0.0),
+        (0.0, 0.0, 0.0),
+    ]);
+    let step = step_between(&straight, &bent).expect("a step");
+    assert_eq!(step.together, Together::Alone);
+    assert_eq!(step.turns.len(), 1);
+    assert_eq!(
+        (step.turns[0].module, step.turns[0].joint),
+        (2, Joint::Alpha)
+    );
+    let zigzag = chain(&[
+        (0.0, 0.0, 0.0),
+        (45.0, 0.0, 0.0),
+        (0.0, 0.0, 0.0),
+        (-45.0, 0.0, 0.0),
+    ]);
+    let step = step_between(&straight, &zigzag).expect("a step");
+    assert_eq!(step.together, Together::AnyTiming);
+    assert_eq!(step.turns.len(), 2);
+}
+
+#[test]
+fn gamma_turns_the_short_way_round() {
+    let from = chain(&[(0.0, 0.0, 170.0), (0.0, 0.0, 0.0)]);
+    let to = chain(&[(0.0, 0.0, -170.0), (0.0, 0.0, 0.0)]);
+    let step = step_between(&from, &to).expect("a step");
+    assert!((step.turns[0].by - 20.0).abs() < 1e-9, "{:?}", step.turns);
+}
+
+/// Two straight modules side by side, joined at shoe A (1's +X to 2's `da`, twist `oa`):
+/// with the shoe B connection (`d1`, `ob`, `d2`) when `closed`.
+fn side_by_side(
+    (da, oa): (Dock, Orientation),
+    (d1, ob, d2): (Dock, Orientation, Dock),
+    alphas: (f64, f64),
+    closed: bool,
+) -> Option<RofiConfiguration> {
+    let mut edges = vec![edge((1, Side::A, Dock::PlusX), oa, (2, Side::A, da))];
+    if closed {
+        edges.push(edge((1, Side::B, d1), ob, (2, Side::B, d2)));
+    }
+    let modules = [module(1, alphas.0, 0.0, 0.0), module(2, alphas.1, 0.0, 0.0)];
+    RofiConfiguration::from_parts(&modules, &edges).ok()
+}
+
+type Twists = ((Dock, Orientation), (Dock, Orientation, Dock));
+
+/// The twists of `side_by_side` whose square closes, and those whose does not.
+fn squares() -> (Vec<Twists>, Vec<Twists>) {
+    let docks = [Dock::PlusX, Dock::MinusX];
+    let (mut closing, mut open) = (Vec::new(), Vec::new());
+    for da in docks {
+        for oa in Orientation::ALL {
+            for d1 in docks {
+                for d2 in docks {
+                    for ob in Orientation::ALL {
+                        let twists = ((da, oa), (d1, ob, d2));
+                        let square = side_by_side(twists.0, twists.1, (0.0, 0.0), true);
+                        match square.map(|c| poses(&c).is_ok()) {
+                            Some(true) => closing.push(twists),
+                            _ => open.push(twists),
+                        }
+                    }
+                }
+            }
+        }
+    }
+    (closing, open)
+}
+
+#[test]
+fn a_connection_is_made_only_between_mated_connectors() {
+    let (closing, open) = squares();
+    assert!(!closing.is_empty() && !open.is_empty());
+    for (a, b) in closing {
+        let before = side_by_side(a, b, (0.0, 0.0), false).expect("open square");
+        let after = side_by_side(a, b, (0.0, 0.0), true).expect("closed square");
+        let step = step_between(&before, &after).expect("a connect");
+        assert_eq!(step.connects.len(), 1);
+        assert!(step.turns.is_empty() && step.disconnects.is_empty());
+        // And back: a release that keeps the robot whole.
+        let back = step_between(&after, &before).expect("a disconnect");
+        assert_eq!(back.disconnects.len(), 1);
+    }
+    for (a, b) in open {
+        let before = side_by_side(a, b, (0.0, 0.0), false).expect("open square");
+        let Some(after) = side_by_side(a, b, (0.0, 0.0), true) else {
+            continue;
+        };
+        let refused = step_between(&before, &after);
+        assert!(
+            matches!(refused, Err(StepError::NotMated(..))),
+            "{refused:?}"
+        );
+    }
+}
+
+#[test]
+fn a_closed_square_turns_only_in_lock_step_and_only_one_way() {
+    // The two modules' alpha axes are one line through both shoes A: turned together by the
+    // same physical angle, the square stays closed; either alone (any other timing) pulls
+    // shoe B of 2 away from shoe B of 1.
+    let (closing, _) = squares();
+    for (a, b) in closing {
+        let before = side_by_side(a, b, (0.0, 0.0), true).expect("closed");
+        let mut lockstep = 0;
+        for second in [45.0, -45.0] {
+            let Some(after) = side_by_side(a, b, (45.0, second), true) else {
+                continue;
+            };
+            match step_between(&before, &after) {
+                Ok(step) => {
+                    assert_eq!(step.together, Together::LockStep, "{a:?} {b:?}");
+                    lockstep += 1;
+                }
+                Err(StepError::Turns(SweepVerdict::OpensLoop { .. })) => {}
+                Err(other) => panic!("{a:?} {b:?} {second}: {other:?}"),
+            }
+        }
+        assert_eq!(lockstep, 1, "{a:?} {b:?}");
+    }
+}
+
+#[test]
+fn each_refusal_says_why() {
+    let two = chain(&[(0.0, 0.0, 0.0); 2]);
+    let apart = configuration(&[module(1, 0.0, 0.0, 0.0), module(2, 0.0, 0.0, 0.0)], &[]);
+    assert!(matches!(
+        step_between(&two, &apart),
+        Err(StepError::Splits(_))
+    ));
+    assert_eq!(step_between(&two, &two), Err(StepError::Nothing));
+    let three = chain(&[(0.0, 0.0, 0.0); 3]);
+    assert_eq!(
+        step_between(&two, &three),
+        Err(StepError::ModulesDiffer {
+            missing: vec![],
+            added: vec![3]
+        })
+    );
+    // Module 2 on 1's shoe A, 3 on its shoe B, both pointing along +X: 2's quarter turn
+    // the wrong way ends on 3.
+    let bent_onto = |o12: Orientation, alpha: f64| {
+        configuration(
+            &[
+                module(1, 0.0, 0.0, 0.0),
+                module(2, alpha, 0.0, 0.0),
+                module(3, 0.0, 0.0, 0.0),
+            ],
+            &[
+                edge((1, Side::A, Dock::PlusX), o12, (2, Side::A, Dock::MinusZ)),
+                edge(
+                    (1, Side::B, Dock::MinusX),
+                    Orientation::North,
+                    (3, Side::A, Dock::MinusZ),
+                ),
+            ],
+        )
+    };
+    let refused: Vec<StepError> = (Orientation::ALL.iter())
+        .flat_map(|&o| [90.0, -90.0].map(|alpha| (o, alpha)))
+        .filter_map(|(o, alpha)| step_between(&bent_onto(o, 0.0), &bent_onto(o, alpha)).err())
+        .collect();
+    assert_eq!(refused.len(), 2, "{refused:?}");
+    for e in &refused {
+        assert!(
+            matches!(e, StepError::Turns(SweepVerdict::Collides { .. })),
+            "{e:?}"
+        );
+        assert!(e.to_string().contains("even in lock-step"), "{e}");
+    }
+}
+
+#[test]
+fn a_plan_read_from_the_old_format_names_the_step_that_fails() {
+    let text = "C\nM 1 0 0 0\nM 2 0 0 0\nE 1 B -Z N -Z A 2\n\
+                C\nM 1 0 0 0\nM 2 90 0 0\nE 1 B -Z N -Z A 2\n\
+                C\nM 1 0 0 0\nM 2 90 0 0\n";
+    let plan = read_old_format(text).expect("a plan");
+    let configurations: Vec<RofiConfiguration> =
+        plan.configurations.into_iter().map(|(_, c)| c).collect();
+    match plan_steps(&configurations) {
+        Err((1, StepError::Splits(_))) => {}
+        other => panic!("{other:?}"),
+    }
+    let steps = plan_steps(&configurations[..2]).expect("one step");
+    assert_eq!(steps.len(), 1);
+}
