@@ -23,5 +23,7 @@ pub use module::*;
 pub use old_format::{read_old_format, OldFormatError, Plan};
 pub use rofiworld::{read_rofiworld, RofiWorldError};
 pub use steps::{plan_steps, step_between, Step, StepError, Together};
-pub use sweep::{sweep, sweep_within, SweepError, SweepVerdict, Timing, Turn, SWEEP_BUDGET};
+pub use sweep::{
+    sweep, sweep_within, SweepError, SweepVerdict, Timing, Turn, SWEEP_BUDGET, SWEEP_TOLERANCE,
+};
 pub use validity::{first_collision, validate, Collision, Invalid, COLLISION_DISTANCE_SQUARED};

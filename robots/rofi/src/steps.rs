@@ -18,7 +18,8 @@ pub enum Together {
     Alone,
     /// Safe for every relative timing: joined by `&`.
     AnyTiming,
-    /// Safe only in lock-step: a synchronous group.
+    /// Proven safe in lock-step, not over every timing (an overlap found there, or not
+    /// proven within the budget): a synchronous group.
     LockStep,
 }
 

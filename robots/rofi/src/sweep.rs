@@ -12,8 +12,10 @@
 //! half-widths are h, two shoes at distance d at its centre stay at least
 //! d − min(Σ |Δθ_i| h_i r_i(a), Σ |Δθ_i| h_i r_i(b)) apart. Pieces are halved along the turn
 //! with the largest |Δθ_i| h_i until every pair is proven apart, one is found overlapping at
-//! a piece's centre, or the budget is spent. RoFI's own tools check a step at ten samples of
-//! the lock-step timing only.
+//! a piece's centre, or the budget is spent. "Apart" is proven to within `SWEEP_TOLERANCE`
+//! (shoes that end mated touch at exactly one unit, which no finite piece proves), and every
+//! point evaluated is held to RoFI's own limit. RoFI's own tools check a step at ten samples
+//! of the lock-step timing only.
 
 use crate::kinematics::{
     across_connection, across_module, centre_of as centre, Shoe, LOOP_TOLERANCE,
@@ -21,11 +23,18 @@ use crate::kinematics::{
 use crate::module::{Connection, Connector, Dock, Joint, Module, RofiConfiguration, Side};
 use crate::validity::{Collision, COLLISION_DISTANCE_SQUARED};
 use nalgebra::Matrix4;
-use std::collections::{BTreeMap, VecDeque};
+use std::cmp::Ordering;
+use std::collections::{BTreeMap, BinaryHeap, VecDeque};
 use std::fmt;
 
 /// Pieces of the box examined before a group is reported unproven.
-pub const SWEEP_BUDGET: usize = 200_000;
+pub const SWEEP_BUDGET: usize = 20_000;
+
+/// How much closer than one unit two shoes may be proven to come for a motion to be called
+/// clear (0.01 unit: 1 mm on RoFI's 10 cm module). Shoes that end mated, or touch on the way,
+/// are exactly one unit apart there, which no bound of finite pieces proves; every point
+/// the search evaluates is still held to RoFI's own limit (`COLLISION_DISTANCE_SQUARED`).
+pub const SWEEP_TOLERANCE: f64 = 0.01;
 
 /// One joint turned from `from` by `by` degrees (signed: gamma's direction is in the sign).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -48,7 +57,8 @@ pub enum Timing {
 /// What the motion of a group does.
 #[derive(Clone, Debug, PartialEq)]
 pub enum SweepVerdict {
-    /// No two shoes of different modules come closer than one unit.
+    /// No two shoes of different modules come closer than one unit less `SWEEP_TOLERANCE`
+    /// anywhere, nor closer than RoFI's limit at any point evaluated.
     Clear,
     /// Two shoes overlap with the turns at these fractions of their motions.
     Collides {
@@ -350,6 +360,39 @@ fn euler(
     span
 }
 
+/// A piece waiting in the search's queue, first the one proven least.
+struct Queued {
+    piece: Piece,
+    made: usize,
+}
+
+impl Queued {
+    fn new(piece: Piece, made: usize) -> Queued {
+        Queued { piece, made }
+    }
+}
+
+impl Ord for Queued {
+    fn cmp(&self, other: &Self) -> Ordering {
+        // The heap pops its greatest: the smallest bound, then the earliest made.
+        (other.piece.lower.0.total_cmp(&self.piece.lower.0)).then(other.made.cmp(&self.made))
+    }
+}
+
+impl PartialOrd for Queued {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl PartialEq for Queued {
+    fn eq(&self, other: &Self) -> bool {
+        self.cmp(other) == Ordering::Equal
+    }
+}
+
+impl Eq for Queued {}
+
 /// The turns as the search needs them: which module's link each one crosses and how far
 /// every shoe is from its axis.
 struct Search<'t> {
@@ -467,19 +510,23 @@ impl<'t> Search<'t> {
             return SweepVerdict::Clear;
         }
         let first = pairs[0];
-        let mut stack = vec![Piece {
+        let root = Piece {
             centre: vec![0.5; dims],
             half: vec![0.5; dims],
             pairs,
             lower: (0.0, first),
-        }];
-        let limit = COLLISION_DISTANCE_SQUARED.sqrt();
+        };
+        // The piece proven least first (ties: the earliest made): a real overlap is found at
+        // a coarse level, and shoes that only touch are refined last.
+        let mut queue = BinaryHeap::from([Queued::new(root, 0)]);
+        let limit = 1.0 - SWEEP_TOLERANCE;
+        let mut made = 1;
         let mut examined = 0;
-        while let Some(piece) = stack.pop() {
+        while let Some(Queued { piece, .. }) = queue.pop() {
             examined += 1;
             if examined > budget {
-                stack.push(piece);
-                return self.unproven(&stack);
+                queue.push(Queued::new(piece, made));
+                return self.unproven(&queue);
             }
             let fractions = self.fractions(&piece.centre);
             let modules = self.modules_at(&fractions);
@@ -512,7 +559,10 @@ impl<'t> Search<'t> {
                 }
             }
             if !pending.is_empty() {
-                stack.extend(self.halves(&piece, pending, lower));
+                for half in self.halves(&piece, pending, lower) {
+                    queue.push(Queued::new(half, made));
+                    made += 1;
+                }
             }
         }
         SweepVerdict::Clear
@@ -520,8 +570,8 @@ impl<'t> Search<'t> {
 
     /// The verdict when the budget is spent: the least that the pieces left are proven to
     /// keep, each by the piece it was halved from.
-    fn unproven(&self, left: &[Piece]) -> SweepVerdict {
-        let least = (left.iter().map(|p| p.lower))
+    fn unproven(&self, left: &BinaryHeap<Queued>) -> SweepVerdict {
+        let least = (left.iter().map(|q| q.piece.lower))
             .min_by(|x, y| x.0.total_cmp(&y.0))
             .unwrap_or((0.0, (0, 0)));
         let (lower_bound, (a, b)) = least;

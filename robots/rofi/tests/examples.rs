@@ -1,0 +1,55 @@
+//! The example plans of `robots/rofi/examples/`, written for dynarole: each reads, every step
+//! is checked and classed as expected, and the plan run backwards (the derived reverse of
+//! each step) is valid too.
+
+use dynarole_robot_rofi::{plan_steps, read_old_format, RofiConfiguration, Step, Together};
+
+fn configurations(name: &str) -> Vec<RofiConfiguration> {
+    let path = format!("{}/examples/{name}", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
+    let plan = read_old_format(&text).unwrap_or_else(|e| panic!("{path}: {e}"));
+    plan.configurations.into_iter().map(|(_, c)| c).collect()
+}
+
+/// The steps forwards, and the steps of the same plan backwards.
+fn both_ways(name: &str) -> (Vec<Step>, Vec<Step>) {
+    let forwards = configurations(name);
+    let mut backwards = forwards.clone();
+    backwards.reverse();
+    let steps = |c: &[RofiConfiguration]| {
+        plan_steps(c).unwrap_or_else(|(i, e)| panic!("{name}: step {i}: {e}"))
+    };
+    (steps(&forwards), steps(&backwards))
+}
+
+fn classes(steps: &[Step]) -> Vec<Together> {
+    steps.iter().map(|s| s.together).collect()
+}
+
+#[test]
+fn the_gamma_swing_is_three_single_turns_both_ways() {
+    let (forwards, backwards) = both_ways("gamma-swing.txt");
+    assert_eq!(classes(&forwards), [Together::Alone; 3]);
+    assert_eq!(classes(&backwards), [Together::Alone; 3]);
+    assert!(forwards
+        .iter()
+        .all(|s| s.turns.len() == 1 && s.notes.is_empty()));
+}
+
+#[test]
+fn the_square_turns_only_in_lock_step_both_ways() {
+    let (forwards, backwards) = both_ways("square-lockstep.txt");
+    assert_eq!(classes(&forwards), [Together::LockStep]);
+    assert_eq!(classes(&backwards), [Together::LockStep]);
+}
+
+#[test]
+fn the_snake_folds_in_lock_step_and_closes_into_a_ring() {
+    let (forwards, backwards) = both_ways("snake-to-ring.txt");
+    assert_eq!(classes(&forwards), [Together::LockStep, Together::Alone]);
+    assert_eq!(forwards[0].turns.len(), 4);
+    assert_eq!(forwards[1].connects.len(), 1);
+    // Backwards the ring opens first, then unfolds.
+    assert_eq!(backwards[0].disconnects.len(), 1);
+    assert_eq!(classes(&backwards), [Together::Alone, Together::LockStep]);
+}
