@@ -44,12 +44,14 @@ fn the_square_turns_only_in_lock_step_both_ways() {
 }
 
 #[test]
-fn the_snake_folds_in_lock_step_and_closes_into_a_ring() {
+fn the_snake_folds_at_any_timing_and_closes_into_a_ring() {
+    // The fold's four turns are proven clear over every relative timing, though two shoes end
+    // touching (the second-order bound proves them to within the tolerance).
     let (forwards, backwards) = both_ways("snake-to-ring.txt");
-    assert_eq!(classes(&forwards), [Together::LockStep, Together::Alone]);
+    assert_eq!(classes(&forwards), [Together::AnyTiming, Together::Alone]);
     assert_eq!(forwards[0].turns.len(), 4);
     assert_eq!(forwards[1].connects.len(), 1);
     // Backwards the ring opens first, then unfolds.
     assert_eq!(backwards[0].disconnects.len(), 1);
-    assert_eq!(classes(&backwards), [Together::Alone, Together::LockStep]);
+    assert_eq!(classes(&backwards), [Together::Alone, Together::AnyTiming]);
 }
