@@ -235,3 +235,18 @@ fn a_plan_read_from_the_old_format_names_the_step_that_fails() {
     let steps = plan_steps(&configurations[..2]).expect("one step");
     assert_eq!(steps.len(), 1);
 }
+
+#[test]
+fn a_half_turn_of_gamma_is_given_a_direction_and_a_note() {
+    // Module 2 bent, module 1's gamma turned half round: the file cannot say which way.
+    let from = chain(&[(0.0, 0.0, 0.0), (90.0, 0.0, 0.0)]);
+    let to = chain(&[(0.0, 0.0, 180.0), (90.0, 0.0, 0.0)]);
+    let step = step_between(&from, &to).expect("a step");
+    assert_eq!(step.turns.len(), 1);
+    assert_eq!(step.turns[0].by.abs(), 180.0);
+    assert!(
+        step.notes.iter().any(|n| n.contains("half round")),
+        "{:?}",
+        step.notes
+    );
+}
