@@ -22,7 +22,7 @@ pub use kinematics::{
 pub use module::*;
 pub use old_format::{read_old_format, OldFormatError, Plan};
 pub use rofiworld::{read_rofiworld, RofiWorldError};
-pub use steps::{plan_steps, step_between, Step, StepError, Together};
+pub use steps::{plan_steps, plan_steps_at, step_between, PlanError, Step, StepError, Together};
 pub use sweep::{
     sweep, sweep_within, SweepError, SweepVerdict, Timing, Turn, SWEEP_BUDGET, SWEEP_TOLERANCE,
 };

@@ -118,6 +118,56 @@ fn describe(verdict: &SweepVerdict) -> String {
     }
 }
 
+/// Why a plan read from a file is refused: the configuration (its index from 0, and the line
+/// where it starts in the file) that cannot be reached from the one before, or that is not
+/// valid to start from.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PlanError {
+    pub configuration: usize,
+    pub line: usize,
+    pub error: StepError,
+}
+
+impl fmt::Display for PlanError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let (k, line) = (self.configuration, self.line);
+        match (k, &self.error) {
+            (0, StepError::Invalid(e)) => write!(f, "configuration 0 (line {line}): {e}"),
+            _ => write!(
+                f,
+                "configuration {k} (line {line}), the step from configuration {}: {}",
+                k.saturating_sub(1),
+                self.error
+            ),
+        }
+    }
+}
+
+impl std::error::Error for PlanError {}
+
+/// The steps of a plan read from a file, each configuration with the line it starts at; the
+/// error names the configuration and its line.
+pub fn plan_steps_at(
+    configurations: &[(usize, RofiConfiguration)],
+) -> Result<Vec<Step>, PlanError> {
+    let plain: Vec<RofiConfiguration> = configurations.iter().map(|(_, c)| c.clone()).collect();
+    plan_steps(&plain).map_err(|(step, error)| {
+        // A first configuration that is not valid is reported as step 0's, at configuration 0.
+        let configuration = match (step, &error) {
+            (0, StepError::Invalid(_)) if validate(&plain[0]).is_err() => 0,
+            _ => step + 1,
+        };
+        let line = configurations
+            .get(configuration)
+            .map_or(0, |(line, _)| *line);
+        PlanError {
+            configuration,
+            line,
+            error,
+        }
+    })
+}
+
 /// The steps of a plan: one between each two consecutive configurations, the first of which
 /// must be valid; the error names the step (0 is from configuration 0 to 1).
 pub fn plan_steps(configurations: &[RofiConfiguration]) -> Result<Vec<Step>, (usize, StepError)> {

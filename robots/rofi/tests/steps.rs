@@ -3,8 +3,8 @@
 //! each way a step can be refused, the plan naming the step.
 
 use dynarole_robot_rofi::{
-    plan_steps, poses, read_old_format, step_between, Connection, Connector, Dock, Joint, Module,
-    Orientation, RofiConfiguration, Side, StepError, SweepVerdict, Together,
+    plan_steps, plan_steps_at, poses, read_old_format, step_between, Connection, Connector, Dock,
+    Joint, Module, Orientation, RofiConfiguration, Side, StepError, SweepVerdict, Together,
 };
 
 fn module(id: u32, alpha: f64, beta: f64, gamma: f64) -> Module {
@@ -234,6 +234,24 @@ fn a_plan_read_from_the_old_format_names_the_step_that_fails() {
     }
     let steps = plan_steps(&configurations[..2]).expect("one step");
     assert_eq!(steps.len(), 1);
+    // Named by the configuration that cannot be reached, and its line.
+    let plan = read_old_format(text).expect("a plan");
+    let error = plan_steps_at(&plan.configurations).expect_err("refused");
+    assert_eq!((error.configuration, error.line), (2, 9));
+    let message = error.to_string();
+    assert!(
+        message.starts_with("configuration 2 (line 9), the step from configuration 1"),
+        "{message}"
+    );
+    // A first configuration that is not valid is named itself.
+    let invalid = "C\nM 1 0 0 0\nM 2 0 0 0\nE 1 A -Z N -Z A 2\nE 1 B -Z N -Z B 2\n";
+    let plan = read_old_format(invalid).expect("a plan");
+    let error = plan_steps_at(&plan.configurations).expect_err("refused");
+    assert_eq!((error.configuration, error.line), (0, 1));
+    assert!(
+        error.to_string().contains("a loop does not close"),
+        "{error}"
+    );
 }
 
 #[test]
