@@ -20,7 +20,7 @@ pub use kinematics::{
     LOOP_TOLERANCE,
 };
 pub use module::*;
-pub use old_format::{read_old_format, OldFormatError, Plan};
+pub use old_format::{read_old_format, write_old_format, OldFormatError, Plan};
 pub use rofiworld::{read_rofiworld, RofiWorldError};
 pub use steps::{plan_steps, plan_steps_at, step_between, PlanError, Step, StepError, Together};
 pub use sweep::{

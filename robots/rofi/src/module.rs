@@ -41,6 +41,14 @@ pub enum Side {
 }
 
 impl Side {
+    /// Its name in RoFI's files.
+    pub fn letter(self) -> &'static str {
+        match self {
+            Side::A => "A",
+            Side::B => "B",
+        }
+    }
+
     pub fn other(self) -> Side {
         match self {
             Side::A => Side::B,
@@ -63,6 +71,15 @@ pub enum Dock {
 
 impl Dock {
     pub const ALL: [Dock; 3] = [Dock::PlusX, Dock::MinusX, Dock::MinusZ];
+
+    /// Its name in RoFI's old text format (RofiWorld's ±X names are these swapped).
+    pub fn old_name(self) -> &'static str {
+        match self {
+            Dock::PlusX => "+X",
+            Dock::MinusX => "-X",
+            Dock::MinusZ => "-Z",
+        }
+    }
 }
 
 /// One of a module's six connectors: index 3 · side + dock.
@@ -122,6 +139,16 @@ impl Orientation {
 
     pub fn quarter_turns(self) -> u8 {
         self as u8
+    }
+
+    /// Its letter in RoFI's old text format.
+    pub fn letter(self) -> &'static str {
+        match self {
+            Orientation::North => "N",
+            Orientation::East => "E",
+            Orientation::South => "S",
+            Orientation::West => "W",
+        }
     }
 }
 
@@ -331,8 +358,11 @@ impl RofiConfiguration {
     }
 }
 
-/// An angle in degrees taken into (−180, 180].
+/// An angle in degrees taken into (−180, 180] (an angle already there is kept exactly).
 pub fn circular(degrees: f64) -> f64 {
+    if degrees > -180.0 && degrees <= 180.0 {
+        return degrees;
+    }
     let wrapped = degrees.rem_euclid(360.0);
     if wrapped > 180.0 {
         wrapped - 360.0

@@ -285,20 +285,13 @@ fn is_decimal_number(text: &str) -> bool {
 }
 
 fn parse_side(line: usize, field: Field, spec: &FieldSpec) -> Result<Side, OldFormatError> {
-    match field.text {
-        "A" | "0" => Ok(Side::A),
-        "B" | "1" => Ok(Side::B),
-        _ => Err(field.expected(line, spec)),
-    }
+    named(field.text, &[Side::A, Side::B], |s| (s.letter(), s as u8))
+        .ok_or_else(|| field.expected(line, spec))
 }
 
 fn parse_dock(line: usize, field: Field, spec: &FieldSpec) -> Result<Dock, OldFormatError> {
-    match field.text {
-        "+X" | "0" => Ok(Dock::PlusX),
-        "-X" | "1" => Ok(Dock::MinusX),
-        "-Z" | "2" => Ok(Dock::MinusZ),
-        _ => Err(field.expected(line, spec)),
-    }
+    named(field.text, &Dock::ALL, |d| (d.old_name(), d as u8))
+        .ok_or_else(|| field.expected(line, spec))
 }
 
 fn parse_orientation(
@@ -306,13 +299,47 @@ fn parse_orientation(
     field: Field,
     spec: &FieldSpec,
 ) -> Result<Orientation, OldFormatError> {
-    match field.text {
-        "N" | "0" => Ok(Orientation::North),
-        "E" | "1" => Ok(Orientation::East),
-        "S" | "2" => Ok(Orientation::South),
-        "W" | "3" => Ok(Orientation::West),
-        _ => Err(field.expected(line, spec)),
+    named(field.text, &Orientation::ALL, |o| {
+        (o.letter(), o.quarter_turns())
+    })
+    .ok_or_else(|| field.expected(line, spec))
+}
+
+/// The value whose name (the vocabulary of `module.rs`) or number `text` is.
+fn named<T: Copy>(text: &str, all: &[T], name: impl Fn(T) -> (&'static str, u8)) -> Option<T> {
+    all.iter().copied().find(|&value| {
+        let (word, number) = name(value);
+        text == word || text.parse::<u8>().ok() == Some(number) && text.len() == 1
+    })
+}
+
+/// The configurations in this format: a `C` block each, modules in ID order, each connection
+/// once, from the end it was made from, by names. Angles are written as Rust writes a float
+/// (the shortest text that reads back to the same number), so reading the text gives the
+/// same configurations.
+pub fn write_old_format(configurations: &[RofiConfiguration]) -> String {
+    let mut out = String::new();
+    for (k, config) in configurations.iter().enumerate() {
+        if k > 0 {
+            out.push('\n');
+        }
+        out.push_str("C\n");
+        for m in config.modules() {
+            out.push_str(&format!("M {} {} {} {}\n", m.id, m.alpha, m.beta, m.gamma));
+        }
+        for c in config.connections() {
+            let ((id1, c1), (id2, c2)) = (c.from, c.to);
+            out.push_str(&format!(
+                "E {id1} {} {} {} {} {} {id2}\n",
+                c1.side().letter(),
+                c1.dock().old_name(),
+                c.orientation.letter(),
+                c2.dock().old_name(),
+                c2.side().letter()
+            ));
+        }
     }
+    out
 }
 
 /// The kinds of line, by their first field.
