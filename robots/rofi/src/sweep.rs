@@ -18,14 +18,13 @@
 //! apart there), and every point evaluated is held to RoFI's own limit. RoFI's own tools check
 //! a step at ten samples of the lock-step timing only.
 
-use crate::kinematics::{
-    across_connection, across_module, centre_of as centre, Shoe, LOOP_TOLERANCE,
-};
-use crate::module::{Connection, Connector, Dock, Joint, Module, RofiConfiguration, Side};
+use crate::kinematics::centre_of as centre;
+use crate::module::{Connection, Joint, Module, RofiConfiguration};
+use crate::tree::{Shoe, Tree};
 use crate::validity::{Collision, COLLISION_DISTANCE_SQUARED};
 use nalgebra::{Matrix4, Point3, Vector3};
 use std::cmp::Ordering;
-use std::collections::{BTreeMap, BinaryHeap, VecDeque};
+use std::collections::BinaryHeap;
 use std::fmt;
 
 /// Pieces of the box examined before a group is reported unproven.
@@ -142,7 +141,7 @@ pub fn sweep_within(
     budget: usize,
 ) -> Result<SweepVerdict, SweepError> {
     check_turns(config, turns)?;
-    let tree = Tree::of(config)?;
+    let tree = Tree::of(config).map_err(|_| SweepError::NotConnected)?;
     let search = Search::new(&tree, turns, timing);
     Ok(search.run(budget))
 }
@@ -173,192 +172,6 @@ fn check_turns(config: &RofiConfiguration, turns: &[Turn]) -> Result<(), SweepEr
         }
     }
     Ok(())
-}
-
-/// A spanning tree of the shoes in which every module's own link is an edge: shoes by index
-/// (module's position in ID order · 2 + side), each placed from its parent.
-struct Tree {
-    modules: Vec<Module>,
-    /// Shoes in placing order: (shoe, parent shoe and how to get there from it).
-    order: Vec<(usize, Option<(usize, Link)>)>,
-    /// Connections not in the tree: they must stay closed.
-    loops: Vec<Connection>,
-    /// For each shoe, the interval of its subtree in the placing order (Euler tour).
-    subtree: Vec<(usize, usize)>,
-    parent: Vec<Option<usize>>,
-    index: BTreeMap<u32, usize>,
-}
-
-#[derive(Clone, Copy)]
-enum Link {
-    /// Across the module's joints from the parent's side.
-    Module(Side),
-    /// Across a connection from the parent's dock.
-    Connection(Dock, u8, Dock),
-}
-
-impl Tree {
-    fn of(config: &RofiConfiguration) -> Result<Tree, SweepError> {
-        let modules: Vec<Module> = config.modules().copied().collect();
-        let index: BTreeMap<u32, usize> = (modules.iter().enumerate())
-            .map(|(i, m)| (m.id, i))
-            .collect();
-        let shoe = |id: u32, side: Side| index.get(&id).map(|m| m * 2 + side as usize);
-        let n = modules.len() * 2;
-        let mut parent = vec![None; n];
-        let mut order = Vec::with_capacity(n);
-        let mut placed = vec![false; n];
-        let mut tree_connections = Vec::new();
-        let mut queue = VecDeque::new();
-        if n > 0 {
-            placed[0] = true;
-            order.push((0, None));
-            placed[1] = true;
-            parent[1] = Some(0);
-            order.push((1, Some((0, Link::Module(Side::A)))));
-            queue.push_back(0usize);
-        }
-        while let Some(m) = queue.pop_front() {
-            for side in [Side::A, Side::B] {
-                for dock in Dock::ALL {
-                    let here = m * 2 + side as usize;
-                    let port = (modules[m].id, Connector::new(side, dock));
-                    let Some(c) = config.connection_at(port) else {
-                        continue;
-                    };
-                    let Some(there) = shoe(c.to.0, c.to.1.side()) else {
-                        continue;
-                    };
-                    if placed[there] {
-                        continue;
-                    }
-                    let link = Link::Connection(dock, c.orientation.quarter_turns(), c.to.1.dock());
-                    placed[there] = true;
-                    parent[there] = Some(here);
-                    order.push((there, Some((here, link))));
-                    tree_connections.push(c);
-                    let other = there ^ 1;
-                    placed[other] = true;
-                    parent[other] = Some(there);
-                    order.push((other, Some((there, Link::Module(c.to.1.side())))));
-                    queue.push_back(there / 2);
-                }
-            }
-        }
-        if placed.iter().any(|p| !p) {
-            return Err(SweepError::NotConnected);
-        }
-        let in_tree = |c: &Connection| {
-            tree_connections
-                .iter()
-                .any(|t| *t == *c || *t == c.reversed())
-        };
-        let loops = (config.connections().iter())
-            .filter(|c| !in_tree(c))
-            .copied()
-            .collect();
-        let subtree = euler(&parent, &order);
-        Ok(Tree {
-            modules,
-            order,
-            loops,
-            subtree,
-            parent,
-            index,
-        })
-    }
-
-    fn shoe_index(&self, (id, side): Shoe) -> Option<usize> {
-        self.index.get(&id).map(|m| m * 2 + side as usize)
-    }
-
-    fn shoe_of(&self, index: usize) -> Shoe {
-        let side = if index % 2 == 0 { Side::A } else { Side::B };
-        (self.modules[index / 2].id, side)
-    }
-
-    /// Is `shoe` in the subtree of `root`?
-    fn within(&self, shoe: usize, root: usize) -> bool {
-        let (a, b) = self.subtree[root];
-        let (x, _) = self.subtree[shoe];
-        a <= x && x < b
-    }
-
-    /// Tree links from every shoe to `from`.
-    fn hops_from(&self, from: usize) -> Vec<usize> {
-        let n = self.parent.len();
-        let mut neighbours = vec![Vec::new(); n];
-        for (child, p) in self.parent.iter().enumerate() {
-            if let Some(p) = p {
-                neighbours[child].push(*p);
-                neighbours[*p].push(child);
-            }
-        }
-        let mut hops = vec![usize::MAX; n];
-        hops[from] = 0;
-        let mut queue = VecDeque::from([from]);
-        while let Some(s) = queue.pop_front() {
-            for &t in &neighbours[s] {
-                if hops[t] == usize::MAX {
-                    hops[t] = hops[s] + 1;
-                    queue.push_back(t);
-                }
-            }
-        }
-        hops
-    }
-
-    /// Every shoe's pose with the modules' joints at `modules`' angles.
-    fn poses(&self, modules: &[Module]) -> Vec<Matrix4<f64>> {
-        let mut poses = vec![Matrix4::identity(); self.parent.len()];
-        for &(shoe, from) in &self.order {
-            if let Some((parent, link)) = from {
-                let step = match link {
-                    Link::Module(side) => across_module(&modules[parent / 2], side),
-                    Link::Connection(d1, o, d2) => across_connection(d1, o, d2),
-                };
-                poses[shoe] = poses[parent] * step;
-            }
-        }
-        poses
-    }
-}
-
-/// Each shoe's (entry, exit) in a depth-first walk of the tree given by `parent`.
-fn euler(
-    parent: &[Option<usize>],
-    order: &[(usize, Option<(usize, Link)>)],
-) -> Vec<(usize, usize)> {
-    let n = parent.len();
-    let mut children = vec![Vec::new(); n];
-    for &(shoe, from) in order {
-        if let Some((p, _)) = from {
-            children[p].push(shoe);
-        }
-    }
-    let mut span = vec![(0, 0); n];
-    let mut clock = 0;
-    // (shoe, next child to visit)
-    let mut stack = vec![(0usize, 0usize)];
-    if n == 0 {
-        return span;
-    }
-    span[0].0 = clock;
-    clock += 1;
-    while let Some((shoe, next)) = stack.last().copied() {
-        if let Some(&child) = children[shoe].get(next) {
-            if let Some(top) = stack.last_mut() {
-                top.1 += 1;
-            }
-            span[child].0 = clock;
-            clock += 1;
-            stack.push((child, 0));
-        } else {
-            span[shoe].1 = clock;
-            stack.pop();
-        }
-    }
-    span
 }
 
 /// A piece waiting in the search's queue, first the one proven least.
@@ -599,7 +412,7 @@ impl<'t> Search<'t> {
             let fractions = self.fractions(&piece.centre);
             let modules = self.modules_at(&fractions);
             let poses = self.tree.poses(&modules);
-            if let Some(connection) = self.open_loop(&poses) {
+            if let Some((connection, _)) = self.tree.open_loop(&poses) {
                 return SweepVerdict::OpensLoop {
                     fractions,
                     connection,
@@ -682,31 +495,12 @@ impl<'t> Search<'t> {
             },
         ]
     }
-
-    /// A connection outside the tree whose two shoes no longer mate.
-    fn open_loop(&self, poses: &[Matrix4<f64>]) -> Option<Connection> {
-        self.tree.loops.iter().copied().find(|c| {
-            let (Some(from), Some(to)) = (
-                self.tree.shoe_index((c.from.0, c.from.1.side())),
-                self.tree.shoe_index((c.to.0, c.to.1.side())),
-            ) else {
-                return true;
-            };
-            let step = across_connection(
-                c.from.1.dock(),
-                c.orientation.quarter_turns(),
-                c.to.1.dock(),
-            );
-            let gap = (poses[from] * step - poses[to]).abs().max();
-            gap > LOOP_TOLERANCE
-        })
-    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::module::{Connector, Orientation};
+    use crate::module::{Connector, Dock, Orientation, Side};
 
     /// Chains of three modules at every dock pair and several twists and angles.
     fn chains() -> Vec<RofiConfiguration> {

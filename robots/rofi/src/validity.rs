@@ -1,8 +1,9 @@
 //! The validity RoFI asks of a configuration: connected, every loop closed (`kinematics.rs`)
 //! and no two shoes overlapping, shoes being unit-diameter spheres at their centres.
 
-use crate::kinematics::{poses, KinematicsError, Poses, Shoe};
+use crate::kinematics::{poses, KinematicsError, Poses};
 use crate::module::RofiConfiguration;
+use crate::tree::Shoe;
 use std::fmt;
 
 /// Two shoes overlap when their centres are closer than this squared (in units²): one unit,
