@@ -2,16 +2,15 @@
 //! hand: straight chains, a closed square of two modules, a loop that cannot close, and a
 //! module bent back onto another; and that where the robot is pinned changes nothing.
 
+mod common;
+use common::{configuration, module};
+
 use dynarole_robot_rofi::{
     poses, poses_from, validate, Connection, Connector, Dock, Invalid, KinematicsError, Module,
     Orientation, RofiConfiguration, Side,
 };
 use nalgebra::{Matrix4, Point3};
 use proptest::prelude::*;
-
-fn module(id: u32, alpha: f64, beta: f64, gamma: f64) -> Module {
-    Module::new(id, alpha, beta, gamma)
-}
 
 fn port(id: u32, side: Side, dock: Dock) -> (u32, Connector) {
     (id, Connector::new(side, dock))
@@ -23,10 +22,6 @@ fn edge(from: (u32, Connector), orientation: Orientation, to: (u32, Connector)) 
         orientation,
         to,
     }
-}
-
-fn configuration(modules: &[Module], edges: &[Connection]) -> RofiConfiguration {
-    RofiConfiguration::from_parts(modules, edges).expect("a configuration")
 }
 
 fn near(a: Point3<f64>, b: Point3<f64>) -> bool {

@@ -2,26 +2,13 @@
 //! a loop of two modules that turns only in lock-step; connections released and made; and
 //! each way a step can be refused, the plan naming the step.
 
+mod common;
+use common::{configuration, edge, module};
+
 use dynarole_robot_rofi::{
-    plan_steps, plan_steps_at, poses, read_old_format, step_between, Connection, Connector, Dock,
-    Joint, Module, Orientation, RofiConfiguration, Side, StepError, SweepVerdict, Together,
+    plan_steps, plan_steps_at, poses, read_old_format, step_between, Connection, Dock, Joint,
+    Module, Orientation, RofiConfiguration, Side, StepError, SweepVerdict, Together,
 };
-
-fn module(id: u32, alpha: f64, beta: f64, gamma: f64) -> Module {
-    Module::new(id, alpha, beta, gamma)
-}
-
-fn edge(from: (u32, Side, Dock), o: Orientation, to: (u32, Side, Dock)) -> Connection {
-    Connection {
-        from: (from.0, Connector::new(from.1, from.2)),
-        orientation: o,
-        to: (to.0, Connector::new(to.1, to.2)),
-    }
-}
-
-fn configuration(modules: &[Module], edges: &[Connection]) -> RofiConfiguration {
-    RofiConfiguration::from_parts(modules, edges).expect("a configuration")
-}
 
 /// Straight modules 1..=n, B of each on A of the next.
 fn chain(angles: &[(f64, f64, f64)]) -> RofiConfiguration {

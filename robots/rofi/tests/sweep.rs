@@ -3,27 +3,14 @@
 //! never in a motion called clear; a reported overlap is one) and lock-step against every
 //! timing.
 
+mod common;
+use common::{configuration, edge, module};
+
 use dynarole_robot_rofi::{
-    sweep, sweep_within, validate, Connection, Connector, Dock, Invalid, Joint, Module,
-    Orientation, RofiConfiguration, Side, SweepError, SweepVerdict, Timing, Turn,
+    sweep, sweep_within, validate, Connection, Dock, Invalid, Joint, Module, Orientation,
+    RofiConfiguration, Side, SweepError, SweepVerdict, Timing, Turn,
 };
 use proptest::prelude::*;
-
-fn module(id: u32, alpha: f64, beta: f64, gamma: f64) -> Module {
-    Module::new(id, alpha, beta, gamma)
-}
-
-fn edge(from: (u32, Side, Dock), o: Orientation, to: (u32, Side, Dock)) -> Connection {
-    Connection {
-        from: (from.0, Connector::new(from.1, from.2)),
-        orientation: o,
-        to: (to.0, Connector::new(to.1, to.2)),
-    }
-}
-
-fn configuration(modules: &[Module], edges: &[Connection]) -> RofiConfiguration {
-    RofiConfiguration::from_parts(modules, edges).expect("a configuration")
-}
 
 /// `config` with `turns` at `fractions` of their motions.
 fn at(config: &RofiConfiguration, turns: &[Turn], fractions: &[f64]) -> RofiConfiguration {
