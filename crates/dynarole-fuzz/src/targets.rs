@@ -36,9 +36,10 @@ pub enum Target {
     Campaign,
     /// The robot plugin TOML loader, and a source naming the loaded robot.
     Plugin,
-    /// RoFI's plan files (old text format or RofiWorld JSON), and the validity of each
-    /// configuration read.
-    Rofi,
+    /// A planner's plan file, imported by the robot whose planners' format its content is
+    /// (`Robots::import_plan`: reading, the steps and their sweeps), and read as one
+    /// configuration (`--from`).
+    Plan,
 }
 
 /// What became of an input that broke no property.
@@ -295,7 +296,7 @@ impl Target {
         Target::Scenario,
         Target::Campaign,
         Target::Plugin,
-        Target::Rofi,
+        Target::Plan,
     ];
 
     /// The corpus folder's name.
@@ -308,7 +309,7 @@ impl Target {
             Target::Scenario => "scenario",
             Target::Campaign => "campaign",
             Target::Plugin => "plugin",
-            Target::Rofi => "rofi",
+            Target::Plan => "plan",
         }
     }
 
@@ -317,7 +318,7 @@ impl Target {
         match self {
             Target::Parse | Target::Check | Target::Format => source_words(),
             Target::Configuration => json_words(),
-            Target::Rofi => ROFI_WORDS,
+            Target::Plan => PLAN_WORDS,
             Target::Scenario | Target::Campaign | Target::Plugin => TOML_WORDS,
         }
     }
@@ -332,7 +333,7 @@ impl Target {
             Target::Scenario => loader(text, Scenario::from_toml_str(text).map(|_| ())),
             Target::Campaign => campaign(text),
             Target::Plugin => plugin(ctx, text),
-            Target::Rofi => rofi(text),
+            Target::Plan => planner_plan(text),
         }
     }
 }
@@ -421,8 +422,8 @@ fn configuration(text: &str) -> Result<Outcome, String> {
     }
 }
 
-/// Tokens of RoFI's two formats.
-const ROFI_WORDS: &[&str] = &[
+/// Tokens of the planners' formats the robots import (text lines and JSON worlds).
+const PLAN_WORDS: &[&str] = &[
     "C",
     "M",
     "E",
@@ -454,27 +455,16 @@ const ROFI_WORDS: &[&str] = &[
     "1e999",
 ];
 
-/// A RoFI file read as its content says (JSON when it opens with `{` or `[`), and every
-/// configuration it holds validated: kinematics and collisions must answer, not panic.
-fn rofi(text: &str) -> Result<Outcome, String> {
-    let json = text.trim_start().starts_with(['{', '[']);
-    let read = if json {
-        dynarole_robot_rofi::read_rofiworld(text).map_err(|e| e.to_string())
-    } else {
-        dynarole_robot_rofi::read_old_format(text)
-            .map(|plan| plan.configurations.into_iter().map(|(_, c)| c).collect())
-            .map_err(|e| e.to_string())
+/// A plan read as the content says, by the robot whose planners' format it is, and the same
+/// text as one configuration: no panic, an error of bounded size.
+fn planner_plan(text: &str) -> Result<Outcome, String> {
+    let robots = dynarole_robots::robots();
+    let imported = match robots.import_plan(text, "plan") {
+        Some(result) => result.map(|_| ()).map_err(|e| e.to_string()),
+        None => Err("no robot's planners write this format".to_string()),
     };
-    let configurations = match read {
-        Ok(configurations) => configurations,
-        Err(e) => return loader(text, Err(e)),
-    };
-    let mut outcome = Outcome::Accepted;
-    for config in &configurations {
-        if let Err(invalid) = dynarole_robot_rofi::validate(config) {
-            outcome = loader(text, Err(invalid))?;
-        }
-    }
+    let outcome = loader(text, imported)?;
+    loader(text, robots.read_configuration(text).map(|_| ()))?;
     Ok(outcome)
 }
 

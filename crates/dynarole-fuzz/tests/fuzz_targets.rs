@@ -74,8 +74,8 @@ fn plugin() {
 }
 
 #[test]
-fn rofi() {
-    fuzz(Target::Rofi);
+fn plan() {
+    fuzz(Target::Plan);
 }
 
 /// The hostile inputs of `target` (`fuzz/regressions/<target>/`), every path run.

@@ -42,7 +42,55 @@ pub trait RobotKind: Send + Sync + 'static {
     fn schema(&self) -> Option<&'static str> {
         None
     }
+    /// Reads a configuration in a format of the robot's own tools, recognised by its content
+    /// (a file without dynarole's `robot` field); `None` when the text is in none of them.
+    fn read_native(&self, text: &str) -> Option<Result<Configuration, ConfigError>> {
+        let _ = text;
+        None
+    }
+    /// Reads a plan of the robot's own planners (a list of configurations, recognised by its
+    /// content) into a program whose one sequence, `sequence`, goes through it; `None` when the
+    /// text is no plan of this robot's.
+    fn import_plan(&self, text: &str, sequence: &str) -> Option<Result<ImportedPlan, PlanError>> {
+        let _ = (text, sequence);
+        None
+    }
 }
+
+/// A planner's plan as a program (`dynarole import`).
+#[derive(Clone, Debug)]
+pub struct ImportedPlan {
+    /// The format the plan was recognised as, in words.
+    pub format: &'static str,
+    /// The program's text: `robot NAME;` and the one sequence.
+    pub program: String,
+    /// The plan's first configuration and its last.
+    pub from: Configuration,
+    pub expect: Configuration,
+    /// One line per step, in order, as the command prints them.
+    pub steps: Vec<String>,
+}
+
+/// Why a plan is refused: where in the file (1-based line and column), and why (naming the
+/// configuration by its index from 0).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct PlanError {
+    pub line: usize,
+    pub column: usize,
+    pub message: String,
+}
+
+impl fmt::Display for PlanError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "line {}, column {}: {}",
+            self.line, self.column, self.message
+        )
+    }
+}
+
+impl std::error::Error for PlanError {}
 
 /// How a robot's transceivers and clocks behave in the simulator, under a name a scenario
 /// gives as `network.preset`.

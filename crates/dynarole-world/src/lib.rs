@@ -31,7 +31,10 @@ pub mod structure;
 mod view;
 pub mod world_common;
 
-pub use api::{Configuration, NetworkPreset, RobotConfiguration, RobotKind, RobotModel};
+pub use api::{
+    Configuration, ImportedPlan, NetworkPreset, PlanError, RobotConfiguration, RobotKind,
+    RobotModel,
+};
 pub use common::{ConfigError, Latch, Metadata, NamedConnection, Port};
 pub use compare::{
     compare, compare_with_expected, model_difference, Difference, JointDifference, Misplaced, Sides,

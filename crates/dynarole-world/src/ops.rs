@@ -139,6 +139,22 @@ pub enum OpError {
         /// Degrees into the turn at which the closest approach happens.
         angle_deg: f64,
     },
+    /// Releasing the connection would leave the robot in two parts, which this robot refuses
+    /// (its modules cannot stand apart).
+    WouldSplit {
+        /// `M2.C1`.
+        port: String,
+        /// The modules that would come apart from the commanding module's side.
+        apart: Vec<String>,
+    },
+    /// The robot's model could not prove the motion safe within its search's bound (it is
+    /// refused, never assumed to be).
+    Unproven {
+        /// The module whose operation it is.
+        module: String,
+        /// What was left unproven.
+        reason: String,
+    },
 }
 
 impl fmt::Display for OpError {
@@ -196,6 +212,15 @@ impl fmt::Display for OpError {
                 "{module}'s turn would sweep {moving} through {still}: their centres come \
                  {distance:.3} apart ({angle_deg:.1} deg into the turn), under the limit {limit}"
             ),
+            OpError::WouldSplit { port, apart } => write!(
+                f,
+                "cannot disconnect {port}: the robot would come apart ([{}] would be left on \
+                 their own)",
+                apart.join(", ")
+            ),
+            OpError::Unproven { module, reason } => {
+                write!(f, "{module}'s operation is refused: {reason}")
+            }
         }
     }
 }

@@ -2,7 +2,7 @@
 //! program may add its own. Reading a configuration file picks the kind by the file's `robot`
 //! field here, and nowhere else.
 
-use crate::api::{Configuration, RobotKind};
+use crate::api::{Configuration, ImportedPlan, PlanError, RobotKind};
 use crate::common::ConfigError;
 use crate::file_format::deserialize;
 use serde::Deserialize;
@@ -43,15 +43,20 @@ impl Robots {
 
     /// Parses and validates a configuration in the data-file format of the kind its `robot`
     /// field names.
+    /// A file without a `robot` field is read by the kind whose own tools' format it is
+    /// (`RobotKind::read_native`), if any.
     pub fn read_configuration(&self, text: &str) -> Result<Configuration, ConfigError> {
-        not_an_object(text)?;
-        let probe: Probe = deserialize(text)?;
+        if let Err(e) = not_an_object(text) {
+            return self.read_native(text).unwrap_or(Err(e));
+        }
+        let probe: Probe = match deserialize(text) {
+            Ok(probe) => probe,
+            Err(e) => return self.read_native(text).unwrap_or(Err(e)),
+        };
         let expected = self.expected_tags();
         let Some(tag) = probe.robot else {
-            return Err(ConfigError::new(
-                "robot",
-                format!("missing field; expected {expected}"),
-            ));
+            let missing = ConfigError::new("robot", format!("missing field; expected {expected}"));
+            return self.read_native(text).unwrap_or(Err(missing));
         };
         match self.kinds().find(|k| k.file_tag() == tag) {
             Some(kind) => kind.read_configuration(text),
@@ -60,6 +65,21 @@ impl Robots {
                 format!("unknown robot \"{tag}\"; expected {expected}"),
             )),
         }
+    }
+
+    /// The configuration read by the first kind that recognises `text` as its own tools'.
+    fn read_native(&self, text: &str) -> Option<Result<Configuration, ConfigError>> {
+        self.kinds().find_map(|k| k.read_native(text))
+    }
+
+    /// The plan read by the first kind that recognises `text` as its planners' (`dynarole
+    /// import`), its sequence called `sequence`.
+    pub fn import_plan(
+        &self,
+        text: &str,
+        sequence: &str,
+    ) -> Option<Result<ImportedPlan, PlanError>> {
+        self.kinds().find_map(|k| k.import_plan(text, sequence))
     }
 
     /// `"A", "B" or "C"`: the `robot` fields a file may have.

@@ -1,28 +1,106 @@
-//! RoFI universal modules (issue 30, first part): a configuration of them (`module.rs`), RoFI's
-//! old text format read with located errors (`old_format.rs`) and its RofiWorld JSON, one world
-//! or a plan of them, with errors naming the field (`rofiworld.rs`), the forward kinematics of their
-//! shoes along one spanning tree (`tree.rs`, `kinematics.rs`) and the validity RoFI asks of a configuration, connected, every
-//! loop closed and no two shoes overlapping (`validity.rs`), and a group of joint turns checked
-//! along its whole motion, over every relative timing or in lock-step (`sweep.rs`); a plan's
-//! consecutive configurations as steps, each checked and its turns classed (`steps.rs`). Not
-//! yet a robot of the registry.
+//! RoFI universal modules, as one robot kind: a configuration of them (`module.rs`), RoFI's
+//! old text format (`old_format.rs`) and RofiWorld JSON (`rofiworld.rs`), told apart by their
+//! content (`formats.rs`), and dynarole's own file (`json.rs`, `rofi.schema.json`); the forward
+//! kinematics of their shoes along one spanning tree (`tree.rs`, `kinematics.rs`), the validity
+//! RoFI asks of a configuration (`validity.rs`), a group of joint turns checked along its whole
+//! motion over every relative timing or in lock-step (`sweep.rs`), one turn as a rigid motion
+//! and the connector a free one mates with (`turn.rs`); a plan's steps (`steps.rs`) and the
+//! program imported from it (`import.rs`); the configuration the rest of dynarole sees
+//! (`robot.rs`), the robot model (`model.rs`), the drawing (`drawing.rs`) and the plugin
+//! (`rofi.robot.toml`). [`KIND`] is what the registry lists.
 
+mod drawing;
+mod formats;
+mod import;
+mod json;
 mod kinematics;
+mod model;
 mod module;
 mod old_format;
+mod robot;
 mod rofiworld;
 mod steps;
 mod sweep;
 mod tree;
+mod turn;
 mod validity;
 
+pub use formats::{read_plan, recognise, Format, FormatError};
 pub use kinematics::{poses, poses_from, KinematicsError, Poses};
+pub use model::{RofiModel, MOTION_LIMIT};
 pub use module::*;
 pub use old_format::{read_old_format, write_old_format, OldFormatError, Plan};
+pub use robot::RofiRobot;
 pub use rofiworld::{read_rofiworld, RofiWorldError};
 pub use steps::{plan_steps, plan_steps_at, step_between, PlanError, Step, StepError, Together};
 pub use sweep::{
     sweep, sweep_within, SweepError, SweepVerdict, Timing, Turn, SWEEP_BUDGET, SWEEP_TOLERANCE,
 };
 pub use tree::{across_connection, across_module, Shoe, LOOP_TOLERANCE};
+pub use turn::{face_centre, mate_of, turn_motion, TurnMotion};
 pub use validity::{first_collision, validate, Collision, Invalid, COLLISION_DISTANCE_SQUARED};
+
+use dynarole_world::{ConfigError, Configuration, Drawing, ImportedPlan, NetworkPreset, RobotKind};
+
+/// RoFICoM's network: each connector a full-duplex channel to the one connector it is
+/// connected to, which nothing else hears; modules powered on at random instants in the first
+/// 100 ms and broadcasts jittered by up to 20 ms, as the ATRON board's.
+pub const NETWORK_PRESETS: [NetworkPreset; 1] = [NetworkPreset {
+    name: "roficom",
+    half_duplex_sides: false,
+    power_on_spread_us: 100_000,
+    jitter_ms: 20,
+}];
+
+/// The RoFI robot kind.
+pub struct Rofi;
+
+/// The one value of [`Rofi`] the registry lists.
+pub static KIND: Rofi = Rofi;
+
+impl RobotKind for Rofi {
+    fn name(&self) -> &'static str {
+        "rofi"
+    }
+
+    fn file_tag(&self) -> &'static str {
+        json::FILE_TAG
+    }
+
+    fn plugin(&self) -> (&'static str, &'static str) {
+        ("rofi.robot.toml", include_str!("../rofi.robot.toml"))
+    }
+
+    fn read_configuration(&self, text: &str) -> Result<Configuration, ConfigError> {
+        json::read(text).map(Configuration::new)
+    }
+
+    fn drawing(&self) -> Drawing {
+        drawing::drawing()
+    }
+
+    fn network_presets(&self) -> &'static [NetworkPreset] {
+        &NETWORK_PRESETS
+    }
+
+    /// `rofi.schema.json`: the structure of dynarole's RoFI files (`json.rs` reads them).
+    fn schema(&self) -> Option<&'static str> {
+        Some(include_str!("../rofi.schema.json"))
+    }
+
+    /// RoFI's old text format and RofiWorld JSON, one configuration.
+    fn read_native(&self, text: &str) -> Option<Result<Configuration, ConfigError>> {
+        import::read_native(text)
+    }
+
+    /// A plan in RoFI's old text format (several `C` blocks) or a JSON array of RofiWorlds.
+    fn import_plan(
+        &self,
+        text: &str,
+        sequence: &str,
+    ) -> Option<Result<ImportedPlan, dynarole_world::PlanError>> {
+        import::import_plan(text, sequence)
+    }
+}
+
+dynarole_world::robot_configuration!(RofiRobot, KIND, RofiModel::new);

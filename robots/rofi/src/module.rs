@@ -329,6 +329,37 @@ impl RofiConfiguration {
         Ok(())
     }
 
+    /// Removes the connection at `port` (either end), giving it back as seen from `port`.
+    pub fn disconnect(&mut self, port: Port) -> Option<Connection> {
+        let removed = self.connection_at(port)?;
+        let kept: Vec<Connection> = (self.connections.iter())
+            .filter(|c| c.from != port && c.to != port)
+            .copied()
+            .collect();
+        self.connections.clear();
+        self.used.clear();
+        for c in kept {
+            let index = self.connections.len();
+            self.used.insert(c.from, index);
+            self.used.insert(c.to, index);
+            self.connections.push(c);
+        }
+        Some(removed)
+    }
+
+    /// Sets a joint of module `id` (gamma taken into (−180, 180]); false for an unknown module.
+    pub fn set_joint(&mut self, id: u32, joint: Joint, degrees: f64) -> bool {
+        let Some(module) = self.modules.get_mut(&id) else {
+            return false;
+        };
+        match joint {
+            Joint::Alpha => module.alpha = degrees,
+            Joint::Beta => module.beta = degrees,
+            Joint::Gamma => module.gamma = circular(degrees),
+        }
+        true
+    }
+
     /// The modules in ID order.
     pub fn modules(&self) -> impl Iterator<Item = &Module> {
         self.modules.values()

@@ -120,6 +120,11 @@ impl Tree {
         })
     }
 
+    /// The connections the tree does not use: each closes a loop.
+    pub(crate) fn loops(&self) -> &[Connection] {
+        &self.loops
+    }
+
     pub(crate) fn shoe_index(&self, (id, side): Shoe) -> Option<usize> {
         self.index.get(&id).map(|m| m * 2 + side as usize)
     }
@@ -258,7 +263,7 @@ pub fn across_connection(from: Dock, quarter_turns: u8, to: Dock) -> Matrix4<f64
 }
 
 /// Turns the shoe's −Z face onto dock `dock`'s face (the way out of the shoe).
-fn face_to_dock(dock: Dock) -> Matrix4<f64> {
+pub(crate) fn face_to_dock(dock: Dock) -> Matrix4<f64> {
     match dock {
         Dock::PlusX => rotation(Vector3::z(), PI) * rotation(Vector3::y(), FRAC_PI_2),
         Dock::MinusX => rotation(Vector3::z(), PI) * rotation(Vector3::y(), -FRAC_PI_2),

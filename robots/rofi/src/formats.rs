@@ -1,0 +1,116 @@
+//! Which of RoFI's formats a text is, decided from its content in this one place, and the
+//! text read as a plan (configurations, each with the line it starts at): RoFI's old text
+//! format (`C`, `M` and `E` lines; the `length`/`queue`/`cfgs` trailer of `rofi-reconfig`
+//! stripped), a RofiWorld JSON object (one configuration) or an array of them (a plan).
+//! dynarole's own RoFI file (a JSON object with a `robot` field) is the registry's to read.
+
+use crate::module::RofiConfiguration;
+use crate::old_format::read_old_format;
+use crate::rofiworld::read_rofiworld;
+use serde_json::value::RawValue;
+use std::fmt;
+
+/// A format of RoFI's own tools.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    /// The old ("Viki") text format: one or more `C` blocks of `M` and `E` lines.
+    OldText,
+    /// RofiWorld JSON: one world, or an array of worlds.
+    RofiWorld,
+}
+
+impl Format {
+    pub fn name(self) -> &'static str {
+        match self {
+            Format::OldText => "RoFI's old text format",
+            Format::RofiWorld => "RofiWorld JSON",
+        }
+    }
+}
+
+/// The format `text` is in, or `None` when it is none of RoFI's: JSON that opens with `[`,
+/// or with `{` and has no top-level `robot` field, is RofiWorld; text whose first line that
+/// is not blank or a comment starts with `C`, `M` or `E` is the old format.
+pub fn recognise(text: &str) -> Option<Format> {
+    let start = text.trim_start();
+    if start.starts_with('[') {
+        return Some(Format::RofiWorld);
+    }
+    if start.starts_with('{') {
+        return (!has_robot_field(text)).then_some(Format::RofiWorld);
+    }
+    let first = text
+        .lines()
+        .map(str::trim)
+        .find(|line| !line.is_empty() && !line.starts_with('#'))?;
+    let keyword = first.split_whitespace().next()?;
+    matches!(keyword, "C" | "M" | "E").then_some(Format::OldText)
+}
+
+/// Whether a JSON object has a top-level `robot` field (dynarole's own files do). A text that
+/// is not a JSON object of fields says no.
+fn has_robot_field(text: &str) -> bool {
+    serde_json::from_str::<std::collections::BTreeMap<String, &RawValue>>(text)
+        .is_ok_and(|fields| fields.contains_key("robot"))
+}
+
+/// Where in a file a reading error is: 1-based line and column, and the JSON path where the
+/// format has one.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FormatError {
+    pub line: usize,
+    pub column: usize,
+    pub path: Option<String>,
+    pub message: String,
+}
+
+impl fmt::Display for FormatError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match &self.path {
+            Some(path) => write!(f, "at `{path}`: {}", self.message),
+            None => self.message.fmt(f),
+        }
+    }
+}
+
+/// The configurations of `text` in `format`, each with the 1-based line where it starts.
+pub fn read_plan(
+    text: &str,
+    format: Format,
+) -> Result<Vec<(usize, RofiConfiguration)>, FormatError> {
+    match format {
+        Format::OldText => read_old_format(text)
+            .map(|plan| plan.configurations)
+            .map_err(|e| FormatError {
+                line: e.line,
+                column: e.column,
+                path: None,
+                message: e.message,
+            }),
+        Format::RofiWorld => {
+            let worlds = read_rofiworld(text).map_err(|e| FormatError {
+                line: e.line,
+                column: e.column,
+                path: (!e.path.is_empty()).then_some(e.path),
+                message: e.message,
+            })?;
+            let lines = world_lines(text, worlds.len());
+            Ok(lines.into_iter().zip(worlds).collect())
+        }
+    }
+}
+
+/// The line each of the `count` worlds starts at: the array's elements, or line 1 for one
+/// world (the text was read already, so it is valid JSON).
+fn world_lines(text: &str, count: usize) -> Vec<usize> {
+    let line_at = |offset: usize| text[..offset.min(text.len())].matches('\n').count() + 1;
+    match serde_json::from_str::<Vec<&RawValue>>(text) {
+        Ok(items) => (items.iter())
+            .map(|item| line_at(item.get().as_ptr() as usize - text.as_ptr() as usize))
+            .collect(),
+        Err(_) => {
+            let first = text.len() - text.trim_start().len();
+            vec![line_at(first); count]
+        }
+    }
+}
