@@ -9,6 +9,7 @@ mod compile;
 mod failure;
 mod fmt;
 mod help;
+mod import;
 pub mod load;
 mod model;
 mod parallelise;
@@ -106,6 +107,11 @@ enum Command {
         after_help = help::example("parallelise")
     )]
     Parallelise(parallelise::ParalleliseArgs),
+    /// Read a planner's plan (a list of configurations, its format recognised from the
+    /// content) into DIR/STEM.dr, STEM.from.json and STEM.expect.json; replay it to its last
+    /// configuration and print its steps and critical path.
+    #[command(after_help = help::example("import"))]
+    Import(import::ImportArgs),
 }
 
 /// Runs the command line with the registry's robot kinds; the exit code follows the README
@@ -131,6 +137,7 @@ pub fn main_with(robots: dynarole_world::Robots) -> ExitCode {
         Command::Fmt(args) => fmt::run(args),
         Command::Reverse(args) => reverse::run(args),
         Command::Parallelise(args) => parallelise::run(args),
+        Command::Import(args) => import::run(args),
     };
     match outcome {
         Ok(code) => code,

@@ -35,25 +35,10 @@ pub fn run(args: &ReplayArgs) -> Result<ExitCode, Failure> {
                 return Ok(ExitCode::from(1));
             }
         };
-        let result = dynarole_replay::replay(
-            program,
-            &prepared.plans,
-            prepared.world.clone(),
-            &prepared.assignment,
-        );
+        let (result, diagnostics) = replayed(program, &prepared);
         if args.record.wanted() {
             record(args, program, &prepared, &display, source)?;
         }
-        // The same warnings as `check --from`: the replay's, then the `&`s that are not
-        // independent (once left out, so that replay said "0 warnings" where check warned).
-        let mut diagnostics = result.diagnostics.clone();
-        diagnostics.extend(dynarole_replay::check_independence(
-            program,
-            &prepared.plans,
-            prepared.world.clone(),
-            &prepared.assignment,
-        ));
-        diagnostics.sort_by_key(|d| d.span);
         render::diagnostics(&display, source, &diagnostics);
         let warnings = diagnostics.len() - result.n_rejected;
         println!(
@@ -83,6 +68,30 @@ pub fn run(args: &ReplayArgs) -> Result<ExitCode, Failure> {
 }
 
 /// The replay as a recording: the statements in the order the model does them.
+/// The prepared sequences replayed on the model, with the same warnings as `check --from`:
+/// the replay's, then the `&`s that are not independent (once left out, so that replay said
+/// "0 warnings" where check warned), in source order.
+pub(crate) fn replayed(
+    program: &dynarole_core::Program,
+    prepared: &dynarole_replay::Prepared,
+) -> (dynarole_replay::Replay, Vec<dynarole_core::Diagnostic>) {
+    let result = dynarole_replay::replay(
+        program,
+        &prepared.plans,
+        prepared.world.clone(),
+        &prepared.assignment,
+    );
+    let mut diagnostics = result.diagnostics.clone();
+    diagnostics.extend(dynarole_replay::check_independence(
+        program,
+        &prepared.plans,
+        prepared.world.clone(),
+        &prepared.assignment,
+    ));
+    diagnostics.sort_by_key(|d| d.span);
+    (result, diagnostics)
+}
+
 fn record(
     args: &ReplayArgs,
     program: &dynarole_core::Program,

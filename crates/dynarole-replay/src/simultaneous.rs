@@ -20,7 +20,7 @@
 //! stay at least `d` minus both sums apart.
 
 use crate::robot_world::RobotWorld;
-use dynarole_world::{Leg, Motion};
+use dynarole_world::{GroupVerdict, Leg, Motion};
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
@@ -483,6 +483,25 @@ pub(crate) fn turns_together(turns: &[(&Motion, usize)], world: &RobotWorld) -> 
     turns_at(turns, world, &Timings::every(), Pairs::MovedByTwo)
 }
 
+/// A robot's own verdict on a group (`RobotModel::turns_together`) as the search's: the
+/// approach is put on every turn of the group, the robot not saying which bring it about.
+fn robot_verdict(verdict: GroupVerdict, turns: usize) -> Together {
+    let approach = |distance, modules| Approach {
+        distance,
+        modules,
+        turns: (0..turns).collect(),
+    };
+    match verdict {
+        GroupVerdict::Clear => Together::Clear,
+        GroupVerdict::Closest { distance, modules } => {
+            Together::Closest(approach(distance, modules))
+        }
+        GroupVerdict::Unproven { distance, modules } => {
+            Together::Unproven(approach(distance, modules))
+        }
+    }
+}
+
 /// Which pairs of points a search covers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Pairs {
@@ -502,6 +521,11 @@ pub(crate) fn turns_at(
     timings: &Timings,
     pairs: Pairs,
 ) -> Option<Together> {
+    if timings.lockstep.iter().all(Option::is_none) {
+        if let Some(verdict) = world.model().turns_together(turns) {
+            return Some(robot_verdict(verdict, turns.len()));
+        }
+    }
     let (points, linkage) = linkage_of(turns, world)?;
     let limit = turns.iter().map(|(m, _)| m.limit).fold(0.0, f64::max);
     let mut bar = limit;

@@ -15,6 +15,24 @@ use crate::shape::{Action, RobotShape};
 use std::any::Any;
 use std::fmt;
 
+/// What turns done together do, over every relative timing, as a robot's own check says
+/// (`RobotModel::turns_together`). Modules are indices.
+#[derive(Clone, Debug, PartialEq)]
+pub enum GroupVerdict {
+    /// Every two parts stay the motions' limit apart.
+    Clear,
+    /// For some timing, parts of these two modules come this close (under the limit).
+    Closest {
+        distance: f64,
+        modules: (usize, usize),
+    },
+    /// Not proven within the check's bound: the least distance it proved.
+    Unproven {
+        distance: f64,
+        modules: (usize, usize),
+    },
+}
+
 /// Everything the tree asks of a robot kind that is not about one configuration.
 pub trait RobotKind: Send + Sync + 'static {
     /// The plugin name a program gives in `robot NAME;`.
@@ -53,6 +71,10 @@ pub trait RobotKind: Send + Sync + 'static {
     /// text is no plan of this robot's.
     fn import_plan(&self, text: &str, sequence: &str) -> Option<Result<ImportedPlan, PlanError>> {
         let _ = (text, sequence);
+        None
+    }
+    /// The plan formats `import_plan` reads, in words, for messages (none by default).
+    fn plan_formats(&self) -> Option<&'static str> {
         None
     }
 }
@@ -281,6 +303,14 @@ pub trait RobotModel: fmt::Debug + Send + Sync {
     fn sweep_points(&self) -> Option<Vec<(usize, [f64; 3])>> {
         let centres = self.rigid_module_centres()?;
         Some(centres.into_iter().enumerate().collect())
+    }
+    /// The robot's own check of turns done together over every relative timing, each a motion
+    /// this model gave (`motion`) with its module's index: for a robot whose turns the generic
+    /// search over motions cannot link (parts of one module turned by two of its joints at
+    /// once). `None` (the default) leaves it to that search.
+    fn turns_together(&self, turns: &[(&Motion, usize)]) -> Option<GroupVerdict> {
+        let _ = turns;
+        None
     }
     /// The configuration in the data-file format, for a robot that has one.
     fn configuration(&self) -> Option<Configuration>;

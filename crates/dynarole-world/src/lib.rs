@@ -32,8 +32,8 @@ mod view;
 pub mod world_common;
 
 pub use api::{
-    Configuration, ImportedPlan, NetworkPreset, PlanError, RobotConfiguration, RobotKind,
-    RobotModel,
+    Configuration, GroupVerdict, ImportedPlan, NetworkPreset, PlanError, RobotConfiguration,
+    RobotKind, RobotModel,
 };
 pub use common::{ConfigError, Latch, Metadata, NamedConnection, Port};
 pub use compare::{

@@ -82,6 +82,13 @@ impl Robots {
         self.kinds().find_map(|k| k.import_plan(text, sequence))
     }
 
+    /// Each kind's plan formats, as `kind: formats`, for the message of a file that is none.
+    pub fn plan_formats(&self) -> Vec<String> {
+        (self.kinds())
+            .filter_map(|k| k.plan_formats().map(|f| format!("{}: {f}", k.name())))
+            .collect()
+    }
+
     /// `"A", "B" or "C"`: the `robot` fields a file may have.
     fn expected_tags(&self) -> String {
         let tags: Vec<String> = self

@@ -88,15 +88,30 @@ pub fn read_plan(
                 message: e.message,
             }),
         Format::RofiWorld => {
-            let worlds = read_rofiworld(text).map_err(|e| FormatError {
-                line: e.line,
-                column: e.column,
-                path: (!e.path.is_empty()).then_some(e.path),
-                message: e.message,
-            })?;
+            let worlds = read_rofiworld(text).map_err(|e| located_in_worlds(text, e))?;
             let lines = world_lines(text, worlds.len());
             Ok(lines.into_iter().zip(worlds).collect())
         }
+    }
+}
+
+/// A RofiWorld error where the file has it: the JSON's own line and column for a syntax
+/// error, else the line where the world its path names (`[k]...`) starts.
+fn located_in_worlds(text: &str, e: crate::rofiworld::RofiWorldError) -> FormatError {
+    let (line, column) = if e.line > 0 {
+        (e.line, e.column)
+    } else {
+        let world: Option<usize> = (e.path.strip_prefix('['))
+            .and_then(|rest| rest.split(']').next())
+            .and_then(|k| k.parse().ok());
+        let lines = world_lines(text, world.map_or(1, |k| k + 1));
+        (world.and_then(|k| lines.get(k).copied()).unwrap_or(1), 1)
+    };
+    FormatError {
+        line,
+        column,
+        path: (!e.path.is_empty()).then_some(e.path),
+        message: e.message,
     }
 }
 

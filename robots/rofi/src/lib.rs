@@ -93,6 +93,13 @@ impl RobotKind for Rofi {
         import::read_native(text)
     }
 
+    fn plan_formats(&self) -> Option<&'static str> {
+        Some(
+            "RoFI's old text format (`C` blocks of `M` and `E` lines; the `length`/`queue`/`cfgs` \
+             lines rofi-reconfig prints after its path are skipped) or a JSON array of RofiWorlds",
+        )
+    }
+
     /// A plan in RoFI's old text format (several `C` blocks) or a JSON array of RofiWorlds.
     fn import_plan(
         &self,

@@ -9,8 +9,8 @@ use crate::robot::{whole, RofiRobot};
 use crate::sweep::{sweep, SweepVerdict, Timing, Turn, SWEEP_TOLERANCE};
 use crate::turn::{mate_of, turn_motion, TurnMotion};
 use dynarole_world::{
-    model_difference, Action, Carried, Configuration, Leg, Motion, OpError, Outcome, Port,
-    RobotKind, RobotModel, RobotShape, SweepCheck, Warning,
+    model_difference, Action, Carried, Configuration, GroupVerdict, Leg, Motion, OpError, Outcome,
+    Port, RobotKind, RobotModel, RobotShape, SweepCheck, Warning,
 };
 use std::any::Any;
 use std::collections::BTreeSet;
@@ -268,6 +268,33 @@ impl RofiModel {
         Ok(Some(PlannedTurn { turn }))
     }
 
+    /// The turn a motion this model gave is (its joint found by its pivot and axis, which
+    /// differ between a module's three joints), from the joint's angle now.
+    fn turn_of(&self, motion: &Motion, turner: usize) -> Option<Turn> {
+        let [Leg::Rotate {
+            pivot,
+            axis,
+            angle_deg,
+        }] = motion.legs.as_slice()
+        else {
+            return None;
+        };
+        let id = self.robot.id_at(turner)?;
+        let module = self.config().module(id)?;
+        Joint::ALL.into_iter().find_map(|joint| {
+            let unit = turn_motion(self.config(), id, joint, 1.0)?;
+            let at = |k: usize| (unit.pivot[k] - pivot[k]).abs() < 1e-9;
+            let dot: f64 = (0..3).map(|k| unit.axis[k] * axis[k]).sum();
+            let same_axis = (dot.abs() - 1.0).abs() < 1e-9;
+            (at(0) && at(1) && at(2) && same_axis).then(|| Turn {
+                module: id,
+                joint,
+                from: module.joint(joint),
+                by: angle_deg * dot.signum() / unit.angle_deg,
+            })
+        })
+    }
+
     /// The motion of a checked turn for the generic checks and the drawing.
     fn motion_of(&self, motion: &TurnMotion) -> Motion {
         let poses = crate::robot::poses_of(self.config());
@@ -411,6 +438,31 @@ impl RobotModel for RofiModel {
             .centres()
             .filter_map(|((id, _), c)| Some((self.robot.index_of_id(id)?, [c.x, c.y, c.z])));
         Some(points.collect())
+    }
+
+    /// RoFI's own exact sweep (`sweep.rs`) over every relative timing: the generic search
+    /// links turns of whole modules, not two joints of one module turning at once.
+    fn turns_together(&self, turns: &[(&Motion, usize)]) -> Option<GroupVerdict> {
+        let found = (turns.iter())
+            .map(|(motion, turner)| self.turn_of(motion, *turner))
+            .collect::<Option<Vec<Turn>>>()?;
+        let index = |id: u32| self.robot.index_of_id(id).unwrap_or(0);
+        Some(match sweep(self.config(), &found, Timing::Every).ok()? {
+            SweepVerdict::Clear => GroupVerdict::Clear,
+            SweepVerdict::Collides { collision, .. } => GroupVerdict::Closest {
+                distance: collision.distance,
+                modules: (index(collision.shoes.0 .0), index(collision.shoes.1 .0)),
+            },
+            // Each turn was accepted alone, so none lies on a loop: this is not reached.
+            SweepVerdict::OpensLoop { connection: c, .. } => GroupVerdict::Unproven {
+                distance: 0.0,
+                modules: (index(c.from.0), index(c.to.0)),
+            },
+            SweepVerdict::Unproven { lower_bound, shoes } => GroupVerdict::Unproven {
+                distance: lower_bound,
+                modules: (index(shoes.0 .0), index(shoes.1 .0)),
+            },
+        })
     }
 
     fn configuration(&self) -> Option<Configuration> {

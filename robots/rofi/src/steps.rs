@@ -70,6 +70,11 @@ impl fmt::Display for StepError {
                 "module {} connector {} and module {} connector {} do not mate: {e}",
                 c.from.0, c.from.1, c.to.0, c.to.1
             ),
+            StepError::Turns(verdict @ SweepVerdict::Collides { fractions, .. })
+                if fractions.len() == 1 =>
+            {
+                write!(f, "the turn {}", describe(verdict))
+            }
             StepError::Turns(verdict) => write!(f, "the turns, {}", describe(verdict)),
             StepError::Sweep(e) => e.fmt(f),
             StepError::Refused(reason) => reason.fmt(f),
@@ -86,6 +91,18 @@ fn describe(verdict: &SweepVerdict) -> String {
     };
     match verdict {
         SweepVerdict::Clear => "are clear".to_string(),
+        SweepVerdict::Collides {
+            fractions,
+            collision,
+        } if fractions.len() == 1 => {
+            let ((a, sa), (b, sb)) = collision.shoes;
+            format!(
+                "brings shoe {sa:?} of module {a} and shoe {sb:?} of module {b} within {:.3} \
+                 (under 1) at {} of its motion",
+                collision.distance,
+                at(fractions)
+            )
+        }
         SweepVerdict::Collides {
             fractions,
             collision,

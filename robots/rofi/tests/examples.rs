@@ -1,11 +1,11 @@
-//! The example plans of `robots/rofi/examples/`, written for dynarole: each reads, every step
-//! is checked and classed as expected, and the plan run backwards (the derived reverse of
-//! each step) is valid too.
+//! The example plans of `robots/rofi/examples/` (and of `tests/plans/`), written for dynarole:
+//! each reads, every step is checked and classed as expected, and the plan run backwards (the
+//! derived reverse of each step) is valid too.
 
 use dynarole_robot_rofi::{plan_steps, read_old_format, RofiConfiguration, Step, Together};
 
 fn configurations(name: &str) -> Vec<RofiConfiguration> {
-    let path = format!("{}/examples/{name}", env!("CARGO_MANIFEST_DIR"));
+    let path = format!("{}/{name}", env!("CARGO_MANIFEST_DIR"));
     let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
     let plan = read_old_format(&text).unwrap_or_else(|e| panic!("{path}: {e}"));
     plan.configurations.into_iter().map(|(_, c)| c).collect()
@@ -28,7 +28,7 @@ fn classes(steps: &[Step]) -> Vec<Together> {
 
 #[test]
 fn the_gamma_swing_is_three_single_turns_both_ways() {
-    let (forwards, backwards) = both_ways("gamma-swing.txt");
+    let (forwards, backwards) = both_ways("examples/gamma-swing.txt");
     assert_eq!(classes(&forwards), [Together::Alone; 3]);
     assert_eq!(classes(&backwards), [Together::Alone; 3]);
     assert!(forwards
@@ -37,8 +37,19 @@ fn the_gamma_swing_is_three_single_turns_both_ways() {
 }
 
 #[test]
+fn the_folded_chain_turns_only_in_lock_step_both_ways() {
+    let (forwards, backwards) = both_ways("examples/fold-sync.txt");
+    assert_eq!(classes(&forwards), [Together::LockStep]);
+    assert_eq!(classes(&backwards), [Together::LockStep]);
+    assert_eq!(forwards[0].turns.len(), 2);
+}
+
+/// A loop of two modules kept closed only by turning both alphas exactly together: RoFI's
+/// check allows it; dynarole's model, which applies one turn at a time, refuses the loop
+/// opening (`dynarole import` says so).
+#[test]
 fn the_square_turns_only_in_lock_step_both_ways() {
-    let (forwards, backwards) = both_ways("square-lockstep.txt");
+    let (forwards, backwards) = both_ways("tests/plans/square-lockstep.txt");
     assert_eq!(classes(&forwards), [Together::LockStep]);
     assert_eq!(classes(&backwards), [Together::LockStep]);
 }
@@ -47,7 +58,7 @@ fn the_square_turns_only_in_lock_step_both_ways() {
 fn the_snake_folds_at_any_timing_and_closes_into_a_ring() {
     // The fold's four turns are proven clear over every relative timing, though two shoes end
     // touching (the second-order bound proves them to within the tolerance).
-    let (forwards, backwards) = both_ways("snake-to-ring.txt");
+    let (forwards, backwards) = both_ways("examples/snake-to-ring.txt");
     assert_eq!(classes(&forwards), [Together::AnyTiming, Together::Alone]);
     assert_eq!(forwards[0].turns.len(), 4);
     assert_eq!(forwards[1].connects.len(), 1);

@@ -1,0 +1,262 @@
+//! `dynarole import` end to end on the RoFI example plans (`robots/rofi/examples/`): each
+//! imports, replays to its last configuration given in RoFI's own format, reverses back to its
+//! first, and simulates to its end at 30 % loss; a RofiWorld plan imports too, and
+//! `parallelise` of a plan written one turn at a time finds its safe `&`.
+
+mod common;
+
+use common::{dynarole, repo_root, text};
+use std::path::{Path, PathBuf};
+
+/// The example plans, each with its sequence's name.
+const PLANS: [(&str, &str); 3] = [
+    ("gamma-swing", "gamma_swing"),
+    ("snake-to-ring", "snake_to_ring"),
+    ("fold-sync", "fold_sync"),
+];
+
+fn arg(path: &Path) -> &str {
+    path.to_str().expect("a UTF-8 path")
+}
+
+/// Runs `dynarole args`, asserting its exit code; its standard output.
+fn ok(args: &[&str], code: i32) -> String {
+    let out = dynarole(args);
+    assert_eq!(
+        out.status.code(),
+        Some(code),
+        "dynarole {}\n{}{}",
+        args.join(" "),
+        text(&out.stdout),
+        text(&out.stderr)
+    );
+    text(&out.stdout)
+}
+
+/// The last `C` block of a plan in RoFI's old text format: its last configuration, in RoFI's
+/// own format.
+fn last_configuration(plan: &str) -> String {
+    let start = plan.rfind("\nC\n").map_or(0, |at| at + 1);
+    plan[start..].to_string()
+}
+
+/// Imports `robots/rofi/examples/STEM.txt` into `dir`: the program and the two configurations.
+fn import(stem: &str, dir: &Path) -> (String, [PathBuf; 3]) {
+    let plan = repo_root().join(format!("robots/rofi/examples/{stem}.txt"));
+    let printed = ok(&["import", arg(&plan), "-o", arg(dir)], 0);
+    let files = ["dr", "from.json", "expect.json"].map(|ext| dir.join(format!("{stem}.{ext}")));
+    (printed, files)
+}
+
+#[test]
+fn every_example_plan_imports_replays_reverses_and_simulates_at_30_percent_loss() {
+    for (stem, sequence) in PLANS {
+        let dir = tempfile::tempdir().expect("a temporary directory");
+        let (printed, [program, from, expect]) = import(stem, dir.path());
+        assert!(
+            printed.contains(&format!("sequence `{sequence}`")),
+            "{printed}"
+        );
+        assert!(
+            printed.contains("replays to the plan's last configuration"),
+            "{printed}"
+        );
+        assert!(printed.contains("critical path: "), "{printed}");
+        let plan =
+            std::fs::read_to_string(repo_root().join(format!("robots/rofi/examples/{stem}.txt")))
+                .expect("the plan reads");
+        let last = dir.path().join("last.txt");
+        std::fs::write(&last, last_configuration(&plan)).expect("written");
+        let replayed = ok(
+            &[
+                "replay",
+                arg(&program),
+                "--from",
+                arg(&from),
+                "--expect",
+                arg(&last),
+            ],
+            0,
+        );
+        assert!(replayed.contains("0 rejected"), "{replayed}");
+        // The derived reverse goes back from the last configuration to the first.
+        let reverse = ok(&["reverse", arg(&program), sequence], 0);
+        let reversed = dir.path().join("reverse.dr");
+        std::fs::write(&reversed, reverse).expect("written");
+        ok(
+            &[
+                "replay",
+                arg(&reversed),
+                "--from",
+                arg(&expect),
+                "--expect",
+                arg(&from),
+            ],
+            0,
+        );
+        for seed in ["1", "2"] {
+            let simulated = ok(
+                &[
+                    "simulate",
+                    arg(&program),
+                    "--from",
+                    arg(&from),
+                    "--expect",
+                    arg(&last),
+                    "--loss",
+                    "0.3",
+                    "--seed",
+                    seed,
+                ],
+                0,
+            );
+            assert!(simulated.starts_with("SUCCESS"), "{stem}: {simulated}");
+        }
+    }
+}
+
+#[test]
+fn the_fold_is_a_synchronous_group_and_the_snake_fold_one_parallel_group() {
+    let dir = tempfile::tempdir().expect("a temporary directory");
+    let (_, [fold, ..]) = import("fold-sync", dir.path());
+    let text = std::fs::read_to_string(fold).expect("written");
+    assert_eq!(text.matches("    sync { ").count(), 1, "{text}");
+    let (_, [snake, ..]) = import("snake-to-ring", dir.path());
+    let text = std::fs::read_to_string(snake).expect("written");
+    assert!(!text.contains("sync {"), "{text}");
+    assert_eq!(
+        text.matches(" & ").count(),
+        3,
+        "four turns in one group: {text}"
+    );
+}
+
+/// Two modules end to end as a RofiWorld: module 2's gamma at `gamma`.
+fn world(gamma: i64) -> String {
+    format!(
+        r#"{{"modules": [{{"id": 1, "type": "universal", "alpha": 0, "beta": 0, "gamma": 0}},
+  {{"id": 2, "type": "universal", "alpha": 90, "beta": 0, "gamma": {gamma}}}],
+ "moduleJoints": [{{"orientation": "North", "from": {{"id": 1, "connector": "B-Z"}}, "to": {{"id": 2, "connector": "A-Z"}}}}],
+ "spaceJoints": [{{"point": [0, 0, 0], "to": {{"id": 1, "component": 6}}, "joint": {{"type": "rigid", "sourceToDestination": "identity"}}}}]}}"#
+    )
+}
+
+#[test]
+fn a_json_array_of_rofiworlds_imports_and_one_world_is_a_configuration() {
+    let dir = tempfile::tempdir().expect("a temporary directory");
+    let plan = dir.path().join("two-worlds.json");
+    std::fs::write(&plan, format!("[\n{},\n{}\n]\n", world(0), world(90))).expect("written");
+    let printed = ok(&["import", arg(&plan), "-o", arg(dir.path())], 0);
+    assert!(printed.contains("RofiWorld JSON"), "{printed}");
+    let last = dir.path().join("last.json");
+    std::fs::write(&last, world(90)).expect("written");
+    let program = dir.path().join("two-worlds.dr");
+    let from = dir.path().join("two-worlds.from.json");
+    ok(
+        &[
+            "replay",
+            arg(&program),
+            "--from",
+            arg(&from),
+            "--expect",
+            arg(&last),
+        ],
+        0,
+    );
+    // The wrong end is told apart: the first world is not the last.
+    let first = dir.path().join("first.json");
+    std::fs::write(&first, world(0)).expect("written");
+    ok(
+        &[
+            "replay",
+            arg(&program),
+            "--from",
+            arg(&from),
+            "--expect",
+            arg(&first),
+        ],
+        1,
+    );
+}
+
+#[test]
+fn parallelise_of_a_plan_written_one_turn_at_a_time_joins_its_safe_turns() {
+    // The snake's fold of snake-to-ring.txt, one turn per step.
+    let config = |m2: (i64, i64), m3: (i64, i64)| {
+        format!(
+            "C\nM 1 0 0 0\nM 2 0 {} {}\nM 3 {} 0 {}\nM 4 0 0 0\nE 1 B -Z N -Z A 2\nE 2 B -Z N -Z A 3\nE 3 B -Z N -Z A 4\n\n",
+            m2.0, m2.1, m3.0, m3.1
+        )
+    };
+    let steps = [
+        ((0, 0), (0, 0)),
+        ((-90, 0), (0, 0)),
+        ((-90, 90), (0, 0)),
+        ((-90, 90), (90, 0)),
+        ((-90, 90), (90, 90)),
+    ];
+    let plan_text: String = steps.iter().map(|(a, b)| config(*a, *b)).collect();
+    let dir = tempfile::tempdir().expect("a temporary directory");
+    let plan = dir.path().join("fold.txt");
+    std::fs::write(&plan, plan_text).expect("written");
+    ok(&["import", arg(&plan), "-o", arg(dir.path())], 0);
+    let program = dir.path().join("fold.dr");
+    let from = dir.path().join("fold.from.json");
+    let out = dynarole(&[
+        "parallelise",
+        arg(&program),
+        "--sequence",
+        "fold",
+        "--from",
+        arg(&from),
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let rewritten = text(&out.stdout);
+    assert!(
+        rewritten.contains(" &"),
+        "the fold's turns are joined: {rewritten}"
+    );
+    let summary = text(&out.stderr);
+    assert!(summary.contains("critical path"), "{summary}");
+}
+
+#[test]
+fn a_simulated_import_is_recorded_and_the_viewer_moves_its_modules() {
+    let dir = tempfile::tempdir().expect("a temporary directory");
+    let (_, [program, from, expect]) = import("snake-to-ring", dir.path());
+    let recording = dir.path().join("run.json");
+    ok(
+        &[
+            "simulate",
+            arg(&program),
+            "--from",
+            arg(&from),
+            "--expect",
+            arg(&expect),
+            "--loss",
+            "0.3",
+            "--seed",
+            "1",
+            "--record",
+            arg(&recording),
+        ],
+        0,
+    );
+    let poses = ok(&["view", arg(&recording), "--poses-at", "0,5000"], 0);
+    let lines: Vec<&str> = poses.lines().collect();
+    assert_eq!(lines.len(), 2, "{poses}");
+    let modules = |line: &str| {
+        line.split("\"time_ms\"")
+            .next()
+            .unwrap_or_default()
+            .to_string()
+    };
+    assert_ne!(
+        modules(lines[0]),
+        modules(lines[1]),
+        "the fold moves modules: {poses}"
+    );
+    let page = dir.path().join("run.html");
+    ok(&["view", arg(&recording), "-o", arg(&page)], 0);
+    assert!(std::fs::metadata(&page).expect("written").len() > 10_000);
+}
