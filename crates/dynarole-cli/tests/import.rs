@@ -260,3 +260,35 @@ fn a_simulated_import_is_recorded_and_the_viewer_moves_its_modules() {
     ok(&["view", arg(&recording), "-o", arg(&page)], 0);
     assert!(std::fs::metadata(&page).expect("written").len() > 10_000);
 }
+
+/// Every fault kind (`examples/faults.toml`: loss, dead links, a reset, a power cycle, a
+/// blocked connector, spontaneous resets, a second robot, varied durations) on the plans
+/// without a synchronous group: the generated C still brings the robot to the plan's end. (A
+/// synchronous group's start is agreed over the links: a member cut off by a dead link or a
+/// power cycle can start alone, which the simulator reports as a clash; robots/rofi/README.md.)
+#[test]
+fn the_plans_without_a_synchronous_group_reach_their_end_under_every_fault_kind() {
+    let scenario = repo_root().join("robots/rofi/examples/faults.toml");
+    for stem in ["gamma-swing", "snake-to-ring"] {
+        let dir = tempfile::tempdir().expect("a temporary directory");
+        let (_, [program, from, expect]) = import(stem, dir.path());
+        for seed in ["1", "2", "3"] {
+            let simulated = ok(
+                &[
+                    "simulate",
+                    arg(&program),
+                    "--from",
+                    arg(&from),
+                    "--expect",
+                    arg(&expect),
+                    "--scenario",
+                    arg(&scenario),
+                    "--seed",
+                    seed,
+                ],
+                0,
+            );
+            assert!(simulated.contains("resets "), "{simulated}");
+        }
+    }
+}
