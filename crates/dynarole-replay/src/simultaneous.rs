@@ -483,6 +483,22 @@ pub(crate) fn turns_together(turns: &[(&Motion, usize)], world: &RobotWorld) -> 
     turns_at(turns, world, &Timings::every(), Pairs::MovedByTwo)
 }
 
+/// The robot's own check of the group, where the timings are one it takes: every relative
+/// timing, or every turn in one synchronous group (turns in and out of one are searched here).
+fn robot_check(
+    turns: &[(&Motion, usize)],
+    world: &RobotWorld,
+    timings: &Timings,
+) -> Option<GroupVerdict> {
+    let sets: Vec<Option<usize>> = (0..turns.len()).map(|t| timings.set_of(t)).collect();
+    let skew = match sets.first().copied().flatten() {
+        None if sets.iter().all(Option::is_none) => None,
+        Some(set) if sets.iter().all(|s| *s == Some(set)) => Some(timings.skew),
+        _ => return None,
+    };
+    world.model().turns_together(turns, skew)
+}
+
 /// A robot's own verdict on a group (`RobotModel::turns_together`) as the search's: the
 /// approach is put on every turn of the group, the robot not saying which bring it about.
 fn robot_verdict(verdict: GroupVerdict, turns: usize) -> Together {
@@ -521,10 +537,8 @@ pub(crate) fn turns_at(
     timings: &Timings,
     pairs: Pairs,
 ) -> Option<Together> {
-    if timings.lockstep.iter().all(Option::is_none) {
-        if let Some(verdict) = world.model().turns_together(turns) {
-            return Some(robot_verdict(verdict, turns.len()));
-        }
+    if let Some(verdict) = robot_check(turns, world, timings) {
+        return Some(robot_verdict(verdict, turns.len()));
     }
     let (points, linkage) = linkage_of(turns, world)?;
     let limit = turns.iter().map(|(m, _)| m.limit).fold(0.0, f64::max);

@@ -304,12 +304,17 @@ pub trait RobotModel: fmt::Debug + Send + Sync {
         let centres = self.rigid_module_centres()?;
         Some(centres.into_iter().enumerate().collect())
     }
-    /// The robot's own check of turns done together over every relative timing, each a motion
-    /// this model gave (`motion`) with its module's index: for a robot whose turns the generic
-    /// search over motions cannot link (parts of one module turned by two of its joints at
-    /// once). `None` (the default) leaves it to that search.
-    fn turns_together(&self, turns: &[(&Motion, usize)]) -> Option<GroupVerdict> {
-        let _ = turns;
+    /// The robot's own check of turns done together, each a motion this model gave (`motion`)
+    /// with its module's index, over every relative timing (`skew` `None`) or in lock-step
+    /// with their fractions at most `skew` apart (a synchronous group): for a robot whose
+    /// turns the generic search over motions cannot link (parts of one module turned by two
+    /// of its joints at once). `None` (the default) leaves it to that search.
+    fn turns_together(
+        &self,
+        turns: &[(&Motion, usize)],
+        skew: Option<f64>,
+    ) -> Option<GroupVerdict> {
+        let _ = (turns, skew);
         None
     }
     /// The configuration in the data-file format, for a robot that has one.

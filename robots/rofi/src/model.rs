@@ -440,14 +440,20 @@ impl RobotModel for RofiModel {
         Some(points.collect())
     }
 
-    /// RoFI's own exact sweep (`sweep.rs`) over every relative timing: the generic search
-    /// links turns of whole modules, not two joints of one module turning at once.
-    fn turns_together(&self, turns: &[(&Motion, usize)]) -> Option<GroupVerdict> {
+    /// RoFI's own exact sweep (`sweep.rs`) over every relative timing, or over the lock-step
+    /// band of a synchronous group: the generic search links turns of whole modules, not two
+    /// joints of one module turning at once.
+    fn turns_together(
+        &self,
+        turns: &[(&Motion, usize)],
+        skew: Option<f64>,
+    ) -> Option<GroupVerdict> {
         let found = (turns.iter())
             .map(|(motion, turner)| self.turn_of(motion, *turner))
             .collect::<Option<Vec<Turn>>>()?;
         let index = |id: u32| self.robot.index_of_id(id).unwrap_or(0);
-        Some(match sweep(self.config(), &found, Timing::Every).ok()? {
+        let timing = skew.map_or(Timing::Every, Timing::Band);
+        Some(match sweep(self.config(), &found, timing).ok()? {
             SweepVerdict::Clear => GroupVerdict::Clear,
             SweepVerdict::Collides { collision, .. } => GroupVerdict::Closest {
                 distance: collision.distance,

@@ -46,12 +46,17 @@ pub struct Turn {
 }
 
 /// How the turns of a group run relative to each other.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Timing {
     /// Every relative timing: each turn's fraction independent of the others'.
     Every,
     /// Lock-step: every turn at the same fraction of its motion.
     LockStep,
+    /// Lock-step within a skew: the turns' fractions at most this far apart (0 to 1), as a
+    /// synchronous group's start allows. Searched as `Every` over the pieces of the box that
+    /// hold such timings; a piece holding none is dropped, and a verdict is given only at a
+    /// piece's centre that is one.
+    Band(f64),
 }
 
 /// What the motion of a group does.
@@ -257,7 +262,7 @@ impl<'t> Search<'t> {
 
     fn dimensions(&self) -> usize {
         match self.timing {
-            Timing::Every => self.turns.len(),
+            Timing::Every | Timing::Band(_) => self.turns.len(),
             Timing::LockStep => usize::from(!self.turns.is_empty()),
         }
     }
@@ -265,7 +270,7 @@ impl<'t> Search<'t> {
     /// Each turn's fraction at a point of the box.
     fn fractions(&self, point: &[f64]) -> Vec<f64> {
         match self.timing {
-            Timing::Every => point.to_vec(),
+            Timing::Every | Timing::Band(_) => point.to_vec(),
             Timing::LockStep => vec![point.first().copied().unwrap_or(0.0); self.turns.len()],
         }
     }
@@ -412,7 +417,9 @@ impl<'t> Search<'t> {
             let fractions = self.fractions(&piece.centre);
             let modules = self.modules_at(&fractions);
             let poses = self.tree.poses(&modules);
-            if let Some((connection, _)) = self.tree.open_loop(&poses) {
+            // Outside a band, a centre proves nothing wrong: its piece is only refined.
+            let a_timing = self.holds(&piece.centre, &piece.centre);
+            if let (true, Some((connection, _))) = (a_timing, self.tree.open_loop(&poses)) {
                 return SweepVerdict::OpensLoop {
                     fractions,
                     connection,
@@ -423,7 +430,7 @@ impl<'t> Search<'t> {
             let mut lower = (f64::INFINITY, first);
             for &(a, b) in &piece.pairs {
                 let d = (centre(&poses[a]) - centre(&poses[b])).norm();
-                if d * d < COLLISION_DISTANCE_SQUARED {
+                if a_timing && d * d < COLLISION_DISTANCE_SQUARED {
                     let shoes = (self.tree.shoe_of(a), self.tree.shoe_of(b));
                     let collision = Collision { shoes, distance: d };
                     return SweepVerdict::Collides {
@@ -441,12 +448,26 @@ impl<'t> Search<'t> {
             }
             if !pending.is_empty() {
                 for half in self.halves(&piece, pending, lower) {
-                    queue.push(Queued::new(half, made));
-                    made += 1;
+                    let (low, high) = bounds(&half);
+                    if self.holds(&low, &high) {
+                        queue.push(Queued::new(half, made));
+                        made += 1;
+                    }
                 }
             }
         }
         SweepVerdict::Clear
+    }
+
+    /// Whether the box from `low` to `high` holds a timing of the search: always, but for a
+    /// band, whose timings have fractions at most its width apart.
+    fn holds(&self, low: &[f64], high: &[f64]) -> bool {
+        let Timing::Band(width) = self.timing else {
+            return true;
+        };
+        let highest_low = low.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let lowest_high = high.iter().copied().fold(f64::INFINITY, f64::min);
+        highest_low - lowest_high <= width
     }
 
     /// The verdict when the budget is spent: the least that the pieces left are proven to
@@ -468,7 +489,7 @@ impl<'t> Search<'t> {
         lower: (f64, (usize, usize)),
     ) -> [Piece; 2] {
         let swing = |k: usize| match self.timing {
-            Timing::Every => self.turns[k].by.abs() * piece.half[k],
+            Timing::Every | Timing::Band(_) => self.turns[k].by.abs() * piece.half[k],
             Timing::LockStep => piece.half[k],
         };
         let k = (0..piece.half.len())
@@ -495,6 +516,16 @@ impl<'t> Search<'t> {
             },
         ]
     }
+}
+
+/// A piece's corners: each dimension's low and high end.
+fn bounds(piece: &Piece) -> (Vec<f64>, Vec<f64>) {
+    let each = |sign: f64| {
+        (piece.centre.iter().zip(&piece.half))
+            .map(|(c, h)| c + sign * h)
+            .collect()
+    };
+    (each(-1.0), each(1.0))
 }
 
 #[cfg(test)]

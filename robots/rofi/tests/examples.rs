@@ -66,3 +66,28 @@ fn the_snake_folds_at_any_timing_and_closes_into_a_ring() {
     assert_eq!(backwards[0].disconnects.len(), 1);
     assert_eq!(classes(&backwards), [Together::Alone, Together::AnyTiming]);
 }
+
+/// A synchronous group's start skew as a band of timings: the fold's two turns are clear when
+/// their fractions stay close, collide when they may drift as far as every timing lets them,
+/// and a collision found within a band is at a timing of it.
+#[test]
+fn the_folded_chain_is_clear_within_a_narrow_band_and_collides_within_a_wide_one() {
+    use dynarole_robot_rofi::{sweep, SweepVerdict, Timing};
+    let plan = configurations("examples/fold-sync.txt");
+    let (steps, _) = both_ways("examples/fold-sync.txt");
+    let turns = &steps[0].turns;
+    assert_eq!(
+        sweep(&plan[0], turns, Timing::Band(0.05)),
+        Ok(SweepVerdict::Clear)
+    );
+    for width in [0.5, 1.0] {
+        match sweep(&plan[0], turns, Timing::Band(width)) {
+            Ok(SweepVerdict::Collides { fractions, .. }) => {
+                let spread = fractions.iter().copied().fold(f64::MIN, f64::max)
+                    - fractions.iter().copied().fold(f64::MAX, f64::min);
+                assert!(spread <= width, "{fractions:?} outside the band {width}");
+            }
+            other => panic!("band {width}: {other:?}"),
+        }
+    }
+}
