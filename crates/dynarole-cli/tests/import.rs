@@ -40,6 +40,21 @@ fn last_configuration(plan: &str) -> String {
     plan[start..].to_string()
 }
 
+/// `dynarole simulate PROGRAM --from FROM --expect EXPECT EXTRA...`, which must succeed; its
+/// standard output.
+fn simulate(program: &Path, from: &Path, expect: &Path, extra: &[&str]) -> String {
+    let mut args = vec![
+        "simulate",
+        arg(program),
+        "--from",
+        arg(from),
+        "--expect",
+        arg(expect),
+    ];
+    args.extend_from_slice(extra);
+    ok(&args, 0)
+}
+
 /// Imports `robots/rofi/examples/STEM.txt` into `dir`: the program and the two configurations.
 fn import(stem: &str, dir: &Path) -> (String, [PathBuf; 3]) {
     let plan = repo_root().join(format!("robots/rofi/examples/{stem}.txt"));
@@ -95,21 +110,7 @@ fn every_example_plan_imports_replays_reverses_and_simulates_at_30_percent_loss(
             0,
         );
         for seed in ["1", "2"] {
-            let simulated = ok(
-                &[
-                    "simulate",
-                    arg(&program),
-                    "--from",
-                    arg(&from),
-                    "--expect",
-                    arg(&last),
-                    "--loss",
-                    "0.3",
-                    "--seed",
-                    seed,
-                ],
-                0,
-            );
+            let simulated = simulate(&program, &from, &last, &["--loss", "0.3", "--seed", seed]);
             assert!(simulated.starts_with("SUCCESS"), "{stem}: {simulated}");
         }
     }
@@ -225,22 +226,11 @@ fn a_simulated_import_is_recorded_and_the_viewer_moves_its_modules() {
     let dir = tempfile::tempdir().expect("a temporary directory");
     let (_, [program, from, expect]) = import("snake-to-ring", dir.path());
     let recording = dir.path().join("run.json");
-    ok(
-        &[
-            "simulate",
-            arg(&program),
-            "--from",
-            arg(&from),
-            "--expect",
-            arg(&expect),
-            "--loss",
-            "0.3",
-            "--seed",
-            "1",
-            "--record",
-            arg(&recording),
-        ],
-        0,
+    simulate(
+        &program,
+        &from,
+        &expect,
+        &["--loss", "0.3", "--seed", "1", "--record", arg(&recording)],
     );
     let poses = ok(&["view", arg(&recording), "--poses-at", "0,5000"], 0);
     let lines: Vec<&str> = poses.lines().collect();
@@ -273,20 +263,11 @@ fn the_plans_without_a_synchronous_group_reach_their_end_under_every_fault_kind(
         let dir = tempfile::tempdir().expect("a temporary directory");
         let (_, [program, from, expect]) = import(stem, dir.path());
         for seed in ["1", "2", "3"] {
-            let simulated = ok(
-                &[
-                    "simulate",
-                    arg(&program),
-                    "--from",
-                    arg(&from),
-                    "--expect",
-                    arg(&expect),
-                    "--scenario",
-                    arg(&scenario),
-                    "--seed",
-                    seed,
-                ],
-                0,
+            let simulated = simulate(
+                &program,
+                &from,
+                &expect,
+                &["--scenario", arg(&scenario), "--seed", seed],
             );
             assert!(simulated.contains("resets "), "{simulated}");
         }

@@ -26,12 +26,6 @@ pub struct RofiModel {
     robot: RofiRobot,
 }
 
-/// A turn the model has checked the angles of (`by` signed: gamma's direction is in the
-/// sign).
-struct PlannedTurn {
-    turn: Turn,
-}
-
 impl RofiModel {
     pub fn new(robot: RofiRobot) -> RofiModel {
         RofiModel { robot }
@@ -135,12 +129,11 @@ impl RofiModel {
         (joint, from, to, increasing): (u8, Option<i64>, i64, bool),
         check: SweepCheck,
     ) -> Result<Outcome, OpError> {
-        let Some(planned) = self.plan(module, joint, from, to, increasing)? else {
+        let Some(turn) = self.plan(module, joint, from, to, increasing)? else {
             return Ok(warned(Warning::NoMotion {
                 module: module.to_string(),
             }));
         };
-        let turn = planned.turn;
         let motion = self.turn_motion_of(module, &turn)?;
         if check == SweepCheck::Alone {
             self.check_sweep(module, &turn, &motion)?;
@@ -217,7 +210,8 @@ impl RofiModel {
         }
     }
 
-    /// The turn a `rotateFromToBy` asks for, its angles checked: `None` when it goes nowhere.
+    /// The turn a `rotateFromToBy` asks for, its angles checked (`by` signed: gamma's
+    /// direction is in the sign): `None` when it goes nowhere.
     fn plan(
         &self,
         module: &str,
@@ -225,7 +219,7 @@ impl RofiModel {
         from: Option<i64>,
         to: i64,
         increasing: bool,
-    ) -> Result<Option<PlannedTurn>, OpError> {
+    ) -> Result<Option<Turn>, OpError> {
         let index = self.known(module)?;
         let invalid = |angle: i64, reason: String| OpError::InvalidAngle {
             module: module.to_string(),
@@ -265,7 +259,7 @@ impl RofiModel {
             from: from as f64,
             by: by as f64,
         };
-        Ok(Some(PlannedTurn { turn }))
+        Ok(Some(turn))
     }
 
     /// The turn a motion this model gave is (its joint found by its pivot and axis, which
@@ -412,13 +406,13 @@ impl RobotModel for RofiModel {
             // A RoFICoM's slide moves inside its shoe: nothing a sweep or a drawing sees.
             return self.robot.index(module).map(|_| Motion::in_place());
         };
-        let Some(planned) = self.plan(module, joint, from, to, increasing).ok()? else {
+        let Some(turn) = self.plan(module, joint, from, to, increasing).ok()? else {
             return Some(Motion {
                 limit: MOTION_LIMIT,
                 ..Motion::in_place()
             });
         };
-        let motion = self.turn_motion_of(module, &planned.turn).ok()?;
+        let motion = self.turn_motion_of(module, &turn).ok()?;
         Some(self.motion_of(&motion))
     }
 
