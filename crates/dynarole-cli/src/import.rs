@@ -21,6 +21,10 @@ pub struct ImportArgs {
     /// when missing); STEM is the plan's file name without its extension.
     #[arg(short = 'o', long = "output", value_name = "DIR")]
     pub out: PathBuf,
+    /// A group of the plan's modules that is a fixed ground, never moving (a cube
+    /// scenario's static modules); repeat for several.
+    #[arg(long = "ground", value_name = "GROUP", allow_hyphen_values = true)]
+    pub ground: Vec<i64>,
 }
 
 pub fn run(args: &ImportArgs) -> Result<ExitCode, Failure> {
@@ -28,7 +32,10 @@ pub fn run(args: &ImportArgs) -> Result<ExitCode, Failure> {
     let stem = stem_of(&args.file)?;
     let sequence = sequence_name(&stem);
     let display = args.file.display().to_string();
-    let plan = match crate::robots::robots().import_plan(&text, &sequence) {
+    let options = dynarole_world::ImportOptions {
+        ground: args.ground.clone(),
+    };
+    let plan = match crate::robots::robots().import_plan(&text, &sequence, &options) {
         Some(Ok(plan)) => plan,
         Some(Err(e)) => {
             return Err(Failure::Input(format!(

@@ -6,6 +6,7 @@ mod bounds;
 mod campaign;
 pub mod check;
 mod compile;
+mod export;
 mod failure;
 mod fmt;
 mod help;
@@ -112,6 +113,10 @@ enum Command {
     /// configuration and print its steps and critical path.
     #[command(after_help = help::example("import"))]
     Import(import::ImportArgs),
+    /// Write a sequence in a format of its robot's own tools (`scen`: the cube planners'
+    /// scenario, one move set per parallel group), after it replays from --from.
+    #[command(after_help = help::example("export"))]
+    Export(export::ExportArgs),
 }
 
 /// Runs the command line with the registry's robot kinds; the exit code follows the README
@@ -138,6 +143,7 @@ pub fn main_with(robots: dynarole_world::Robots) -> ExitCode {
         Command::Reverse(args) => reverse::run(args),
         Command::Parallelise(args) => parallelise::run(args),
         Command::Import(args) => import::run(args),
+        Command::Export(args) => export::run(args),
     };
     match outcome {
         Ok(code) => code,

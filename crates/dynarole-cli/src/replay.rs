@@ -124,7 +124,7 @@ fn expect(actual: &Configuration, path: &Path) -> Result<bool, Failure> {
     let expected = read_configuration(path)?;
     match compare_with_expected(actual, &expected) {
         Ok(()) => {
-            println!("matches {} (up to rigid motion)", path.display());
+            println!("matches {} ({})", path.display(), expected.equality());
             Ok(true)
         }
         Err(difference) => {

@@ -19,7 +19,7 @@ pub struct RunArgs {
     /// The configuration to start from (JSON).
     #[arg(long, value_name = "CONFIG")]
     pub from: std::path::PathBuf,
-    /// The configuration the run must end in (up to rigid motion).
+    /// The configuration the run must end in (up to rigid motion; a lattice robot's cells in place).
     #[arg(long, value_name = "CONFIG")]
     pub expect: Option<std::path::PathBuf>,
 }

@@ -95,7 +95,7 @@ fn reverse_prints_the_unfolding_which_checks() {
     let out = cubes(&["reverse", "ring.dr", "ring"]);
     assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
     let reversed = text(&out.stdout);
-    assert!(reversed.contains("robot cubes;"), "{reversed}");
+    assert!(reversed.contains("robot hinged;"), "{reversed}");
     let unlatch = reversed.find("M3.Connector[$FRONT].unlatch();");
     let unbend = reversed.find("M0.Hinge.bend(90, 0, false, 100);");
     assert!(
@@ -157,7 +157,7 @@ fn replay_reaches_the_ring_and_its_reverse_the_line() {
 /// The ring turned a quarter turn and moved: the same up to a rigid motion.
 const RING_MOVED: &str = r#"{
   "name": "ring4 moved",
-  "robot": "CUBES",
+  "robot": "HINGED",
   "modules": [
     {"name": "M0", "id": 0, "cell": [5, 5], "heading": [0, 1], "hinge": 90},
     {"name": "M1", "id": 1, "cell": [4, 5], "heading": [-1, 0], "hinge": 90},
@@ -171,7 +171,7 @@ const RING_MOVED: &str = r#"{
 /// with its hinges at -90, so no rigid motion makes it the ring.
 const RING_MIRRORED: &str = r#"{
   "name": "ring4 mirrored",
-  "robot": "CUBES",
+  "robot": "HINGED",
   "modules": [
     {"name": "M0", "id": 0, "cell": [0, 0], "heading": [1, 0], "hinge": -90},
     {"name": "M1", "id": 1, "cell": [0, -1], "heading": [0, -1], "hinge": -90},
@@ -220,7 +220,7 @@ fn replay_writes_a_data_file_that_reads_back() {
     ]);
     assert_eq!(code, Some(0), "{out}");
     let json = std::fs::read_to_string(&written).expect("the final configuration");
-    assert!(json.contains(r#""robot": "CUBES""#), "{json}");
+    assert!(json.contains(r#""robot": "HINGED""#), "{json}");
     assert!(
         json.contains(
             r#"{"name": "M2", "id": 2, "cell": [-1, 1], "heading": [-1, 0], "hinge": 90}"#
@@ -333,7 +333,7 @@ fn parallelise_runs_the_first_and_last_bend_together() {
     let (code, out) = run(&args);
     assert_eq!(code, Some(0), "{out}");
     assert!(out.contains("sequence ring_parallel"), "{out}");
-    assert!(out.contains("robot cubes;"), "{out}");
+    assert!(out.contains("robot hinged;"), "{out}");
     assert!(out.contains("checked on the model"), "{out}");
     assert!(
         out.contains("M0.Hinge.bend(0, 90, true, 100) &\n    M3.Hinge.bend(0, 90, true, 100);"),
@@ -469,7 +469,10 @@ fn a_malformed_cubes_file_names_the_field() {
             broken(r#"["M0", 0, "M1", 1]"#, r#"["M0", 2, "M1", 1]"#),
             "connections[0][1]",
         ),
-        (broken(r#""robot": "CUBES""#, r#""robot": "CUBE""#), "robot"),
+        (
+            broken(r#""robot": "HINGED""#, r#""robot": "CUBE""#),
+            "robot",
+        ),
     ];
     let dir = scratch("malformed");
     for (k, (json, path)) in cases.iter().enumerate() {
@@ -527,7 +530,7 @@ fn a_cubes_sequence_on_an_atron_configuration_is_refused() {
             assert_eq!(code, Some(1), "{command} on {name}: {out}");
             assert!(
                 out.contains(
-                    "the sequence is for robot `cubes` but the configuration is an ATRON robot"
+                    "the sequence is for robot `hinged` but the configuration is an ATRON robot"
                 ),
                 "{command} on {name}: {out}"
             );

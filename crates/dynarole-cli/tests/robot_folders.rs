@@ -9,12 +9,14 @@ use common::tree::{tree_files, workspace};
 
 /// Folders whose files may name robots: the robots' own folders, the registry, and what only
 /// describes or exercises the tool (`tests/`, `benches/`, `examples/`, `docs/`, fuzz corpora).
-const MAY_NAME_ROBOTS: [&str; 7] = [
+const MAY_NAME_ROBOTS: [&str; 8] = [
     "robots/",
     "crates/dynarole-robots/",
     "/tests/",
     "/benches/",
     "examples/",
+    // A crate's examples (a robot from outside the tree) name their own robot.
+    "/examples/",
     "docs/",
     "fuzz/corpus/",
 ];

@@ -440,6 +440,11 @@ const PLAN_WORDS: &[&str] = &[
     "length",
     "queue",
     "cfgs",
+    "CUBE",
+    "*",
+    ",",
+    "//",
+    "\n\n",
     "\n",
     "\r\n",
     "\"modules\"",
@@ -459,7 +464,8 @@ const PLAN_WORDS: &[&str] = &[
 /// text as one configuration: no panic, an error of bounded size.
 fn planner_plan(text: &str) -> Result<Outcome, String> {
     let robots = dynarole_robots::robots();
-    let imported = match robots.import_plan(text, "plan") {
+    let imported = match robots.import_plan(text, "plan", &dynarole_world::ImportOptions::default())
+    {
         Some(result) => result.map(|_| ()).map_err(|e| e.to_string()),
         None => Err("no robot's planners write this format".to_string()),
     };

@@ -100,23 +100,24 @@ fn read_up_to(path: &Path, limit: u64) -> std::io::Result<String> {
 mod tests {
     use super::*;
 
-    fn scratch(name: &str, bytes: &[u8]) -> PathBuf {
-        let dir = std::env::temp_dir().join(format!("dynarole-input-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).expect("scratch dir");
-        let path = dir.join(name);
+    /// A file in a directory removed when the test ends (some are 8 MiB).
+    fn scratch(dir: &tempfile::TempDir, name: &str, bytes: &[u8]) -> PathBuf {
+        let path = dir.path().join(name);
         std::fs::write(&path, bytes).expect("scratch file");
         path
     }
 
     #[test]
     fn reads_text() {
-        let path = scratch("ok.dr", b"robot snakebot;\n");
+        let dir = tempfile::tempdir().expect("scratch dir");
+        let path = scratch(&dir, "ok.dr", b"robot snakebot;\n");
         assert_eq!(read_input(&path).expect("read"), "robot snakebot;\n");
     }
 
     #[test]
     fn errors_name_the_file() {
-        let path = scratch("bad.dr", b"ok\xff");
+        let dir = tempfile::tempdir().expect("scratch dir");
+        let path = scratch(&dir, "bad.dr", b"ok\xff");
         let e = read_input(&path).expect_err("not UTF-8");
         let text = e.to_string();
         assert!(
@@ -134,19 +135,21 @@ mod tests {
 
     #[test]
     fn refuses_more_than_the_limit() {
+        let dir = tempfile::tempdir().expect("scratch dir");
         let limit = usize::try_from(MAX_INPUT_BYTES).expect("fits");
-        let at_limit = scratch("at-limit.json", &vec![b' '; limit]);
+        let at_limit = scratch(&dir, "at-limit.json", &vec![b' '; limit]);
         assert_eq!(read_limited(&at_limit).expect("at the limit").len(), limit);
-        let over = scratch("over.json", &vec![b' '; limit + 1]);
+        let over = scratch(&dir, "over.json", &vec![b' '; limit + 1]);
         let e = read_limited(&over).expect_err("over the limit");
         assert!(e.to_string().contains("larger than 8 MiB"), "{e}");
     }
 
     #[test]
     fn refuses_what_is_not_a_regular_file() {
-        let dir = scratch("dir-probe", b"").with_file_name("a-directory");
-        std::fs::create_dir_all(&dir).expect("dir");
-        let e = read_input(&dir).expect_err("a directory");
+        let dir = tempfile::tempdir().expect("scratch dir");
+        let sub = scratch(&dir, "dir-probe", b"").with_file_name("a-directory");
+        std::fs::create_dir_all(&sub).expect("dir");
+        let e = read_input(&sub).expect_err("a directory");
         assert!(
             e.to_string()
                 .contains("a directory; expected a regular file"),
@@ -160,8 +163,9 @@ mod tests {
     #[cfg(unix)]
     #[test]
     fn refuses_a_fifo_without_blocking() {
+        let dir = tempfile::tempdir().expect("scratch dir");
         // Opening a FIFO with no writer blocks for ever: it must never be opened.
-        let fifo = scratch("fifo-probe", b"").with_file_name("a-fifo");
+        let fifo = scratch(&dir, "fifo-probe", b"").with_file_name("a-fifo");
         let _ = std::fs::remove_file(&fifo);
         let made = std::process::Command::new("mkfifo").arg(&fifo).status();
         if !made.is_ok_and(|s| s.success()) {
@@ -174,8 +178,9 @@ mod tests {
 
     #[test]
     fn a_recording_may_be_larger_than_other_inputs() {
+        let dir = tempfile::tempdir().expect("scratch dir");
         let limit = usize::try_from(MAX_INPUT_BYTES).expect("fits");
-        let large = scratch("large-recording.json", &vec![b' '; limit + 1]);
+        let large = scratch(&dir, "large-recording.json", &vec![b' '; limit + 1]);
         assert_eq!(
             read_recording(&large).expect("within its limit").len(),
             limit + 1

@@ -194,15 +194,12 @@ struct GroupTurns {
 }
 
 impl GroupTurns {
-    /// The verdict on the elements whose motions (with their modules) are turns that move
-    /// modules, when there are at least two and they make a tree.
+    /// The verdict on the elements whose motions (with their modules) move modules, when
+    /// there are at least two and the robot's own check or the search over turns on a tree
+    /// decides them (a motion that is not a turn only the robot's own check decides).
     fn of(motions: &[Option<(&Motion, usize)>], world: &RobotWorld) -> Option<GroupTurns> {
         let members: Vec<usize> = (0..motions.len())
-            .filter(|&i| {
-                motions[i]
-                    .as_ref()
-                    .is_some_and(|(m, _)| m.is_turn() && m.moves())
-            })
+            .filter(|&i| motions[i].as_ref().is_some_and(|(m, _)| m.moves()))
             .collect();
         if members.len() < 2 {
             return None;
@@ -264,6 +261,9 @@ impl GroupTurns {
         } else {
             String::new()
         };
+        if let Some(rule) = &approach.rule {
+            return format!("done at the same time{with}, {rule}");
+        }
         if proven {
             format!(
                 "done at the same time{with}, the turns bring {a} and {b} within {d:.3} {unit} \

@@ -99,6 +99,7 @@ fn check_together(
     let band = format!("moving in lock-step (started within {skew_ms} ms of each other)");
     match turns_at(&turns, world, &timings, Pairs::All) {
         Some(Together::Clear) => Ok(()),
+        Some(Together::Closest(Approach { rule: Some(rule), .. })) => Err(format!("{band}, {rule}")),
         Some(Together::Closest(a)) => {
             let ((x, y), d) = (names(&a), a.distance);
             Err(format!("{band}, the turns bring {x} and {y} within {d:.3} {unit} of each other (limit {limit})"))

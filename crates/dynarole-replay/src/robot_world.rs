@@ -140,8 +140,23 @@ pub fn action(robot: &RobotApi, statement: &ResolvedStatement) -> Option<Action>
             Some(turn(Some(*f), *t, *d))
         }
         (OperationKind::TurnTo, [Value::Int(t), Value::Bool(d), ..]) => Some(turn(None, *t, *d)),
+        (OperationKind::Move, values) => move_action(statement.operation, values),
         _ => None,
     }
+}
+
+/// A move's action: its operation's place and its integer arguments, padded with zeros.
+fn move_action(operation: usize, values: &[Value]) -> Option<Action> {
+    let mut args = [0; 4];
+    if values.len() > args.len() {
+        return None;
+    }
+    for (slot, value) in args.iter_mut().zip(values) {
+        let Value::Int(n) = value else { return None };
+        *slot = *n;
+    }
+    let operation = u8::try_from(operation).ok()?;
+    Some(Action::Move { operation, args })
 }
 
 fn names<'r>(robot: &'r RobotApi, statement: &ResolvedStatement) -> (&'r str, &'r str) {

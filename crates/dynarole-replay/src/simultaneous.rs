@@ -55,6 +55,9 @@ pub(crate) struct Approach {
     pub distance: f64,
     pub modules: (usize, usize),
     pub turns: Vec<usize>,
+    /// The robot's own rule that refuses the group, in words that finish "done at the same
+    /// time, ..." (`GroupVerdict::Refused`), in place of the distance.
+    pub rule: Option<String>,
 }
 
 /// Every point the robot's sweeps are checked with, with its module's index
@@ -506,6 +509,7 @@ fn robot_verdict(verdict: GroupVerdict, turns: usize) -> Together {
         distance,
         modules,
         turns: (0..turns).collect(),
+        rule: None,
     };
     match verdict {
         GroupVerdict::Clear => Together::Clear,
@@ -515,6 +519,10 @@ fn robot_verdict(verdict: GroupVerdict, turns: usize) -> Together {
         GroupVerdict::Unproven { distance, modules } => {
             Together::Unproven(approach(distance, modules))
         }
+        GroupVerdict::Refused { modules, reason } => Together::Closest(Approach {
+            rule: Some(reason),
+            ..approach(0.0, modules)
+        }),
     }
 }
 
@@ -565,6 +573,7 @@ pub(crate) fn turns_at(
             distance,
             modules: (points[i].0, points[k].0),
             turns: linkage.between(i, k),
+            rule: None,
         };
         match pair.approach(bar, &mut budget) {
             Search::Clear => {}

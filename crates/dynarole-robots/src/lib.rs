@@ -6,10 +6,11 @@ use dynarole_core::{RobotApi, RobotRegistry};
 use dynarole_world::{ConfigError, Configuration, RobotKind, Robots};
 
 /// Every robot kind of the tree, in the order messages list them.
-pub const BUILT_IN: [&dyn RobotKind; 3] = [
+pub const BUILT_IN: [&dyn RobotKind; 4] = [
     &dynarole_robot_atron::KIND,
     &dynarole_robot_mtran::KIND,
     &dynarole_robot_rofi::KIND,
+    &dynarole_robot_cubes::KIND,
 ];
 
 /// The built-in robot kinds.

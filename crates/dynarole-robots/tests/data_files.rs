@@ -11,11 +11,10 @@ use serde_json::{json, Value};
 fn every_data_file_loads() -> Result<(), String> {
     for (name, _) in FILES {
         let config = load(name)?;
-        let expected = if name.starts_with("mtran") {
-            "mtran"
-        } else {
-            "atron"
-        };
+        let expected = ["mtran", "cubes"]
+            .into_iter()
+            .find(|robot| name.starts_with(robot))
+            .unwrap_or("atron");
         assert_eq!(config.kind().name(), expected, "{name}");
         assert_eq!(config.metadata().name, name);
     }

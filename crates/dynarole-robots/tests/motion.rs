@@ -30,8 +30,14 @@ fn every_accepted_turn_moves_what_its_motion_carries_to_where_the_world_puts_it(
 
 #[test]
 fn extends_and_retracts_move_in_place() {
+    let plugins = dynarole_robots::plugins();
     for (name, _) in common::FILES {
         let config = common::load(name).expect("a bundled data file");
+        let api = plugins.get(config.kind().name()).expect("its plugin");
+        let latches = (api.parts.iter()).any(|p| p.operations.iter().any(|o| o.kind.is_latch()));
+        if !latches {
+            continue;
+        }
         let model = config.clone().into_model();
         let module = config.shape().name(0).expect("a module").to_string();
         for action in [
@@ -47,6 +53,106 @@ fn extends_and_retracts_move_in_place() {
             None
         );
     }
+}
+
+/// Every move (kind `move`) of every module of every bundled data file that the world
+/// accepts, with every argument its plugin allows: its motion carries the module, whole, to
+/// the cell the world puts it in. (A lattice module's faces are named by the way they face,
+/// so a pivot renames them: connectors and up axes are not compared.)
+#[test]
+fn every_accepted_move_carries_its_module_to_where_the_world_puts_it() {
+    let plugins = dynarole_robots::plugins();
+    let mut checked = 0;
+    for (name, _) in common::FILES {
+        let config = common::load(name).expect("a bundled data file");
+        let api = plugins.get(config.kind().name()).expect("its plugin");
+        let model = config.clone().into_model();
+        for action in moves(api) {
+            for m in 0..config.shape().len() {
+                checked += usize::from(check_move(name, &config, model.as_ref(), m, &action));
+            }
+        }
+    }
+    assert!(checked > 5, "only {checked} moves were accepted");
+}
+
+/// Every move action of a plugin, with every combination of its parameters' listed values.
+fn moves(api: &dynarole_core::RobotApi) -> Vec<Action> {
+    use dynarole_core::robot::{OperationKind, ParamType};
+    let mut out = Vec::new();
+    for part in &api.parts {
+        for (k, op) in part.operations.iter().enumerate() {
+            if op.kind != OperationKind::Move {
+                continue;
+            }
+            let mut lists: Vec<[i64; 4]> = vec![[0; 4]];
+            for (slot, param) in op.params.iter().enumerate() {
+                let ParamType::Int {
+                    values: Some(values),
+                    ..
+                } = &param.ty
+                else {
+                    continue;
+                };
+                lists = (lists.iter())
+                    .flat_map(|args| {
+                        values.iter().map(move |v| {
+                            let mut next = *args;
+                            next[slot] = *v;
+                            next
+                        })
+                    })
+                    .collect();
+            }
+            let operation = u8::try_from(k).expect("a small plugin");
+            out.extend(
+                lists
+                    .into_iter()
+                    .map(|args| Action::Move { operation, args }),
+            );
+        }
+    }
+    out
+}
+
+/// Checks one move the world accepts against its motion; false when the world refuses it.
+fn check_move(
+    file: &str,
+    config: &Configuration,
+    model: &dyn RobotModel,
+    m: usize,
+    action: &Action,
+) -> bool {
+    let module = config.shape().name(m).expect("a name").to_string();
+    let motion = model.motion(&module, action);
+    let mut after = model.clone_model();
+    if after.apply(&module, action).is_err() {
+        assert_eq!(
+            motion, None,
+            "{file}: {module} {action:?} refused, with a motion"
+        );
+        return false;
+    }
+    let motion = motion.unwrap_or_else(|| panic!("{file}: {module} {action:?} has no motion"));
+    assert!(
+        (motion.carried.iter()).all(|c| c.module == module && c.part.is_none()),
+        "{file}: {module} {action:?} carries {:?}",
+        motion.carried
+    );
+    let end = after.configuration().expect("a configuration").poses();
+    for (k, (before, after)) in config.poses().iter().zip(&end).enumerate() {
+        let expected = if k == m {
+            motion.position_at(before.centre(), 1.0)
+        } else {
+            before.centre()
+        };
+        let off = distance(expected, after.centre());
+        assert!(
+            off < TOLERANCE,
+            "{file}: {module} {action:?}: module {k} ends {off} off"
+        );
+    }
+    true
 }
 
 /// A quarter turn each way from where each of module `m`'s joints is; a joint that turns

@@ -233,7 +233,7 @@ impl State {
         self.phys[s].failed = false;
         self.modules[m].stats.operations += 1;
         self.counters.ops_started += 1;
-        if self.seq.kinds[s] == OpKind::Turn {
+        if self.seq.kinds[s].moves() {
             self.note_turn(id, m, s);
         }
         // Saturating: a plugin's absurd turn (a huge count of quarters) is never reached.
@@ -373,9 +373,13 @@ impl State {
             }
         }
         // A turn to the angle the joint already has (re-issued after it completed, or written
-        // with a `from` that is not the joint's angle) moves nothing.
+        // with a `from` that is not the joint's angle), or a move re-issued after it took
+        // effect, moves nothing.
+        if self.already_there(m, s) {
+            return 0;
+        }
         let quarters = match kind {
-            OpKind::Turn if !self.already_there(m, s) => self.quarter_turns(m, s),
+            OpKind::Turn => self.quarter_turns(m, s),
             _ => 0,
         };
         kind.nominal_ms(&self.durations, quarters)
@@ -425,6 +429,11 @@ impl State {
             Some(_) => SweepCheck::WithOthers,
             None => SweepCheck::Alone,
         };
+        if matches!(self.seq.kinds[s], OpKind::Move { .. }) && self.already_there(m, s) {
+            // Re-issued after it took effect: applying it again would move the module again.
+            self.completed(m, s, label, "already moved");
+            return;
+        }
         let applied =
             (self.world).apply_swept(&self.seq.robot, &self.seq.resolved[s], &name, sweep);
         // Links may have changed (latches, facing connectors).
@@ -494,8 +503,12 @@ impl State {
     /// A turn the world refuses because the joint is already at its target took effect
     /// already (operations are idempotent, dr_hal.h).
     fn already_there(&self, m: usize, s: usize) -> bool {
-        if self.seq.kinds[s] != OpKind::Turn {
-            return false;
+        match self.seq.kinds[s] {
+            OpKind::Turn => {}
+            // A move cannot be told from where the module is (the same move may be made
+            // again from there): it took effect once its statement completed.
+            OpKind::Move { .. } => return self.phys[s].done.is_some(),
+            _ => return false,
         }
         let Some(Action::Turn { joint, to, .. }) = self.seq.actions[s] else {
             return false;

@@ -102,6 +102,9 @@ pub struct Timing {
     /// Replaces the preset's retract duration.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub retract_ms: Option<u64>,
+    /// Replaces the preset's duration of a move's step (a lattice module's slide or pivot).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub move_ms: Option<u64>,
     /// One of the robot's timing presets (`RobotApi::timing`); none: its default
     /// ([`default_durations`]). `joint` is its name in older scenarios, from when the
     /// simulator had two joint models (`ussr`, `realistic`) for every robot.
@@ -114,7 +117,7 @@ pub struct Timing {
 
 impl Timing {
     /// The durations this names for `robot`: its preset `preset` (or its default), with
-    /// `extend_ms` and `retract_ms` in place of the preset's where given. An unknown preset is
+    /// `extend_ms`, `retract_ms` and `move_ms` in place of the preset's where given. An unknown preset is
     /// an error at `timing.preset` naming the robot's presets, with the closest one as a hint.
     pub fn durations(&self, robot: &RobotApi) -> Result<Durations, ScenarioError> {
         let preset = match &self.preset.0 {
@@ -124,15 +127,17 @@ impl Timing {
         Ok(Durations {
             extend_ms: self.extend_ms.unwrap_or(preset.extend_ms),
             retract_ms: self.retract_ms.unwrap_or(preset.retract_ms),
+            move_ms: self.move_ms.unwrap_or(preset.move_ms),
             ..preset
         })
     }
 
-    /// `extend_ms` and `retract_ms` are at most [`MAX_OPERATION_MS`], as a preset's are.
+    /// `extend_ms`, `retract_ms` and `move_ms` are at most [`MAX_OPERATION_MS`], as a preset's are.
     fn check_overrides(&self) -> Result<(), ScenarioError> {
         let overrides = [
             ("timing.extend_ms", self.extend_ms),
             ("timing.retract_ms", self.retract_ms),
+            ("timing.move_ms", self.move_ms),
         ];
         for (field, ms) in overrides {
             if let Some(ms) = ms.filter(|ms| *ms > MAX_OPERATION_MS) {

@@ -17,6 +17,10 @@ pub enum OpKind {
     Extend,
     Retract,
     Turn,
+    /// A whole module's move, of `steps` planner steps.
+    Move {
+        steps: u64,
+    },
     Other,
 }
 
@@ -24,7 +28,13 @@ impl OpKind {
     /// The kind of `statement` on `robot`, by the kind its plugin declares for the operation
     /// (`dynarole_replay::action`), never by its text.
     pub fn of_statement(robot: &RobotApi, statement: &ResolvedStatement) -> OpKind {
-        OpKind::of(dynarole_replay::action(robot, statement))
+        let steps = steps_of(robot, statement);
+        OpKind::of(dynarole_replay::action(robot, statement), steps)
+    }
+
+    /// Whether operations of this kind move modules (their links break while they last).
+    pub fn moves(self) -> bool {
+        matches!(self, OpKind::Turn | OpKind::Move { .. })
     }
 
     /// The nominal duration of an operation of this kind with `durations`, a turn passing
@@ -35,18 +45,27 @@ impl OpKind {
             OpKind::Extend => durations.extend_ms,
             OpKind::Retract => durations.retract_ms,
             OpKind::Turn => durations.turn_ms(quarters),
+            OpKind::Move { steps } => durations.move_ms.saturating_mul(steps),
             OpKind::Other => 0,
         }
     }
 
-    fn of(action: Option<Action>) -> OpKind {
+    fn of(action: Option<Action>, steps: u64) -> OpKind {
         match action {
             Some(Action::Extend { .. }) => OpKind::Extend,
             Some(Action::Retract { .. }) => OpKind::Retract,
             Some(Action::Turn { .. }) => OpKind::Turn,
+            Some(Action::Move { .. }) => OpKind::Move { steps },
             None => OpKind::Other,
         }
     }
+}
+
+/// The planner steps `statement`'s operation is made of (`Operation::steps`).
+fn steps_of(robot: &RobotApi, statement: &ResolvedStatement) -> u64 {
+    (robot.parts.get(statement.part))
+        .and_then(|p| p.operations.get(statement.operation))
+        .map_or(1, |op| op.steps)
 }
 
 /// The compiled sequence, as the simulator's checks and world need it.
@@ -81,7 +100,9 @@ impl Sequence {
             .iter()
             .map(|s| dynarole_replay::action(&robot, s))
             .collect();
-        let kinds = actions.iter().map(|a| OpKind::of(*a)).collect();
+        let kinds = (actions.iter().zip(&resolved))
+            .map(|(a, s)| OpKind::of(*a, steps_of(&robot, s)))
+            .collect();
         let (first_dependent, dependents) = reverse_edges(&ir);
         Sequence {
             robot,

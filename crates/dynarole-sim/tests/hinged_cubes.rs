@@ -48,7 +48,7 @@ fn check(parsed: &dynarole_core::Parsed) -> Program<'_> {
         driver::robot_name(&parsed.file),
         [],
         |file| {
-            assert_eq!(file, "cubes.robot.toml");
+            assert_eq!(file, "hinged.robot.toml");
             Ok::<_, ()>(Some(plugin()))
         },
     )
@@ -148,7 +148,7 @@ fn a_model_of_another_robot_is_refused() {
         .cloned()
         .expect("built in");
     let refused = RobotWorld::from_model(line4(), &atron).expect_err("not atron");
-    assert!(refused.contains("robot `cubes`"), "{refused}");
+    assert!(refused.contains("robot `hinged`"), "{refused}");
 }
 
 #[test]
@@ -158,7 +158,7 @@ fn the_generated_c_folds_the_ring_on_every_cube() {
     let plans = driver::plans(&program, &["ring".to_string()]).expect("ring");
     let options = CompileOptions {
         protocol: Protocol::Lattice,
-        name: "cubes".into(),
+        name: "hinged".into(),
         ..CompileOptions::default()
     };
     let sim = Simulator::new(&program, &plans, &options).expect("compiles");
@@ -203,7 +203,7 @@ fn ring_statement_ms(timing: &str, s: usize) -> Result<f64, String> {
     let plans = driver::plans(&program, &["ring".to_string()]).expect("ring");
     let options = CompileOptions {
         protocol: Protocol::Lattice,
-        name: "cubes".into(),
+        name: "hinged".into(),
         ..CompileOptions::default()
     };
     let sim = Simulator::new(&program, &plans, &options).expect("compiles");
@@ -229,7 +229,7 @@ fn ring_statement_ms(timing: &str, s: usize) -> Result<f64, String> {
     Ok((when("done") - when("start")).round())
 }
 
-/// The cubes declare their own timing presets (`cubes.robot.toml`): a bend of a quarter turn
+/// The cubes declare their own timing presets (`hinged.robot.toml`): a bend of a quarter turn
 /// takes the first one's 0.8 s, the `geared` one's 2.5 s, and ATRON's `ussr` is not theirs.
 #[test]
 fn the_cubes_own_timing_presets_time_their_bends() {
@@ -249,7 +249,7 @@ fn the_cubes_own_timing_presets_time_their_bends() {
     );
     let refused = ring_statement_ms("[timing]\npreset = \"ussr\"\n", 0).expect_err("not theirs");
     assert!(
-        refused.contains("robot `cubes` has `servo` and `geared`"),
+        refused.contains("robot `hinged` has `servo` and `geared`"),
         "{refused}"
     );
 }

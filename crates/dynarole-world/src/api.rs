@@ -31,6 +31,13 @@ pub enum GroupVerdict {
         distance: f64,
         modules: (usize, usize),
     },
+    /// Refused by a rule of the robot's own (a lattice robot's parallel-move rules: one mover
+    /// the other's support, cells claimed twice), in words that finish "done at the same
+    /// time, ...", naming the two modules it is about.
+    Refused {
+        modules: (usize, usize),
+        reason: String,
+    },
 }
 
 /// Everything the tree asks of a robot kind that is not about one configuration.
@@ -69,14 +76,51 @@ pub trait RobotKind: Send + Sync + 'static {
     /// Reads a plan of the robot's own planners (a list of configurations, recognised by its
     /// content) into a program whose one sequence, `sequence`, goes through it; `None` when the
     /// text is no plan of this robot's.
-    fn import_plan(&self, text: &str, sequence: &str) -> Option<Result<ImportedPlan, PlanError>> {
-        let _ = (text, sequence);
+    fn import_plan(
+        &self,
+        text: &str,
+        sequence: &str,
+        options: &ImportOptions,
+    ) -> Option<Result<ImportedPlan, PlanError>> {
+        let _ = (text, sequence, options);
         None
     }
     /// The plan formats `import_plan` reads, in words, for messages (none by default).
     fn plan_formats(&self) -> Option<&'static str> {
         None
     }
+    /// The formats of its own tools `export_plan` writes, by the name `dynarole export` takes
+    /// (none by default).
+    fn export_formats(&self) -> &'static [&'static str] {
+        &[]
+    }
+    /// A sequence written in its tools' format `format` (one of `export_formats`); the error
+    /// is why the sequence has no such form. `None` for a format it does not write.
+    fn export_plan(&self, format: &str, plan: &PlanToExport<'_>) -> Option<Result<String, String>> {
+        let _ = (format, plan);
+        None
+    }
+}
+
+/// A sequence to write in a robot's tools' format (`dynarole export`): its parallel groups in
+/// order, each the operations of its modules (by name) done at the same time, from `from`.
+#[derive(Clone, Copy, Debug)]
+pub struct PlanToExport<'a> {
+    /// What the plan is called (the sequence's name).
+    pub title: &'a str,
+    /// Where it says it came from (the program's file).
+    pub description: &'a str,
+    pub from: &'a Configuration,
+    pub sets: &'a [Vec<(String, crate::Action)>],
+}
+
+/// How `dynarole import` reads a plan, beyond its text.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct ImportOptions {
+    /// The plan's module groups that are a fixed ground that never moves (a lattice
+    /// planner's static modules, `--ground G`). A plan whose format has no groups refuses
+    /// any.
+    pub ground: Vec<i64>,
 }
 
 /// A planner's plan as a program (`dynarole import`).
@@ -211,6 +255,16 @@ impl Configuration {
         self.0.named_connections()
     }
 
+    /// How another configuration is compared with this one, for messages: `in place` (a
+    /// lattice robot's cells) or `up to rigid motion`.
+    pub fn equality(&self) -> &'static str {
+        if self.0.rigid_shape().anchored {
+            "in place"
+        } else {
+            "up to rigid motion"
+        }
+    }
+
     /// Every module's parts and connectors placed, by module index.
     pub fn poses(&self) -> Vec<ModulePose> {
         self.0.poses()
@@ -304,7 +358,8 @@ pub trait RobotModel: fmt::Debug + Send + Sync {
         let centres = self.rigid_module_centres()?;
         Some(centres.into_iter().enumerate().collect())
     }
-    /// The robot's own check of turns done together, each a motion this model gave (`motion`)
+    /// The robot's own check of turns (or any operations that move: a lattice robot's moves)
+    /// done together, each a motion this model gave (`motion`)
     /// with its module's index, over every relative timing (`skew` `None`) or in lock-step
     /// with their fractions at most `skew` apart (a synchronous group): for a robot whose
     /// turns the generic search over motions cannot link (parts of one module turned by two

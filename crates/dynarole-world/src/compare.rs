@@ -199,7 +199,12 @@ pub fn compare(a: &Configuration, b: &Configuration) -> Result<(), Difference> {
         .iter()
         .filter_map(|(name, body)| sb.bodies.get(name).map(|other| (name, body, other)))
         .collect();
-    let (rotation, translation, matched) = best_motion(&common);
+    let (rotation, translation, matched) = if sa.anchored || sb.anchored {
+        let in_place = common.iter().filter(|(_, x, y)| x.position == y.position);
+        (Rotation::IDENTITY, [0; 3], in_place.count())
+    } else {
+        best_motion(&common)
+    };
     diff.rotation = Some(rotation);
     diff.translation = translation;
     diff.matched = matched;

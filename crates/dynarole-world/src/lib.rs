@@ -32,8 +32,8 @@ mod view;
 pub mod world_common;
 
 pub use api::{
-    Configuration, GroupVerdict, ImportedPlan, NetworkPreset, PlanError, RobotConfiguration,
-    RobotKind, RobotModel,
+    Configuration, GroupVerdict, ImportOptions, ImportedPlan, NetworkPreset, PlanError,
+    PlanToExport, RobotConfiguration, RobotKind, RobotModel,
 };
 pub use common::{ConfigError, Latch, Metadata, NamedConnection, Port};
 pub use compare::{

@@ -147,6 +147,14 @@ pub enum OpError {
         /// The modules that would come apart from the commanding module's side.
         apart: Vec<String>,
     },
+    /// The robot has no operation of this kind (a robot of joints asked for a whole module's
+    /// move): its plugin's loader rules it out, so only a program built by hand meets it.
+    Unsupported {
+        /// The module asked.
+        module: String,
+        /// What it was asked to do (`move`).
+        action: &'static str,
+    },
     /// The robot's model could not prove the motion safe within its search's bound (it is
     /// refused, never assumed to be).
     Unproven {
@@ -218,6 +226,12 @@ impl fmt::Display for OpError {
                  their own)",
                 apart.join(", ")
             ),
+            OpError::Unsupported { module, action } => {
+                write!(
+                    f,
+                    "{module} cannot {action}: this robot has no such operation"
+                )
+            }
             OpError::Unproven { module, reason } => {
                 write!(f, "{module}'s operation is refused: {reason}")
             }

@@ -22,6 +22,9 @@ pub struct Shape {
     pub name_frame: fn(Rotation) -> String,
     /// Internal position units per file unit (2 where positions are kept in halves).
     pub position_scale: i32,
+    /// Positions are where the robot stands (a lattice robot's cells, which its moves change
+    /// exactly): compared as they are, not up to a rigid motion.
+    pub anchored: bool,
 }
 
 fn connection_names(connections: Vec<NamedConnection>) -> BTreeSet<String> {
@@ -47,5 +50,6 @@ pub fn shape_of<M: RobotModule>(
         connections: connection_names(structure.named_connections()),
         name_frame,
         position_scale,
+        anchored: false,
     }
 }

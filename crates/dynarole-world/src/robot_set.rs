@@ -2,7 +2,7 @@
 //! program may add its own. Reading a configuration file picks the kind by the file's `robot`
 //! field here, and nowhere else.
 
-use crate::api::{Configuration, ImportedPlan, PlanError, RobotKind};
+use crate::api::{Configuration, ImportOptions, ImportedPlan, PlanError, RobotKind};
 use crate::common::ConfigError;
 use crate::file_format::deserialize;
 use serde::Deserialize;
@@ -73,13 +73,15 @@ impl Robots {
     }
 
     /// The plan read by the first kind that recognises `text` as its planners' (`dynarole
-    /// import`), its sequence called `sequence`.
+    /// import`), its sequence called `sequence`, read as `options` say.
     pub fn import_plan(
         &self,
         text: &str,
         sequence: &str,
+        options: &ImportOptions,
     ) -> Option<Result<ImportedPlan, PlanError>> {
-        self.kinds().find_map(|k| k.import_plan(text, sequence))
+        self.kinds()
+            .find_map(|k| k.import_plan(text, sequence, options))
     }
 
     /// Each kind's plan formats, as `kind: formats`, for the message of a file that is none.

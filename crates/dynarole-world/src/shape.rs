@@ -60,6 +60,25 @@ pub enum Action {
         to: i64,
         increasing: bool,
     },
+    /// Move the whole module as the robot's move operation `operation` (its place among its
+    /// part's operations, the plugin's order) does, with its integer arguments in order,
+    /// padded with zeros: a lattice module's slide or pivot.
+    Move { operation: u8, args: [i64; 4] },
+}
+
+impl Action {
+    /// Refused by a robot that has no whole-module moves (a robot of joints and connectors).
+    pub fn unsupported(&self, module: &str) -> crate::OpError {
+        crate::OpError::Unsupported {
+            module: module.to_string(),
+            action: match self {
+                Action::Extend { .. } => "extend",
+                Action::Retract { .. } => "retract",
+                Action::Turn { .. } => "turn",
+                Action::Move { .. } => "move",
+            },
+        }
+    }
 }
 
 /// Who checks a turn's sweep when it is applied.

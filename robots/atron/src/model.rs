@@ -50,6 +50,7 @@ impl RobotModel for World {
                 let from = self.joint_from(module, from);
                 self.rotate_swept(module, (from, units(to), increasing), sweep)
             }
+            Action::Move { .. } => Err(action.unsupported(module)),
         }
     }
 
@@ -68,6 +69,7 @@ impl RobotModel for World {
                 let from = self.joint_from(module, from);
                 World::turn_motion(self, module, from, units(to), increasing).ok()
             }
+            Action::Move { .. } => None,
         }
     }
 

@@ -55,6 +55,7 @@ impl RobotModel for MtranWorld {
                 let angles = (from, degrees(to), increasing);
                 self.rotate_swept(module, mtran_joint(joint), angles, sweep)
             }
+            Action::Move { .. } => Err(action.unsupported(module)),
         }
     }
 
@@ -66,6 +67,9 @@ impl RobotModel for MtranWorld {
             increasing,
         } = *action
         else {
+            if matches!(action, Action::Move { .. }) {
+                return None;
+            }
             // A connector's latch moves inside its block: nothing the sweep or the drawing sees.
             return self.shape().index(module).map(|_| Motion::in_place());
         };

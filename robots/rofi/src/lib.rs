@@ -105,8 +105,20 @@ impl RobotKind for Rofi {
         &self,
         text: &str,
         sequence: &str,
+        options: &dynarole_world::ImportOptions,
     ) -> Option<Result<ImportedPlan, dynarole_world::PlanError>> {
-        import::import_plan(text, sequence)
+        let plan = import::import_plan(text, sequence)?;
+        if !options.ground.is_empty() {
+            // Said rather than ignored: the modules the user meant to hold still would move.
+            return Some(Err(dynarole_world::PlanError {
+                line: 1,
+                column: 1,
+                message: "RoFI's plans have no module groups: a ground (`--ground`) is for \
+                          plans that have them"
+                    .into(),
+            }));
+        }
+        Some(plan)
     }
 }
 

@@ -392,6 +392,7 @@ impl RobotModel for RofiModel {
                 to,
                 increasing,
             } => self.rotate(module, (joint, from, to, increasing), sweep),
+            Action::Move { .. } => Err(action.unsupported(module)),
         }
     }
 
@@ -403,6 +404,9 @@ impl RobotModel for RofiModel {
             increasing,
         } = *action
         else {
+            if matches!(action, Action::Move { .. }) {
+                return None;
+            }
             // A RoFICoM's slide moves inside its shoe: nothing a sweep or a drawing sees.
             return self.robot.index(module).map(|_| Motion::in_place());
         };

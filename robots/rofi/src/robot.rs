@@ -164,6 +164,7 @@ impl RofiRobot {
             connections,
             name_frame: |_| String::new(),
             position_scale: 1,
+            anchored: false,
         }
     }
 

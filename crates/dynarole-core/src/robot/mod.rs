@@ -44,13 +44,18 @@ pub struct TimingPreset {
 /// The simulator's built-in timing preset `ussr`, for a robot whose plugin declares none (as
 /// the network preset `ussr` is for a robot with no network presets): the original
 /// simulator's durations, extend 3 s, retract 2 s, a quarter turn 0.55 s and 0.31 s per
-/// further quarter.
+/// further quarter (and a move's step 1 s, [`MOVE_MS`], which USSR did not have).
 pub const USSR_TIMING: Durations = Durations {
     extend_ms: 3000,
     retract_ms: 2000,
     turn_first_quarter_ms: 550,
     turn_further_quarter_ms: 310,
+    move_ms: MOVE_MS,
 };
+
+/// A move's step where the robot's plugin gives no timing: one second, as the cube planners'
+/// viewers play a move set.
+pub const MOVE_MS: u64 = 1000;
 
 /// The name of [`USSR_TIMING`] in scenarios.
 const USSR_TIMING_NAME: &str = "ussr";
@@ -79,6 +84,8 @@ pub struct Durations {
     pub turn_first_quarter_ms: u64,
     /// Each further quarter turn of the same turn.
     pub turn_further_quarter_ms: u64,
+    /// One step of a move (kind `move`).
+    pub move_ms: u64,
 }
 
 impl Durations {
@@ -152,6 +159,9 @@ pub struct Operation {
     pub params: Vec<Param>,
     pub requires_male: bool,
     pub inverse: Option<Inverse>,
+    /// Steps of the robot's planner the operation is made of (a monkey move: two pivots), for
+    /// a `move`: it takes `move_ms` per step. 1 for every other kind.
+    pub steps: u64,
     /// What it does to the robot (`kind = "extend"`), so that the models and the simulator
     /// never decide it from the operation's name.
     pub kind: OperationKind,
@@ -176,7 +186,15 @@ pub enum OperationKind {
     /// Turns the joint from wherever it is: parameters `to` (int), the direction (bool),
     /// then any others.
     TurnTo,
+    /// Moves the whole module (a lattice module's slide or pivot): up to
+    /// [`MAX_MOVE_PARAMS`] integer parameters, which the robot's model reads by the
+    /// operation's place among its part's operations. Takes `move_ms` per step
+    /// ([`Operation::steps`]).
+    Move,
 }
+
+/// The most parameters an operation of kind `move` takes (what `Action::Move` carries).
+pub const MAX_MOVE_PARAMS: usize = 4;
 
 impl OperationKind {
     /// The name a plugin writes (what `serde` reads: the variant in snake case).
@@ -187,6 +205,7 @@ impl OperationKind {
             OperationKind::Retract => "retract",
             OperationKind::Turn => "turn",
             OperationKind::TurnTo => "turn_to",
+            OperationKind::Move => "move",
         }
     }
 

@@ -21,6 +21,9 @@ struct RawPlugin {
     timing: Vec<RawTiming>,
     #[serde(default)]
     part: Vec<RawPart>,
+    /// Names of argument values (`$PLUS_X`), beside the parts' index names.
+    #[serde(default)]
+    values: std::collections::BTreeMap<String, i64>,
 }
 
 #[derive(Deserialize)]
@@ -66,6 +69,7 @@ struct RawTiming {
     retract_ms: Option<u64>,
     turn_first_quarter_ms: Option<u64>,
     turn_further_quarter_ms: Option<u64>,
+    move_ms: Option<u64>,
 }
 
 /// The plugin's `[[timing]]` presets, in their order (the first is the default), each named
@@ -112,6 +116,7 @@ fn durations(raw: &RawTiming, parts: &[Part], field: &str) -> Result<Durations, 
             raw.turn_further_quarter_ms,
             &turns,
         )?,
+        move_ms: given("move_ms", raw.move_ms, &[OperationKind::Move])?,
     })
 }
 
@@ -193,6 +198,8 @@ struct RawOperation {
     inverse: Option<String>,
     /// An unknown one is refused by the TOML reader at its place, with the closest name.
     kind: Option<OperationKind>,
+    /// Planner steps a `move` is made of (1 when left out).
+    steps: Option<u64>,
 }
 
 #[derive(Deserialize)]
@@ -243,6 +250,7 @@ impl RobotApi {
         for (i, raw_part) in raw.part.iter().enumerate() {
             resolve_inverses(&mut parts, i, raw_part)?;
         }
+        constants.extend(value_constants(&raw.values)?);
         check_unique_constants(&constants)?;
         let find = |field: &str, name: &Option<String>| -> Result<Option<usize>, PluginError> {
             let Some(name) = name else { return Ok(None) };
@@ -324,6 +332,22 @@ fn part_constants(raw: &RawPart, part: usize, field: &str) -> Result<Vec<Constan
                 name,
                 value: value as i64,
                 part: Some(part),
+            })
+        })
+        .collect()
+}
+
+/// `[values]`: names of argument values, which index no part.
+fn value_constants(
+    values: &std::collections::BTreeMap<String, i64>,
+) -> Result<Vec<Constant>, PluginError> {
+    (values.iter())
+        .map(|(name, value)| {
+            check_name(&format!("values.{name}"), name)?;
+            Ok(Constant {
+                name: name.clone(),
+                value: *value,
+                part: None,
             })
         })
         .collect()
@@ -411,7 +435,28 @@ fn convert_operation(raw: &RawOperation, field: &str) -> Result<Operation, Plugi
         requires_male: raw.requires_male,
         inverse: None,
         kind: raw.kind.unwrap_or_default(),
+        steps: steps(raw, field)?,
     })
+}
+
+/// The most planner steps one move is made of: its duration stays far inside the simulator's
+/// longest run.
+const MAX_MOVE_STEPS: u64 = 64;
+
+/// `steps`: only a `move` has them, from 1 to [`MAX_MOVE_STEPS`].
+fn steps(raw: &RawOperation, field: &str) -> Result<u64, PluginError> {
+    let Some(steps) = raw.steps else {
+        return Ok(1);
+    };
+    let field = format!("{field}.steps");
+    if raw.kind != Some(OperationKind::Move) {
+        return Err(error(field, "only an operation of kind `move` has `steps`"));
+    }
+    if !(1..=MAX_MOVE_STEPS).contains(&steps) {
+        let message = format!("expected 1 to {MAX_MOVE_STEPS} steps, found {steps}");
+        return Err(error(field, message));
+    }
+    Ok(steps)
 }
 
 /// The parameters each kind starts with: what the models read.
@@ -427,6 +472,7 @@ fn kind_params(kind: OperationKind) -> (&'static [ParamShape], &'static str) {
             &[ParamShape::Int, ParamShape::Bool],
             "parameters `to` (int) and the direction (bool) first",
         ),
+        OperationKind::Move => (&[], "at most 4 parameters, all integers"),
     }
 }
 
@@ -455,7 +501,17 @@ fn check_kind(op: &Operation, count: Option<u32>, field: &str) -> Result<(), Plu
                 (ParamType::Int { .. }, ParamShape::Int) | (ParamType::Bool, ParamShape::Bool)
             )
         });
-    let exact = !kind.is_latch() || op.params.is_empty();
+    let exact = match kind {
+        OperationKind::Extend | OperationKind::Retract => op.params.is_empty(),
+        OperationKind::Move => {
+            op.params.len() <= MAX_MOVE_PARAMS
+                && op
+                    .params
+                    .iter()
+                    .all(|p| matches!(p.ty, ParamType::Int { .. }))
+        }
+        _ => true,
+    };
     if fits && exact {
         Ok(())
     } else {

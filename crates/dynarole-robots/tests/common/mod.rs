@@ -6,7 +6,7 @@ use dynarole_robot_atron::AtronConfiguration;
 use dynarole_world::Configuration;
 
 /// Every data file, by name.
-pub const FILES: [(&str, &str); 14] = [
+pub const FILES: [(&str, &str); 16] = [
     (
         "eight",
         include_str!("../../../../robots/atron/examples/eight.json"),
@@ -62,6 +62,14 @@ pub const FILES: [(&str, &str); 14] = [
     (
         "mtran-snake8",
         include_str!("../../../../robots/mtran/examples/mtran-snake8.json"),
+    ),
+    (
+        "cubes-row4",
+        include_str!("../../../../robots/cubes/examples/cubes-row4.json"),
+    ),
+    (
+        "cubes-row4-end",
+        include_str!("../../../../robots/cubes/examples/cubes-row4-end.json"),
     ),
 ];
 

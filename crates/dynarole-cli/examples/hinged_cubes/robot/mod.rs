@@ -1,6 +1,6 @@
 //! The hinged cubes as one robot kind, kept beside the program that adds it: a planar chain of
 //! cubes, each with a female back connector and a male front connector on a face that a hinge
-//! turns a quarter turn either way. Its plugin (`cubes.robot.toml`), its data file
+//! turns a quarter turn either way. Its plugin (`hinged.robot.toml`), its data file
 //! (`configuration.rs`), its model (`model.rs`) and its drawing (`drawing.rs`); [`KIND`] is
 //! what the program adds to the registry's robots.
 
@@ -13,11 +13,11 @@ pub use model::CubesWorld;
 
 use dynarole_world::{ConfigError, Configuration, Drawing, RobotKind};
 
-/// The plugin name a program gives in `robot cubes;`.
-pub const NAME: &str = "cubes";
+/// The plugin name a program gives in `robot hinged;`.
+pub const NAME: &str = "hinged";
 
 /// The `robot` field of its data files.
-pub const FILE_TAG: &str = "CUBES";
+pub const FILE_TAG: &str = "HINGED";
 
 /// The hinged-cubes robot kind.
 pub struct HingedCubes;
@@ -35,7 +35,7 @@ impl RobotKind for HingedCubes {
     }
 
     fn plugin(&self) -> (&'static str, &'static str) {
-        ("cubes.robot.toml", include_str!("../cubes.robot.toml"))
+        ("hinged.robot.toml", include_str!("../hinged.robot.toml"))
     }
 
     fn read_configuration(&self, text: &str) -> Result<Configuration, ConfigError> {
@@ -46,9 +46,9 @@ impl RobotKind for HingedCubes {
         drawing::drawing()
     }
 
-    /// `cubes.schema.json`: the structure of its data files (`configuration.rs` reads them).
+    /// `hinged.schema.json`: the structure of its data files (`configuration.rs` reads them).
     fn schema(&self) -> Option<&'static str> {
-        Some(include_str!("../cubes.schema.json"))
+        Some(include_str!("../hinged.schema.json"))
     }
 }
 

@@ -69,6 +69,7 @@ impl CubesConfiguration {
             connections,
             name_frame: frame_name,
             position_scale: 1,
+            anchored: false,
         }
     }
 }
@@ -312,6 +313,7 @@ impl RobotModel for CubesWorld {
                 let from = from.unwrap_or(i64::from(self.config.cubes[m].hinge));
                 self.bend(m, from, to, increasing)
             }
+            Action::Move { .. } => Err(action.unsupported(module)),
         }
     }
 
@@ -324,6 +326,9 @@ impl RobotModel for CubesWorld {
             ..
         } = *action
         else {
+            if matches!(action, Action::Move { .. }) {
+                return None;
+            }
             // A latch moves inside its face: nothing the sweep or the drawing sees.
             return Some(Motion::in_place());
         };

@@ -25,7 +25,7 @@ pub(super) fn scene(config: &Configuration) -> Scene {
     let (bodies, links, radius) = match drawing.picture {
         Picture::SplitDisc { radius } => (split_discs(&view, &poses), Vec::new(), radius),
         Picture::LinkedCubes { half } => {
-            let (bodies, links) = linked_cubes(&view, &poses);
+            let (bodies, links) = linked_blocks(&view, &poses);
             (bodies, links, half)
         }
     };
@@ -69,7 +69,7 @@ fn split_discs(view: &View, poses: &[ModulePose]) -> Vec<Body> {
 }
 
 /// A cube per part, and a bar between each part and the next of its module.
-fn linked_cubes(view: &View, poses: &[ModulePose]) -> (Vec<Body>, Vec<[[f64; 3]; 2]>) {
+fn linked_blocks(view: &View, poses: &[ModulePose]) -> (Vec<Body>, Vec<[[f64; 3]; 2]>) {
     let mut bodies = Vec::new();
     let mut links = Vec::new();
     for (m, pose) in poses.iter().enumerate() {
