@@ -31,8 +31,8 @@
 //!   ASCII digits; leading zeros are fine (`007` is 7). JavaScript's `parseInt` would read
 //!   `1.5` as 1 and `0x10` as 16, and a tab-only line as NaN; all are refused here.
 //! - **Ranges.** Group ids within ±(2⁵³ − 1), JavaScript's exact integers, beyond which two
-//!   ids could become one; colour components 0 to 255; sizes 0 to 100 (percent of a cell);
-//!   module ids 0 to `u32::MAX`; coordinates and displacements within ±1,000,000; anchor codes
+//!   ids could become one; colours and sizes likewise (display only, kept as written: the
+//!   planners' own files have components above 255); module ids 0 to `u32::MAX`; coordinates and displacements within ±1,000,000; anchor codes
 //!   within `i32`.
 //! - **References.** A group or a module declared twice, a module of an undeclared group and a
 //!   move of an undeclared module are refused. A `*` anywhere but at the start of a move line
@@ -715,13 +715,13 @@ const GROUP_ID: FieldSpec = FieldSpec {
 };
 const COLOUR: FieldSpec = FieldSpec {
     what: "a colour component",
-    min: 0,
-    max: 255,
+    min: -MAX_GROUP_ID,
+    max: MAX_GROUP_ID,
 };
 const SIZE: FieldSpec = FieldSpec {
     what: "a size in percent of a cell",
-    min: 0,
-    max: 100,
+    min: -MAX_GROUP_ID,
+    max: MAX_GROUP_ID,
 };
 const MODULE_ID: FieldSpec = FieldSpec {
     what: "a module id",
@@ -1158,8 +1158,18 @@ mod tests {
             10,
             "displacement",
         );
-        assert_refused(&replaced(5, "1, 256, 20, 30, 90"), 5, 4, "colour");
-        assert_refused(&replaced(5, "1, 10, 20, 30, 101"), 5, 16, "size");
+        // Display only, kept as written: the planners' own files have components above 255.
+        let bright = read_scen(&replaced(5, "1, 512, 20, 30, 101")).expect("read");
+        assert_eq!(
+            (bright.groups[0].colour, bright.groups[0].size_percent),
+            ([512, 20, 30], 101)
+        );
+        assert_refused(
+            &replaced(5, "1, 9007199254740992, 20, 30, 90"),
+            5,
+            4,
+            "colour",
+        );
         assert_refused(
             &replaced(5, "9007199254740992, 1, 2, 3, 4"),
             5,
