@@ -25,8 +25,8 @@ fn viewer_ends(text: &str) -> BTreeMap<u32, [i32; 3]> {
         .collect();
     for line in scenario.sets.iter().flat_map(|s| &s.moves) {
         let cell = at.get_mut(&line.id).expect("a declared module");
-        for k in 0..3 {
-            cell[k] += line.d[k];
+        for (c, d) in cell.iter_mut().zip(line.d) {
+            *c += d;
         }
     }
     at
