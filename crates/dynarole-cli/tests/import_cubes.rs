@@ -220,3 +220,32 @@ fn a_simulated_scenario_is_recorded_and_the_viewer_moves_its_cubes() {
     ok(&["view", arg(&recording), "-o", arg(&page)], 0);
     assert!(std::fs::metadata(&page).expect("written").len() > 10_000);
 }
+
+/// Fixed modules that no face joins stand on one ground (`--ground`): it holds the robot
+/// together for the move rules and carries the fixed modules' packets, so the scenario
+/// imports and simulates; without it the scenario is refused, its modules apart.
+#[test]
+fn a_ground_joins_fixed_modules_that_no_face_joins() {
+    let dir = tempfile::tempdir().expect("a temporary directory");
+    let plan = example("ground-monkey");
+    let apart = dynarole(&["import", arg(&plan), "-o", arg(dir.path())]);
+    assert_eq!(apart.status.code(), Some(1));
+    assert!(
+        text(&apart.stderr).contains("do not all touch"),
+        "{}",
+        text(&apart.stderr)
+    );
+    let printed = ok(
+        &["import", arg(&plan), "-o", arg(dir.path()), "--ground", "1"],
+        0,
+    );
+    assert!(printed.contains("1 monkey"), "{printed}");
+    let [program, from, expect] =
+        ["dr", "from.json", "expect.json"].map(|e| dir.path().join(format!("ground-monkey.{e}")));
+    let start = std::fs::read_to_string(&from).expect("written");
+    assert_eq!(start.matches("\"fixed\": true").count(), 2, "{start}");
+    for seed in ["1", "2"] {
+        let simulated = simulate(&program, &from, &expect, &["--loss", "0.3", "--seed", seed]);
+        assert!(simulated.starts_with("SUCCESS"), "{simulated}");
+    }
+}

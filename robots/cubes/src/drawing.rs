@@ -15,9 +15,12 @@ impl CubesRobot {
         (self.cubes().iter())
             .map(|cube| {
                 let centre = cube.position.map(f64::from);
-                let connectors = (Dir::ALL.iter())
+                let mut connectors: Vec<[f64; 3]> = (Dir::ALL.iter())
                     .map(|d| std::array::from_fn(|k| centre[k] + f64::from(d.vector()[k]) / 2.0))
                     .collect();
+                // The ground's wiring comes out of the cube's bottom.
+                let bottom = [centre[0], centre[1], centre[2] - 0.5];
+                connectors.extend([bottom, bottom]);
                 ModulePose {
                     parts: vec![PartPose {
                         centre,

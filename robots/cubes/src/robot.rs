@@ -2,12 +2,20 @@
 //! unless a file names them), in file order, each at a lattice cell, some fixed (a ground
 //! that never moves), connected by their shared faces, answering [`RobotShape`]. Each face is
 //! a connector (numbered as [`Dir::ALL`]): a face talks to the face it touches, nothing else.
+//! Two more connectors are the ground's wiring: where two or more cubes are fixed, the ground
+//! that joins them (`lattice.rs`) also carries their packets, along a chain of the fixed
+//! cubes in file order, connector [`GROUND_NEXT`] to the next one's [`GROUND_PREVIOUS`].
 
 use crate::lattice::{Cell, Dir, Lattice};
 use dynarole_world::file_format::MAX_MODULE_ID;
 use dynarole_world::rigid::{Body, Shape};
 use dynarole_world::{ConfigError, Metadata, NamedConnection, Port, RobotShape, Rotation, Vec3};
 use std::collections::BTreeMap;
+
+/// The connector of a fixed cube wired through the ground to the next fixed cube, and the one
+/// wired to the previous (after the six faces).
+pub const GROUND_NEXT: u8 = 6;
+pub const GROUND_PREVIOUS: u8 = 7;
 
 /// One cube of a configuration.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -24,6 +32,8 @@ pub struct Cube {
 pub struct CubesRobot {
     cubes: Vec<Cube>,
     lattice: Lattice,
+    /// The fixed cubes in file order, when there are two or more (the ground's chain).
+    ground: Vec<usize>,
     by_name: BTreeMap<String, usize>,
     by_id: BTreeMap<u32, usize>,
     metadata: Metadata,
@@ -43,9 +53,12 @@ impl CubesRobot {
                 "the cubes do not all touch through faces: a robot is one connected piece",
             ));
         }
+        let fixed: Vec<usize> = (0..cubes.len()).filter(|&m| cubes[m].fixed).collect();
+        let ground = if fixed.len() > 1 { fixed } else { Vec::new() };
         Ok(CubesRobot {
             cubes,
             lattice,
+            ground,
             by_name,
             by_id,
             metadata,
@@ -92,7 +105,22 @@ impl CubesRobot {
             .collect()
     }
 
-    /// Every two cubes that share a face, from the lower index, by the faces' numbers.
+    /// The fixed cube wired to `port` through the ground, if any.
+    fn ground_partner(&self, port: Port) -> Option<Port> {
+        let place = self.ground.iter().position(|&m| m == port.module)?;
+        let (other, connector) = match port.connector {
+            GROUND_NEXT => (self.ground.get(place + 1)?, GROUND_PREVIOUS),
+            GROUND_PREVIOUS => (self.ground.get(place.checked_sub(1)?)?, GROUND_NEXT),
+            _ => return None,
+        };
+        Some(Port {
+            module: *other,
+            connector,
+        })
+    }
+
+    /// Every two cubes that share a face, from the lower index, by the faces' numbers, then
+    /// the ground's wiring.
     pub fn named_connections(&self) -> Vec<NamedConnection> {
         let mut out = Vec::new();
         for (m, cube) in self.cubes.iter().enumerate() {
@@ -104,6 +132,10 @@ impl CubesRobot {
                 let name = self.cubes[other].name.clone();
                 out.push((cube.name.clone(), face as u8, name, back));
             }
+        }
+        for pair in self.ground.windows(2) {
+            let name = |m: usize| self.cubes[m].name.clone();
+            out.push((name(pair[0]), GROUND_NEXT, name(pair[1]), GROUND_PREVIOUS));
         }
         out
     }
@@ -202,9 +234,9 @@ fn is_identifier(name: &str) -> bool {
 }
 
 impl RobotShape for CubesRobot {
-    /// One per face.
+    /// One per face, and the two of the ground's wiring.
     fn connectors(&self) -> u8 {
-        Dir::ALL.len() as u8
+        GROUND_PREVIOUS + 1
     }
 
     /// Faces are alike: none is the side of a latch that releases.
@@ -241,8 +273,12 @@ impl RobotShape for CubesRobot {
         None
     }
 
-    /// Cubes that share a face are connected, face to face.
+    /// Cubes that share a face are connected, face to face; fixed cubes also through the
+    /// ground.
     fn latched_to(&self, port: Port) -> Option<Port> {
+        if port.connector >= GROUND_NEXT {
+            return self.ground_partner(port);
+        }
         let dir = *Dir::ALL.get(usize::from(port.connector))?;
         let other = self.lattice.neighbour(port.module, dir)?;
         Some(Port {
