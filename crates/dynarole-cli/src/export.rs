@@ -3,8 +3,7 @@
 //! the configuration given (a plan the model refuses is not written).
 
 use crate::load::{self, Failure};
-use crate::render;
-use crate::world::{prepare, read_configuration};
+use crate::world::read_configuration;
 use dynarole_core::ast::SeparatorKind;
 use dynarole_core::expand::{Plan, PlanKind};
 use dynarole_core::Program;
@@ -42,22 +41,13 @@ pub fn run(args: &ExportArgs) -> Result<ExitCode, Failure> {
             ));
         }
         let start = read_configuration(&args.run.from)?;
-        let prepared = match prepare(program, &display, &args.run.sequences, start)? {
-            Ok(prepared) => prepared,
-            Err(errors) => {
-                render::diagnostics(&display, source, &errors);
-                return Ok(ExitCode::from(1));
-            }
-        };
-        let (result, diagnostics) = crate::replay::replayed(program, &prepared);
-        render::diagnostics(&display, source, &diagnostics);
-        if result.n_rejected > 0 {
-            eprintln!(
-                "error: the model refuses {} statement(s); nothing written",
-                result.n_rejected
-            );
-            return Ok(ExitCode::from(1));
-        }
+        let run = (program, source, display.as_str());
+        let what = ("the sequence", "; nothing written");
+        let (prepared, _) =
+            match crate::replay::replayed_whole(run, &args.run.sequences, start, what)? {
+                Ok(done) => done,
+                Err(code) => return Ok(code),
+            };
         let sets = sets(program, &prepared).map_err(Failure::Input)?;
         let title = prepared.names.join(", ");
         let description = format!("exported by dynarole from {display}");

@@ -4,8 +4,6 @@
 //! model to its last configuration, and its steps and critical path are printed.
 
 use crate::load::{self, Failure};
-use crate::render;
-use crate::world::prepare;
 use dynarole_codegen::Protocol;
 use dynarole_world::{compare_with_expected, Configuration, ImportedPlan};
 use std::path::{Path, PathBuf};
@@ -124,22 +122,13 @@ fn replay_to_the_end(
     load::with_program(program_path, &plugins, |program, source| {
         let display = program_path.display().to_string();
         let sequences = [sequence.to_string()];
-        let prepared = match prepare(program, &display, &sequences, plan.from.clone())? {
-            Ok(prepared) => prepared,
-            Err(errors) => {
-                render::diagnostics(&display, source, &errors);
-                return Ok(ExitCode::from(1));
-            }
-        };
-        let (result, diagnostics) = crate::replay::replayed(program, &prepared);
-        render::diagnostics(&display, source, &diagnostics);
-        if result.n_rejected > 0 {
-            eprintln!(
-                "error: the model refuses {} statement(s) of the imported sequence",
-                result.n_rejected
-            );
-            return Ok(ExitCode::from(1));
-        }
+        let run = (program, source, display.as_str());
+        let what = ("the imported sequence", "");
+        let (prepared, result) =
+            match crate::replay::replayed_whole(run, &sequences, plan.from.clone(), what)? {
+                Ok(done) => done,
+                Err(code) => return Ok(code),
+            };
         let reached: Option<Configuration> = result.final_world.configuration();
         let difference = reached.and_then(|r| compare_with_expected(&r, &plan.expect).err());
         if let Some(difference) = difference {

@@ -92,6 +92,32 @@ pub(crate) fn replayed(
     (result, diagnostics)
 }
 
+/// `sequences` prepared on `start` and replayed, their diagnostics rendered: the run, or the
+/// exit code 1 when a label has no module or the model refuses a statement (the message
+/// says `what` was refused, and that `refusal`).
+pub(crate) fn replayed_whole(
+    (program, source, display): (&dynarole_core::Program, &str, &str),
+    sequences: &[String],
+    start: Configuration,
+    (what, refusal): (&str, &str),
+) -> Result<Result<(crate::world::Prepared, dynarole_replay::Replay), ExitCode>, Failure> {
+    let prepared = match prepare(program, display, sequences, start)? {
+        Ok(prepared) => prepared,
+        Err(errors) => {
+            render::diagnostics(display, source, &errors);
+            return Ok(Err(ExitCode::from(1)));
+        }
+    };
+    let (result, diagnostics) = replayed(program, &prepared);
+    render::diagnostics(display, source, &diagnostics);
+    if result.n_rejected > 0 {
+        let n = result.n_rejected;
+        eprintln!("error: the model refuses {n} statement(s) of {what}{refusal}");
+        return Ok(Err(ExitCode::from(1)));
+    }
+    Ok(Ok((prepared, result)))
+}
+
 fn record(
     args: &ReplayArgs,
     program: &dynarole_core::Program,

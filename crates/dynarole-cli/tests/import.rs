@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{dynarole, repo_root, text};
+use common::{arg, dynarole, ok, repo_root, simulate, text};
 use std::path::{Path, PathBuf};
 
 /// The example plans, each with its sequence's name.
@@ -15,44 +15,11 @@ const PLANS: [(&str, &str); 3] = [
     ("fold-sync", "fold_sync"),
 ];
 
-fn arg(path: &Path) -> &str {
-    path.to_str().expect("a UTF-8 path")
-}
-
-/// Runs `dynarole args`, asserting its exit code; its standard output.
-fn ok(args: &[&str], code: i32) -> String {
-    let out = dynarole(args);
-    assert_eq!(
-        out.status.code(),
-        Some(code),
-        "dynarole {}\n{}{}",
-        args.join(" "),
-        text(&out.stdout),
-        text(&out.stderr)
-    );
-    text(&out.stdout)
-}
-
 /// The last `C` block of a plan in RoFI's old text format: its last configuration, in RoFI's
 /// own format.
 fn last_configuration(plan: &str) -> String {
     let start = plan.rfind("\nC\n").map_or(0, |at| at + 1);
     plan[start..].to_string()
-}
-
-/// `dynarole simulate PROGRAM --from FROM --expect EXPECT EXTRA...`, which must succeed; its
-/// standard output.
-fn simulate(program: &Path, from: &Path, expect: &Path, extra: &[&str]) -> String {
-    let mut args = vec![
-        "simulate",
-        arg(program),
-        "--from",
-        arg(from),
-        "--expect",
-        arg(expect),
-    ];
-    args.extend_from_slice(extra);
-    ok(&args, 0)
 }
 
 /// Imports `robots/rofi/examples/STEM.txt` into `dir`: the program and the two configurations.

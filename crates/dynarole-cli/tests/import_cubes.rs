@@ -6,7 +6,7 @@
 
 mod common;
 
-use common::{dynarole, repo_root, text};
+use common::{arg, dynarole, ok, repo_root, simulate, text};
 use std::path::{Path, PathBuf};
 
 /// The example scenarios, each with its sequence's name.
@@ -18,24 +18,6 @@ const SCENARIOS: [(&str, &str); 6] = [
     ("four-slides", "four_slides"),
     ("monkey", "monkey"),
 ];
-
-fn arg(path: &Path) -> &str {
-    path.to_str().expect("a UTF-8 path")
-}
-
-/// Runs `dynarole args`, asserting its exit code; its standard output.
-fn ok(args: &[&str], code: i32) -> String {
-    let out = dynarole(args);
-    assert_eq!(
-        out.status.code(),
-        Some(code),
-        "dynarole {}\n{}{}",
-        args.join(" "),
-        text(&out.stdout),
-        text(&out.stderr)
-    );
-    text(&out.stdout)
-}
 
 /// Imports `plan` into `dir`: what it printed, and the program and the two configurations.
 fn import(plan: &Path, dir: &Path) -> (String, [PathBuf; 3]) {
@@ -57,19 +39,6 @@ fn statements(program: &Path) -> Vec<String> {
         .filter(|l| !l.is_empty() && !l.starts_with("//") && !l.starts_with("sequence"))
         .map(String::from)
         .collect()
-}
-
-fn simulate(program: &Path, from: &Path, expect: &Path, extra: &[&str]) -> String {
-    let mut args = vec![
-        "simulate",
-        arg(program),
-        "--from",
-        arg(from),
-        "--expect",
-        arg(expect),
-    ];
-    args.extend_from_slice(extra);
-    ok(&args, 0)
 }
 
 #[test]

@@ -126,6 +126,16 @@ fn connections(
 /// Largest module ID: the runtime's `dr_hal_id` is 16 bits and 65,535 means "no ID".
 pub const MAX_MODULE_ID: u32 = 65_534;
 
+/// Whether `name` can name a module in a program: a letter or `_`, then letters, digits or
+/// `_`, at most 64 characters.
+pub fn is_module_name(name: &str) -> bool {
+    let mut chars = name.chars();
+    let first = chars
+        .next()
+        .is_some_and(|c| c.is_ascii_alphabetic() || c == '_');
+    first && name.len() <= 64 && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
+}
+
 /// A module ID the runtime can hold, or an error naming `modules[i].id`.
 pub fn check_id(i: usize, id: Option<u32>) -> Result<Option<u32>, ConfigError> {
     match id {

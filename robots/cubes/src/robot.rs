@@ -7,7 +7,7 @@
 //! cubes in file order, connector [`GROUND_NEXT`] to the next one's [`GROUND_PREVIOUS`].
 
 use crate::lattice::{Cell, Dir, Lattice};
-use dynarole_world::file_format::MAX_MODULE_ID;
+use dynarole_world::file_format::{is_module_name, MAX_MODULE_ID};
 use dynarole_world::rigid::{Body, Shape};
 use dynarole_world::{ConfigError, Metadata, NamedConnection, Port, RobotShape, Rotation, Vec3};
 use std::collections::BTreeMap;
@@ -204,7 +204,7 @@ fn index(cubes: &[Cube]) -> Result<Indices, ConfigError> {
             );
             return Err(ConfigError::new(at("id"), message));
         }
-        if !is_identifier(&cube.name) {
+        if !is_module_name(&cube.name) {
             let message = format!(
                 "\"{}\" is not a name a program can use (a letter or `_`, then letters, digits \
                  or `_`)",
@@ -222,15 +222,6 @@ fn index(cubes: &[Cube]) -> Result<Indices, ConfigError> {
         }
     }
     Ok((by_name, by_id))
-}
-
-/// A letter or `_`, then letters, digits or `_`, at most 64 characters.
-fn is_identifier(name: &str) -> bool {
-    let mut chars = name.chars();
-    let first = chars
-        .next()
-        .is_some_and(|c| c.is_ascii_alphabetic() || c == '_');
-    first && name.len() <= 64 && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
 }
 
 impl RobotShape for CubesRobot {

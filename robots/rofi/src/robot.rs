@@ -7,7 +7,7 @@ use crate::kinematics::poses;
 use crate::module::{Connection, Connector, Joint, Module, RofiConfiguration};
 use crate::turn::mate_of;
 use crate::validity::validate;
-use dynarole_world::file_format::MAX_MODULE_ID;
+use dynarole_world::file_format::{is_module_name, MAX_MODULE_ID};
 use dynarole_world::rigid::{Body, Shape};
 use dynarole_world::{ConfigError, Metadata, NamedConnection, Port, RobotShape, Rotation, Vec3};
 use std::collections::BTreeMap;
@@ -214,7 +214,7 @@ fn check_ids_and_names(ids: &[u32], names: &[String]) -> Result<(), ConfigError>
     }
     let mut seen = BTreeMap::new();
     for (name, id) in names.iter().zip(ids) {
-        if !is_identifier(name) {
+        if !is_module_name(name) {
             return Err(ConfigError::new(
                 "document",
                 format!("module {id}'s name \"{name}\" is not a name a program can use (a letter or `_`, then letters, digits or `_`)"),
@@ -228,15 +228,6 @@ fn check_ids_and_names(ids: &[u32], names: &[String]) -> Result<(), ConfigError>
         }
     }
     Ok(())
-}
-
-/// A letter or `_`, then letters, digits or `_`, at most 64 characters.
-pub(crate) fn is_identifier(name: &str) -> bool {
-    let mut chars = name.chars();
-    let first = chars
-        .next()
-        .is_some_and(|c| c.is_ascii_alphabetic() || c == '_');
-    first && name.len() <= 64 && chars.all(|c| c.is_ascii_alphanumeric() || c == '_')
 }
 
 impl RobotShape for RofiRobot {

@@ -23,6 +23,40 @@ pub fn text(bytes: &[u8]) -> String {
     String::from_utf8_lossy(bytes).into_owned()
 }
 
+/// A path as a command-line argument.
+pub fn arg(path: &Path) -> &str {
+    path.to_str().expect("a UTF-8 path")
+}
+
+/// Runs `dynarole args`, asserting its exit code; its standard output.
+pub fn ok(args: &[&str], code: i32) -> String {
+    let out = dynarole(args);
+    assert_eq!(
+        out.status.code(),
+        Some(code),
+        "dynarole {}\n{}{}",
+        args.join(" "),
+        text(&out.stdout),
+        text(&out.stderr)
+    );
+    text(&out.stdout)
+}
+
+/// `dynarole simulate PROGRAM --from FROM --expect EXPECT EXTRA...`, which must succeed; its
+/// standard output.
+pub fn simulate(program: &Path, from: &Path, expect: &Path, extra: &[&str]) -> String {
+    let mut args = vec![
+        "simulate",
+        arg(program),
+        "--from",
+        arg(from),
+        "--expect",
+        arg(expect),
+    ];
+    args.extend_from_slice(extra);
+    ok(&args, 0)
+}
+
 /// The directory of nescc 1.4.0, or None (with the reason printed) when this machine cannot
 /// install it (`scripts/ensure-nesc` exits 77); a failed build is a failure, not a skip.
 pub fn nescc_dir() -> Option<PathBuf> {
