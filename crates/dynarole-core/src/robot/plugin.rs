@@ -841,6 +841,40 @@ mod tests {
     }
 
     #[test]
+    fn moves_take_integers_their_steps_and_a_duration() {
+        let plugin = |op: &str, timing: &str| {
+            RobotApi::from_toml(&format!(
+                "name = \"c\"\n[values]\nUP = 3\n{timing}[[part]]\nname = \"Cube\"\n\
+                 [[part.operation]]\nname = \"go\"\nkind = \"move\"\n{op}"
+            ))
+        };
+        let int = "params = [{ name = \"d\", type = \"int\", min = -3, max = 3 }]\n";
+        let api = plugin(&format!("{int}steps = 2\n"), "").expect("a move");
+        let op = &api.parts[0].operations[0];
+        assert_eq!((op.kind, op.steps), (OperationKind::Move, 2));
+        let up = api.constant("UP").expect("a value name");
+        assert_eq!((up.value, up.part), (3, None));
+        let boolean = plugin("params = [{ name = \"b\", type = \"bool\" }]\n", "");
+        assert_eq!(
+            boolean.expect_err("a bool").field,
+            "part[0].operation[0].kind"
+        );
+        let steps = plugin(&format!("{int}steps = 0\n"), "").expect_err("no steps");
+        assert_eq!(steps.field, "part[0].operation[0].steps");
+        let untimed = plugin(int, "[[timing]]\nname = \"t\"\n").expect_err("no move_ms");
+        assert!(untimed.message.contains("`move_ms`"), "{untimed}");
+        let timed = plugin(int, "[[timing]]\nname = \"t\"\nmove_ms = 700\n").expect("timed");
+        assert_eq!(timed.timing[0].durations.move_ms, 700);
+        let turn_steps = RobotApi::from_toml(
+            "name = \"g\"\n[[part]]\nname = \"P\"\n[[part.operation]]\nname = \"a\"\nsteps = 2\n",
+        );
+        assert_eq!(
+            turn_steps.expect_err("steps of a none").field,
+            "part[0].operation[0].steps"
+        );
+    }
+
+    #[test]
     fn a_huge_count_is_refused_before_anything_is_built() {
         let huge = RobotApi::from_toml(
             "name = \"g\"\n[[part]]\nname = \"P\"\ncount = 1000000000\nconstant_prefix = \"P_\"\n",
