@@ -562,16 +562,21 @@ impl Failure {
 
     /// The edge to add: the pair named, or for a refused statement the nearest statement
     /// not yet ordered with it, on the side it ran after (before it in the input going
-    /// forwards, after it in the reverse).
+    /// forwards, after it in the reverse); when every one there is ordered with it, the
+    /// nearest on the other side, as the input orders them: what the form ran before it may
+    /// be a later statement of the input, which together with others (no pair alone) changed
+    /// the state it runs on.
     fn repair(&self, n: usize, edges: &[(usize, usize)]) -> Option<(usize, usize)> {
         if self.edge.is_some() {
             return self.edge;
         }
         let (j, direction) = self.refused?;
         let anc = ancestors(n, edges);
+        let earlier = || (0..j).rev().find(|i| !anc[j].contains(*i)).map(|i| (i, j));
+        let later = || (j + 1..n).find(|k| !anc[*k].contains(j)).map(|k| (j, k));
         match direction {
-            Direction::Forward => (0..j).rev().find(|i| !anc[j].contains(*i)).map(|i| (i, j)),
-            Direction::Backward => (j + 1..n).find(|k| !anc[*k].contains(j)).map(|k| (j, k)),
+            Direction::Forward => earlier().or_else(later),
+            Direction::Backward => later().or_else(earlier),
         }
     }
 }

@@ -310,13 +310,16 @@ fn random_case(robot: &str, config: &str, moves: &[String]) -> Result<(), TestCa
     let source = source_of(robot, moves);
     let found = run(&source, "s", config);
     let expected = replayed(&source, "s", config);
-    // The builder's groups are checked as wholes: the verification has nothing to repair.
-    let repairs: Vec<&String> = found
+    // The builder's groups are checked as wholes, but its edges pair by pair on the input's
+    // states: moving two later statements before an earlier one can change the state it runs
+    // on though each alone does not (a snake case: a turn refused after two others that each
+    // commute with it). The verification then repairs the form, and never gives up on a
+    // parallel form for want of an edge to add; what it writes must end where the input does.
+    let fell_back = found
         .notes
         .iter()
-        .filter(|n| n.contains("` before `"))
-        .collect();
-    prop_assert!(repairs.is_empty(), "{}\n{:?}", source, repairs);
+        .any(|n| n.contains("written in the input order"));
+    prop_assert!(!fell_back, "{}\n{:?}", source, found.notes);
     for form in &found.forms {
         let end = check_written(&found, &form.text, config);
         prop_assert_eq!(
