@@ -218,3 +218,21 @@ fn a_ground_joins_fixed_modules_that_no_face_joins() {
         assert!(simulated.starts_with("SUCCESS"), "{simulated}");
     }
 }
+
+/// `verify` on a hand-written cube program (spin, installed by `scripts/ensure-spin` from the
+/// test command): S1-S3 and L proved for the walk along the row.
+#[test]
+fn verify_proves_the_walk() {
+    let examples = repo_root().join("robots/cubes/examples");
+    let (program, from) = (examples.join("walk.dr"), examples.join("cubes-row4.json"));
+    let args = [
+        "verify",
+        arg(&program),
+        "--sequence",
+        "walk",
+        "--from",
+        arg(&from),
+    ];
+    let printed = ok(&args, 0);
+    assert!(printed.contains("result: verified"), "{printed}");
+}
