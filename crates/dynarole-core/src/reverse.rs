@@ -4,7 +4,7 @@
 use crate::ast::*;
 use crate::check::{non_invertible, resolve_statement, Program};
 use crate::diagnostic::{Diagnostic, DiagnosticKind};
-use crate::robot::Value;
+use crate::robot::{Template, Value};
 
 impl Program<'_> {
     /// The reverse of sequence `name` as a declaration named `new_name`.
@@ -143,6 +143,27 @@ impl Program<'_> {
         }
     }
 
+    /// The name of value `n` where the argument it comes from was written by a value's name
+    /// (`slide(-dir)` of `slide($PLUS_X)` is `slide($MINUS_X)`), when one name alone has it.
+    fn value_name(&self, template: &Template, statement: &Statement, n: i64) -> Option<String> {
+        let source = match template {
+            Template::Negate(inner) => match inner.as_ref() {
+                Template::Param(k) => *k,
+                _ => return None,
+            },
+            _ => return None,
+        };
+        let ArgKind::Constant(written) = &statement.args.get(source)?.kind else {
+            return None;
+        };
+        self.robot.constant(written).filter(|c| c.part.is_none())?;
+        let mut named = (self.robot.constants.iter()).filter(|c| c.part.is_none() && c.value == n);
+        match (named.next(), named.next()) {
+            (Some(one), None) => Some(one.name.clone()),
+            _ => None,
+        }
+    }
+
     fn reverse_statement(&self, statement: &Statement) -> Statement {
         let Ok(resolved) = resolve_statement(self.file, statement, &self.robot) else {
             return statement.clone();
@@ -157,11 +178,14 @@ impl Program<'_> {
             .iter()
             .map(|template| match template {
                 // Keep the argument as written (a `$CONSTANT` stays a constant).
-                crate::robot::Template::Param(k) => statement.args[*k].clone(),
+                Template::Param(k) => statement.args[*k].clone(),
                 other => {
                     let value = other.apply(&resolved.args).unwrap_or(Value::Int(0));
                     let kind = match value {
-                        Value::Int(n) => ArgKind::Int(n),
+                        Value::Int(n) => match self.value_name(other, statement, n) {
+                            Some(name) => ArgKind::Constant(name),
+                            None => ArgKind::Int(n),
+                        },
                         Value::Bool(b) => ArgKind::Bool(b),
                     };
                     Arg {
