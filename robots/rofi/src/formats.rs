@@ -43,8 +43,16 @@ pub fn recognise(text: &str) -> Option<Format> {
         .lines()
         .map(str::trim)
         .find(|line| !line.is_empty() && !line.starts_with('#'))?;
-    let keyword = first.split_whitespace().next()?;
-    matches!(keyword, "C" | "M" | "E").then_some(Format::OldText)
+    // A `C` line alone, or `M`/`E` and a number: another tool's text that starts with one of
+    // these letters (a scenario named `M-shape`, `C` of something) is not taken for RoFI's.
+    let mut words = first.split_whitespace();
+    let numeric = |w: Option<&str>| w.is_some_and(|w| w.parse::<f64>().is_ok());
+    let old = match words.next()? {
+        "C" => words.next().is_none_or(|w| w.starts_with('#')),
+        "M" | "E" => numeric(words.next()),
+        _ => false,
+    };
+    old.then_some(Format::OldText)
 }
 
 /// Whether a JSON object has a top-level `robot` field (dynarole's own files do). A text that
