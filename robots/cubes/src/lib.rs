@@ -2,8 +2,9 @@
 //! moves with the cube planners' move rules and parallel-move rules (`lattice.rs`), a
 //! configuration of cubes as the rest of dynarole sees it (`robot.rs`), dynarole's data file
 //! (`json.rs`, `cubes.schema.json`), the robot model (`model.rs`), the drawing
-//! (`drawing.rs`), MRWT's `.scen` scenarios (`scen.rs`), their lines as moves (`decode.rs`)
-//! and the program imported from one (`import.rs`), and the plugin (`cubes.robot.toml`).
+//! (`drawing.rs`), MRWT's `.scen` scenarios (`scen.rs`), their lines as moves (`decode.rs`),
+//! the program imported from one (`import.rs`), a sequence written as one (`export.rs`), and
+//! the plugin (`cubes.robot.toml`).
 //! [`KIND`] is what the registry lists.
 
 pub mod decode;
