@@ -41,6 +41,23 @@
  * image and its model run the same batches; runtime/lattice/Makefile passes the same value to
  * the runtime's own tests. */
 
+/* Lattice protocol: what a module does when an operation of its running batch fails (the
+ * HAL says DR_OP_FAILED: a connector that did not latch, a joint that stalled).
+ * DR_ON_FAILURE_RETRY (the default): the batch is issued again, at most DR_CONF_RETRIES
+ * times (each at the retry pace of the dissemination policy); when those are spent the module
+ * stops. DR_ON_FAILURE_STOP: it stops at the first failure. A module that stopped starts
+ * nothing more, keeps sharing the state it holds, and says so (dr_module_finished answers
+ * DR_END_STOPPED); a reset gives it its retries again. `dynarole compile --on-failure` and
+ * `--retries` set both in the generated dr_program_conf.h. */
+#define DR_ON_FAILURE_STOP 0
+#define DR_ON_FAILURE_RETRY 1
+#ifndef DR_CONF_ON_FAILURE
+#define DR_CONF_ON_FAILURE DR_ON_FAILURE_RETRY
+#endif
+#ifndef DR_CONF_RETRIES
+#define DR_CONF_RETRIES 3
+#endif
+
 /* Most arguments of one operation. */
 #ifndef DR_CONF_MAX_ARGS
 #define DR_CONF_MAX_ARGS 4

@@ -18,7 +18,13 @@ void dr_module_step(struct dr_module *m);
 /* A packet arrived on `channel` (the connector it came in on). Malformed and foreign packets
  * (dr_packet.h) are counted and dropped. A module must not be handed its own packets. */
 void dr_module_receive(struct dr_module *m, uint8_t channel, const uint8_t *bytes, uint8_t len);
-/* Whether this module knows that the sequence has ended. */
+/* Answers of dr_module_finished. */
+#define DR_END_NONE 0u    /* the module knows of no end */
+#define DR_END_GOAL 1u    /* the sequence has ended: every statement of its last run is done */
+#define DR_END_STOPPED 2u /* an operation of this module failed and its failure policy gave up
+                           * (dr_conf.h, DR_CONF_ON_FAILURE): it starts nothing more */
+/* Whether, and how, this module knows that the sequence has ended (DR_END_*: 0 while it
+ * runs, so a platform that tests it as a truth value sees either end as the end). */
 uint8_t dr_module_finished(const struct dr_module *m);
 /* A short description of the module's protocol state, for traces and debugging (the format
  * is the protocol's). Writes at most `cap` bytes including the terminating NUL (a shorter

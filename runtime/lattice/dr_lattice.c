@@ -50,6 +50,17 @@ typedef char dr_lattice_check_packet[(4 + (1 + DR_CONF_SYNC) * (DR_CONF_WINDOW /
 typedef char dr_lattice_check_channels[(DR_CONF_CHANNELS >= 1 && DR_CONF_CHANNELS <= 32) ? 1 : -1];
 typedef char dr_lattice_check_counters[(DR_CONF_COUNTER_BITS == 16 || DR_CONF_COUNTER_BITS == 32) ? 1 : -1];
 /* A batch's other statements are the bits of dr_module_t.batch (8). */
+/* A failed batch is issued again at most DR_CONF_RETRIES times: below DR_GAVE_UP. */
+typedef char dr_lattice_check_retries[(DR_CONF_RETRIES < 0xFF &&
+                                       (DR_CONF_ON_FAILURE == DR_ON_FAILURE_STOP ||
+                                        DR_CONF_ON_FAILURE == DR_ON_FAILURE_RETRY)) ? 1 : -1];
+/* Whether the failure policy has no retry left for the running batch (stop: none at all;
+ * decided by the preprocessor, so that a policy without retries has no comparison). */
+#if DR_CONF_ON_FAILURE == DR_ON_FAILURE_RETRY && DR_CONF_RETRIES > 0
+#define RETRIES_SPENT(m) ((m)->failures >= (uint8_t)DR_CONF_RETRIES)
+#else
+#define RETRIES_SPENT(m) ((void)(m), 1)
+#endif
 typedef char dr_lattice_check_batch[(DR_CONF_LATTICE_BATCH >= 1 && DR_CONF_LATTICE_BATCH <= 9) ? 1
                                                                                             : -1];
 
@@ -656,6 +667,7 @@ static uint8_t start_next(dr_module_t *m)
         in = (uint16_t)(in | (1u << (j - i)));
     }
     m->batch = (uint8_t)(in >> 1);
+    m->failures = 0;
     issue(m);
     return 1;
 }
@@ -709,6 +721,7 @@ void dr_module_init(dr_module_t *m, const dr_program_t *program, void *platform)
     m->running = DR_NONE;
     m->running_epoch = 0;
     m->batch = 0;
+    m->failures = 0;
     m->next_broadcast_ms = dr_hal_now_ms(m);
     dissemination_init(m);
 }
@@ -753,10 +766,17 @@ void dr_module_step(dr_module_t *m)
                 m->running = DR_NONE;
                 changed = 1;
                 dissemination_completed(m);
+            } else if (RETRIES_SPENT(m)) {
+                /* Failed, and the failure policy's retries are spent: the module stops where
+                 * it is (it keeps sharing what it holds; dr_module_finished says it). */
+                m->running = DR_NONE;
+                m->failures = DR_GAVE_UP;
             } else if (due) {
-                /* Failed: re-issued when the policy says (operations are idempotent). */
+                /* Failed: re-issued when the dissemination policy says (operations are
+                 * idempotent), as many times as the failure policy allows. */
                 retrying = 1;
                 if (dissemination_retry_now(m, now)) {
+                    m->failures++;
                     issue(m);
                 }
             }
@@ -902,5 +922,8 @@ void dr_module_receive(dr_module_t *m, uint8_t channel, const uint8_t *bytes, ui
 /* Cost: O(1). */
 uint8_t dr_module_finished(const dr_module_t *m)
 {
-    return (uint8_t)(PROGRAM(m)->n_epochs != 0u && m->shared.epoch >= PROGRAM(m)->n_epochs);
+    if (PROGRAM(m)->n_epochs != 0u && m->shared.epoch >= PROGRAM(m)->n_epochs) {
+        return DR_END_GOAL;
+    }
+    return (uint8_t)(m->failures == DR_GAVE_UP ? DR_END_STOPPED : DR_END_NONE);
 }

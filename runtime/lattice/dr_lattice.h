@@ -22,6 +22,9 @@
  * big-endian (README.md, "Synchronous groups"). The compiler reads this line too. */
 #define DR_LATTICE_GO_BYTES 4u
 
+/* dr_module_t.failures of a module whose failure policy gave up: it starts nothing more. */
+#define DR_GAVE_UP 0xFFu
+
 /* Returned by a program's address_of when no role, or several, match this module. */
 #define DR_NO_ADDRESS 0xFFu
 #define DR_MANY_ADDRESSES 0xFEu
@@ -146,6 +149,9 @@ typedef struct dr_module {
                                           here, or DR_NONE */
     uint16_t running_epoch;            /* the epoch it started in */
     uint8_t batch;                     /* the batch's others: bit k = statement running+1+k */
+    uint8_t failures;                  /* times the running batch failed and was issued again,
+                                          or DR_GAVE_UP once the failure policy stopped the
+                                          module (dr_conf.h, DR_CONF_ON_FAILURE) */
     /* DR_PROGRAM_NO_NV only (otherwise unheard = 0 and unechoed = DR_NONE, always): */
     dr_stmt_t unechoed;                /* own completion (its epoch: running_epoch) that no
                                           neighbour has sent back yet, or DR_NONE */
@@ -191,7 +197,8 @@ void dr_module_init(dr_module_t *m, const dr_program_t *program, void *platform)
  *   DR_PROGRAM_NO_NV, a neighbour is still awaited after another was heard (the step re-reads
  *   the links). Between the broadcasts of an idle module nothing runs: on an MCU the
  *   module sleeps until its timer, its receiver or its actuator wakes it. Cost: O(W * deps).
- * - dr_module_finished: the last epoch is complete. Cost: O(1).
+ * - dr_module_finished: DR_END_GOAL once the last epoch is complete, DR_END_STOPPED once an
+ *   operation of the module's failed and its policy gave up (DR_CONF_ON_FAILURE). Cost: O(1).
  * - dr_module_describe: `e<epoch> low<low> done<window> run<statement>`, decimal except `done`, the completed set
  * of the window as a hexadecimal number (bit i: statement low + i; no leading zeros), and
  * `run-` when nothing runs here; a batch's other statements follow the first as `+<hex>`
@@ -202,7 +209,9 @@ void dr_module_init(dr_module_t *m, const dr_program_t *program, void *platform)
  * after `run`: ` ready<window>` (hexadecimal as `done`; absent when empty) and ` go<statement>`
  * while the module counts down to the synchronous group whose first statement that is
  * (` went<statement>` once the countdown is over and until the group is done); e.g.
- * "e0 low0 done0 run- ready3 go0". Cost: O(W/4). */
+ * "e0 low0 done0 run- ready3 go0". A module whose failure policy gave up ends with ` stopped`;
+ * one that issues a failed batch again shows how many times after `run`: ` retry<n>`.
+ * Cost: O(W/4). */
 
 /* The semilattice (exported for tests and for the model checker's reference):
  * join: commutative, associative, idempotent; normalise: advance the low-water mark over the

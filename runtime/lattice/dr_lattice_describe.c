@@ -62,6 +62,10 @@ uint8_t dr_module_describe(const dr_module_t *m, char *out, uint8_t cap)
             dr_text_char(out, cap, &n, '+'); /* the batch's others */
             text_hex(out, cap, &n, m->batch);
         }
+        if (m->failures != 0u) {
+            dr_text_str(out, cap, &n, " retry"); /* issued again after failing */
+            dr_text_decimal(out, cap, &n, m->failures);
+        }
     }
 #if DR_CONF_SYNC
     /* Synchronous groups: the ready set (as `done`; absent when empty) and the group counted
@@ -86,6 +90,9 @@ uint8_t dr_module_describe(const dr_module_t *m, char *out, uint8_t cap)
     if (m->unechoed != DR_NONE) {
         dr_text_str(out, cap, &n, " echo");
         dr_text_decimal(out, cap, &n, m->unechoed);
+    }
+    if (m->failures == DR_GAVE_UP) {
+        dr_text_str(out, cap, &n, " stopped");
     }
     out[n] = '\0';
     return n;

@@ -246,7 +246,17 @@ pub fn compile_options(campaign: &CampaignFile, protocol: Variant) -> CompileOpt
         token_retries: protocol.token_retries(),
         routes: None,
         name: campaign.sequences.join(" + "),
-        ..CompileOptions::default()
+        ..failure_policy(o)
+    }
+}
+
+/// The default options with the campaign's failure policy, where it names one.
+fn failure_policy(o: &crate::spec::ProtocolOptions) -> CompileOptions {
+    let defaults = CompileOptions::default();
+    CompileOptions {
+        on_failure: o.on_failure.unwrap_or(defaults.on_failure),
+        retries: o.retries.unwrap_or(defaults.retries),
+        ..defaults
     }
 }
 

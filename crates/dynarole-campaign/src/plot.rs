@@ -459,6 +459,7 @@ mod tests {
             success_high,
             timeouts: 2 - successes,
             wrong_configurations: 0,
+            stopped: 0,
             violations: 0,
             median_completion_ms: (successes > 0).then_some(30_000.0 + 1000.0 * loss),
             mean_packets_sent: packets,

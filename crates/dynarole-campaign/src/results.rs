@@ -11,47 +11,8 @@ use std::fs::{File, OpenOptions};
 use std::io::Write;
 use std::path::Path;
 
-/// How a run ended.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Outcome {
-    Success,
-    /// No module declared the end before the timeout.
-    Timeout,
-    /// The end was declared, but the final configuration is not the expected one.
-    WrongConfiguration,
-    /// An S1, S2 or S3 violation (whatever else happened).
-    Violation,
-    /// The end was declared with statements not done and no violation (not expected).
-    Incomplete,
-}
-
-impl Outcome {
-    /// The name written in `runs.csv`.
-    pub fn name(self) -> &'static str {
-        match self {
-            Outcome::Success => "success",
-            Outcome::Timeout => "timeout",
-            Outcome::WrongConfiguration => "wrong-configuration",
-            Outcome::Violation => "violation",
-            Outcome::Incomplete => "incomplete",
-        }
-    }
-
-    fn of(report: &Report) -> Outcome {
-        if report.success {
-            Outcome::Success
-        } else if !report.violations.is_empty() {
-            Outcome::Violation
-        } else if report.completion_ms.is_none() {
-            Outcome::Timeout
-        } else if report.configuration_matches == Some(false) {
-            Outcome::WrongConfiguration
-        } else {
-            Outcome::Incomplete
-        }
-    }
-}
+/// How a run ended: the simulator's own verdict (`dynarole_sim::Outcome`), decided there.
+pub use dynarole_sim::Outcome;
 
 /// One line of `runs.csv` (the columns, in order).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -214,6 +175,8 @@ impl Row {
                 "a run whose outcome is timeout has an end time".into(),
             )),
             (Outcome::Timeout, None) => Ok(()),
+            // A stopped module may leave every other one waiting: no end need be declared.
+            (Outcome::Stopped, None) => Ok(()),
             (_, None) if !ended => Err((
                 "completion_ms",
                 format!("a run whose outcome is {outcome} has no end time"),

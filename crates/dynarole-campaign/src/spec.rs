@@ -3,7 +3,7 @@
 //! names its field.
 
 use dynarole_codegen::choice;
-use dynarole_codegen::{PaperMerge, Variant};
+use dynarole_codegen::{OnFailure, PaperMerge, Variant, MAX_RETRIES};
 use dynarole_sim::{PresetName, Scenario};
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
@@ -107,6 +107,7 @@ impl CampaignFile {
         if self.sequences.is_empty() {
             return Err(error("sequences", "name at least one sequence"));
         }
+        self.options.check()?;
         if self.protocols.is_empty() {
             return Err(error("protocols", "name at least one protocol"));
         }
@@ -281,6 +282,24 @@ impl Range {
     }
 }
 
+impl ProtocolOptions {
+    /// `retries` within `--retries`' range, and only with the retry policy.
+    fn check(&self) -> Result<(), SpecError> {
+        let Some(n) = self.retries else {
+            return Ok(());
+        };
+        if n > MAX_RETRIES {
+            let message = format!("{n} retries is more than {MAX_RETRIES}, the most there may be");
+            return Err(error("options.retries", message));
+        }
+        if self.on_failure == Some(OnFailure::Stop) {
+            let message = "retries apply to on_failure = \"retry\"; \"stop\" retries nothing";
+            return Err(error("options.retries", message));
+        }
+        Ok(())
+    }
+}
+
 /// Protocol options, as `dynarole simulate`'s flags.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -291,4 +310,11 @@ pub struct ProtocolOptions {
     pub single_step_handover: bool,
     pub restart_pending: bool,
     pub no_nv: bool,
+    /// The lattice protocol's failure policy (`dynarole simulate --on-failure`); none: the
+    /// runtime's default.
+    #[serde(deserialize_with = "choice::deserialize_some")]
+    pub on_failure: Option<OnFailure>,
+    /// Times a failed operation is issued again (`--retries`, 0 to 100); none: the runtime's
+    /// default.
+    pub retries: Option<u8>,
 }

@@ -22,6 +22,8 @@ pub struct PointSummary {
     pub timeouts: u64,
     pub wrong_configurations: u64,
     pub violations: u64,
+    /// Runs that ended stopped by a module's failure policy (`Outcome::Stopped`).
+    pub stopped: u64,
     pub median_completion_ms: Option<f64>,
     pub mean_packets_sent: f64,
 }
@@ -91,6 +93,7 @@ fn point(rows: &[&Row]) -> PointSummary {
         timeouts: count(Outcome::Timeout),
         wrong_configurations: count(Outcome::WrongConfiguration),
         violations: count(Outcome::Violation),
+        stopped: count(Outcome::Stopped),
         median_completion_ms: median(&mut times),
         mean_packets_sent: if runs == 0 {
             0.0

@@ -107,6 +107,7 @@ mod tests {
             success_high: 1.0,
             timeouts: 0,
             wrong_configurations: 0,
+            stopped: 0,
             violations,
             median_completion_ms: (successes > 0).then_some(31_150.0),
             mean_packets_sent: 1.0,

@@ -5,8 +5,8 @@ use crate::load::{self, Failure};
 use crate::render;
 use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
 use dynarole_codegen::{
-    generate_c, generate_nesc, Choice, CompileOptions, Dissemination, PaperMerge, Protocol,
-    Setting, TokenRetries,
+    default_failure_policy, generate_c, generate_nesc, Choice, CompileOptions, Dissemination,
+    OnFailure, PaperMerge, Protocol, Setting, TokenRetries, MAX_RETRIES,
 };
 use dynarole_core::{driver, Diagnostic};
 use std::path::Path;
@@ -56,6 +56,14 @@ pub struct ProtocolOptions {
     /// protocol, which have their own fixed period.
     #[arg(long, value_name = "MODE", value_parser = choice::<Dissemination>())]
     pub dissemination: Option<Dissemination>,
+    /// Lattice protocol: what a module does when one of its operations fails (a connector
+    /// that does not latch, a joint that stalls). Default: the runtime's, `retry`.
+    #[arg(long, value_name = "POLICY", value_parser = choice::<OnFailure>())]
+    pub on_failure: Option<OnFailure>,
+    /// Lattice protocol, `--on-failure retry`: times a failed operation is issued again
+    /// before the module stops (0 to 100; default: the runtime's, 3).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u8).range(0..=i64::from(MAX_RETRIES)))]
+    pub retries: Option<u8>,
     /// Token protocol: `plain` (sent once per hop), tries per hop (acknowledged; the
     /// original experiments used 32 and 128) or `unlimited`.
     #[arg(long, value_name = "TRIES", value_parser = str::parse::<TokenRetries>, default_value = "32")]
@@ -121,7 +129,16 @@ impl ProtocolOptions {
                 )));
             }
         }
+        let (default_policy, default_retries) = default_failure_policy();
+        let on_failure = self.on_failure.unwrap_or(default_policy);
+        if let (Some(n), OnFailure::Stop) = (self.retries, on_failure) {
+            return Err(Failure::Usage(format!(
+                "--retries {n} applies to --on-failure retry; --on-failure stop retries nothing"
+            )));
+        }
         Ok(CompileOptions {
+            on_failure,
+            retries: self.retries.unwrap_or(default_retries),
             protocol: self.protocol,
             merge: self.merge,
             single_step_handover: self.single_step_handover,
@@ -158,6 +175,8 @@ impl ProtocolOptions {
             restart_pending,
             no_nv,
             dissemination,
+            on_failure,
+            retries,
             token_retries,
             robot_id,
             key,
@@ -189,6 +208,13 @@ impl ProtocolOptions {
         if let Some(d) = dissemination {
             let flag = format!("--dissemination {}", d.name());
             flags.push((Some(Setting::Dissemination), flag));
+        }
+        if let Some(policy) = on_failure {
+            let flag = format!("--on-failure {}", policy.name());
+            flags.push((Some(Setting::OnFailure), flag));
+        }
+        if let Some(n) = retries {
+            flags.push((Some(Setting::OnFailure), format!("--retries {n}")));
         }
         if *token_retries != defaults.token_retries {
             let flag = format!("--token-retries {}", token_retries.name());

@@ -2,10 +2,12 @@
 //! machine (paper protocol), role predicates, statement metadata for checkers, the runtime,
 //! and a Makefile.
 
+use crate::choice::Choice;
 use crate::options::{op_macro, CompileOptions};
 use crate::paper::{paper_machine, pending_slots};
 use crate::predicate;
-use crate::protocol::{Growth, Protocol};
+use crate::protocol::default_failure_policy;
+use crate::protocol::{Growth, OnFailure, Protocol};
 use crate::runtime;
 use crate::token::token_tables;
 use dynarole_core::check::Label;
@@ -26,6 +28,12 @@ pub struct Generated {
 /// The value of `#define NAME` in the embedded runtime file `file` (runtime/), for the sizes
 /// the C states once and the compiler must agree with.
 fn runtime_define(file: &str, name: &str) -> Option<usize> {
+    runtime_define_text(file, name)
+        .and_then(|value| value.trim_end_matches('u').parse::<usize>().ok())
+}
+
+/// The text of `#define NAME`'s value in the embedded runtime file `file`.
+fn runtime_define_text(file: &str, name: &str) -> Option<&'static str> {
     let text = runtime::COMMON
         .iter()
         .chain(Protocol::ALL.iter().flat_map(|p| p.info().runtime))
@@ -34,7 +42,7 @@ fn runtime_define(file: &str, name: &str) -> Option<usize> {
     let prefix = format!("#define {name} ");
     text.lines()
         .find_map(|line| line.strip_prefix(prefix.as_str()))
-        .and_then(|value| value.trim().trim_end_matches('u').parse::<usize>().ok())
+        .map(str::trim)
 }
 
 /// A size the embedded runtime defines. The files are embedded at build time and a test reads
@@ -256,8 +264,23 @@ fn lattice_conf(ir: &Ir, options: &CompileOptions, out: &mut String) {
     );
     let _ = writeln!(out, "#define DR_CONF_ARG_ROWS {}", rows.len());
     let _ = writeln!(out, "#define DR_CONF_LATTICE_BATCH {LATTICE_BATCH}");
+    failure_conf(options, out);
     if ir.has_synchronous() {
         let _ = writeln!(out, "#define DR_CONF_SYNC 1 /* synchronous groups */");
+    }
+}
+
+/// The failure policy's lines, where it is not the runtime's default (a program compiled
+/// without `--on-failure` and `--retries` has the same configuration as before they existed).
+fn failure_conf(options: &CompileOptions, out: &mut String) {
+    let (policy, retries) = default_failure_policy();
+    if options.on_failure != policy {
+        let name = options.on_failure.name();
+        let c = options.on_failure.c_macro();
+        let _ = writeln!(out, "#define DR_CONF_ON_FAILURE {c} /* {name} */");
+    }
+    if options.on_failure == OnFailure::Retry && options.retries != retries {
+        let _ = writeln!(out, "#define DR_CONF_RETRIES {}", options.retries);
     }
 }
 

@@ -86,6 +86,16 @@ where
     deserializer.deserialize_str(NameVisitor(std::marker::PhantomData))
 }
 
+/// [`deserialize`] for an optional field (with `#[serde(default)]`: absent is `None`).
+#[cfg(feature = "serde")]
+pub fn deserialize_some<'de, D, T>(deserializer: D) -> Result<Option<T>, D::Error>
+where
+    D: serde::Deserializer<'de>,
+    T: Choice,
+{
+    deserialize(deserializer).map(Some)
+}
+
 /// Parses the name while the deserializer still knows where it is, so that the error gets the
 /// name's own place in the file (not the enclosing list's or table's).
 #[cfg(feature = "serde")]

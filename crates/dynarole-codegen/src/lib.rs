@@ -27,9 +27,10 @@ pub use promela::{
     generate_compositional, generate_promela, liveness_graph, Fault, LivenessGraph, Model,
     ModelOptions, Topology, TopologyLink, TopologyModule, MAX_MODEL_MODULES, MAX_MODEL_WINDOW,
 };
+pub use protocol::default_failure_policy;
 pub use protocol::{
-    Dissemination, GroupRun, Growth, Modelled, PaperMerge, Payload, Protocol, ProtocolInfo,
-    Setting, TokenRetries, Variant, PROTOCOLS,
+    Dissemination, GroupRun, Growth, Modelled, OnFailure, PaperMerge, Payload, Protocol,
+    ProtocolInfo, Setting, TokenRetries, Variant, MAX_RETRIES, PROTOCOLS,
 };
 pub use runtime::{synchronous_delay_ms, warning_flags};
 pub use token::TokenRoutes;

@@ -1,7 +1,8 @@
 //! What a compilation is asked for (`CompileOptions`), shared by every back-end, and the
 //! helpers the back-ends' modules share; it sits below them so that none imports another's.
 
-use crate::protocol::{Dissemination, PaperMerge, Protocol, Setting, TokenRetries};
+use crate::protocol::default_failure_policy;
+use crate::protocol::{Dissemination, OnFailure, PaperMerge, Protocol, Setting, TokenRetries};
 use dynarole_core::lower::TokenRoutes;
 
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -21,6 +22,10 @@ pub struct CompileOptions {
     pub dissemination: Dissemination,
     /// Token baseline: how hand-overs are made reliable.
     pub token_retries: TokenRetries,
+    /// Lattice protocol: what a module does when one of its operations fails.
+    pub on_failure: OnFailure,
+    /// Lattice protocol, `on_failure` retry: times a failed operation is issued again.
+    pub retries: u8,
     /// Token baseline: where each statement runs and its hand-over routes (required by it).
     pub routes: Option<TokenRoutes>,
     /// Name of the compiled sequence(s), for comments.
@@ -39,6 +44,7 @@ impl Default for CompileOptions {
     /// The lattice protocol, one run, NV storage, adaptive dissemination; the paper's C-port merge; the safe token
     /// with 32 tries.
     fn default() -> CompileOptions {
+        let (on_failure, retries) = default_failure_policy();
         CompileOptions {
             protocol: Protocol::Lattice,
             merge: PaperMerge::CPort,
@@ -48,6 +54,8 @@ impl Default for CompileOptions {
             no_nv: false,
             dissemination: Dissemination::Adaptive,
             token_retries: TokenRetries::Tries(32),
+            on_failure,
+            retries,
             routes: None,
             name: String::new(),
             robot_id: 0,
@@ -84,6 +92,11 @@ impl CompileOptions {
                 }
                 out
             }
+            Setting::OnFailure => match self.on_failure {
+                OnFailure::Stop => ", stop on failure".into(),
+                OnFailure::Retry if self.retries == default_failure_policy().1 => String::new(),
+                OnFailure::Retry => format!(", {} retries", self.retries),
+            },
             Setting::NoNv | Setting::Epochs | Setting::Dissemination | Setting::TokenRetries => {
                 String::new()
             }

@@ -34,6 +34,8 @@ pub enum Setting {
     Dissemination,
     /// `token_retries` and `routes`: the token's hand-overs.
     TokenRetries,
+    /// `on_failure` and `retries`: what a module does when one of its operations fails.
+    OnFailure,
 }
 
 impl Setting {
@@ -47,6 +49,7 @@ impl Setting {
             Setting::NoNv => "has no such variant",
             Setting::Dissemination => "has its own fixed broadcast period",
             Setting::TokenRetries => "hands no token over",
+            Setting::OnFailure => "re-issues a failed operation until it succeeds",
         }
     }
 }
@@ -142,7 +145,12 @@ pub static PROTOCOLS: [ProtocolInfo; 3] = [
         header: "dr_lattice.h",
         source: "dr_lattice.c",
         program_type: "dr_program_t",
-        settings: &[Setting::Epochs, Setting::NoNv, Setting::Dissemination],
+        settings: &[
+            Setting::Epochs,
+            Setting::NoNv,
+            Setting::Dissemination,
+            Setting::OnFailure,
+        ],
         groups: GroupRun::Overlapping,
         needs_routes: false,
         payload: Payload {
@@ -392,6 +400,53 @@ impl Choice for Dissemination {
     }
 }
 
+/// What a lattice module does when an operation of its fails (`DR_CONF_ON_FAILURE`,
+/// runtime/dr_conf.h): the HAL reports it (a connector that did not latch, a joint that
+/// stalled). The paper and token protocols re-issue a failed operation until it succeeds.
+/// The default is the runtime's ([`default_failure_policy`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum OnFailure {
+    /// The module stops at the first failure: it starts nothing more and says so.
+    Stop,
+    /// The failed operation is issued again, at most `retries` times; then the module stops.
+    Retry,
+}
+
+impl OnFailure {
+    /// Every policy, in the order the command line lists them.
+    pub const ALL: [OnFailure; 2] = [OnFailure::Stop, OnFailure::Retry];
+
+    /// The value of `DR_CONF_ON_FAILURE` in the generated configuration.
+    pub fn c_macro(self) -> &'static str {
+        match self {
+            OnFailure::Stop => "DR_ON_FAILURE_STOP",
+            OnFailure::Retry => "DR_ON_FAILURE_RETRY",
+        }
+    }
+}
+
+impl Choice for OnFailure {
+    const WHAT: &'static str = "failure policy";
+    const ALL: &'static [OnFailure] = &OnFailure::ALL;
+    fn name(self) -> &'static str {
+        match self {
+            OnFailure::Stop => "stop",
+            OnFailure::Retry => "retry",
+        }
+    }
+    fn help(self) -> &'static str {
+        match self {
+            OnFailure::Stop => "Stop where the robot is at the first failed operation",
+            OnFailure::Retry => {
+                "Issue a failed operation again, --retries times, then stop (default)"
+            }
+        }
+    }
+}
+
+/// The most `--retries` may be (`DR_CONF_RETRIES` stays below the runtime's gave-up mark).
+pub const MAX_RETRIES: u8 = 100;
+
 /// How the token baseline's hand-over messages are made reliable (the original experiments'
 /// variants).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -535,6 +590,20 @@ macro_rules! by_name {
 }
 
 by_name!(Protocol, PaperMerge, Dissemination, Variant);
+
+/// The runtime's default failure policy and retries (`DR_CONF_ON_FAILURE` and
+/// `DR_CONF_RETRIES` of runtime/dr_conf.h, the one place they are decided): what a program
+/// compiled without `--on-failure` and `--retries` does, and so the flags' defaults. The file
+/// is embedded at build time and the tests compile with it: this cannot fail at run time.
+pub fn default_failure_policy() -> (OnFailure, u8) {
+    let policy = runtime::conf_text("DR_CONF_ON_FAILURE")
+        .and_then(|text| OnFailure::ALL.into_iter().find(|p| p.c_macro() == text))
+        .expect("runtime/dr_conf.h defines DR_CONF_ON_FAILURE as a policy");
+    let retries = runtime::conf_text("DR_CONF_RETRIES")
+        .and_then(|text| text.parse::<u8>().ok())
+        .expect("runtime/dr_conf.h defines DR_CONF_RETRIES as a byte");
+    (policy, retries)
+}
 
 #[cfg(test)]
 mod tests {

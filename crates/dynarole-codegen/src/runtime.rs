@@ -48,20 +48,25 @@ pub fn synchronous_delay_ms(members: usize) -> u64 {
 
 /// The number a `#define NAME N` of `runtime/dr_conf.h` gives.
 fn conf_default(name: &str) -> u64 {
-    let value = COMMON[0]
-        .1
-        .lines()
-        .filter_map(|line| line.trim().strip_prefix("#define "))
-        .find_map(|rest| {
-            let (key, value) = rest.split_once(char::is_whitespace)?;
-            (key == name).then(|| value.trim().parse::<u64>().ok())?
-        });
+    let value = conf_text(name).and_then(|text| text.parse::<u64>().ok());
     // The file is embedded at build time and a test reads it: this cannot fail at run time.
     assert!(
         value.is_some(),
         "runtime/dr_conf.h defines {name} as a number"
     );
     value.unwrap_or_default()
+}
+
+/// What `#define NAME ...` of the embedded `runtime/dr_conf.h` defines `NAME` as, trimmed.
+pub(crate) fn conf_text(name: &str) -> Option<&'static str> {
+    COMMON[0]
+        .1
+        .lines()
+        .filter_map(|line| line.trim().strip_prefix("#define "))
+        .find_map(|rest| {
+            let (key, value) = rest.split_once(char::is_whitespace)?;
+            (key == name).then(|| value.trim())
+        })
 }
 
 /// The lattice protocol. The describe file is for traces (host, simulator); the MCU build in

@@ -124,7 +124,7 @@ pub struct Motion {
     pub module: usize,
     pub start_ms: f64,
     pub end_ms: f64,
-    /// `done`, `refused`, `interrupt` or `running` (the run stopped first).
+    /// `done`, `refused`, `failed`, `interrupt` or `running` (the run stopped first).
     pub outcome: String,
     /// How the operation moves what it carries, as the world model planned it when it
     /// started (`None`: it moves nothing the drawing shows, a latch).

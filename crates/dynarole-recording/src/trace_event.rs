@@ -10,6 +10,7 @@ use serde_json::{json, Value};
 pub enum TraceEvent {
     PowerOn,
     PowerOff,
+    Dead,
     Reset,
     Start,
     Resume,
@@ -18,8 +19,10 @@ pub enum TraceEvent {
     Done,
     Interrupt,
     Refused,
+    Failed,
     UnknownOp,
     Finished,
+    Stopped,
     S1,
     S2,
     S3,
@@ -69,8 +72,9 @@ pub struct EventSpec {
     /// A packet that did not arrive (its trace lines are capped in a recording).
     pub dropped_packet: bool,
     /// Named in the `#` lines at the top of a trace file. The header's text is kept as it
-    /// was written (traces are compared byte for byte), and it predates `foreign`; `copy`
-    /// and `violation` come only from runs on the model, which write no trace file.
+    /// was written (traces are compared byte for byte), and it predates `foreign`, `dead` and
+    /// `failed`; `copy` and `violation` come only from runs on the model, which write no
+    /// trace file.
     pub in_header: bool,
 }
 
@@ -117,16 +121,19 @@ const NOT_IN_HEADER: (bool, bool) = (false, false);
 pub const EVENTS: &[EventSpec] = &[
     spec(E::PowerOn, "power-on", "the module is powered on (marked from its second power-on)", Some(Mark::Power), Operation::None, PLAIN),
     spec(E::PowerOff, "power-off", "the module is powered off: silent, its operation stops", Some(Mark::Power), Operation::None, PLAIN),
+    spec(E::Dead, "dead", "the module dies in place (`dead` in the scenario): off for good, its parts stay where they are, latched", Some(Mark::Power), Operation::None, NOT_IN_HEADER),
     spec(E::Reset, "reset", "the module resets and runs its init again", Some(Mark::Reset), Operation::None, PLAIN),
     spec(E::Start, "start", "the module starts a statement's operation for the first time", None, Starts, PLAIN),
     spec(E::Resume, "resume", "the module, after a reset, waits for its operation still in progress", None, Operation::None, PLAIN),
     spec(E::Retry, "retry", "the module starts again an operation that failed", None, Starts, PLAIN),
     spec(E::Reissue, "reissue", "the module starts again an operation already done", None, Starts, PLAIN),
     spec(E::Done, "done", "the operation completed physically", None, Ends("#2ca02c"), PLAIN),
-    spec(E::Interrupt, "interrupt", "the operation stopped unfinished (its module lost power)", None, Ends("#7f7f7f"), PLAIN),
+    spec(E::Interrupt, "interrupt", "the operation stopped unfinished (its module lost power or died)", None, Ends("#7f7f7f"), PLAIN),
     spec(E::Refused, "refused", "the world refused the operation (the detail says why)", Some(Mark::Refused), Ends("#d62728"), PLAIN),
+    spec(E::Failed, "failed", "the operation ended without effect, failed by the scenario (`transient`, or `stuck` and the part)", Some(Mark::Refused), Ends("#e377c2"), NOT_IN_HEADER),
     spec(E::UnknownOp, "unknown-op", "the module asked for an operation its statement does not have", None, Operation::None, PLAIN),
     spec(E::Finished, "finished", "the module declares the end", None, Operation::None, PLAIN),
+    spec(E::Stopped, "stopped", "an operation of the module failed and its failure policy gave up: it starts nothing more", Some(Mark::Refused), Operation::None, NOT_IN_HEADER),
     spec(E::S1, "S1", "violation: a statement started before its dependencies were done", Some(Mark::Violation), Operation::None, PLAIN),
     spec(E::S2, "S2", "violation: a statement re-issued after a dependent one started", Some(Mark::Violation), Operation::None, PLAIN),
     spec(E::S3, "S3", "violation: the end declared before every operation was done", Some(Mark::Violation), Operation::None, PLAIN),
@@ -147,9 +154,9 @@ pub const EVENTS: &[EventSpec] = &[
 #[rustfmt::skip]
 pub const MARKS: &[MarkSpec] = &[
     MarkSpec { kind: Mark::Reset, name: "reset", colour: "#d62728", meaning: "resets" },
-    MarkSpec { kind: Mark::Power, name: "power", colour: "#9467bd", meaning: "power off and on" },
+    MarkSpec { kind: Mark::Power, name: "power", colour: "#9467bd", meaning: "power off and on, deaths" },
     MarkSpec { kind: Mark::Violation, name: "violation", colour: "#000000", meaning: "violations of the checks or of a model's property" },
-    MarkSpec { kind: Mark::Refused, name: "refused", colour: "#ff7f0e", meaning: "refused operations" },
+    MarkSpec { kind: Mark::Refused, name: "refused", colour: "#ff7f0e", meaning: "refused or failed operations" },
     MarkSpec { kind: Mark::Link, name: "link", colour: "#8c564b", meaning: "blocked or dead links, once per episode" },
 ];
 

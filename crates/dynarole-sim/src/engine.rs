@@ -55,14 +55,15 @@ impl Contexts {
         }
     }
 
-    fn step(&mut self, m: usize) -> bool {
+    /// A step, and then `dr_module_finished`'s answer (`stops.rs`: the end, a stop, neither).
+    fn step(&mut self, m: usize) -> u8 {
         let Some(ctx) = self.ptr(m) else {
-            return false;
+            return 0;
         };
         // SAFETY: an initialised context (steps are scheduled only after power-on).
         unsafe {
             (self.entry.step)(ctx);
-            (self.entry.finished)(ctx) != 0
+            (self.entry.finished)(ctx)
         }
     }
 
@@ -77,12 +78,13 @@ impl Contexts {
         (answer, at_ms)
     }
 
+    /// Whether the module knows the end (not a stop: `dr_module_finished` is `DR_END_GOAL`).
     fn finished(&mut self, m: usize) -> bool {
         let Some(ctx) = self.ptr(m) else {
             return false;
         };
         // SAFETY: an initialised context; reads it only.
-        unsafe { (self.entry.finished)(ctx) != 0 }
+        unsafe { (self.entry.finished)(ctx) == crate::stops::END_GOAL }
     }
 
     fn receive(&mut self, packet: &Packet) {
@@ -171,6 +173,7 @@ pub fn run(entry: Entry, state: State) -> Result<Finished, String> {
 /// Runs module `m`'s init (power-on, reset) and notes it for the trace's state column.
 fn init(state: &Rc<RefCell<State>>, contexts: &mut Contexts, m: usize) {
     contexts.init(m);
+    state.borrow_mut().forget_stop(m);
     if let Some(d) = state.borrow_mut().describer.as_mut() {
         d.initialised(m);
     }
@@ -224,8 +227,8 @@ fn dispatch(state: &Rc<RefCell<State>>, contexts: &mut Contexts, event: Event) {
                 state.borrow_mut().uncount();
                 return;
             }
-            let finished = contexts.step(module);
-            state.borrow_mut().note_finished(module, finished);
+            let end = contexts.step(module);
+            state.borrow_mut().note_end(module, end);
             if state.borrow().tickless() {
                 replan(state, contexts, module);
             } else {

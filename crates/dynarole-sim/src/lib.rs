@@ -29,6 +29,7 @@ mod report;
 mod scenario;
 mod sequence;
 mod state;
+mod stops;
 mod trace;
 mod unended;
 mod wake;
@@ -39,10 +40,11 @@ pub use estimate::{choose_form, form_makespan, makespan, shortest, Estimated};
 pub use firmware::{FirmwareReport, FirmwareSource, ModuleFirmware};
 pub use model_recording::{replay_steps, ModelRecording, ModelRecordingError};
 pub use recorded::{Recorded, MAX_RECORDED, RECORDED_PACKETS};
-pub use report::{Counters, ModuleReport, Refusal, Report, Violation};
+pub use report::{Counters, ModuleReport, Outcome, Refusal, Report, Stop, Violation};
 pub use scenario::{
-    default_durations, Block, Durations, Foreign, Network, Power, Preset, PresetName, RandomResets,
-    Reset, Scenario, ScenarioError, Stepping, Timing, MAX_TIMEOUT_MS, USSR, USSR_TIMING,
+    default_durations, Block, Dead, Durations, FailureByKind, Faults, Foreign, Network,
+    OperationFailure, Power, Preset, PresetName, RandomResets, Reset, Scenario, ScenarioError,
+    Stepping, Stuck, Timing, MAX_TIMEOUT_MS, USSR, USSR_TIMING,
 };
 pub use trace::Outputs;
 
@@ -120,6 +122,14 @@ struct Traced {
 enum Expected<'a> {
     Configuration(&'a Configuration),
     Model(&'a dyn RobotModel),
+}
+
+/// A run's two references for its end: where it started (`Report::final_matches_start`) and
+/// the goal, if one is given.
+#[derive(Clone, Copy)]
+struct Ends<'a> {
+    start: Expected<'a>,
+    expect: Option<Expected<'a>>,
 }
 
 /// The network preset `scenario` names for the robot of `world` (`PresetName::resolve`).
@@ -240,6 +250,7 @@ impl Simulator {
     ) -> Result<(), ScenarioError> {
         preset_of(world, scenario).map_err(|e| ScenarioError::new("network.preset", e))?;
         self.durations(&scenario.timing)?;
+        scenario.check_parts(&self.sequence.robot)?;
         let view = world.view();
         scenario.check_modules(|name| view.index(name).is_some(), view.connectors())
     }
@@ -253,12 +264,15 @@ impl Simulator {
     /// clock): the same run and report as [`Simulator::run`].
     pub fn run_with(&self, run: &Run, outputs: Outputs) -> Result<Report, SimError> {
         let world = self.world_for(run)?;
-        let expect = run.expect.map(Expected::Configuration);
+        let ends = Ends {
+            start: Expected::Configuration(run.start),
+            expect: run.expect.map(Expected::Configuration),
+        };
         let traced = Traced {
             keep: run.trace,
             outputs,
         };
-        self.run_world(world, expect, run.scenario, run.seed, traced)
+        self.run_world(world, ends, run.scenario, run.seed, traced)
     }
 
     /// One run from a robot model: deterministic in the inputs and the seed.
@@ -266,19 +280,22 @@ impl Simulator {
         let world = RobotWorld::from_model(run.start.clone_model(), &self.sequence.robot)
             .map_err(SimError::Input)?;
         let world = self.checked(world, run.scenario)?;
-        let expect = run.expect.map(Expected::Model);
+        let ends = Ends {
+            start: Expected::Model(run.start),
+            expect: run.expect.map(Expected::Model),
+        };
         let traced = Traced {
             keep: run.trace,
             outputs: Outputs::default(),
         };
-        self.run_world(world, expect, run.scenario, run.seed, traced)
+        self.run_world(world, ends, run.scenario, run.seed, traced)
     }
 
     /// A run from `world` (checked against the scenario), its end compared with `expect`.
     fn run_world(
         &self,
         world: RobotWorld,
-        expect: Option<Expected>,
+        ends: Ends,
         scenario: &Scenario,
         seed: u64,
         traced: Traced,
@@ -303,7 +320,7 @@ impl Simulator {
         state.foreign_frames = foreign_frames;
         let mut finished = engine::run(library.entry, state).map_err(SimError::Build)?;
         finished.state.flush_trace().map_err(SimError::Trace)?;
-        Ok(self.report_against(expect, scenario, seed, finished))
+        Ok(self.report_against(ends, scenario, seed, finished))
     }
 
     /// The start configuration's world, once the scenario is checked against it.
@@ -367,15 +384,18 @@ impl Simulator {
 
     /// The report of a run from a configuration file.
     fn report(&self, run: &Run, finished: engine::Finished) -> Report {
-        let expect = run.expect.map(Expected::Configuration);
-        self.report_against(expect, run.scenario, run.seed, finished)
+        let ends = Ends {
+            start: Expected::Configuration(run.start),
+            expect: run.expect.map(Expected::Configuration),
+        };
+        self.report_against(ends, run.scenario, run.seed, finished)
     }
 
     /// The report of a finished run, its end compared with `expect`; the trace is kept when
     /// the run kept one.
     fn report_against(
         &self,
-        expect: Option<Expected>,
+        ends: Ends,
         scenario: &Scenario,
         seed: u64,
         finished: engine::Finished,
@@ -388,9 +408,13 @@ impl Simulator {
         let recorded = state.record;
         // A model is compared before the world is moved out; a configuration after, on
         // the moved value (no copy of a large robot's configuration).
-        let model_difference = match expect {
+        let model_difference = match ends.expect {
             Some(Expected::Model(expected)) => Some(state.world.model().difference(expected)),
             _ => None,
+        };
+        let model_at_start = match ends.start {
+            Expected::Model(start) => Some(state.world.model().difference(start).is_none()),
+            Expected::Configuration(_) => None,
         };
         let statements_done = state.phys.iter().filter(|p| p.done.is_some()).count();
         let view = state.view();
@@ -441,6 +465,9 @@ impl Simulator {
             statements: self.sequence.len(),
             statements_done,
             counters: state.counters.clone(),
+            outcome: Outcome::Timeout,
+            final_matches_start: false,
+            stopped: state.stops(),
             violations: std::mem::take(&mut state.violations),
             refusals: std::mem::take(&mut state.refusals),
             modules,
@@ -452,16 +479,17 @@ impl Simulator {
             // Moved out of the world last: the rest of the state is freed with it.
             final_configuration: state.into_configuration(),
         };
-        let difference = match (expect, model_difference) {
+        let difference = match (ends.expect, model_difference) {
             (Some(Expected::Configuration(expected)), _) => {
-                Some(match &report.final_configuration {
-                    Some(end) => dynarole_world::compare_with_expected(end, expected)
-                        .err()
-                        .map(|d| d.to_string()),
-                    None => Some("the robot model has no configuration format".into()),
-                })
+                Some(end_difference(&report.final_configuration, expected))
             }
             (_, difference) => difference,
+        };
+        report.final_matches_start = match ends.start {
+            Expected::Configuration(start) => {
+                end_difference(&report.final_configuration, start).is_none()
+            }
+            Expected::Model(_) => model_at_start.unwrap_or(false),
         };
         if let Some(difference) = difference {
             report.configuration_matches = Some(difference.is_none());
@@ -469,7 +497,18 @@ impl Simulator {
         }
         report.failures = failures(&report, scenario.timeout_ms);
         report.success = report.failures.is_empty();
+        report.outcome = Outcome::of(&report);
         report
+    }
+}
+
+/// How the run's end differs from `reference` (`None`: it is the same).
+fn end_difference(end: &Option<Configuration>, reference: &Configuration) -> Option<String> {
+    match end {
+        Some(end) => dynarole_world::compare_with_expected(end, reference)
+            .err()
+            .map(|d| d.to_string()),
+        None => Some("the robot model has no configuration format".into()),
     }
 }
 
@@ -486,6 +525,13 @@ fn failures(report: &Report, timeout_ms: u64) -> Vec<String> {
             "{} of {} statements never completed",
             report.statements - report.statements_done,
             report.statements
+        ));
+    }
+    if !report.stopped.is_empty() {
+        let modules: Vec<&str> = report.stopped.iter().map(|s| s.module.as_str()).collect();
+        out.push(format!(
+            "stopped: an operation failed and the failure policy gave up on {}",
+            modules.join(", ")
         ));
     }
     if !report.violations.is_empty() {

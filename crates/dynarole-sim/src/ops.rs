@@ -1,6 +1,8 @@
 //! Robot operations: how a module's `dr_hal_op_start` of a statement relates to what already
 //! happened to it, how long it takes, what the world says when it completes, and the checks
-//! S1, S2 and S3.
+//! S1, S2 and S3. The scenario's operation faults are in `ops/faults.rs`.
+
+mod faults;
 
 use crate::event::Event;
 use crate::report::{Refusal, Violation};
@@ -222,24 +224,27 @@ impl State {
     fn begin_attempt(&mut self, m: usize, s: usize) {
         let id = self.next_id;
         self.next_id += 1;
+        let fault = self.injected_fault(m, s);
         self.attempts.insert(
             id,
             Attempt {
                 statement: s,
                 module: m,
+                fault,
             },
         );
         self.phys[s].running = Some(id);
         self.phys[s].failed = false;
         self.modules[m].stats.operations += 1;
         self.counters.ops_started += 1;
-        if self.seq.kinds[s].moves() {
+        // An attempt that fails moves nothing: it breaks no link and sweeps nothing.
+        if self.seq.kinds[s].moves() && fault.is_none() {
             self.note_turn(id, m, s);
         }
         // Saturating: a plugin's absurd turn (a huge count of quarters) is never reached.
         let at = (self.now).saturating_add(self.duration_ms(m, s).saturating_mul(1000));
         self.schedule(at, Event::OpDone { attempt: id });
-        if self.seq.kinds[s] == OpKind::Turn && at > self.now {
+        if self.seq.kinds[s] == OpKind::Turn && at > self.now && fault.is_none() {
             self.spans.insert(id, (self.now, at));
             self.check_running_turns();
         }
@@ -261,7 +266,10 @@ impl State {
         let running: Vec<(u64, (u64, u64))> = self.spans.iter().map(|(k, v)| (*k, *v)).collect();
         let mut turns = Vec::new();
         for &(id, span) in &running {
-            let Some(&Attempt { statement, module }) = self.attempts.get(&id) else {
+            let Some(&Attempt {
+                statement, module, ..
+            }) = self.attempts.get(&id)
+            else {
                 continue;
             };
             let name = self.view().name(module);
@@ -411,6 +419,7 @@ impl State {
         let Some(Attempt {
             statement: s,
             module: m,
+            fault,
         }) = self.attempts.remove(&id)
         else {
             return;
@@ -421,8 +430,12 @@ impl State {
             return;
         }
         self.phys[s].running = None;
-        let name = self.view().name(m);
         let label = self.trace_label(s);
+        if let Some(fault) = fault {
+            self.failed_by_fault(m, s, label, fault);
+            return;
+        }
+        let name = self.view().name(m);
         // A synchronous group's turn is checked with the others while it runs, its own sweep
         // included (`check_running_turns`): alone it may pass where, in lock-step, it never is.
         let sweep = match self.seq.synchronous(s) {

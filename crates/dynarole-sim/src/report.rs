@@ -37,6 +37,17 @@ pub struct Counters {
     pub power_cycles: u64,
     /// Packets of another robot injected by the scenario (`foreign`).
     pub foreign: u64,
+    /// Attempts failed by an injected operation fault (`[faults]`, `[[stuck]]`); left out of
+    /// `--json` when 0, as in every run without them.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub ops_failed: u64,
+    /// Modules that died in place (`[[dead]]`); left out of `--json` when 0.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub deaths: u64,
+}
+
+fn is_zero(n: &u64) -> bool {
+    *n == 0
 }
 
 impl Counters {
@@ -70,6 +81,69 @@ pub struct Refusal {
     pub reason: String,
 }
 
+/// A module whose failure policy gave up: an operation of its failed and was not (or no more)
+/// retried, so it starts nothing more (`DR_END_STOPPED`, runtime/dr_module.h).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Stop {
+    pub time_ms: f64,
+    pub module: String,
+    /// The statements of its batch that had failed.
+    pub statements: Vec<usize>,
+    /// Their text, `;`-separated.
+    pub text: String,
+}
+
+/// How a run ended, in one word (`--json`'s `"outcome"`, the campaign's `runs.csv` column):
+/// decided here only.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Outcome {
+    /// The goal was reached with every check passed.
+    Success,
+    /// A module's failure policy gave up and it is still stopped at the end: the robot stays
+    /// where the failure left it.
+    Stopped,
+    /// No module declared the end before the timeout.
+    Timeout,
+    /// The end was declared, but the final configuration is not the expected one.
+    WrongConfiguration,
+    /// An S1, S2 or S3 violation, or a clash (whatever else happened).
+    Violation,
+    /// The end was declared with statements not done and no violation (not expected).
+    Incomplete,
+}
+
+impl Outcome {
+    /// The outcome of a report whose other fields are final.
+    pub fn of(report: &Report) -> Outcome {
+        if report.success {
+            Outcome::Success
+        } else if !report.violations.is_empty() {
+            Outcome::Violation
+        } else if !report.stopped.is_empty() {
+            Outcome::Stopped
+        } else if report.completion_ms.is_none() {
+            Outcome::Timeout
+        } else if report.configuration_matches == Some(false) {
+            Outcome::WrongConfiguration
+        } else {
+            Outcome::Incomplete
+        }
+    }
+
+    /// Its name in `--json` and in `runs.csv`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Outcome::Success => "success",
+            Outcome::Stopped => "stopped",
+            Outcome::Timeout => "timeout",
+            Outcome::WrongConfiguration => "wrong-configuration",
+            Outcome::Violation => "violation",
+            Outcome::Incomplete => "incomplete",
+        }
+    }
+}
+
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct ModuleReport {
     pub name: String,
@@ -89,6 +163,13 @@ pub struct ModuleReport {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Report {
     pub success: bool,
+    /// How the run ended ([`Outcome`]).
+    pub outcome: Outcome,
+    /// Whether the final configuration is the start configuration (the robot is back where
+    /// it began, or never moved).
+    pub final_matches_start: bool,
+    /// The modules stopped at the end by their failure policy (empty when none).
+    pub stopped: Vec<Stop>,
     /// Why the goal was not reached (empty on success).
     pub failures: Vec<String>,
     pub seed: u64,
@@ -184,6 +265,16 @@ impl Report {
         for m in &self.never_ended {
             let _ = writeln!(out, "  note: {m}");
         }
+        for stop in &self.stopped {
+            let _ = writeln!(
+                out,
+                "  stopped at {:.3} s on {}: #{:?} {} failed and its failure policy gave up",
+                stop.time_ms / 1000.0,
+                stop.module,
+                stop.statements,
+                stop.text
+            );
+        }
         self.packets_line(&mut out);
         let c = &self.counters;
         let _ = writeln!(
@@ -191,6 +282,14 @@ impl Report {
             "  operations: {} started, {} re-issued, {} refused, {} unknown; resets {}, power cycles {}",
             c.ops_started, c.ops_reissued, c.ops_refused, c.ops_unknown, c.resets, c.power_cycles
         );
+        // Only runs with operation faults say them (every other summary is unchanged).
+        if c.ops_failed + c.deaths > 0 {
+            let _ = writeln!(
+                out,
+                "  operation faults: {} attempts failed, {} modules died",
+                c.ops_failed, c.deaths
+            );
+        }
         // Clashes are named only in runs that have them (every other summary is unchanged).
         let clashes = match self.count("clash") {
             0 => String::new(),

@@ -1,5 +1,6 @@
 //! Faults as data: the TOML scenario file (network, timing, resets, power cycles, blocked
-//! links, the faults-on phase and the timeout). Every field is documented in `SCENARIO.md`.
+//! links, operation faults, the faults-on phase and the timeout). Every field is documented in
+//! `SCENARIO.md`.
 
 use dynarole_codegen::choice::{self, Choice};
 use dynarole_core::robot::MAX_OPERATION_MS;
@@ -230,6 +231,197 @@ fn foreign_interval_ms() -> u64 {
     100
 }
 
+/// Operation faults of the faults-on phase (`[faults]`).
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize, Default)]
+#[serde(deny_unknown_fields, default)]
+pub struct Faults {
+    /// The probability that one physical attempt of an operation fails without effect.
+    pub operation_failure: OperationFailure,
+}
+
+impl Faults {
+    /// Whether this is `[faults]` left out (nothing is written for it then).
+    pub fn is_off(&self) -> bool {
+        *self == Faults::default()
+    }
+}
+
+/// `faults.operation_failure`: one probability for every operation, or one per kind.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(untagged)]
+pub enum OperationFailure {
+    Every(f64),
+    ByKind(FailureByKind),
+}
+
+impl Default for OperationFailure {
+    fn default() -> OperationFailure {
+        OperationFailure::Every(0.0)
+    }
+}
+
+impl OperationFailure {
+    /// Every probability it gives, with its field.
+    fn fields(&self) -> Vec<(&'static str, f64)> {
+        match self {
+            OperationFailure::Every(p) => vec![("faults.operation_failure", *p)],
+            OperationFailure::ByKind(k) => vec![
+                ("faults.operation_failure.extend", k.extend),
+                ("faults.operation_failure.retract", k.retract),
+                ("faults.operation_failure.turn", k.turn),
+                ("faults.operation_failure.move", k.moves),
+                ("faults.operation_failure.other", k.other),
+            ],
+        }
+    }
+}
+
+/// `[faults.operation_failure]`: a probability per kind of operation
+/// (`crate::sequence::OpKind`); a kind left out never fails.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize, Default)]
+#[serde(deny_unknown_fields, default)]
+pub struct FailureByKind {
+    pub extend: f64,
+    pub retract: f64,
+    pub turn: f64,
+    #[serde(rename = "move")]
+    pub moves: f64,
+    pub other: f64,
+}
+
+/// A number reads as [`OperationFailure::Every`], a table as [`OperationFailure::ByKind`]
+/// (read by its own derived reader, so that an unknown kind is refused naming it: an untagged
+/// enum would only say that nothing matched).
+impl<'de> Deserialize<'de> for OperationFailure {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        d.deserialize_any(FailureVisitor)
+    }
+}
+
+struct FailureVisitor;
+
+impl<'de> serde::de::Visitor<'de> for FailureVisitor {
+    type Value = OperationFailure;
+
+    fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        f.write_str("a probability, or a table of probabilities by kind of operation")
+    }
+
+    fn visit_f64<E>(self, p: f64) -> Result<OperationFailure, E> {
+        Ok(OperationFailure::Every(p))
+    }
+
+    // `operation_failure = 1` is an integer in TOML.
+    fn visit_i64<E>(self, p: i64) -> Result<OperationFailure, E> {
+        Ok(OperationFailure::Every(p as f64))
+    }
+
+    fn visit_u64<E>(self, p: u64) -> Result<OperationFailure, E> {
+        Ok(OperationFailure::Every(p as f64))
+    }
+
+    fn visit_map<A: serde::de::MapAccess<'de>>(self, map: A) -> Result<OperationFailure, A::Error> {
+        let reader = serde::de::value::MapAccessDeserializer::new(map);
+        FailureByKind::deserialize(reader).map(OperationFailure::ByKind)
+    }
+}
+
+/// A part of one module that is broken from `from_ms` on: every attempt of an operation on
+/// it that begins then or later fails without effect (`[[stuck]]`).
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Stuck {
+    pub module: String,
+    /// The part as the language writes it: `Joint`, `Connector[0]`.
+    pub part: String,
+    pub from_ms: u64,
+}
+
+/// A module that dies in place at `at_ms` (`[[dead]]`): no more steps, packets or
+/// operations; its parts stay where they are, latched as they are.
+#[derive(Clone, Debug, PartialEq, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Dead {
+    pub module: String,
+    pub at_ms: u64,
+}
+
+/// A `[[stuck]]` entry resolved against the configuration and the robot.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StuckPart {
+    pub module: usize,
+    /// The part (`RobotApi::parts`) and its index, as a resolved statement names them.
+    pub part: usize,
+    pub index: Option<i64>,
+    pub from_us: u64,
+    /// `Connector[0]`, for the trace.
+    pub name: String,
+}
+
+/// `Connector[0]` as (`Connector`, `Some(0)`), `Joint` as (`Joint`, `None`).
+fn parse_part(text: &str) -> Option<(&str, Option<i64>)> {
+    let (name, index) = match text.split_once('[') {
+        None => (text, None),
+        Some((name, rest)) => {
+            let digits = rest.strip_suffix(']')?;
+            let all_digits = !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit());
+            (name, Some(digits.parse().ok().filter(|_| all_digits)?))
+        }
+    };
+    let mut chars = name.chars();
+    let identifier = chars
+        .next()
+        .is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+        && chars.all(|c| c.is_ascii_alphanumeric() || c == '_');
+    identifier.then_some((name, index))
+}
+
+/// Why `text` is no part string (`stuck[i].part`).
+fn malformed_part(text: &str) -> String {
+    format!(
+        "`{text}` is not a part: expected a part name with an index in brackets if the part \
+         has several (`Joint`, `Connector[0]`), as the program writes it"
+    )
+}
+
+/// The part `text` names on `robot` (its index in `robot.parts`, and its own index), or why
+/// it names none, as an error at `field`.
+fn robot_part(
+    robot: &RobotApi,
+    text: &str,
+    field: &str,
+) -> Result<(usize, Option<i64>), ScenarioError> {
+    let Some((name, index)) = parse_part(text) else {
+        return Err(error(field, malformed_part(text)));
+    };
+    let Some(part) = robot.parts.iter().position(|p| p.name == name) else {
+        let names: Vec<String> = robot
+            .parts
+            .iter()
+            .map(|p| format!("`{}`", p.name))
+            .collect();
+        let message = format!(
+            "robot `{}` has no part `{name}`; its parts are {}",
+            robot.name,
+            names.join(", ")
+        );
+        let mut e = error(field, message);
+        e.hint = did_you_mean(name, robot.parts.iter().map(|p| p.name.as_str()));
+        return Err(e);
+    };
+    let message = match (index, robot.parts[part].count) {
+        (Some(i), Some(n)) if i >= i64::from(n) => format!(
+            "`{name}[{i}]` is out of range: robot `{}` has `{name}[0]` to `{name}[{}]`",
+            robot.name,
+            n.saturating_sub(1)
+        ),
+        (Some(_), None) => format!("`{name}` takes no index: write `{name}`"),
+        (None, Some(_)) => format!("`{name}` needs an index, as in `{name}[0]`"),
+        _ => return Ok((part, index)),
+    };
+    Err(error(field, message))
+}
+
 /// The longest run a scenario may ask for (`timeout_ms`): 10^9 ms, about 11.6 days of
 /// simulated time. A run costs wall time in proportion to its simulated time (eight2car's
 /// seven modules run about 10,000 times faster than real time when nothing finishes, so this
@@ -286,7 +478,8 @@ impl Choice for Stepping {
 #[serde(deny_unknown_fields, default)]
 pub struct Scenario {
     pub timeout_ms: u64,
-    /// After this time: no loss, dead links pass everything, no blocks, no resets.
+    /// After this time: no loss, dead links pass everything, no blocks, no resets, no
+    /// transient operation failures (stuck parts and dead modules stay as they are).
     pub faults_until_ms: Option<u64>,
     pub network: Network,
     pub timing: Timing,
@@ -295,6 +488,14 @@ pub struct Scenario {
     pub block: Vec<Block>,
     pub random_resets: Option<RandomResets>,
     pub foreign: Vec<Foreign>,
+    /// Transient operation failures (`[faults]`); left out of what is written when absent, as
+    /// are `stuck` and `dead`, so that scenarios without them read and write as before.
+    #[serde(skip_serializing_if = "Faults::is_off")]
+    pub faults: Faults,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub stuck: Vec<Stuck>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub dead: Vec<Dead>,
     #[serde(
         deserialize_with = "choice::deserialize",
         serialize_with = "choice::serialize"
@@ -314,6 +515,9 @@ impl Default for Scenario {
             block: Vec::new(),
             random_resets: None,
             foreign: Vec::new(),
+            faults: Faults::default(),
+            stuck: Vec::new(),
+            dead: Vec::new(),
             stepping: Stepping::default(),
         }
     }
@@ -408,7 +612,53 @@ impl Scenario {
                 return Err(error("random_resets.interval_ms", "must be above 0"));
             }
         }
+        self.check_operation_faults()
+    }
+
+    /// The failure probabilities are probabilities, and every stuck part is written as a part.
+    fn check_operation_faults(&self) -> Result<(), ScenarioError> {
+        for (field, p) in self.faults.operation_failure.fields() {
+            probability(field, p)?;
+        }
+        for (i, s) in self.stuck.iter().enumerate() {
+            if parse_part(&s.part).is_none() {
+                return Err(error(format!("stuck[{i}].part"), malformed_part(&s.part)));
+            }
+        }
         Ok(())
+    }
+
+    /// Every stuck part is a part of the program's robot (with an index in range when the
+    /// robot says how many it has), checked with the configuration's module names.
+    pub fn check_parts(&self, robot: &RobotApi) -> Result<(), ScenarioError> {
+        for (i, s) in self.stuck.iter().enumerate() {
+            robot_part(robot, &s.part, &format!("stuck[{i}].part"))?;
+        }
+        Ok(())
+    }
+
+    /// The `[[stuck]]` entries resolved: module index (`index` of a module name) and part.
+    /// Entries that do not resolve are left out (`check_modules` and `check_parts` refuse
+    /// them before any run).
+    pub(crate) fn stuck_parts(
+        &self,
+        robot: &RobotApi,
+        index: impl Fn(&str) -> Option<usize>,
+    ) -> Vec<StuckPart> {
+        let resolve = |s: &Stuck| {
+            let (part, i) = robot_part(robot, &s.part, "").ok()?;
+            Some(StuckPart {
+                module: index(&s.module)?,
+                part,
+                index: i,
+                from_us: s.from_ms.saturating_mul(1000),
+                name: match i {
+                    Some(i) => format!("{}[{i}]", robot.parts[part].name),
+                    None => robot.parts[part].name.clone(),
+                },
+            })
+        };
+        self.stuck.iter().filter_map(resolve).collect()
     }
 
     /// Every module a fault names must exist, and every connector must be below `connectors`.
@@ -431,6 +681,16 @@ impl Scenario {
         for (i, p) in self.power.iter().enumerate() {
             if !exists(&p.module) {
                 return Err(unknown(format!("power[{i}].module"), &p.module));
+            }
+        }
+        for (i, s) in self.stuck.iter().enumerate() {
+            if !exists(&s.module) {
+                return Err(unknown(format!("stuck[{i}].module"), &s.module));
+            }
+        }
+        for (i, d) in self.dead.iter().enumerate() {
+            if !exists(&d.module) {
+                return Err(unknown(format!("dead[{i}].module"), &d.module));
             }
         }
         let ports = self

@@ -12,7 +12,7 @@ use crate::links::Links;
 use crate::packet::{Air, Packet, QUEUES};
 use crate::queue::{Key, Queue};
 use crate::report::{Counters, Refusal, Violation, STATE_COLUMN};
-use crate::scenario::{Durations, Preset, Scenario, Stepping};
+use crate::scenario::{Durations, Preset, Scenario, Stepping, StuckPart};
 use crate::sequence::Sequence;
 use crate::trace::{Outputs, Trace};
 use dynarole_recording::TraceEvent;
@@ -94,6 +94,17 @@ pub struct Phys {
 pub struct Attempt {
     pub statement: usize,
     pub module: usize,
+    /// The scenario's fault that makes it fail without effect, decided as it begins.
+    pub fault: Option<Injected>,
+}
+
+/// Why an attempt fails without effect (`ops/faults.rs`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Injected {
+    /// `faults.operation_failure` drew a failure.
+    Transient,
+    /// Its part is `State::stuck[k]`.
+    Stuck(usize),
 }
 
 /// Two running turns found to bring modules within the limit at an instant still to come:
@@ -156,6 +167,15 @@ pub struct State {
     pub rng_faults: ChaCha8Rng,
     /// Only drawn from when `timing.variation` is set, so exact runs are unchanged by it.
     pub rng_timing: ChaCha8Rng,
+    /// Only drawn from for an operation whose kind may fail (`faults.operation_failure`), so
+    /// runs without such faults are unchanged by it.
+    pub rng_operations: ChaCha8Rng,
+    /// The scenario's stuck parts, resolved.
+    pub stuck: Vec<StuckPart>,
+    /// By module, when it dies (µs; the earliest of its `[[dead]]` entries).
+    pub death_at: BTreeMap<usize, u64>,
+    /// Modules that died: never powered, stepped or reached again.
+    pub died: BTreeSet<usize>,
     pub counters: Counters,
     pub violations: Vec<Violation>,
     pub refusals: Vec<Refusal>,
@@ -179,6 +199,8 @@ pub struct State {
     /// Modules that have declared the end (`finished_at` set), so that `all_finished`, asked
     /// after every event, does not walk every module.
     finished: usize,
+    /// Modules stopped by their failure policy, until their next init (`stops.rs`).
+    pub stopped: BTreeMap<usize, crate::report::Stop>,
 }
 
 /// A uniform draw in [0, 1).
@@ -226,6 +248,15 @@ impl State {
             })
             .collect();
         let phys = vec![Phys::default(); seq.len()];
+        let stuck = scenario.stuck_parts(&seq.robot, |name| view.index(name));
+        let mut death_at = BTreeMap::new();
+        for d in &scenario.dead {
+            if let Some(m) = view.index(&d.module) {
+                let at = d.at_ms.saturating_mul(1000);
+                let due = death_at.entry(m).or_insert(at);
+                *due = (*due).min(at);
+            }
+        }
         let links = Links::new(view.len(), connectors);
         let air = if preset.half_duplex_sides {
             vec![Vec::new(); view.len()]
@@ -261,6 +292,10 @@ impl State {
             rng_hal: stream(seed, 2),
             rng_faults: stream(seed, 3),
             rng_timing: stream(seed, 4),
+            rng_operations: stream(seed, 5),
+            stuck,
+            death_at,
+            died: BTreeSet::new(),
             counters: Counters::default(),
             violations: Vec::new(),
             refusals: Vec::new(),
@@ -273,6 +308,7 @@ impl State {
             foreign_frames: Vec::new(),
             recorded: crate::recorded::Recorded::default(),
             finished: 0,
+            stopped: BTreeMap::new(),
         };
         state.schedule_start(&mut setup);
         state
@@ -334,6 +370,11 @@ impl State {
         }
         for (entry, f) in self.scenario.foreign.iter().enumerate() {
             faults.push((f.from_ms * 1000, Event::Foreign { entry }));
+        }
+        // A death is a power-off that `power_off` finds due (`ops/faults.rs`).
+        let timeout_us = self.scenario.timeout_ms * 1000;
+        for (&module, &at) in self.death_at.iter().filter(|d| *d.1 <= timeout_us) {
+            faults.push((at, Event::PowerOff { module }));
         }
         for (at, event) in faults {
             self.schedule(at, event);
@@ -503,6 +544,9 @@ impl State {
     /// Powers a module on (first time or after a power-off): the engine then runs its init.
     pub fn power_on(&mut self, m: usize) -> bool {
         let now = self.now;
+        if self.died.contains(&m) {
+            return false;
+        }
         let Some(module) = self.modules.get_mut(m) else {
             return false;
         };
@@ -519,8 +563,12 @@ impl State {
         true
     }
 
-    /// Powers a module off: silent and inert; its operation in progress stops.
+    /// Powers a module off: silent and inert; its operation in progress stops. Its death,
+    /// when it is due, is a power-off for good.
     pub fn power_off(&mut self, m: usize) {
+        if self.die_if_due(m) {
+            return;
+        }
         let Some(module) = self.modules.get_mut(m) else {
             return;
         };

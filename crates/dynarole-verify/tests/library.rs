@@ -31,9 +31,7 @@ fn options(protocol: Protocol, merge: PaperMerge) -> BuildOptions {
             token_retries: TokenRetries::Plain,
             routes: None,
             name: "ab_c".into(),
-            robot_id: 0,
-            key: None,
-            execution: 0,
+            ..CompileOptions::default()
         },
         method: Method::Auto,
         resets: 0,

@@ -522,7 +522,7 @@ uint8_t sim_run(uint32_t max_ms)
                 violation("running a statement outside the window", n->mod.shared.epoch,
                           n->mod.running);
             }
-            if (dr_module_finished(&n->mod)) {
+            if (dr_module_finished(&n->mod) == DR_END_GOAL) {
                 if (!n->finished_seen && sim.checks) {
                     /* S3: when the end is known, every operation of every epoch is done. */
                     n->finished_seen = 1;

@@ -363,9 +363,16 @@ static void test_another_launch(void)
     check_starts(&p1, 1, 1, SIM_NONE, 0);
 }
 
+/* Whether the failure policy retries a failed batch at least twice (the tests that fail an
+ * operation twice on purpose; test_failure_policy covers every policy). */
+#define RETRIES_TWICE (DR_CONF_ON_FAILURE == DR_ON_FAILURE_RETRY && DR_CONF_RETRIES >= 2)
+
 /* A failed operation is re-issued at the pace of the broadcast until it succeeds. */
 static void test_failures(void)
 {
+    if (!RETRIES_TWICE) {
+        return;
+    }
     sim_setup(&p2, 3, addr3, 9u);
     sim.fail_stmt = 1;
     sim.fail_times = 2;
@@ -374,6 +381,45 @@ static void test_failures(void)
     CHECK_EQ(sim.starts[0][1], 3);
     CHECK(sim.min_restart_gap_ms >= SIM_RETRY_MS);
     CHECK_EQ(sim.starts[0][0] + sim.starts[0][2] + sim.starts[0][3], 3);
+}
+
+/* A batch that fails more often than the failure policy allows (DR_CONF_ON_FAILURE,
+ * DR_CONF_RETRIES): its module issues it once and then as many times again as the policy
+ * retries, then stops: it starts nothing more and says so, the other modules go on with what
+ * does not depend on it, and what does never starts. */
+static void test_failure_policy(void)
+{
+    uint8_t retries = (uint8_t)(DR_CONF_ON_FAILURE == DR_ON_FAILURE_RETRY ? DR_CONF_RETRIES : 0);
+    char text[64];
+    sim_setup(&p2, 3, addr3, 19u);
+    sim.fail_stmt = 1;
+    sim.fail_times = (uint8_t)(retries + 1u);
+    CHECK(!sim_run(30000u));
+    CHECK_EQ(sim.violations, 0);
+    CHECK_EQ(sim.starts[0][1], retries + 1u);
+    CHECK_EQ(sim.starts[0][2], 1);
+    CHECK_EQ(sim.starts[0][3], 0);
+    CHECK_EQ(dr_module_finished(&sim.nodes[1].mod), DR_END_STOPPED);
+    CHECK_EQ(dr_module_finished(&sim.nodes[0].mod), DR_END_NONE);
+    CHECK_EQ(sim.nodes[1].mod.running, DR_NONE);
+    (void)dr_module_describe(&sim.nodes[1].mod, text, (uint8_t)sizeof text);
+    CHECK(strstr(text, " stopped") != NULL);
+    /* One failure fewer: the last retry succeeds and the sequence ends. */
+    sim_setup(&p2, 3, addr3, 20u);
+    sim.fail_stmt = 1;
+    sim.fail_times = retries;
+    CHECK(sim_run(60000u));
+    CHECK_EQ(sim.violations, 0);
+    CHECK_EQ(sim.starts[0][1], retries + 1u);
+    /* A reset gives the stopped module its retries again (the count is not persisted). */
+    sim_setup(&p2, 3, addr3, 21u);
+    sim.fail_stmt = 1;
+    sim.fail_times = (uint8_t)(retries + 1u);
+    CHECK(!sim_run(30000u));
+    sim_reset(1);
+    CHECK(sim_run(60000u));
+    CHECK_EQ(sim.violations, 0);
+    CHECK_EQ(sim.starts[0][1], retries + 2u);
 }
 
 static void test_epochs(void)
@@ -1088,12 +1134,14 @@ static void test_batches(void)
     CHECK_EQ(sim.starts[0][3], 1);
     CHECK_EQ(sim.starts[0][4], 1);
     /* One of them fails twice: the whole batch is re-issued, nothing after it starts. */
-    sim_setup(&pb, 2, addr2, 62u);
-    sim.fail_stmt = 2;
-    sim.fail_times = 2;
-    CHECK(sim_run(60000u));
-    check_batch_ran(3);
-    CHECK(sim.min_restart_gap_ms >= SIM_RETRY_MS);
+    if (RETRIES_TWICE) {
+        sim_setup(&pb, 2, addr2, 62u);
+        sim.fail_stmt = 2;
+        sim.fail_times = 2;
+        CHECK(sim_run(60000u));
+        check_batch_ran(3);
+        CHECK(sim.min_restart_gap_ms >= SIM_RETRY_MS);
+    }
     /* A reset half-way through the batch, with and without NV: both re-entered together. */
     for (k = 0; k < 2u; k++) {
         sim_setup(k ? &q : &pb, 2, addr2, 63u + k);
@@ -1132,6 +1180,7 @@ void test_sim(void)
     test_without_nv();
     test_another_launch();
     test_failures();
+    test_failure_policy();
     test_epochs();
     test_old_epoch_completion();
     test_long();
