@@ -103,41 +103,30 @@ fn retries_reach_the_goal_where_stopping_does_not() {
     assert!(compared >= 3, "only {compared} of 12 seeds had a failure");
 }
 
+/// `compile` of eight2car with `flags` is a usage error (exit 2) saying `message`.
+fn refused(flags: &[&str], message: &str) {
+    let mut args = vec!["compile", PROGRAM, "-o", "target/failure-policy-refused"];
+    args.extend_from_slice(flags);
+    let out = dynarole(&args);
+    assert_eq!(out.status.code(), Some(2), "{flags:?}");
+    assert!(
+        text(&out.stderr).contains(message),
+        "{flags:?}: {}",
+        text(&out.stderr)
+    );
+}
+
 #[test]
 fn the_policy_flags_are_refused_where_they_mean_nothing() {
-    let out = dynarole(&[
-        "compile",
-        PROGRAM,
-        "--protocol",
-        "paper",
-        "--on-failure",
-        "stop",
-        "-o",
-        "target/failure-policy-paper",
-    ]);
-    assert_eq!(out.status.code(), Some(2));
-    assert!(text(&out.stderr).contains("--on-failure stop applies to the lattice protocol only"));
-    let out = dynarole(&[
-        "compile",
-        PROGRAM,
-        "--on-failure",
-        "stop",
-        "--retries",
-        "2",
-        "-o",
-        "target/failure-policy-stop",
-    ]);
-    assert_eq!(out.status.code(), Some(2));
-    assert!(text(&out.stderr).contains("--retries 2 applies to --on-failure retry"));
-    let out = dynarole(&[
-        "compile",
-        PROGRAM,
-        "--retries",
-        "101",
-        "-o",
-        "target/failure-101",
-    ]);
-    assert_eq!(out.status.code(), Some(2));
+    refused(
+        &["--protocol", "paper", "--on-failure", "stop"],
+        "--on-failure stop applies to the lattice protocol only",
+    );
+    refused(
+        &["--on-failure", "stop", "--retries", "2"],
+        "--retries 2 applies to --on-failure retry",
+    );
+    refused(&["--retries", "101"], "101 is not in 0..=100");
 }
 
 #[test]
