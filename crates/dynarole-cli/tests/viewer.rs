@@ -4,7 +4,8 @@
 //! writes what it shows into its DOM, which the browser dumps. Checked: module colours on the
 //! canvas, every module's position against the simulator's `--poses-at`, the statement
 //! highlight and the state panel against the trace, the fault marker where the scenario put
-//! it, the legend listing the trace event vocabulary, and no request of any kind.
+//! it, operation faults and a failure policy's stop marked where they happened, the legend
+//! listing the trace event vocabulary, and no request of any kind.
 
 mod common;
 
@@ -620,4 +621,62 @@ fn a_recording_becomes_a_video() {
     let end = run.recording["end_ms"].as_f64().expect("end");
     let frames = (end / 4000.0).ceil() as u64 + 1;
     assert_eq!(text(&probe.stdout).trim(), format!("h264,{frames}"));
+}
+
+/// Operation faults on the timeline: M4's connector 0 stuck from the start (its extend, the
+/// fourth statement, fails and `--on-failure stop` gives up at once) and M5 dead at 12 s,
+/// after the stop (M5 relays M4's news: dead earlier, it would keep M4 from ever starting).
+/// The page marks the failure and the stop on M4 and the death on M5 where they happened,
+/// and the recording keeps the failed attempt as a motion of outcome `failed`.
+#[test]
+fn operation_faults_and_a_stop_are_marked_on_the_timeline() {
+    let Some(browser) = chromium() else { return };
+    let dir = scratch("operation-faults");
+    let scenario = dir.join("faults.toml");
+    let faults = "timeout_ms = 20000\n[[stuck]]\nmodule = \"M4\"\npart = \"Connector[0]\"\n\
+                  from_ms = 0\n[[dead]]\nmodule = \"M5\"\nat_ms = 12000\n";
+    std::fs::write(&scenario, faults).expect("the scenario is written");
+    let command = [
+        "simulate",
+        PROGRAM,
+        "--from",
+        "robots/atron/examples/eight.json",
+        "--expect",
+        "robots/atron/examples/car.json",
+        "--scenario",
+        scenario.to_str().expect("utf-8 path"),
+        "--on-failure",
+        "stop",
+        "--seed",
+        "1",
+    ];
+    let (run, times) = recorded_at_samples("operation-faults", &command, 3);
+    let failed = (run.recording["motions"].as_array().expect("motions").iter())
+        .find(|m| m["outcome"] == "failed")
+        .expect("a failed motion");
+    let failed_at = failed["end_ms"].as_f64().expect("its end");
+    let shown = check_page(&browser, &run, &times, PROGRAM);
+    let end = run.recording["end_ms"].as_f64().expect("end");
+    let sample = &shown["samples"].as_array().expect("samples")[0];
+    check_marker(sample, "power", 12000.0, "M5", end);
+    let markers = sample["markers"].as_array().expect("markers");
+    let refused: Vec<&Value> = (markers.iter())
+        .filter(|m| m["kind"] == "refused")
+        .collect();
+    let labels: Vec<&str> = (refused.iter())
+        .map(|m| m["label"].as_str().expect("label"))
+        .collect();
+    for event in ["failed on M4", "stopped on M4"] {
+        assert!(
+            labels.iter().any(|l| l.starts_with(event)),
+            "{event}: {labels:?}"
+        );
+    }
+    for marker in refused {
+        let at = marker["time_ms"].as_f64().expect("time");
+        assert!(
+            (at - failed_at).abs() < 1.0,
+            "marked at {at}, failed at {failed_at}"
+        );
+    }
 }
