@@ -625,7 +625,7 @@ fn a_recording_becomes_a_video() {
 
 /// Operation faults on the timeline: M4's connector 0 stuck from the start (its extend, the
 /// fourth statement, fails and `--on-failure stop` gives up at once) and M5 dead at 12 s,
-/// after the stop (M5 relays M4's news: dead earlier, it would keep M4 from ever starting).
+/// after the stop (dead at 2 s, it kept the news of M3's turn from M4, which never started).
 /// The page marks the failure and the stop on M4 and the death on M5 where they happened,
 /// and the recording keeps the failed attempt as a motion of outcome `failed`.
 #[test]
