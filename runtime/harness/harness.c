@@ -4,7 +4,10 @@
  *
  * Build it together with a `dynarole compile` output directory:
  *   cc -std=c99 -I OUT OUT/(every .c file) harness.c -o harness
- * Run: ./harness ID...   (the IDs of the modules; one module per ID)
+ * Run: ./harness [-f STATEMENT:TIMES]... ID...   (the IDs of the modules; one module per ID)
+ * -f makes the first TIMES attempts of statement STATEMENT fail: each runs its time and ends
+ * without effect, and the HAL answers DR_OP_FAILED (dr_hal.h), so the program's failure
+ * policy (compile --on-failure, --retries) is what decides what follows.
  * Exit 0 when the sequence finished, every statement ran once and nothing ran early. */
 #include <stdio.h>
 #include <stdlib.h>
@@ -17,6 +20,7 @@
 #define STEP_MS 5u
 #define TIMEOUT_MS 600000u
 #define NV_BYTES 256
+#define MAX_FAULTS 16
 
 extern const uint16_t dr_meta_n_statements;
 extern const uint8_t dr_meta_address[];
@@ -32,6 +36,7 @@ typedef struct {
     uint8_t n_running;
     uint16_t running[MAX_RUNNING];
     uint32_t done_at[MAX_RUNNING];
+    uint8_t failed; /* an attempt of the batch ended without effect */
     uint8_t nv[NV_BYTES];
 } platform_t;
 
@@ -52,6 +57,10 @@ static uint8_t done[DR_CONF_MAX_STATEMENTS];
 static unsigned violations;
 static unsigned reissues;
 static unsigned long packets;
+static uint16_t fault_statement[MAX_FAULTS]; /* -f: attempts of these statements fail */
+static unsigned fault_times[MAX_FAULTS];
+static int n_faults;
+static unsigned failures;
 
 static platform_t *platform_of(struct dr_module *m) { return (platform_t *)m->platform; }
 
@@ -112,6 +121,9 @@ void dr_hal_op_start(struct dr_module *m, uint16_t statement, uint8_t op, uint8_
                (unsigned long)now_ms, (unsigned)m->address, (unsigned)s);
         return;
     }
+    if (p->n_running == 0u) {
+        p->failed = 0; /* a new batch, or a failed one issued again */
+    }
     if (started[s]) {
         reissues++;
         return;
@@ -139,7 +151,24 @@ void dr_hal_op_start(struct dr_module *m, uint16_t statement, uint8_t op, uint8_
 
 enum dr_op_status dr_hal_op_status(struct dr_module *m)
 {
-    return platform_of(m)->n_running == 0 ? DR_OP_DONE : DR_OP_RUNNING;
+    platform_t *p = platform_of(m);
+    if (p->n_running != 0u) {
+        return DR_OP_RUNNING;
+    }
+    return p->failed ? DR_OP_FAILED : DR_OP_DONE;
+}
+
+/* Whether this attempt of statement `s` is one that -f makes fail (and counts it). */
+static int attempt_fails(uint16_t s)
+{
+    int f;
+    for (f = 0; f < n_faults; f++) {
+        if (fault_statement[f] == s && fault_times[f] > 0u) {
+            fault_times[f]--;
+            return 1;
+        }
+    }
+    return 0;
 }
 
 uint16_t dr_hal_id(struct dr_module *m) { return platform_of(m)->id; }
@@ -177,8 +206,17 @@ static void complete_operations(void)
         uint8_t k = 0;
         while (k < p->n_running) {
             if (p->done_at[k] <= now_ms) {
-                done[p->running[k]] = 1;
-                printf("%7lu ms  done   %s\n", (unsigned long)now_ms, dr_meta_text[p->running[k]]);
+                uint16_t s = p->running[k];
+                if (attempt_fails(s)) {
+                    /* No effect: the statement may be started again, as a new attempt. */
+                    started[s] = 0;
+                    p->failed = 1;
+                    failures++;
+                    printf("%7lu ms  failed %s\n", (unsigned long)now_ms, dr_meta_text[s]);
+                } else {
+                    done[s] = 1;
+                    printf("%7lu ms  done   %s\n", (unsigned long)now_ms, dr_meta_text[s]);
+                }
                 p->running[k] = p->running[p->n_running - 1];
                 p->done_at[k] = p->done_at[p->n_running - 1];
                 p->n_running--;
@@ -206,34 +244,65 @@ static void deliver(void)
     queue_len -= n;
 }
 
-static int any_finished(void)
+/* Whether some module answers `end` from dr_module_finished (DR_END_*, dr_module.h). */
+static int any_ended(uint8_t end)
 {
     int i;
     for (i = 0; i < n_modules; i++) {
-        if (dr_module_finished(&modules[i])) {
+        if (dr_module_finished(&modules[i]) == end) {
             return 1;
         }
     }
     return 0;
 }
 
+/* Reads the -f options at the front of argv; returns the index of the first ID, or 0 for a
+ * malformed option. */
+static int read_faults(int argc, char **argv)
+{
+    int a = 1;
+    while (a + 1 < argc && strcmp(argv[a], "-f") == 0) {
+        unsigned long statement;
+        unsigned long times;
+        char *end;
+        statement = strtoul(argv[a + 1], &end, 10);
+        if (end == argv[a + 1] || *end != ':' || n_faults >= MAX_FAULTS) {
+            return 0;
+        }
+        times = strtoul(end + 1, &end, 10);
+        if (*end != '\0' || statement >= dr_meta_n_statements || times > 1000u) {
+            return 0;
+        }
+        fault_statement[n_faults] = (uint16_t)statement;
+        fault_times[n_faults] = (unsigned)times;
+        n_faults++;
+        a += 2;
+    }
+    return a;
+}
+
 int main(int argc, char **argv)
 {
     int i;
+    int first = read_faults(argc, argv);
     uint16_t s;
     unsigned n_done = 0;
-    if (argc < 2 || argc - 1 > MAX_MODULES) {
-        fprintf(stderr, "usage: %s ID... (1 to %d module IDs)\n", argv[0], MAX_MODULES);
+    const char *verdict;
+    if (first == 0 || argc - first < 1 || argc - first > MAX_MODULES) {
+        fprintf(stderr,
+                "usage: %s [-f STATEMENT:TIMES]... ID... (1 to %d module IDs; at most %d -f, "
+                "each a statement below %u failing at most 1000 times)\n",
+                argv[0], MAX_MODULES, MAX_FAULTS, (unsigned)dr_meta_n_statements);
         return 2;
     }
-    n_modules = argc - 1;
+    n_modules = argc - first;
     for (i = 0; i < n_modules; i++) {
-        platforms[i].id = (uint16_t)atoi(argv[i + 1]);
+        platforms[i].id = (uint16_t)atoi(argv[first + i]);
         platforms[i].rng = (uint16_t)(0x1234u + (unsigned)i * 77u);
         memset(platforms[i].nv, 0xFF, NV_BYTES);
         dr_program_init(&modules[i], &platforms[i]);
     }
-    for (now_ms = 0; now_ms < TIMEOUT_MS && !any_finished(); now_ms += STEP_MS) {
+    for (now_ms = 0; now_ms < TIMEOUT_MS && !any_ended(DR_END_GOAL); now_ms += STEP_MS) {
         complete_operations();
         for (i = 0; i < n_modules; i++) {
             dr_module_step(&modules[i]);
@@ -245,9 +314,13 @@ int main(int argc, char **argv)
     }
     /* The harness's clock is not the robot's: say so next to the time, which otherwise
      * reads as a contradiction of `dynarole simulate`'s (faults, the robot's durations). */
+    /* A stopped module (its failure policy gave up) leaves the others waiting: the run goes
+     * on to the timeout and says which it was. */
+    verdict = any_ended(DR_END_GOAL) ? "finished" : any_ended(DR_END_STOPPED) ? "STOPPED" : "TIMEOUT";
     printf("%s at %lu ms (harness clock: perfect network, each operation 0.5 s + 0.25 s per "
-           "operation code): %u of %u statements done, %u violations, %u re-issued, %lu packets\n",
-           any_finished() ? "finished" : "TIMEOUT", (unsigned long)now_ms, n_done,
-           (unsigned)dr_meta_n_statements, violations, reissues, packets);
-    return any_finished() && n_done == dr_meta_n_statements && violations == 0 ? 0 : 1;
+           "operation code): %u of %u statements done, %u violations, %u re-issued, %lu packets, "
+           "%u attempts failed\n",
+           verdict, (unsigned long)now_ms, n_done, (unsigned)dr_meta_n_statements, violations,
+           reissues, packets, failures);
+    return any_ended(DR_END_GOAL) && n_done == dr_meta_n_statements && violations == 0 ? 0 : 1;
 }

@@ -29,6 +29,11 @@ fn compile_nesc(file: &str, sequence: &str, extra: &[&str], dir: &Path) {
 
 /// `make -C runtime/nesc OUT=DIR GOALS...` with nescc on the PATH.
 fn nesc_make(nescc: &Path, dir: &Path, goals: &[&str], ids: &str) -> Output {
+    nesc_make_with(nescc, dir, goals, &[&format!("IDS={ids}")])
+}
+
+/// The same with the make variables `vars` (`NAME=VALUE`).
+fn nesc_make_with(nescc: &Path, dir: &Path, goals: &[&str], vars: &[&str]) -> Output {
     let path = std::env::var_os("PATH").unwrap_or_default();
     let path = std::env::join_paths(
         std::iter::once(nescc.to_path_buf()).chain(std::env::split_paths(&path)),
@@ -41,7 +46,7 @@ fn nesc_make(nescc: &Path, dir: &Path, goals: &[&str], ids: &str) -> Output {
         .arg("-C")
         .arg(repo_root().join("runtime/nesc"))
         .arg(out_arg)
-        .arg(format!("IDS={ids}"))
+        .args(vars)
         .args(goals)
         .env("PATH", path)
         .output()
@@ -227,4 +232,24 @@ fn the_nesc_makefile_names_a_missing_output_directory() {
         "{}",
         text(&out.stderr)
     );
+}
+
+/// The nesC component passes the harness's failed operations to the runtime: statement 3 of
+/// eight2car (M4's first turn) fails twice, the default policy retries it and the sequence
+/// ends with every statement done once.
+#[test]
+fn the_nesc_component_retries_a_failed_operation_like_the_c_build() {
+    let Some(nescc) = nescc_dir() else { return };
+    let dir = out_dir("eight2car-lattice-failing");
+    compile_nesc("robots/atron/examples/eight2car.dr", "eight2car", &[], &dir);
+    let vars = ["IDS=0 1 2 3 4 5 6", "FAULTS=-f 3:2"];
+    let nesc = text(&nesc_make_with(&nescc, &dir, &["harness"], &vars).stdout);
+    let summary = nesc.lines().last().unwrap_or_default();
+    assert!(summary.starts_with("finished"), "{summary}");
+    assert!(
+        summary.contains("25 of 25 statements done, 0 violations"),
+        "{summary}"
+    );
+    assert!(summary.ends_with("2 attempts failed"), "{summary}");
+    assert_eq!(nesc.matches(" failed ").count(), 2, "{nesc}");
 }

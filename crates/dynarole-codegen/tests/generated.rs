@@ -1,9 +1,11 @@
 //! The C back-end end to end: snapshots of the generated state machines for the paper's
 //! Fig. 5, a strict-warnings build of the output directory, and the harness running all seven
-//! modules of eight2car over a perfect network for both protocols.
+//! modules of eight2car over a perfect network for both protocols, with operation failures
+//! injected for the failure policy.
 
 use dynarole_codegen::{
-    generate_c, CompileOptions, Dissemination, Generated, Protocol, TokenRetries, TokenRoutes,
+    generate_c, CompileOptions, Dissemination, Generated, OnFailure, Protocol, TokenRetries,
+    TokenRoutes,
 };
 use dynarole_core::{analyze, parse};
 use std::path::{Path, PathBuf};
@@ -168,6 +170,13 @@ fn builds_alone(dir: &Path) {
 
 /// Links the directory with the harness and runs seven modules of eight2car.
 fn harness_run(dir: &Path) -> String {
+    let (stdout, success) = harness_run_with(dir, &[]);
+    assert!(success, "{stdout}");
+    stdout
+}
+
+/// The same with the harness's options `flags` first; what it printed and whether it exited 0.
+fn harness_run_with(dir: &Path, flags: &[&str]) -> (String, bool) {
     let harness = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../runtime/harness/harness.c");
     let binary = dir.join("harness");
     let status = Command::new("cc")
@@ -182,12 +191,44 @@ fn harness_run(dir: &Path) -> String {
         .expect("cc runs");
     assert!(status.success(), "the harness does not build");
     let out = Command::new(&binary)
+        .args(flags)
         .args(["0", "1", "2", "3", "4", "5", "6"])
         .output()
         .expect("harness runs");
     let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
-    assert!(out.status.success(), "{stdout}");
-    stdout
+    (stdout, out.status.success())
+}
+
+/// Statement 3 of eight2car (M4's first turn) failing in the harness: with the default policy
+/// (3 retries) two failures are retried and the sequence ends, each attempt a start of its
+/// own; compiled with `stop`, one failure stops M4 and the run says so, without its goal.
+#[test]
+fn the_harness_fails_operations_and_the_policy_decides_what_follows() {
+    let generated = compile(FIG5, "eight2car", &options(Protocol::Lattice));
+    let dir = out_dir("lattice-failing");
+    write(&generated, &dir);
+    let (stdout, success) = harness_run_with(&dir, &["-f", "3:2"]);
+    let summary = stdout.lines().last().unwrap_or_default();
+    assert!(success && summary.starts_with("finished"), "{summary}");
+    assert!(
+        summary.contains("25 of 25 statements done, 0 violations"),
+        "{summary}"
+    );
+    assert!(summary.ends_with("2 attempts failed"), "{summary}");
+    assert_eq!(stdout.matches(" start  ").count(), 27, "two more starts");
+    assert_eq!(stdout.matches(" failed ").count(), 2);
+    let stop = CompileOptions {
+        on_failure: OnFailure::Stop,
+        ..options(Protocol::Lattice)
+    };
+    let dir = out_dir("lattice-stop");
+    write(&compile(FIG5, "eight2car", &stop), &dir);
+    let (stdout, success) = harness_run_with(&dir, &["-f", "3:1"]);
+    let summary = stdout.lines().last().unwrap_or_default();
+    assert!(!success && summary.starts_with("STOPPED"), "{summary}");
+    assert!(summary.contains(", 0 violations"), "{summary}");
+    assert!(summary.ends_with("1 attempts failed"), "{summary}");
+    assert_eq!(stdout.matches(" failed ").count(), 1, "not retried");
 }
 
 #[test]
