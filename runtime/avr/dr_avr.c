@@ -724,7 +724,7 @@ static void board_init(void)
     DDRD = (uint8_t)((1u << DR_AVR_STROBE_ADDR) | (1u << DR_AVR_STROBE_WRITE) |
                      (1u << DR_AVR_STROBE_READ) | (1u << DR_AVR_STROBE_RELEASE));
     DDRE = (uint8_t)((1u << DR_AVR_PIN_STEP) | (1u << DR_AVR_PIN_RECEIVE) |
-                     (1u << DR_AVR_PIN_FINISHED));
+                     (1u << DR_AVR_PIN_FINISHED) | (1u << DR_AVR_PIN_STOPPED));
     /* Timer1 in CTC mode 4 (TOP = OCR1A): compare A ends each period, compare B wakes the
      * MCU for its next step. */
     OCR1A = (uint16_t)(PERIOD_TICKS - 1u);
@@ -769,11 +769,13 @@ static uint8_t any_received(void)
     return (uint8_t)(rx[0].full | rx[1].full);
 }
 
-/* One step (PE2 high meanwhile); PE4 shows whether the module knows the sequence ended.
+/* One step (PE2 high meanwhile); PE4 shows whether the module knows the sequence ended, PE6
+ * whether its failure policy stopped it (dr_module_finished's two answers, dr_module.h).
  * Under nesC, the component's clock advances by `elapsed` ms instead: its timer runs the
  * steps (every 5 ms from boot) and the tasks. */
 static void step(uint32_t elapsed)
 {
+    uint8_t end;
     PORTE = (uint8_t)(PORTE | (1u << DR_AVR_PIN_STEP));
 #ifdef DR_AVR_NESC
     dr_nesc_advance_ms(elapsed);
@@ -781,11 +783,10 @@ static void step(uint32_t elapsed)
     (void)elapsed;
     dr_module_step(&module);
 #endif
-    if (dr_module_finished(&module)) {
-        PORTE = (uint8_t)(PORTE | (1u << DR_AVR_PIN_FINISHED));
-    } else {
-        PORTE = (uint8_t)(PORTE & ~(1u << DR_AVR_PIN_FINISHED));
-    }
+    end = dr_module_finished(&module);
+    PORTE = (uint8_t)((PORTE & ~((1u << DR_AVR_PIN_FINISHED) | (1u << DR_AVR_PIN_STOPPED))) |
+                      (end == DR_END_GOAL ? (1u << DR_AVR_PIN_FINISHED) : 0u) |
+                      (end == DR_END_STOPPED ? (1u << DR_AVR_PIN_STOPPED) : 0u));
     PORTE = (uint8_t)(PORTE & ~(1u << DR_AVR_PIN_STEP));
     describe();
 }

@@ -28,6 +28,8 @@
 #define DR_AVR_PIN_STEP 2       /* PE2: high while dr_module_step runs */
 #define DR_AVR_PIN_RECEIVE 3    /* PE3: high while dr_module_receive runs */
 #define DR_AVR_PIN_FINISHED 4   /* PE4: high once the module knows the sequence has ended */
+#define DR_AVR_PIN_STOPPED 6    /* PE6: high once the module's failure policy stopped it
+                                 * (dr_module_finished answers DR_END_STOPPED) */
 #define DR_AVR_PIN_DESCRIBED 5  /* PE5: a pulse once dr_avr_description holds the module's
                                  * state (images built with DR_AVR_DESCRIBE, for traces) */
 

@@ -677,3 +677,37 @@ fn random_single_resets_agree_with_the_host_on_the_nesc_component() {
         "avr-nesc",
     );
 }
+
+/// A stuck connector under `--on-failure stop` on the emulated chips: M4's firmware stops and
+/// says so on its pin (PE6), the run's outcome is `stopped` naming M4, and nothing is taken
+/// for the end (no S3: a stop is not the goal).
+#[test]
+fn a_stop_by_the_failure_policy_is_no_end_on_emulated_atmega128s() {
+    if !avr_tools() {
+        return;
+    }
+    let scenario = scratch("stop-stuck.toml");
+    let faults = "timeout_ms = 20000\n[[stuck]]\nmodule = \"M4\"\npart = \"Connector[0]\"\n\
+                  from_ms = 0\n";
+    std::fs::write(&scenario, faults).expect("the scenario is written");
+    let out = dynarole(&[
+        "simulate",
+        "robots/atron/examples/eight2car.dr",
+        "--from",
+        "robots/atron/examples/eight.json",
+        "--expect",
+        "robots/atron/examples/car.json",
+        "--scenario",
+        scenario.to_str().expect("utf-8 path"),
+        "--on-failure",
+        "stop",
+        "--firmware",
+        "avr",
+        "--json",
+    ]);
+    assert_eq!(out.status.code(), Some(3), "{}", text(&out.stderr));
+    let report: serde_json::Value = serde_json::from_slice(&out.stdout).expect("the report");
+    assert_eq!(report["outcome"], "stopped", "{report}");
+    assert_eq!(report["stopped"][0]["module"], "M4", "{report}");
+    assert_eq!(report["violations"], serde_json::json!([]), "{report}");
+}

@@ -40,6 +40,7 @@ mod board {
     pub const PIN_STEP: u8 = 1 << 2;
     pub const PIN_RECEIVE: u8 = 1 << 3;
     pub const PIN_FINISHED: u8 = 1 << 4;
+    pub const PIN_STOPPED: u8 = 1 << 6;
 }
 
 /// What the emulator measured on one module.
@@ -411,7 +412,15 @@ fn pins(state: &mut State, b: &mut Board, m: usize, e: emu::Event) {
         b.stats.steps += 1;
         b.stats.step_cycles += cycles;
         b.stats.step_cycles_max = b.stats.step_cycles_max.max(cycles);
-        state.note_finished(m, e.a & board::PIN_FINISHED != 0);
+        // The pins say what dr_module_finished answered: the end, a stop, or neither.
+        let answer = if e.a & board::PIN_FINISHED != 0 {
+            crate::stops::END_GOAL
+        } else if e.a & board::PIN_STOPPED != 0 {
+            crate::stops::END_STOPPED
+        } else {
+            0
+        };
+        state.note_end(m, answer);
     }
     if fell & board::PIN_RECEIVE != 0 {
         let cycles = e.cycle.saturating_sub(b.since_receive);
