@@ -54,9 +54,11 @@ struct WorldModule {
     id: u32,
     #[serde(rename = "type")]
     kind: String,
-    alpha: f64,
-    beta: f64,
-    gamma: f64,
+    // Optional so that a module of another kind (a pad has `width` and `height`) is refused
+    // for its kind, not for a missing angle.
+    alpha: Option<f64>,
+    beta: Option<f64>,
+    gamma: Option<f64>,
 }
 
 #[derive(Deserialize)]
@@ -127,16 +129,17 @@ fn configuration(world: &World, at: &str) -> Result<RofiConfiguration, RofiWorld
         let path = format!("{at}.modules[{i}]");
         if m.kind != "universal" {
             let message = format!(
-                "module {} is of type \"{}\": only universal modules (\"universal\") are known",
+                "module {} is of type \"{}\": only universal modules (\"universal\") are known \
+                 (RoFI's pads and other module kinds are not modelled)",
                 m.id, m.kind
             );
             return Err(semantic(&format!("{path}.type"), message));
         }
         let module = Module {
             id: m.id,
-            alpha: m.alpha,
-            beta: m.beta,
-            gamma: m.gamma,
+            alpha: angle(m.alpha, &path, "alpha")?,
+            beta: angle(m.beta, &path, "beta")?,
+            gamma: angle(m.gamma, &path, "gamma")?,
         };
         config
             .add_module(module)
@@ -167,6 +170,14 @@ fn configuration(world: &World, at: &str) -> Result<RofiConfiguration, RofiWorld
 }
 
 /// A field at `path` that does not read or breaks a rule (no line: the text is parsed).
+/// A universal module's joint angle, which RofiWorld requires.
+fn angle(value: Option<f64>, path: &str, joint: &str) -> Result<f64, RofiWorldError> {
+    value.ok_or_else(|| {
+        let message = format!("missing field `{joint}` (a universal module's angle in degrees)");
+        semantic(&format!("{path}.{joint}"), message)
+    })
+}
+
 fn semantic(path: &str, message: String) -> RofiWorldError {
     RofiWorldError {
         path: path.trim_start_matches('.').to_string(),

@@ -84,6 +84,23 @@ fn each_broken_rule_names_its_field() {
             "only universal modules",
         ),
         (
+            // A pad as RoFI writes it: no angles, a size.
+            TWO.replace(
+                r#""type": "universal", "alpha": 0, "beta": 0, "gamma": 90"#,
+                r#""type": "pad", "width": 6, "height": 3"#,
+            ),
+            "modules[1].type",
+            "pads and other module kinds are not modelled",
+        ),
+        (
+            TWO.replace(
+                r#""alpha": 0, "beta": 0, "gamma": 90"#,
+                r#""alpha": 0, "beta": 0"#,
+            ),
+            "modules[1].gamma",
+            "missing field `gamma`",
+        ),
+        (
             TWO.replace(r#""id": 2, "connector""#, r#""id": 9, "connector""#),
             "moduleJoints[0]",
             "module 9 is not declared",
