@@ -17,6 +17,13 @@ pub enum Failure {
         text: String,
         error: Box<TomlError>,
     },
+    /// A `.dr` file the checks refused (exit 1): its diagnostics, rendered with its text by
+    /// the command line, handed over as data by the library API (`api.rs`).
+    Checked {
+        path: String,
+        source: String,
+        diagnostics: Vec<dynarole_core::Diagnostic>,
+    },
     /// A failure of dynarole or of the tools it runs (spin, the C compiler), not a verdict on
     /// the input (exit 4).
     Internal(String),
@@ -28,9 +35,22 @@ pub const INTERNAL_EXIT: u8 = 4;
 impl Failure {
     pub fn exit_code(&self) -> ExitCode {
         match self {
-            Failure::Input(_) | Failure::Toml { .. } => ExitCode::from(1),
+            Failure::Input(_) | Failure::Toml { .. } | Failure::Checked { .. } => ExitCode::from(1),
             Failure::Usage(_) => ExitCode::from(2),
             Failure::Internal(_) => ExitCode::from(INTERNAL_EXIT),
+        }
+    }
+
+    /// The refusal of the `.dr` file `path` (text `source`) for `diagnostics`.
+    pub fn checked(
+        path: &str,
+        source: &str,
+        diagnostics: Vec<dynarole_core::Diagnostic>,
+    ) -> Failure {
+        Failure::Checked {
+            path: path.to_string(),
+            source: source.to_string(),
+            diagnostics,
         }
     }
 

@@ -2,6 +2,7 @@
 //!
 //! **Architecture invariant**: only this crate knows about files, exit codes and colours.
 
+pub mod api;
 mod bounds;
 mod campaign;
 pub mod check;

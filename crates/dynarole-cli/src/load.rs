@@ -5,7 +5,6 @@ pub use dynarole_core::driver::robot_name;
 use dynarole_core::RobotRegistry;
 use dynarole_input::program::{self, PluginError};
 use std::path::{Path, PathBuf};
-use std::process::ExitCode;
 
 pub use crate::failure::{Failure, INTERNAL_EXIT};
 
@@ -56,22 +55,23 @@ fn plugin_failure(error: PluginError) -> Failure {
     }
 }
 
-/// Reads, parses and checks a source file: renders its errors and exits 1, or hands the checked
+/// Reads, parses and checks a source file: fails with its errors (`Failure::Checked`), or hands the checked
 /// program and its text to `then` (every command that works on a checked file starts here).
-pub fn with_program(
+pub fn with_program<T>(
     path: &Path,
     plugins: &PluginArgs,
-    then: impl FnOnce(&dynarole_core::Program, &str) -> Result<ExitCode, Failure>,
-) -> Result<ExitCode, Failure> {
+    then: impl FnOnce(&dynarole_core::Program, &str) -> Result<T, Failure>,
+) -> Result<T, Failure> {
     let source = read_source(path)?;
     let parsed = dynarole_core::parse(&source);
     let registry = registry(plugins, path, robot_name(&parsed.file))?;
     match driver::check(&parsed, &registry) {
         Ok(program) => then(&program, &source),
-        Err(diagnostics) => {
-            crate::render::diagnostics(&path.display().to_string(), &source, &diagnostics);
-            Ok(ExitCode::from(1))
-        }
+        Err(diagnostics) => Err(Failure::checked(
+            &path.display().to_string(),
+            &source,
+            diagnostics,
+        )),
     }
 }
 

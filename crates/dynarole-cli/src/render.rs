@@ -150,6 +150,11 @@ pub fn failure(failure: &Failure) {
             let writer = StandardStream::stderr(color_choice());
             write_toml_error(&mut writer.lock(), path, text, error);
         }
+        Failure::Checked {
+            path,
+            source,
+            diagnostics: found,
+        } => diagnostics(path, source, found),
     }
 }
 

@@ -1,7 +1,6 @@
 //! `dynarole reverse`: print the reverse of a sequence as a complete, checkable file.
 
 use crate::load::{self, Failure, PluginArgs};
-use crate::render;
 use dynarole_core::format::format_items;
 use dynarole_core::standalone::standalone;
 use std::path::Path;
@@ -23,20 +22,24 @@ pub struct ReverseArgs {
 }
 
 pub fn run(args: &ReverseArgs) -> Result<ExitCode, Failure> {
-    reverse_file(
+    let text = reverse_text(
         &args.file,
         &args.sequence,
         args.name.as_deref(),
         &args.plugins,
-    )
+    )?;
+    print!("{text}");
+    Ok(ExitCode::SUCCESS)
 }
 
-fn reverse_file(
+/// The reverse of `sequence` in the file at `path` as a complete, checkable file (what
+/// `dynarole reverse` prints), named `name` or by the file's convention.
+pub fn reverse_text(
     path: &Path,
     sequence: &str,
     name: Option<&str>,
     plugins: &PluginArgs,
-) -> Result<ExitCode, Failure> {
+) -> Result<String, Failure> {
     if let Some(name) = name.filter(|n| !dynarole_core::lexer::is_identifier(n)) {
         return Err(Failure::Usage(format!(
             "--name `{}`: expected a name (a letter or `_`, then letters, digits or `_`; not a keyword)",
@@ -55,14 +58,11 @@ fn reverse_in(
     display: &str,
     sequence: &str,
     name: Option<&str>,
-) -> Result<ExitCode, Failure> {
+) -> Result<String, Failure> {
     let new_name = name.map_or_else(|| program.reverse_name(sequence), str::to_string);
     let reversed = match program.reverse_sequence(sequence, &new_name) {
         None => return Err(load::unknown_sequence(program, display, sequence)),
-        Some(Err(errors)) => {
-            render::diagnostics(display, source, &errors);
-            return Ok(ExitCode::from(1));
-        }
+        Some(Err(errors)) => return Err(Failure::checked(display, source, errors)),
         Some(Ok(decl)) => decl,
     };
     let items = standalone(program.file, reversed).map_err(|taken| {
@@ -70,6 +70,5 @@ fn reverse_in(
             "`{taken}` is already used by a sequence the reverse needs; choose another with --name"
         ))
     })?;
-    print!("{}", format_items(items));
-    Ok(ExitCode::SUCCESS)
+    Ok(format_items(items))
 }

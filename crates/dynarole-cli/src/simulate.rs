@@ -5,7 +5,6 @@ mod progress;
 
 use crate::compile::add_routes;
 use crate::load::{self, Failure};
-use crate::render;
 use crate::world::read_configuration;
 use clap::ValueEnum;
 use dynarole_campaign::shell_word;
@@ -71,6 +70,60 @@ pub enum FirmwareArg {
 }
 
 pub fn run(args: &SimulateArgs) -> Result<ExitCode, Failure> {
+    let failed = simulate_into(args, &mut Printed)?;
+    if args.repeat > 1 && !args.json {
+        println!(
+            "{} of {} runs reached the goal",
+            args.repeat - failed,
+            args.repeat
+        );
+    }
+    Ok(ExitCode::from(if failed == 0 { 0 } else { 3 }))
+}
+
+/// What is done with each run's report: printed by the command line (`Printed`), kept as
+/// data by the library API (`api.rs`).
+pub trait RunSink {
+    /// Run `k` ended with `report` (and, on emulated firmware, `firmware`) after `wall`
+    /// seconds.
+    fn report(
+        &mut self,
+        args: &SimulateArgs,
+        run: (&Report, Option<&FirmwareReport>),
+        wall: f64,
+        k: u64,
+    ) -> Result<(), Failure>;
+    /// Run with `seed` did not reach the goal.
+    fn failed(&mut self, _args: &SimulateArgs, _seed: u64) {}
+    /// Between runs: an error here (an interrupt) ends the simulation.
+    fn between_runs(&mut self) -> Result<(), Failure> {
+        Ok(())
+    }
+}
+
+/// The command line's sink: each report on standard output, how to replay a failed run on
+/// standard error.
+struct Printed;
+
+impl RunSink for Printed {
+    fn report(
+        &mut self,
+        args: &SimulateArgs,
+        (report, firmware): (&Report, Option<&FirmwareReport>),
+        wall: f64,
+        k: u64,
+    ) -> Result<(), Failure> {
+        output(args, report, firmware, wall, k)
+    }
+
+    fn failed(&mut self, args: &SimulateArgs, seed: u64) {
+        eprintln!("replay with: {}", replay_command(args, seed));
+    }
+}
+
+/// Runs `args` (every repeat), handing each report to `sink`; returns how many runs did not
+/// reach the goal.
+pub fn simulate_into(args: &SimulateArgs, sink: &mut dyn RunSink) -> Result<u64, Failure> {
     load::with_program(&args.file, &args.plugins, |program, source| {
         let display = args.file.display().to_string();
         let names = load::select_sequences(program, &display, &args.run.sequences)?;
@@ -90,20 +143,17 @@ pub fn run(args: &SimulateArgs) -> Result<ExitCode, Failure> {
         // A module the program names but the configuration lacks would never act: the run
         // would only time out. Refused here as `replay` refuses it, with the same message.
         if let Err(diagnostics) = dynarole_replay::assign_modules(program, &plans, &start) {
-            render::diagnostics(&display, source, &diagnostics);
-            return Ok(ExitCode::from(1));
+            return Err(Failure::checked(&display, source, diagnostics));
         }
         let mut options = args.options.compile_options(1, names.join(" + "))?;
         let routed = add_routes(&mut options, program, &plans, Some(&args.run.from))?;
         if let Err(diagnostics) = routed {
-            render::diagnostics(&display, source, &diagnostics);
-            return Ok(ExitCode::from(1));
+            return Err(Failure::checked(&display, source, diagnostics));
         }
         let simulator = match Simulator::new(program, &plans, &options) {
             Ok(s) => s,
             Err(SimError::Diagnostic(d)) => {
-                render::diagnostics(&display, source, &[d]);
-                return Ok(ExitCode::from(1));
+                return Err(Failure::checked(&display, source, vec![d]))
             }
             Err(e) => return Err(Failure::Input(e.to_string())),
         };
@@ -133,7 +183,7 @@ pub fn run(args: &SimulateArgs) -> Result<ExitCode, Failure> {
             let (report, firmware) = run_once(&simulator, &run, args, k, progress.clock())?;
             let wall = started.elapsed().as_secs_f64();
             progress.run_done();
-            progress.suspend(|| output(args, &report, firmware.as_ref(), wall, k))?;
+            progress.suspend(|| sink.report(args, (&report, firmware.as_ref()), wall, k))?;
             if args.record.wanted() {
                 let title = format!("{} ({}, seed {seed})", names.join(" + "), display);
                 let recording = simulator
@@ -155,18 +205,12 @@ pub fn run(args: &SimulateArgs) -> Result<ExitCode, Failure> {
             }
             if !report.success {
                 failed += 1;
-                progress.suspend(|| eprintln!("replay with: {}", replay_command(args, seed)));
+                progress.suspend(|| sink.failed(args, seed));
             }
+            sink.between_runs()?;
         }
         progress.finish();
-        if args.repeat > 1 && !args.json {
-            println!(
-                "{} of {} runs reached the goal",
-                args.repeat - failed,
-                args.repeat
-            );
-        }
-        Ok(ExitCode::from(if failed == 0 { 0 } else { 3 }))
+        Ok(failed)
     })
 }
 
@@ -279,13 +323,9 @@ fn output(
     k: u64,
 ) -> Result<(), Failure> {
     if args.json {
-        let cannot =
-            |e: serde_json::Error| Failure::Input(format!("cannot serialise the report: {e}"));
-        let mut value = serde_json::to_value(report).map_err(cannot)?;
-        if let (Some(f), Some(object)) = (firmware, value.as_object_mut()) {
-            object.insert("firmware".into(), serde_json::to_value(f).map_err(cannot)?);
-        }
-        let text = serde_json::to_string(&value).map_err(cannot)?;
+        let value = report_json(report, firmware)?;
+        let text = serde_json::to_string(&value)
+            .map_err(|e| Failure::Internal(format!("cannot serialise the report: {e}")))?;
         println!("{text}");
         return Ok(());
     }
@@ -314,6 +354,21 @@ fn output(
         wall
     );
     Ok(())
+}
+
+/// One run's report as `simulate --json` prints it (the firmware's measurements under
+/// `firmware` when the run was on emulated chips).
+pub fn report_json(
+    report: &Report,
+    firmware: Option<&FirmwareReport>,
+) -> Result<serde_json::Value, Failure> {
+    let cannot =
+        |e: serde_json::Error| Failure::Internal(format!("cannot serialise the report: {e}"));
+    let mut value = serde_json::to_value(report).map_err(cannot)?;
+    if let (Some(f), Some(object)) = (firmware, value.as_object_mut()) {
+        object.insert("firmware".into(), serde_json::to_value(f).map_err(cannot)?);
+    }
+    Ok(value)
 }
 
 /// The image's footprint and what the emulator measured on each module.
