@@ -83,11 +83,10 @@ pub fn check(argv: &[String]) -> Result<Vec<Located>, Failure> {
         });
     let diagnostics = check_one(path, &source, &args.plugins, args.protocol, on.as_ref())?;
     let display = path.display().to_string();
-    let located = locate(&display, &source, &diagnostics);
     if has_errors(&diagnostics) {
         return Err(Failure::checked(&display, &source, diagnostics));
     }
-    Ok(located)
+    Ok(locate(&display, &source, &diagnostics))
 }
 
 /// `dynarole reverse FILE SEQUENCE`: the text the command prints.
@@ -104,7 +103,7 @@ pub fn reverse(
 }
 
 /// `dynarole simulate ARGV... --json`: each run's report as the command prints it, handed to
-/// `each` as it ends (an error from `each` ends the simulation: an interrupt).
+/// `each` as it ends (an error from `each`, such as an interrupt, ends the simulation).
 pub fn simulate(
     argv: &[String],
     each: &mut dyn FnMut(serde_json::Value) -> Result<(), Failure>,

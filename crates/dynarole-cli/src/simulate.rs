@@ -95,10 +95,6 @@ pub trait RunSink {
     ) -> Result<(), Failure>;
     /// Run with `seed` did not reach the goal.
     fn failed(&mut self, _args: &SimulateArgs, _seed: u64) {}
-    /// Between runs: an error here (an interrupt) ends the simulation.
-    fn between_runs(&mut self) -> Result<(), Failure> {
-        Ok(())
-    }
 }
 
 /// The command line's sink: each report on standard output, how to replay a failed run on
@@ -207,7 +203,6 @@ pub fn simulate_into(args: &SimulateArgs, sink: &mut dyn RunSink) -> Result<u64,
                 failed += 1;
                 progress.suspend(|| sink.failed(args, seed));
             }
-            sink.between_runs()?;
         }
         progress.finish();
         Ok(failed)
@@ -324,8 +319,7 @@ fn output(
 ) -> Result<(), Failure> {
     if args.json {
         let value = report_json(report, firmware)?;
-        let text = serde_json::to_string(&value)
-            .map_err(|e| Failure::Internal(format!("cannot serialise the report: {e}")))?;
+        let text = serde_json::to_string(&value).map_err(cannot_serialise)?;
         println!("{text}");
         return Ok(());
     }
@@ -362,13 +356,17 @@ pub fn report_json(
     report: &Report,
     firmware: Option<&FirmwareReport>,
 ) -> Result<serde_json::Value, Failure> {
-    let cannot =
-        |e: serde_json::Error| Failure::Internal(format!("cannot serialise the report: {e}"));
-    let mut value = serde_json::to_value(report).map_err(cannot)?;
+    let mut value = serde_json::to_value(report).map_err(cannot_serialise)?;
     if let (Some(f), Some(object)) = (firmware, value.as_object_mut()) {
-        object.insert("firmware".into(), serde_json::to_value(f).map_err(cannot)?);
+        let measured = serde_json::to_value(f).map_err(cannot_serialise)?;
+        object.insert("firmware".into(), measured);
     }
     Ok(value)
+}
+
+/// A report that cannot be serialised (as before the library API: exit 1).
+fn cannot_serialise(e: serde_json::Error) -> Failure {
+    Failure::Input(format!("cannot serialise the report: {e}"))
 }
 
 /// The image's footprint and what the emulator measured on each module.
