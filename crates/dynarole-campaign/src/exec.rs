@@ -119,6 +119,9 @@ pub fn run_all(
         pending.par_iter().try_for_each_init(
             || Worker::new(inputs),
             |worker, run| {
+                if ticks.stop_requested() {
+                    return Err(Error::Interrupted);
+                }
                 let row = worker.run(run)?;
                 let mut guard = shared.lock().unwrap_or_else(|e| e.into_inner());
                 guard.0.write(&row)?;

@@ -62,6 +62,8 @@ pub enum Error {
     /// `runs.csv` is unreadable or was written by another campaign.
     Results(String),
     Plot(String),
+    /// The caller asked the runs to stop (`Progress::stop_requested`).
+    Interrupted,
 }
 
 impl Error {
@@ -79,6 +81,9 @@ impl std::fmt::Display for Error {
             }
             Error::Io(m) | Error::Input(m) | Error::Sim(m) | Error::Results(m) => f.write_str(m),
             Error::Plot(m) => write!(f, "cannot draw {m}"),
+            Error::Interrupted => f.write_str(
+                "interrupted: the runs recorded so far are kept; run the campaign again to resume",
+            ),
         }
     }
 }

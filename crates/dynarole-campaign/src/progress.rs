@@ -11,6 +11,11 @@ pub trait Progress: Sync {
     fn advanced(&self) {}
     /// They stopped: all done, or an error follows.
     fn finished(&mut self) {}
+    /// Whether the caller wants the runs to stop (an interrupt): asked before each run, from
+    /// any worker thread; the runs already recorded stay, so the campaign resumes from them.
+    fn stop_requested(&self) -> bool {
+        false
+    }
 }
 
 /// Progress told to nobody (tests, and callers that show none).

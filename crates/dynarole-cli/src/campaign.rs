@@ -5,8 +5,7 @@
 
 use crate::load::Failure;
 use crate::progress::{CampaignProgress, ProgressMode};
-use crate::render;
-use dynarole_campaign::{Done, Error, Jobs, MergeOptions, Options, Scheduler};
+use dynarole_campaign::{Done, Error, Jobs, MergeOptions, Options, Progress, Scheduler};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -109,53 +108,52 @@ fn emit_args(args: &CampaignArgs) -> Option<EmitArgs> {
 }
 
 fn run_file(args: &CampaignArgs, file: &Path) -> Result<ExitCode, Failure> {
-    let out_dir = match &args.out_dir {
-        Some(d) => d.clone(),
-        None => default_out_dir(file),
-    };
     if let Some(emit) = &emit_args(args) {
+        let out_dir = args
+            .out_dir
+            .clone()
+            .unwrap_or_else(|| default_out_dir(file));
         return emit_jobs(args, file, emit, out_dir);
     }
+    let mut progress = CampaignProgress::new(ProgressMode::for_stderr().map_err(Failure::Usage)?);
+    let done = ran(args, file, &mut progress)?;
+    print_done(&done);
+    Ok(ExitCode::SUCCESS)
+}
+
+/// Runs the campaign `file` (or the shard `args` names), telling `progress`: what it did.
+pub fn ran(args: &CampaignArgs, file: &Path, progress: &mut dyn Progress) -> Result<Done, Failure> {
     let options = Options {
         campaign: file.to_path_buf(),
-        out_dir,
+        out_dir: args
+            .out_dir
+            .clone()
+            .unwrap_or_else(|| default_out_dir(file)),
         max_runs: args.max_runs,
         jobs: args.jobs,
         plots: !args.no_plots,
         shard: args.shard,
     };
-    let mut progress = CampaignProgress::new(ProgressMode::for_stderr().map_err(Failure::Usage)?);
-    finish(dynarole_campaign::run(
-        &options,
-        crate::robots::robots(),
-        &mut progress,
-    ))
+    dynarole_campaign::run(&options, crate::robots::robots(), progress).map_err(refused)
 }
 
-/// Prints what a campaign, a shard or a merge did, or its error.
+/// Prints what a merge did, or its error.
 fn finish(result: Result<Done, Error>) -> Result<ExitCode, Failure> {
-    match result {
-        Ok(done) => {
-            print_done(&done);
-            Ok(ExitCode::SUCCESS)
-        }
-        Err(e) => refused(e),
-    }
+    let done = result.map_err(refused)?;
+    print_done(&done);
+    Ok(ExitCode::SUCCESS)
 }
 
-/// The end of a campaign that cannot run: the problems of a sequence file rendered (exit 1),
-/// or the failure of its input.
-fn refused(error: Error) -> Result<ExitCode, Failure> {
+/// The failure of a campaign that cannot run: a sequence file's problems are
+/// `Failure::Checked` (rendered, exit 1), as in every command.
+fn refused(error: Error) -> Failure {
     match error {
         Error::Diagnostics {
             path,
             source,
             diagnostics,
-        } => {
-            render::diagnostics(&path.display().to_string(), &source, &diagnostics);
-            Ok(ExitCode::from(1))
-        }
-        e => Err(input_failure(e)),
+        } => Failure::checked(&path.display().to_string(), &source, diagnostics),
+        e => input_failure(e),
     }
 }
 
@@ -216,7 +214,7 @@ fn emit_jobs(
     // A campaign that cannot run is refused here, not in each of N jobs.
     let (runs, files) = match dynarole_campaign::emit(scheduler, &jobs, crate::robots::robots()) {
         Ok(done) => done,
-        Err(e) => return refused(e),
+        Err(e) => return Err(refused(e)),
     };
     for f in &files {
         println!("wrote {}", f.display());

@@ -23,6 +23,8 @@ pub enum Failure {
         path: String,
         source: String,
         diagnostics: Vec<dynarole_core::Diagnostic>,
+        /// What the command concludes from them, printed after them as `error: ...`.
+        conclusion: Option<String>,
     },
     /// A failure of dynarole or of the tools it runs (spin, the C compiler), not a verdict on
     /// the input (exit 4).
@@ -51,6 +53,25 @@ impl Failure {
             path: path.to_string(),
             source: source.to_string(),
             diagnostics,
+            conclusion: None,
+        }
+    }
+
+    /// The same refusal, concluded by `message` after the diagnostics.
+    pub fn concluded(self, message: String) -> Failure {
+        match self {
+            Failure::Checked {
+                path,
+                source,
+                diagnostics,
+                ..
+            } => Failure::Checked {
+                path,
+                source,
+                diagnostics,
+                conclusion: Some(message),
+            },
+            other => other,
         }
     }
 

@@ -6,7 +6,6 @@
 pub use crate::bounds::{MethodArg, ModelArgs};
 use crate::compile::{CompileArgs, ProtocolOptions};
 use crate::load::{self, Failure, PluginArgs};
-use crate::render;
 use crate::world::{prepare, read_configuration};
 use dynarole_codegen::Fault;
 use dynarole_verify::{BuildOptions, Built, Inputs, Method, Models, VerifyError};
@@ -51,11 +50,11 @@ pub struct Request<'a> {
 }
 
 /// Loads and checks the source `asked` names, then runs `then` on the request of its model
-/// (a source that does not check is rendered and exits with 1, as in every command).
-pub fn with_request(
+/// (a source that does not check is `Failure::Checked`, as in every command).
+pub fn with_request<T>(
     asked: &Asked,
-    then: impl FnOnce(&Request) -> Result<ExitCode, Failure>,
-) -> Result<ExitCode, Failure> {
+    then: impl FnOnce(&Request) -> Result<T, Failure>,
+) -> Result<T, Failure> {
     load::with_program(asked.file, asked.plugins, |program, source| {
         let display = asked.file.display().to_string();
         then(&Request {
@@ -92,33 +91,26 @@ fn build_options(
     })
 }
 
-/// The exit code or failure of a library error; the source's problems are rendered here.
-pub fn failed(error: VerifyError, req: &Request) -> Result<ExitCode, Failure> {
+/// The failure of a library error; the source's problems are `Failure::Checked`.
+pub fn failed(error: VerifyError, req: &Request) -> Failure {
     match error {
-        VerifyError::Source(diagnostics) => {
-            render::diagnostics(req.display, req.source, &diagnostics);
-            Ok(ExitCode::from(1))
-        }
-        VerifyError::Input(m) => Err(Failure::Input(m)),
-        VerifyError::Usage(m) => Err(Failure::Usage(m)),
-        VerifyError::Internal(m) => Err(Failure::Internal(m)),
+        VerifyError::Source(diagnostics) => Failure::checked(req.display, req.source, diagnostics),
+        VerifyError::Input(m) => Failure::Input(m),
+        VerifyError::Usage(m) => Failure::Usage(m),
+        VerifyError::Internal(m) => Failure::Internal(m),
     }
 }
 
-/// Reads the configuration, expands the sequences and models them. `Err(code)` inside: the
-/// problem was rendered as a diagnostic of the source.
+/// Reads the configuration, expands the sequences and models them.
 pub fn build(
     req: &Request,
     fault: Option<FaultArg>,
-) -> Result<Result<(Built, BuildOptions, Scene), ExitCode>, Failure> {
+) -> Result<(Built, BuildOptions, Scene), Failure> {
     let asked = req.asked;
     let config = read_configuration(asked.from)?;
     let prepared = match prepare(req.program, req.display, asked.sequences, config)? {
         Ok(p) => p,
-        Err(diagnostics) => {
-            render::diagnostics(req.display, req.source, &diagnostics);
-            return Ok(Err(ExitCode::from(1)));
-        }
+        Err(diagnostics) => return Err(Failure::checked(req.display, req.source, diagnostics)),
     };
     let options = build_options(asked, &prepared.names, fault)?;
     let configuration = asked.from.display().to_string();
@@ -135,8 +127,8 @@ pub fn build(
         start: prepared.start.clone(),
     };
     match dynarole_verify::build(&inputs, &options) {
-        Ok(built) => Ok(Ok((built, options, scene))),
-        Err(e) => failed(e, req).map(Err),
+        Ok(built) => Ok((built, options, scene)),
+        Err(e) => Err(failed(e, req)),
     }
 }
 
@@ -163,10 +155,7 @@ pub fn compile(args: &CompileArgs) -> Result<ExitCode, Failure> {
 /// `dynarole compile --target promela`: writes DIR/model.pml (the compositional method:
 /// DIR/model-MODULE.pml for each module).
 fn write_model(req: &Request, out_dir: &Path) -> Result<ExitCode, Failure> {
-    let (built, _, _) = match build(req, None)? {
-        Ok(b) => b,
-        Err(code) => return Ok(code),
-    };
+    let (built, _, _) = build(req, None)?;
     std::fs::create_dir_all(out_dir)
         .map_err(|e| Failure::Input(format!("cannot create {}: {e}", out_dir.display())))?;
     let mut written = Vec::new();

@@ -4,7 +4,6 @@
 //! the simulator's, as it always has) before and after.
 
 use crate::load::{self, Failure};
-use crate::render;
 use crate::world::{prepare, read_configuration};
 use dynarole_codegen::{GroupRun, Protocol};
 use dynarole_core::driver::Shape;
@@ -42,7 +41,38 @@ pub struct ParalleliseArgs {
     pub plugins: crate::load::PluginArgs,
 }
 
+/// What `parallelise` found: the file it writes, the sequence's statements and groups, and
+/// the critical path (with the robot's default timing preset) before and after.
+pub struct Found {
+    pub text: String,
+    pub name: String,
+    pub statements: usize,
+    pub groups: usize,
+    pub before: Result<u64, String>,
+    pub after: Result<u64, String>,
+}
+
 pub fn run(args: &ParalleliseArgs) -> Result<ExitCode, Failure> {
+    let found = found(args)?;
+    match &args.out {
+        Some(path) => std::fs::write(path, &found.text)
+            .map_err(|e| Failure::Input(format!("cannot write {}: {e}", path.display())))?,
+        None => print!("{}", found.text),
+    }
+    eprintln!(
+        "{}: {} statements, {} groups; critical path {} before, {} after",
+        args.sequence,
+        found.statements,
+        found.groups,
+        seconds(&found.before),
+        seconds(&found.after)
+    );
+    Ok(ExitCode::SUCCESS)
+}
+
+/// The parallel form of `args.sequence`, or why there is none (a sequence that does not replay
+/// is `Failure::Checked`, concluded by why it cannot be parallelised).
+pub fn found(args: &ParalleliseArgs) -> Result<Found, Failure> {
     let name = args
         .name
         .as_deref()
@@ -66,10 +96,7 @@ pub fn run(args: &ParalleliseArgs) -> Result<ExitCode, Failure> {
         let sequences = [args.sequence.to_string()];
         let prepared = match prepare(program, &display, &sequences, start)? {
             Ok(prepared) => prepared,
-            Err(errors) => {
-                render::diagnostics(&display, source, &errors);
-                return Ok(ExitCode::from(1));
-            }
+            Err(errors) => return Err(Failure::checked(&display, source, errors)),
         };
         let request = Request {
             program,
@@ -84,30 +111,33 @@ pub fn run(args: &ParalleliseArgs) -> Result<ExitCode, Failure> {
         let found = match parallelise(&request) {
             Ok(found) => found,
             Err(ParalleliseError::Input(diagnostics)) => {
-                render::diagnostics(&display, source, &diagnostics);
-                eprintln!(
-                    "error: `{}` does not replay from {}; only a sequence that does can be parallelised",
+                return Err(
+                    Failure::checked(&display, source, diagnostics).concluded(format!(
+                    "`{}` does not replay from {}; only a sequence that does can be parallelised",
                     args.sequence,
                     args.from.display()
-                );
-                return Ok(ExitCode::from(1));
+                )),
+                )
             }
             Err(ParalleliseError::Message(m)) => return Err(Failure::Input(m)),
         };
         let before = makespan(program, &prepared.plans, args.protocol);
-        write_result(args, &name, &found, before, &program.robot)
+        chosen(args, name, &found, before, &program.robot)
     })
 }
 
-/// Prints or writes the form the estimates choose, and the summary.
-fn write_result(
+/// The form the estimates choose, with its summary.
+fn chosen(
     args: &ParalleliseArgs,
-    name: &str,
+    name: String,
     found: &Parallelised,
     before: Result<u64, String>,
     robot: &RobotApi,
-) -> Result<ExitCode, Failure> {
-    let Estimated { estimates, chosen } = choose_form(found, name, args.protocol, robot);
+) -> Result<Found, Failure> {
+    let Estimated {
+        mut estimates,
+        chosen,
+    } = choose_form(found, &name, args.protocol, robot);
     let form = found
         .forms
         .get(chosen)
@@ -128,20 +158,14 @@ fn write_result(
             .collect(),
     };
     let text = format!("{}{}\n{}", summary.comments(), found.header, form.text);
-    match &args.out {
-        Some(path) => std::fs::write(path, &text)
-            .map_err(|e| Failure::Input(format!("cannot write {}: {e}", path.display())))?,
-        None => print!("{text}"),
-    }
-    eprintln!(
-        "{}: {} statements, {} groups; critical path {} before, {} after",
-        args.sequence,
-        found.statements.len(),
-        form.groups,
-        seconds(&before),
-        seconds(&estimates[chosen])
-    );
-    Ok(ExitCode::SUCCESS)
+    Ok(Found {
+        text,
+        name,
+        statements: found.statements.len(),
+        groups: form.groups,
+        before,
+        after: estimates.swap_remove(chosen),
+    })
 }
 
 /// The comment block at the top of the output.

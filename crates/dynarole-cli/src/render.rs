@@ -141,21 +141,36 @@ fn to_report(diagnostic: &Diagnostic) -> Report<()> {
 }
 
 pub fn failure(failure: &Failure) {
-    match failure {
+    let writer = StandardStream::stderr(color_choice());
+    write_failure(&mut writer.lock(), failure);
+}
+
+/// Writes `failure` as the command line shows it on standard error, to any writer (the
+/// library API keeps it as the text of its error).
+pub fn write_failure(out: &mut dyn WriteColor, failure: &Failure) {
+    // A failing write to stderr leaves nothing better to report to.
+    let _ = match failure {
         Failure::Input(message) | Failure::Usage(message) => {
-            eprintln!("error: {}", elide(message));
+            writeln!(out, "error: {}", elide(message))
         }
-        Failure::Internal(message) => eprintln!("internal error: {}", elide(message)),
+        Failure::Internal(message) => writeln!(out, "internal error: {}", elide(message)),
         Failure::Toml { path, text, error } => {
-            let writer = StandardStream::stderr(color_choice());
-            write_toml_error(&mut writer.lock(), path, text, error);
+            write_toml_error(out, path, text, error);
+            Ok(())
         }
         Failure::Checked {
             path,
             source,
             diagnostics: found,
-        } => diagnostics(path, source, found),
-    }
+            conclusion,
+        } => {
+            write_diagnostics(out, path, source, found);
+            match conclusion {
+                Some(message) => writeln!(out, "error: {}", elide(message)),
+                None => Ok(()),
+            }
+        }
+    };
 }
 
 /// For an error on a TOML line too long to print: where it is, in words.

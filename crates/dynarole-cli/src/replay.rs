@@ -24,46 +24,82 @@ pub struct ReplayArgs {
     pub plugins: crate::load::PluginArgs,
 }
 
+/// What a replay found: the prepared sequences, the model's run, its diagnostics (errors for
+/// refused statements, warnings), the final configuration and, with `--expect`, how it
+/// compares (`Err` holds the difference).
+pub struct Replayed {
+    pub prepared: crate::world::Prepared,
+    pub result: dynarole_replay::Replay,
+    pub diagnostics: Vec<dynarole_core::Diagnostic>,
+    pub final_configuration: Configuration,
+    pub expected: Option<(Configuration, Result<(), dynarole_world::Difference>)>,
+}
+
 pub fn run(args: &ReplayArgs) -> Result<ExitCode, Failure> {
     load::with_program(&args.file, &args.plugins, |program, source| {
         let display = args.file.display().to_string();
-        let start = read_configuration(&args.run.from)?;
-        let prepared = match prepare(program, &display, &args.run.sequences, start)? {
-            Ok(prepared) => prepared,
-            Err(errors) => {
-                render::diagnostics(&display, source, &errors);
-                return Ok(ExitCode::from(1));
-            }
-        };
-        let (result, diagnostics) = replayed(program, &prepared);
-        if args.record.wanted() {
-            record(args, program, &prepared, &display, source)?;
-        }
-        render::diagnostics(&display, source, &diagnostics);
-        let warnings = diagnostics.len() - result.n_rejected;
+        let found = replayed_on(args, program, source)?;
+        render::diagnostics(&display, source, &found.diagnostics);
+        let result = &found.result;
+        let warnings = found.diagnostics.len() - result.n_rejected;
         println!(
             "replayed {} from {}: {} statements, {} rejected, {warnings} warning{}",
-            prepared.names.join(", "),
+            found.prepared.names.join(", "),
             args.run.from.display(),
             result.n_statements,
             result.n_rejected,
             if warnings == 1 { "" } else { "s" }
         );
-        // A configuration file's robot always has the file format.
-        let final_configuration = result.final_world.configuration().ok_or_else(|| {
-            Failure::Internal("the robot model has no configuration format".into())
-        })?;
-        print_configuration(&final_configuration);
+        print_configuration(&found.final_configuration);
         if let Some(out) = &args.out {
-            std::fs::write(out, final_configuration.to_json_string())
+            std::fs::write(out, found.final_configuration.to_json_string())
                 .map_err(|e| Failure::Input(format!("cannot write {}: {e}", out.display())))?;
             println!("final configuration written to {}", out.display());
         }
-        let matches = match &args.run.expect {
-            Some(path) => expect(&final_configuration, path)?,
-            None => true,
+        let matches = match (&found.expected, &args.run.expect) {
+            (Some((expected, compared)), Some(path)) => print_comparison(expected, compared, path),
+            _ => true,
         };
         Ok(ExitCode::from(u8::from(result.n_rejected > 0 || !matches)))
+    })
+}
+
+/// `args`' sequences replayed on the model of the checked `program` (its text `source`), the
+/// recording written when asked for; a label without a module is `Failure::Checked`.
+pub fn replayed_on(
+    args: &ReplayArgs,
+    program: &dynarole_core::Program,
+    source: &str,
+) -> Result<Replayed, Failure> {
+    let display = args.file.display().to_string();
+    let start = read_configuration(&args.run.from)?;
+    let prepared = match prepare(program, &display, &args.run.sequences, start)? {
+        Ok(prepared) => prepared,
+        Err(errors) => return Err(Failure::checked(&display, source, errors)),
+    };
+    let (result, diagnostics) = replayed(program, &prepared);
+    if args.record.wanted() {
+        record(args, program, &prepared, &display, source)?;
+    }
+    // A configuration file's robot always has the file format.
+    let final_configuration = result
+        .final_world
+        .configuration()
+        .ok_or_else(|| Failure::Internal("the robot model has no configuration format".into()))?;
+    let expected = match &args.run.expect {
+        Some(path) => {
+            let expected = read_configuration(path)?;
+            let compared = compare_with_expected(&final_configuration, &expected);
+            Some((expected, compared))
+        }
+        None => None,
+    };
+    Ok(Replayed {
+        prepared,
+        result,
+        diagnostics,
+        final_configuration,
+        expected,
     })
 }
 
@@ -146,16 +182,19 @@ fn record(
     args.record.write(&recording)
 }
 
-fn expect(actual: &Configuration, path: &Path) -> Result<bool, Failure> {
-    let expected = read_configuration(path)?;
-    match compare_with_expected(actual, &expected) {
+fn print_comparison(
+    expected: &Configuration,
+    compared: &Result<(), dynarole_world::Difference>,
+    path: &Path,
+) -> bool {
+    match compared {
         Ok(()) => {
             println!("matches {} ({})", path.display(), expected.equality());
-            Ok(true)
+            true
         }
         Err(difference) => {
             println!("does NOT match {}:\n{difference}", path.display());
-            Ok(false)
+            false
         }
     }
 }

@@ -70,27 +70,37 @@ impl VerifyArgs {
 }
 
 pub fn run(args: &VerifyArgs) -> Result<ExitCode, Failure> {
+    let verdict = verified(args, &mut Printer::default())?;
+    print!("{verdict}");
+    Ok(ExitCode::from(match verdict {
+        Verdict::Verified => 0,
+        Verdict::Violated => 1,
+        Verdict::Inconclusive => 3,
+    }))
+}
+
+/// The model of `args` built and checked, its report told to `observer` as it comes (a
+/// counterexample recorded when asked); its verdict.
+pub fn verified(args: &VerifyArgs, observer: &mut dyn Observer) -> Result<Verdict, Failure> {
     let asked = &args.asked();
     let protocol = asked
         .options
         .compile_options(asked.epochs, String::new())?
         .protocol;
     dynarole_verify::modelled(protocol).map_err(|e| Failure::Usage(e.to_string()))?;
-    with_request(asked, |request| match build(request, args.fault)? {
-        Ok((built, options, scene)) => check(args, request, &built, &options, &scene),
-        Err(code) => Ok(code),
+    with_request(asked, |request| {
+        let (built, options, scene) = build(request, args.fault)?;
+        check(args, request, (&built, &options, &scene), observer)
     })
 }
 
-/// Checks the model in `--keep DIR` or a scratch directory (removed afterwards), printing
-/// the report as it comes; the exit code of its verdict.
+/// Checks the model in `--keep DIR` or a scratch directory (removed afterwards).
 fn check(
     args: &VerifyArgs,
     request: &Request,
-    built: &Built,
-    options: &BuildOptions,
-    scene: &Scene,
-) -> Result<ExitCode, Failure> {
+    (built, options, scene): (&Built, &BuildOptions, &Scene),
+    observer: &mut dyn Observer,
+) -> Result<Verdict, Failure> {
     let dir = match &args.keep {
         Some(d) => d.to_path_buf(),
         None => load::scratch_dir("verify"),
@@ -108,31 +118,15 @@ fn check(
         path: request.display,
         text: request.source,
     };
-    let report = dynarole_verify::verify(
-        built,
-        header,
-        &verify,
-        source,
-        &dir,
-        &mut Printer::default(),
-    );
+    let report = dynarole_verify::verify(built, header, &verify, source, &dir, observer);
     if args.keep.is_none() {
         let _ = std::fs::remove_dir_all(&dir);
     }
-    let report = match report {
-        Ok(report) => report,
-        Err(e) => return failed(e, request),
-    };
+    let report = report.map_err(|e| failed(e, request))?;
     if args.record.wanted() {
         record(&args.record, request, built, scene, &report)?;
     }
-    let verdict = report.verdict;
-    print!("{verdict}");
-    Ok(ExitCode::from(match verdict {
-        Verdict::Verified => 0,
-        Verdict::Violated => 1,
-        Verdict::Inconclusive => 3,
-    }))
+    Ok(report.verdict)
 }
 
 /// `--record`/`--html`: the counterexample's steps on the robot, the broken property marked

@@ -84,6 +84,7 @@ fn a_refused_file_is_a_failure_holding_its_located_diagnostics() {
             path: shown,
             source,
             diagnostics,
+            ..
         }) => {
             let located = api::locate(&shown, &source, &diagnostics);
             let first = &located[0];
