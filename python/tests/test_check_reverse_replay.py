@@ -9,10 +9,16 @@ import dynarole
 from conftest import ATRON, ROOT, cli
 
 
-def test_a_file_that_checks_has_no_diagnostics(eight2car):
+def test_a_file_that_checks_has_its_warnings_and_no_more(eight2car):
     program, start, _ = eight2car
     assert dynarole.check(program) == []
-    assert dynarole.check(program, sequences="eight2car", start=start) == []
+    warned = dynarole.check(program, sequences="eight2car", start=start)
+    printed = cli("check", program, "--from", start, "--sequence", "eight2car").stderr
+    assert len(warned) == printed.count("warning[") > 0
+    for w in warned:
+        assert w.severity == "warning"
+        assert f"warning[{w.code}]: {w.message}" in printed
+        assert f"{w.file}:{w.line}:{w.column}" in printed
 
 
 BAD = "robot atron;\n\nsequence s {\n    M0.Joint.spin();\n}\n"

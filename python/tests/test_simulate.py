@@ -139,5 +139,5 @@ def test_ctrl_c_stops_a_campaign_keeping_the_runs_recorded(tmp_path):
     assert 0 < len(kept)
     # Resumed: the runs recorded are not run again.
     more = dynarole.campaign(CAMPAIGNS / "extended.toml", out, jobs=2, plots=False, progress=False,
-                             max_runs=len(kept) + 5)
+                             max_runs=5)
     assert len(more) == len(kept) + 5
