@@ -328,17 +328,29 @@ class SimulationResult:
     report as ``to_dict()``; ``trace()`` and ``view()`` run the same seed again, recorded (the
     same inputs and seed give the same run, byte for byte)."""
 
-    def __init__(self, report: dict[str, Any], argv: Sequence[str]) -> None:
-        self._report = report
-        self._argv = list(argv)
+    def __init__(self, report: str, argv: Sequence[str]) -> None:
+        # The report's JSON text, parsed when first read: a sweep of many runs that reads a
+        # few fields of each does not pay for parsing every final configuration up front.
+        self._text = report
+        self._parsed: Optional[dict[str, Any]] = None
+        self._argv = argv
         self._recording: Optional[dict[str, Any]] = None
+
+    @property
+    def _report(self) -> dict[str, Any]:
+        if self._parsed is None:
+            self._parsed = json.loads(self._text)
+        return self._parsed
 
     def to_dict(self) -> dict[str, Any]:
         """The report, equal to the JSON line ``simulate --json`` prints for this run."""
-        return json.loads(json.dumps(self._report))
+        return json.loads(self._text)
 
     def __getattr__(self, name: str) -> Any:
-        report = self.__dict__.get("_report", {})
+        # Only the report's fields come here: the object's own attributes are found first.
+        if name.startswith("_"):
+            raise AttributeError(name)
+        report = self._report
         if name in report:
             return report[name]
         raise AttributeError(f"a simulation result has no field {name!r}")
@@ -465,7 +477,7 @@ def simulate(
             raise UsageError(f"{name!r} is given twice")
     argv = _argv([path], {**named, **options})
     runs = Runs()
-    _call(_native.simulate, argv, lambda report: runs.append(SimulationResult(json.loads(report), argv)))
+    _call(_native.simulate, argv, lambda report: runs.append(SimulationResult(report, argv)))
     return runs
 
 

@@ -108,3 +108,77 @@ fn options_are_checked_by_the_command_lines_definitions() {
         other => panic!("expected a usage error, got {other:?}"),
     }
 }
+
+#[test]
+fn replay_gives_the_configuration_replay_writes() {
+    let examples = repo_root().join("robots/atron/examples");
+    let program = examples.join("eight2car.dr");
+    let (from, expect) = (examples.join("eight.json"), examples.join("car.json"));
+    let args = [
+        arg(&program),
+        "--sequence",
+        "eight2car",
+        "--from",
+        arg(&from),
+        "--expect",
+        arg(&expect),
+    ];
+    let value = api::replay(&strings(&args)).expect("it replays");
+    let dir = tempfile::tempdir().expect("a scratch folder");
+    let out = dir.path().join("final.json");
+    let mut cli_args = vec!["replay"];
+    cli_args.extend(args);
+    cli_args.extend(["--out", arg(&out)]);
+    assert!(dynarole(&cli_args).status.success());
+    let written: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&out).expect("written")).expect("JSON");
+    assert_eq!(value["final_configuration"], written);
+    assert_eq!(value["matches_expected"], true);
+    assert_eq!(value["rejected"], 0);
+    assert_eq!(value["steps"].as_array().map(Vec::len), Some(25));
+}
+
+#[test]
+fn parallelise_gives_the_file_parallelise_prints() {
+    let examples = repo_root().join("robots/atron/examples");
+    let program = examples.join("eight2car.dr");
+    let from = examples.join("eight.json");
+    let args = [arg(&program), "--sequence", "eight2car", "--from", arg(&from)];
+    let value = api::parallelise(&strings(&args)).expect("it parallelises");
+    let mut cli_args = vec!["parallelise"];
+    cli_args.extend(args);
+    let out = dynarole(&cli_args);
+    assert_eq!(value["text"], text(&out.stdout));
+    let groups = format!("{} groups", value["groups"]);
+    assert!(text(&out.stderr).contains(&groups), "{groups}");
+}
+
+/// A caller's stop request, asked before every run.
+struct StopAfter(std::sync::atomic::AtomicU64);
+
+impl api::Progress for StopAfter {
+    fn advanced(&self) {
+        self.0.fetch_sub(1, std::sync::atomic::Ordering::Relaxed);
+    }
+
+    fn stop_requested(&self) -> bool {
+        self.0.load(std::sync::atomic::Ordering::Relaxed) == 0
+    }
+}
+
+#[test]
+fn a_campaign_stopped_by_its_caller_keeps_the_runs_recorded() {
+    let campaign = repo_root().join("examples/campaigns/smoke.toml");
+    let dir = tempfile::tempdir().expect("a scratch folder");
+    let args = [arg(&campaign), "-o", arg(dir.path()), "-j", "1", "--no-plots"];
+    let mut stop = StopAfter(std::sync::atomic::AtomicU64::new(3));
+    match api::campaign(&strings(&args), &mut stop) {
+        Err(Failure::Input(message)) => assert!(message.contains("interrupted"), "{message}"),
+        other => panic!("expected the interrupt, got {other:?}"),
+    }
+    let rows = std::fs::read_to_string(dir.path().join("runs.csv")).expect("runs.csv");
+    // The header and the three runs done before the stop.
+    assert_eq!(rows.lines().count(), 4, "{rows}");
+    let done = api::campaign(&strings(&args), &mut dynarole_campaign::Quiet).expect("it resumes");
+    assert_eq!(done["already"], 3);
+}
