@@ -143,7 +143,13 @@ fn parallelise_gives_the_file_parallelise_prints() {
     let examples = repo_root().join("robots/atron/examples");
     let program = examples.join("eight2car.dr");
     let from = examples.join("eight.json");
-    let args = [arg(&program), "--sequence", "eight2car", "--from", arg(&from)];
+    let args = [
+        arg(&program),
+        "--sequence",
+        "eight2car",
+        "--from",
+        arg(&from),
+    ];
     let value = api::parallelise(&strings(&args)).expect("it parallelises");
     let mut cli_args = vec!["parallelise"];
     cli_args.extend(args);
@@ -170,7 +176,14 @@ impl api::Progress for StopAfter {
 fn a_campaign_stopped_by_its_caller_keeps_the_runs_recorded() {
     let campaign = repo_root().join("examples/campaigns/smoke.toml");
     let dir = tempfile::tempdir().expect("a scratch folder");
-    let args = [arg(&campaign), "-o", arg(dir.path()), "-j", "1", "--no-plots"];
+    let args = [
+        arg(&campaign),
+        "-o",
+        arg(dir.path()),
+        "-j",
+        "1",
+        "--no-plots",
+    ];
     let mut stop = StopAfter(std::sync::atomic::AtomicU64::new(3));
     match api::campaign(&strings(&args), &mut stop) {
         Err(Failure::Input(message)) => assert!(message.contains("interrupted"), "{message}"),

@@ -378,8 +378,8 @@ fn circle_problems(
     problems
 }
 
-/// Every crate of the tree and its folder: `crates/NAME/`, and each robot's `robots/NAME/`
-/// (the crate `dynarole-robot-NAME`).
+/// Every crate of the tree and its folder: `crates/NAME/`, each robot's `robots/NAME/`
+/// (the crate `dynarole-robot-NAME`) and `python/` (the crate `dynarole-python`).
 fn crate_dirs() -> Vec<(String, PathBuf)> {
     let mut out = Vec::new();
     for (folder, prefix) in [("crates", ""), ("robots", "dynarole-robot-")] {
@@ -395,6 +395,8 @@ fn crate_dirs() -> Vec<(String, PathBuf)> {
             }
         }
     }
+    // The Python package's native module is a crate of its own folder.
+    out.push(("dynarole-python".to_string(), workspace().join("python")));
     out.sort();
     out
 }
