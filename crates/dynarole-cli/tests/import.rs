@@ -49,37 +49,63 @@ fn every_example_plan_imports_replays_reverses_and_simulates_at_30_percent_loss(
                 .expect("the plan reads");
         let last = dir.path().join("last.txt");
         std::fs::write(&last, last_configuration(&plan)).expect("written");
-        let replayed = ok(
-            &[
-                "replay",
-                arg(&program),
-                "--from",
-                arg(&from),
-                "--expect",
-                arg(&last),
-            ],
-            0,
-        );
-        assert!(replayed.contains("0 rejected"), "{replayed}");
-        // The derived reverse goes back from the last configuration to the first.
-        let reverse = ok(&["reverse", arg(&program), sequence], 0);
-        let reversed = dir.path().join("reverse.dr");
-        std::fs::write(&reversed, reverse).expect("written");
+        let ends = Ends {
+            from: &from,
+            expect: &expect,
+            first: &from,
+            last: &last,
+        };
+        replays_reverses_and_simulates(stem, sequence, &program, &ends, dir.path());
+    }
+}
+
+/// An imported plan's files and its ends as the planner wrote them.
+struct Ends<'a> {
+    /// `STEM.from.json` and `STEM.expect.json`, as `import` wrote them.
+    from: &'a Path,
+    expect: &'a Path,
+    /// The plan's first and last configurations, in the planner's own format.
+    first: &'a Path,
+    last: &'a Path,
+}
+
+/// The program replays from its first configuration to the plan's last, its derived reverse
+/// goes back to the first, and it simulates to the last at 30 % loss.
+fn replays_reverses_and_simulates(
+    stem: &str,
+    sequence: &str,
+    program: &Path,
+    ends: &Ends,
+    dir: &Path,
+) {
+    let replay = |program: &Path, from: &Path, expect: &Path| {
         ok(
             &[
                 "replay",
-                arg(&reversed),
+                arg(program),
                 "--from",
-                arg(&expect),
+                arg(from),
                 "--expect",
-                arg(&from),
+                arg(expect),
             ],
             0,
+        )
+    };
+    let replayed = replay(program, ends.from, ends.last);
+    assert!(replayed.contains("0 rejected"), "{stem}: {replayed}");
+    replay(program, ends.first, ends.last);
+    let reverse = ok(&["reverse", arg(program), sequence], 0);
+    let reversed = dir.join("reverse.dr");
+    std::fs::write(&reversed, reverse).expect("written");
+    replay(&reversed, ends.expect, ends.first);
+    for seed in ["1", "2"] {
+        let simulated = simulate(
+            program,
+            ends.first,
+            ends.last,
+            &["--loss", "0.3", "--seed", seed],
         );
-        for seed in ["1", "2"] {
-            let simulated = simulate(&program, &from, &last, &["--loss", "0.3", "--seed", seed]);
-            assert!(simulated.starts_with("SUCCESS"), "{stem}: {simulated}");
-        }
+        assert!(simulated.starts_with("SUCCESS"), "{stem}: {simulated}");
     }
 }
 
@@ -239,4 +265,80 @@ fn the_plans_without_a_synchronous_group_reach_their_end_under_every_fault_kind(
             assert!(simulated.contains("resets "), "{simulated}");
         }
     }
+}
+
+/// The voxel plans of `robots/rofi/examples/` (rofi-voxel's output for starts written here),
+/// each with its sequence's name.
+const VOXEL_PLANS: [(&str, &str); 2] = [
+    ("voxel-three", "voxel_three"),
+    ("voxel-five-loop", "voxel_five_loop"),
+];
+
+/// World `k` of a voxel plan (`usize::MAX`: the last), alone in a file of `dir`.
+fn voxel_world(plan: &Path, k: usize, dir: &Path) -> PathBuf {
+    let text = std::fs::read_to_string(plan).expect("the plan reads");
+    let worlds: Vec<serde_json::Value> = serde_json::from_str(&text).expect("a JSON array");
+    let world = &worlds[k.min(worlds.len() - 1)];
+    let path = dir.join(format!("world-{k}.json"));
+    std::fs::write(&path, world.to_string()).expect("written");
+    path
+}
+
+#[test]
+fn voxel_plans_import_replay_to_their_last_world_reverse_and_simulate_at_30_percent_loss() {
+    for (stem, sequence) in VOXEL_PLANS {
+        let dir = tempfile::tempdir().expect("a temporary directory");
+        let plan = repo_root().join(format!("robots/rofi/examples/{stem}.json"));
+        let printed = ok(&["import", arg(&plan), "-o", arg(dir.path())], 0);
+        assert!(printed.contains("(RoFI's voxel JSON)"), "{printed}");
+        assert!(
+            printed.contains("replays to the plan's last configuration"),
+            "{printed}"
+        );
+        let [program, from, expect] =
+            ["dr", "from.json", "expect.json"].map(|ext| dir.path().join(format!("{stem}.{ext}")));
+        // The worlds name no module: the last one is matched by its shape alone.
+        let (first, last) = (
+            voxel_world(&plan, 0, dir.path()),
+            voxel_world(&plan, usize::MAX, dir.path()),
+        );
+        let wrong = ok(
+            &[
+                "replay",
+                arg(&program),
+                "--from",
+                arg(&from),
+                "--expect",
+                arg(&first),
+            ],
+            1,
+        );
+        assert!(wrong.contains("compared by their shapes alone"), "{wrong}");
+        let ends = Ends {
+            from: &from,
+            expect: &expect,
+            first: &first,
+            last: &last,
+        };
+        replays_reverses_and_simulates(stem, sequence, &program, &ends, dir.path());
+    }
+}
+
+/// rofi-voxel's turns may cut a loop and close another: the cut is a disconnection before
+/// the turn, the new contact a connection after it.
+#[test]
+fn a_voxel_turn_that_cuts_a_loop_disconnects_first_and_connects_what_it_brings_together() {
+    let dir = tempfile::tempdir().expect("a temporary directory");
+    let plan = repo_root().join("robots/rofi/examples/voxel-five-loop.json");
+    let printed = ok(&["import", arg(&plan), "-o", arg(dir.path())], 0);
+    assert!(printed.contains(", 1 connect(s), 0 turn(s)"), "{printed}");
+    assert!(
+        printed.contains("1 disconnect(s), 0 connect(s), 1 turn(s)"),
+        "{printed}"
+    );
+    let program = std::fs::read_to_string(dir.path().join("voxel-five-loop.dr")).expect("written");
+    assert!(
+        program.contains("the connections the turn to configuration"),
+        "{program}"
+    );
 }

@@ -76,6 +76,9 @@ pub struct Difference {
     pub missing_connections: Vec<String>,
     /// Connections of the second configuration that the first lacks.
     pub extra_connections: Vec<String>,
+    /// Set when one of the two names no module (its file names none) and their shapes
+    /// differ, or one of them cannot be described without names: why.
+    pub unnamed: Option<String>,
     /// What the two configurations are, for the account.
     pub sides: Sides,
 }
@@ -83,6 +86,7 @@ pub struct Difference {
 impl Difference {
     fn is_empty(&self) -> bool {
         self.robots.is_none()
+            && self.unnamed.is_none()
             && self.only_in_first.is_empty()
             && self.only_in_second.is_empty()
             && self.ids.is_empty()
@@ -110,6 +114,9 @@ impl fmt::Display for Difference {
         let (first, second) = self.sides.names();
         if let Some((a, b)) = &self.robots {
             return write!(f, "different robots: {a} ({first}) and {b} ({second})");
+        }
+        if let Some(why) = &self.unnamed {
+            return write!(f, "configurations differ: {why}");
         }
         match &self.rotation {
             Some(r) => writeln!(
@@ -155,6 +162,32 @@ impl fmt::Display for Difference {
 
 impl std::error::Error for Difference {}
 
+/// The comparison of two configurations of which one names no module: by their unnamed
+/// forms alone (`None` when both name their modules).
+#[allow(clippy::result_large_err)]
+fn unnamed_difference(a: &Shape, b: &Shape) -> Option<Result<(), Difference>> {
+    let anonymous = |s: &Shape| s.unnamed.as_ref().is_some_and(|u| u.anonymous);
+    if !anonymous(a) && !anonymous(b) {
+        return None;
+    }
+    let form = |s: &Shape| s.unnamed.as_ref().map(|u| u.form.clone());
+    let why = match (form(a), form(b)) {
+        (Some(x), Some(y)) if x == y => return Some(Ok(())),
+        (Some(_), Some(_)) => {
+            "one of them names no module (its file gives none), so they are \
+                               compared by their shapes alone, and the shapes differ"
+        }
+        _ => {
+            "one of them names no module (its file gives none), and the other's shape cannot \
+              be told without names (a joint that is not a multiple of 90 degrees)"
+        }
+    };
+    Some(Err(Difference {
+        unnamed: Some(why.to_string()),
+        ..Difference::default()
+    }))
+}
+
 fn shape(config: &Configuration) -> Shape {
     config.rigid_shape()
 }
@@ -189,6 +222,9 @@ pub fn compare(a: &Configuration, b: &Configuration) -> Result<(), Difference> {
         });
     }
     let (sa, sb) = (shape(a), shape(b));
+    if let Some(why) = unnamed_difference(&sa, &sb) {
+        return why;
+    }
     let mut diff = Difference {
         only_in_first: names_missing(&sa, &sb),
         only_in_second: names_missing(&sb, &sa),

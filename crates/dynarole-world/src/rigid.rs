@@ -25,6 +25,19 @@ pub struct Shape {
     /// Positions are where the robot stands (a lattice robot's cells, which its moves change
     /// exactly): compared as they are, not up to a rigid motion.
     pub anchored: bool,
+    /// The configuration with its modules' names left out, where the robot can say it.
+    pub unnamed: Option<Unnamed>,
+}
+
+/// A configuration without names: what a file that names no module (a planner's anonymous
+/// world) can be compared by.
+pub struct Unnamed {
+    /// The robot's description of the configuration in a form that neither the modules'
+    /// names nor a rigid motion change: two configurations are the same shape when their
+    /// forms are equal.
+    pub form: String,
+    /// The file names no module: this configuration is compared by its form alone.
+    pub anonymous: bool,
 }
 
 fn connection_names(connections: Vec<NamedConnection>) -> BTreeSet<String> {
@@ -51,5 +64,6 @@ pub fn shape_of<M: RobotModule>(
         name_frame,
         position_scale,
         anchored: false,
+        unnamed: None,
     }
 }

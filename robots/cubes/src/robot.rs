@@ -163,6 +163,7 @@ impl CubesRobot {
             name_frame: |_| String::new(),
             position_scale: 1,
             anchored: true,
+            unnamed: None,
         }
     }
 

@@ -1,12 +1,14 @@
 //! Which of RoFI's formats a text is, decided from its content in this one place, and the
 //! text read as a plan (configurations, each with the line it starts at): RoFI's old text
 //! format (`C`, `M` and `E` lines; the `length`/`queue`/`cfgs` trailer of `rofi-reconfig`
-//! stripped), a RofiWorld JSON object (one configuration) or an array of them (a plan).
+//! stripped), a RofiWorld JSON object (one configuration) or an array of them (a plan), and
+//! voxel JSON (one world or an array; `voxel.rs`).
 //! dynarole's own RoFI file (a JSON object with a `robot` field) is the registry's to read.
 
 use crate::module::RofiConfiguration;
 use crate::old_format::read_old_format;
 use crate::rofiworld::read_rofiworld;
+use crate::voxel::read_voxel;
 use serde_json::value::RawValue;
 use std::fmt;
 
@@ -17,6 +19,8 @@ pub enum Format {
     OldText,
     /// RofiWorld JSON: one world, or an array of worlds.
     RofiWorld,
+    /// Voxel JSON (`bodies`, what `rofi-voxel` reads and writes): one world, or an array.
+    Voxel,
 }
 
 impl Format {
@@ -24,15 +28,27 @@ impl Format {
         match self {
             Format::OldText => "RoFI's old text format",
             Format::RofiWorld => "RofiWorld JSON",
+            Format::Voxel => "RoFI's voxel JSON",
         }
+    }
+
+    /// Whether the format names its modules (voxel worlds do not: their modules are numbered
+    /// in the order of their bodies, and compared by shape alone).
+    pub fn names_modules(self) -> bool {
+        self != Format::Voxel
     }
 }
 
-/// The format `text` is in, or `None` when it is none of RoFI's: JSON that opens with `[`,
-/// or with `{` and has no top-level `robot` field, is RofiWorld; text whose first line that
+/// The format `text` is in, or `None` when it is none of RoFI's: JSON whose world (the
+/// object, or the array's first element) has a `bodies` field is voxel JSON; other JSON that
+/// opens with `[`, or with `{` and has no top-level `robot` field, is RofiWorld; text whose first line that
 /// is not blank or a comment starts with `C`, `M` or `E` is the old format.
 pub fn recognise(text: &str) -> Option<Format> {
     let start = text.trim_start();
+    let json = start.starts_with('[') || start.starts_with('{');
+    if json && crate::voxel::is_voxel_json(text) {
+        return Some(Format::Voxel);
+    }
     if start.starts_with('[') {
         return Some(Format::RofiWorld);
     }
@@ -81,14 +97,24 @@ impl fmt::Display for FormatError {
     }
 }
 
-/// The configurations of `text` in `format`, each with the 1-based line where it starts.
-pub fn read_plan(
-    text: &str,
-    format: Format,
-) -> Result<Vec<(usize, RofiConfiguration)>, FormatError> {
+/// A plan as read: its configurations, each with the 1-based line where it starts, and for
+/// each the index of the configuration of the file it stands for (the same index twice where
+/// one configuration of the file is two steps: a voxel world whose turn makes connections).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ReadPlan {
+    pub configurations: Vec<(usize, RofiConfiguration)>,
+    pub indices: Vec<usize>,
+}
+
+/// The configurations of `text` in `format`.
+pub fn read_plan(text: &str, format: Format) -> Result<ReadPlan, FormatError> {
+    let one_each = |configurations: Vec<(usize, RofiConfiguration)>| ReadPlan {
+        indices: (0..configurations.len()).collect(),
+        configurations,
+    };
     match format {
         Format::OldText => read_old_format(text)
-            .map(|plan| plan.configurations)
+            .map(|plan| one_each(plan.configurations))
             .map_err(|e| FormatError {
                 line: e.line,
                 column: e.column,
@@ -96,20 +122,38 @@ pub fn read_plan(
                 message: e.message,
             }),
         Format::RofiWorld => {
-            let worlds = read_rofiworld(text).map_err(|e| located_in_worlds(text, e))?;
+            let worlds = read_rofiworld(text)
+                .map_err(|e| located_in_worlds(text, (e.path, e.line, e.column), e.message))?;
             let lines = world_lines(text, worlds.len());
-            Ok(lines.into_iter().zip(worlds).collect())
+            Ok(one_each(lines.into_iter().zip(worlds).collect()))
+        }
+        Format::Voxel => {
+            let plan = read_voxel(text)
+                .map_err(|e| located_in_worlds(text, (e.path, e.line, e.column), e.message))?;
+            let count = plan.configurations.last().map_or(0, |(k, _)| k + 1);
+            let lines = world_lines(text, count);
+            let (indices, configurations) = (plan.configurations.into_iter())
+                .map(|(k, config)| (k, (lines.get(k).copied().unwrap_or(1), config)))
+                .unzip();
+            Ok(ReadPlan {
+                configurations,
+                indices,
+            })
         }
     }
 }
 
-/// A RofiWorld error where the file has it: the JSON's own line and column for a syntax
-/// error, else the line where the world its path names (`[k]...`) starts.
-fn located_in_worlds(text: &str, e: crate::rofiworld::RofiWorldError) -> FormatError {
-    let (line, column) = if e.line > 0 {
-        (e.line, e.column)
+/// An error of a JSON format where the file has it: the JSON's own line and column for a
+/// syntax error, else the line where the world its path names (`[k]...`) starts.
+fn located_in_worlds(
+    text: &str,
+    (path, line, column): (String, usize, usize),
+    message: String,
+) -> FormatError {
+    let (line, column) = if line > 0 {
+        (line, column)
     } else {
-        let world: Option<usize> = (e.path.strip_prefix('['))
+        let world: Option<usize> = (path.strip_prefix('['))
             .and_then(|rest| rest.split(']').next())
             .and_then(|k| k.parse().ok());
         let lines = world_lines(text, world.map_or(1, |k| k + 1));
@@ -118,8 +162,8 @@ fn located_in_worlds(text: &str, e: crate::rofiworld::RofiWorldError) -> FormatE
     FormatError {
         line,
         column,
-        path: (!e.path.is_empty()).then_some(e.path),
-        message: e.message,
+        path: (!path.is_empty()).then_some(path),
+        message,
     }
 }
 

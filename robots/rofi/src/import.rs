@@ -24,18 +24,18 @@ pub(crate) fn read_native(text: &str) -> Option<Result<Configuration, ConfigErro
 
 fn one_configuration(text: &str, format: Format) -> Result<RofiRobot, ConfigError> {
     let plan = read_plan(text, format).map_err(|e| located(&e))?;
-    match plan.as_slice() {
-        [(_, config)] => robot(config.clone(), format, "configuration"),
-        [] => Err(ConfigError::new(
+    let count = plan.indices.last().map_or(0, |k| k + 1);
+    match (plan.configurations.first(), count) {
+        (Some((_, config)), 1) => robot(config.clone(), format, "configuration"),
+        (None, _) => Err(ConfigError::new(
             "document",
             "the file holds no configuration",
         )),
-        more => Err(ConfigError::new(
+        _ => Err(ConfigError::new(
             "document",
             format!(
-                "the file holds {} configurations (a plan); give one, or read the plan with \
-                 `dynarole import`",
-                more.len()
+                "the file holds {count} configurations (a plan); give one, or read the plan \
+                 with `dynarole import`"
             ),
         )),
     }
@@ -56,7 +56,11 @@ fn robot(config: RofiConfiguration, format: Format, what: &str) -> Result<RofiRo
         source: Some(format.name().to_string()),
         ..Metadata::default()
     };
-    RofiRobot::new(config, &BTreeMap::new(), metadata)
+    let robot = RofiRobot::new(config, &BTreeMap::new(), metadata)?;
+    Ok(match format.names_modules() {
+        true => robot,
+        false => robot.anonymous(),
+    })
 }
 
 /// The plan of a file in one of RoFI's formats as a program with one sequence, `sequence`.
@@ -66,35 +70,45 @@ pub(crate) fn import_plan(text: &str, sequence: &str) -> Option<Result<ImportedP
 }
 
 fn import(text: &str, format: Format, sequence: &str) -> Result<ImportedPlan, PlanError> {
-    let plan = read_plan(text, format).map_err(|e| PlanError {
+    let read = read_plan(text, format).map_err(|e| PlanError {
         line: e.line,
         column: e.column,
         message: e.to_string(),
     })?;
+    let (plan, indices) = (read.configurations, read.indices);
+    let count = indices.last().map_or(0, |k| k + 1);
     let at = |k: usize, message: String| PlanError {
         line: plan.get(k).map_or(1, |(line, _)| *line),
         column: 1,
         message,
     };
-    if plan.len() < 2 {
-        let n = plan.len();
+    if count < 2 {
+        let n = count;
         return Err(at(
             0,
             format!("a plan needs two configurations or more; this holds {n}"),
         ));
     }
-    let steps = plan_steps_at(&plan).map_err(|e| PlanError {
-        line: e.line.max(1),
-        column: 1,
-        message: e.to_string(),
+    let steps = plan_steps_at(&plan).map_err(|e| {
+        // Named as the file numbers its configurations.
+        let configuration = indices
+            .get(e.configuration)
+            .copied()
+            .unwrap_or(e.configuration);
+        PlanError {
+            line: e.line.max(1),
+            column: 1,
+            message: crate::steps::PlanError { configuration, ..e }.to_string(),
+        }
     })?;
     let ends = [
         (0, "first configuration"),
         (plan.len() - 1, "last configuration"),
     ];
     let [from, expect] = ends.map(|(k, what)| {
+        let index = indices[k];
         robot(plan[k].1.clone(), format, what)
-            .map_err(|e| at(k, format!("configuration {k}: {}", e.message)))
+            .map_err(|e| at(k, format!("configuration {index}: {}", e.message)))
     });
     let (from, expect) = (from?, expect?);
     let lines: Vec<String> = (steps.iter().enumerate())
@@ -102,7 +116,7 @@ fn import(text: &str, format: Format, sequence: &str) -> Result<ImportedPlan, Pl
         .collect();
     Ok(ImportedPlan {
         format: format.name(),
-        program: program(sequence, format, &steps, &plan),
+        program: program(sequence, format, &steps, &plan, &indices),
         from: Configuration::new(from),
         expect: Configuration::new(expect),
         steps: lines,
@@ -116,22 +130,24 @@ fn program(
     format: Format,
     steps: &[Step],
     plan: &[(usize, RofiConfiguration)],
+    indices: &[usize],
 ) -> String {
     let mut out = format!(
         "// Imported from a RoFI plan ({}): {} configurations, {} steps. Each step runs its\n\
          // disconnections, then its connections, then its turns, as RoFI's planners do.\n\
          robot rofi;\n\nsequence {sequence} {{\n",
         format.name(),
-        plan.len(),
+        indices.last().map_or(0, |k| k + 1),
         steps.len()
     );
     for (k, step) in steps.iter().enumerate() {
         let line = plan[k + 1].0;
-        out.push_str(&format!(
-            "    // step {}: configuration {k} to {} (line {line})\n",
-            k + 1,
-            k + 1
-        ));
+        let (a, b) = (indices[k], indices[k + 1]);
+        let what = match a == b {
+            true => format!("the connections the turn to configuration {b} makes"),
+            false => format!("configuration {a} to {b}"),
+        };
+        out.push_str(&format!("    // step {}: {what} (line {line})\n", k + 1));
         for note in &step.notes {
             out.push_str(&format!("    // {}\n", one_line(note)));
         }

@@ -1,5 +1,6 @@
 //! RoFI universal modules, as one robot kind: a configuration of them (`module.rs`), RoFI's
-//! old text format (`old_format.rs`) and RofiWorld JSON (`rofiworld.rs`), told apart by their
+//! old text format (`old_format.rs`), RofiWorld JSON (`rofiworld.rs`) and voxel JSON
+//! (`voxel.rs`, worlds matched up to placement), told apart by their
 //! content (`formats.rs`), and dynarole's own file (`json.rs`, `rofi.schema.json`); the forward
 //! kinematics of their shoes along one spanning tree (`tree.rs`, `kinematics.rs`), the validity
 //! RoFI asks of a configuration (`validity.rs`), a group of joint turns checked along its whole
@@ -24,8 +25,9 @@ mod sweep;
 mod tree;
 mod turn;
 mod validity;
+mod voxel;
 
-pub use formats::{read_plan, recognise, Format, FormatError};
+pub use formats::{read_plan, recognise, Format, FormatError, ReadPlan};
 pub use kinematics::{poses, poses_from, KinematicsError, Poses};
 pub use model::{RofiModel, MOTION_LIMIT};
 pub use module::*;
@@ -39,6 +41,7 @@ pub use sweep::{
 pub use tree::{across_connection, across_module, Shoe, LOOP_TOLERANCE};
 pub use turn::{face_centre, mate_of, turn_motion, TurnMotion};
 pub use validity::{first_collision, validate, Collision, Invalid, COLLISION_DISTANCE_SQUARED};
+pub use voxel::{read_voxel, VoxelError, VoxelPlan};
 
 use dynarole_world::{ConfigError, Configuration, Drawing, ImportedPlan, NetworkPreset, RobotKind};
 

@@ -8,7 +8,7 @@ use crate::module::{Connection, Connector, Joint, Module, RofiConfiguration};
 use crate::turn::mate_of;
 use crate::validity::validate;
 use dynarole_world::file_format::{is_module_name, MAX_MODULE_ID};
-use dynarole_world::rigid::{Body, Shape};
+use dynarole_world::rigid::{Body, Shape, Unnamed};
 use dynarole_world::{ConfigError, Metadata, NamedConnection, Port, RobotShape, Rotation, Vec3};
 use std::collections::BTreeMap;
 
@@ -24,6 +24,8 @@ pub struct RofiRobot {
     names: Vec<String>,
     ids: Vec<u32>,
     metadata: Metadata,
+    /// Its file names no module (a voxel world): it is compared by its shape alone.
+    anonymous: bool,
 }
 
 impl RofiRobot {
@@ -48,7 +50,17 @@ impl RofiRobot {
             names,
             ids,
             metadata,
+            anonymous: false,
         })
+    }
+
+    /// The same robot, read from a file that names no module: compared with another by the
+    /// shape alone (the IDs it was given are its reader's numbering).
+    pub(crate) fn anonymous(self) -> RofiRobot {
+        RofiRobot {
+            anonymous: true,
+            ..self
+        }
     }
 
     /// The same robot with `config` in place of its configuration (the same modules), as the
@@ -165,6 +177,10 @@ impl RofiRobot {
             name_frame: |_| String::new(),
             position_scale: 1,
             anchored: false,
+            unnamed: crate::voxel::unnamed_form(&self.config).map(|form| Unnamed {
+                form,
+                anonymous: self.anonymous,
+            }),
         }
     }
 

@@ -70,6 +70,7 @@ impl CubesConfiguration {
             name_frame: frame_name,
             position_scale: 1,
             anchored: false,
+            unnamed: None,
         }
     }
 }
