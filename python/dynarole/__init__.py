@@ -555,7 +555,8 @@ def verify(
 ) -> Verification:
     """``dynarole verify``: spin proves (or refutes) the protocol's properties for the
     sequences on ``start``; needs spin (``scripts/ensure-spin``). Other options of the command
-    go as keywords (``resets=1``, ``method="full"``, ``time_limit=60``, ``keep=DIR``)."""
+    go as keywords (``resets=1``, ``method="full"``, ``time_limit=60``, ``keep=DIR``). Ctrl-C
+    stops the check, and spin or pan with it, within a tenth of a second of pan's poll."""
     named = {
         "sequence": _sequences(sequences),
         "from": start,

@@ -84,11 +84,36 @@ fn parallelise(py: Python<'_>, argv: Vec<String>) -> PyResult<String> {
     json_text(&value)
 }
 
-/// `dynarole verify ARGV` as JSON.
+/// `dynarole verify ARGV` as JSON. The check runs on a thread of its own while this one looks
+/// at Python's signals every 100 ms: Ctrl-C stops spin or pan and raises `KeyboardInterrupt`.
 #[pyfunction]
 fn verify(py: Python<'_>, argv: Vec<String>) -> PyResult<String> {
-    let value = py.detach(|| api::verify(&argv)).map_err(raised)?;
-    json_text(&value)
+    let stop = AtomicBool::new(false);
+    let (outcome, stopped) = std::thread::scope(|scope| {
+        let check = scope.spawn(|| api::verify_until(&argv, &stop));
+        let mut stopped: Option<PyErr> = None;
+        loop {
+            let finished = py.detach(|| {
+                std::thread::sleep(POLL);
+                check.is_finished()
+            });
+            if let (Err(e), None) = (py.check_signals(), &stopped) {
+                stop.store(true, Ordering::Relaxed);
+                stopped = Some(e);
+            }
+            if finished {
+                break;
+            }
+        }
+        (py.detach(|| check.join()), stopped)
+    });
+    let outcome = outcome
+        .map_err(|_| NativeFailure::new_err(("internal", "the check's thread panicked", "[]")))?;
+    match (stopped, outcome) {
+        (Some(e), _) => Err(e),
+        (None, Err(failure)) => Err(raised(failure)),
+        (None, Ok(value)) => json_text(&value),
+    }
 }
 
 /// The viewer's page of the recording at `path`.

@@ -1,8 +1,12 @@
 """verify gives the verdict and the report the command prints (spin is installed by
 scripts/ensure-spin, which scripts/test runs first)."""
 
+import os
 import re
 import shutil
+import signal
+import threading
+import time
 
 import pytest
 
@@ -47,3 +51,17 @@ def test_a_protocol_verify_cannot_model_is_a_usage_error():
     with pytest.raises(dynarole.DynaroleError) as raised:
         dynarole.verify(program, None, line, protocol="token")
     assert raised.value.exit_code == printed.returncode
+
+
+@needs_spin
+def test_ctrl_c_stops_a_long_check_and_its_tools():
+    # The full model of the paper's eight modules with a reset searches for minutes.
+    timer = threading.Timer(3.0, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    started = time.monotonic()
+    with pytest.raises(KeyboardInterrupt):
+        dynarole.verify(ATRON / "eight2car.dr", "eight2car", ATRON / "eight.json",
+                        method="full", resets=1)
+    timer.cancel()
+    # Stopped within a poll of the tool running, not at its time limit of 600 s.
+    assert time.monotonic() - started < 60

@@ -15,6 +15,7 @@ use dynarole_core::diagnostic::{has_errors, Severity};
 use dynarole_core::Diagnostic;
 use serde_json::{json, Value};
 use std::path::Path;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 pub use dynarole_campaign::Progress;
 
@@ -208,8 +209,16 @@ pub fn parallelise(argv: &[String]) -> Result<Value, Failure> {
 /// `dynarole verify ARGV...`: `verdict` (`verified`, `violated`, `inconclusive`) and `report`,
 /// the text the command prints on standard output.
 pub fn verify(argv: &[String]) -> Result<Value, Failure> {
+    verify_until(argv, &AtomicBool::new(false))
+}
+
+/// [`verify`], stopped (the tool running killed, an `interrupted:` failure) once `stop` is set.
+pub fn verify_until(argv: &[String], stop: &AtomicBool) -> Result<Value, Failure> {
     let args: VerifyArgs = parse("verify", argv)?;
-    let mut report = Reported::default();
+    let mut report = Reported {
+        text: String::new(),
+        stop,
+    };
     let verdict = crate::verify::verified(&args, &mut report)?;
     let name = match verdict {
         dynarole_verify::Verdict::Verified => "verified",
@@ -220,13 +229,18 @@ pub fn verify(argv: &[String]) -> Result<Value, Failure> {
     Ok(json!({ "verdict": name, "report": report.text }))
 }
 
-/// The report of a check kept as the text the command line prints.
-#[derive(Default)]
-struct Reported {
+/// The report of a check kept as the text the command line prints, and whether the caller
+/// asks the check to stop.
+struct Reported<'s> {
     text: String,
+    stop: &'s AtomicBool,
 }
 
-impl dynarole_verify::Observer for Reported {
+impl dynarole_verify::Observer for Reported<'_> {
+    fn stop_requested(&mut self) -> bool {
+        self.stop.load(Ordering::Relaxed)
+    }
+
     fn header(&mut self, header: &dynarole_verify::Header) {
         self.text.push_str(&header.to_string());
     }

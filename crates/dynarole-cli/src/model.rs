@@ -98,6 +98,8 @@ pub fn failed(error: VerifyError, req: &Request) -> Failure {
         VerifyError::Input(m) => Failure::Input(m),
         VerifyError::Usage(m) => Failure::Usage(m),
         VerifyError::Internal(m) => Failure::Internal(m),
+        // Only the library's callers ask a check to stop (Ctrl-C in Python).
+        e @ VerifyError::Interrupted => Failure::Input(e.to_string()),
     }
 }
 

@@ -36,6 +36,8 @@ pub enum VerifyError {
     /// A failure of dynarole or of the tools it runs (spin, the C compiler, pan), or of the
     /// files it writes: never a verdict on the sequence.
     Internal(String),
+    /// The observer asked the check to stop (`Observer::stop_requested`): no verdict.
+    Interrupted,
 }
 
 impl std::fmt::Display for VerifyError {
@@ -46,6 +48,9 @@ impl std::fmt::Display for VerifyError {
             }
             VerifyError::Input(m) | VerifyError::Usage(m) | VerifyError::Internal(m) => {
                 f.write_str(m)
+            }
+            VerifyError::Interrupted => {
+                f.write_str("interrupted: the check stopped before a verdict")
             }
         }
     }

@@ -50,6 +50,11 @@ pub trait Observer {
     fn progress(&mut self, _label: &str, _phase: Phase, _search: Option<(u64, u64)>) {}
     /// They stopped (a result, or a failure, follows).
     fn end(&mut self) {}
+    /// Whether the caller asks the check to stop (looked at while a tool runs): the tool is
+    /// then stopped and the check ends with [`crate::VerifyError::Interrupted`].
+    fn stop_requested(&mut self) -> bool {
+        false
+    }
 }
 
 /// An observer told nothing.

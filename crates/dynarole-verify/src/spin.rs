@@ -134,6 +134,7 @@ fn run_to_file(
     let succeeded = loop {
         match child.try_wait() {
             Ok(Some(status)) => break status.success(),
+            Ok(None) if progress.stop_requested() => return Err(stopped(&mut child)),
             Ok(None) => {
                 progress.tick(None);
                 std::thread::sleep(POLL);
@@ -146,6 +147,13 @@ fn run_to_file(
         return Err(tool_failure(tool, &text));
     }
     Ok(())
+}
+
+/// A tool stopped because the check was asked to stop.
+fn stopped(child: &mut Child) -> VerifyError {
+    let _ = child.kill();
+    let _ = child.wait();
+    VerifyError::Interrupted
 }
 
 /// How often a running tool is looked at.
@@ -176,6 +184,11 @@ impl<'o> Progress<'o> {
     }
 
     /// Reports what runs now; `search` is pan's (states, depth) so far.
+    /// Whether the observer asks the check to stop.
+    fn stop_requested(&mut self) -> bool {
+        self.observer.stop_requested()
+    }
+
     fn tick(&mut self, search: Option<(u64, u64)>) {
         self.observer.progress(&self.label, self.phase, search);
     }
@@ -356,6 +369,7 @@ fn wait_for_pan(
                 let _ = child.wait();
                 return Ok(PanEnd::TimedOut);
             }
+            Ok(None) if progress.stop_requested() => return Err(stopped(child)),
             Ok(None) => {
                 // pan prints `Depth= ... States= ...` every million states.
                 if looked.elapsed() >= Duration::from_secs(1) {
