@@ -58,7 +58,8 @@ fn compiled(name: &str, text: &str) -> (Value, Validator) {
     (schema, validator)
 }
 
-/// Every `.json` file under `folder` (its subfolders too), parsed, in path order.
+/// Every `.json` file under `folder` (its subfolders too) that holds an object, parsed, in path
+/// order.
 fn json_files(folder: &Path) -> Vec<(PathBuf, Value)> {
     let mut found = Vec::new();
     let mut folders = vec![folder.to_path_buf()];
@@ -72,9 +73,13 @@ fn json_files(folder: &Path) -> Vec<(PathBuf, Value)> {
             } else if path.extension().is_some_and(|e| e == "json") {
                 let text = std::fs::read_to_string(&path)
                     .unwrap_or_else(|e| panic!("{}: readable: {e}", shown(&path)));
-                let value = serde_json::from_str(&text)
+                let value: Value = serde_json::from_str(&text)
                     .unwrap_or_else(|e| panic!("{}: JSON: {e}", shown(&path)));
-                found.push((path, value));
+                // An array is a planner's plan of worlds (RoFI's), which `import` reads: a
+                // configuration file is an object.
+                if !value.is_array() {
+                    found.push((path, value));
+                }
             }
         }
     }
