@@ -525,7 +525,14 @@ fn orientation(facing: Direction, mine: Direction, other: Direction) -> Orientat
 /// Every shoe's shape in a configuration, from its kinematics (shoe A of the lowest ID at the
 /// origin); `None` when the kinematics fails or a shoe is off the grid.
 fn shapes_of(config: &RofiConfiguration) -> Option<BTreeMap<Shoe, Shape>> {
-    let placed = poses(config).ok()?;
+    shapes_placed(config, &poses(config).ok()?)
+}
+
+/// Every shoe's shape at the poses the kinematics found for `config`.
+fn shapes_placed(
+    config: &RofiConfiguration,
+    placed: &crate::kinematics::Poses,
+) -> Option<BTreeMap<Shoe, Shape>> {
     let all: BTreeMap<Shoe, Matrix4<f64>> = config
         .modules()
         .flat_map(|m| [(m.id, Side::A), (m.id, Side::B)])
@@ -584,8 +591,8 @@ struct Next {
 
 /// How world k − 1 (`before`) becomes the world of shape `target` with one ±90° turn.
 fn next_world(before: &RofiConfiguration, target: &[Shape]) -> Option<Next> {
-    let shapes = shapes_of(before)?;
     let placed = poses(before).ok()?;
+    let shapes = shapes_placed(before, &placed)?;
     let want = canonical(target);
     let placements: Vec<BTreeMap<Cell, Shape>> = (alignments(&shapes, target, before.len()))
         .into_iter()
